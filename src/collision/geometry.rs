@@ -1,0 +1,85 @@
+//! Building collision shapes from primitive descriptions.
+//!
+//! Frames: every primitive is centred on its body-local pose; cylinders and capsules run
+//! along their local **z** axis, as in URDF (parry's own cylinders run along y, so they are
+//! turned by Rx(pi/2) here, once).
+
+use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
+use parry3d_f64::bounding_volume::Aabb;
+use parry3d_f64::shape::SharedShape;
+use std::f64::consts::FRAC_PI_2;
+
+/// A primitive solid, dimensions in metres.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Primitive {
+    /// Box with full side lengths along x, y, z.
+    Box { size: Vector3<f64> },
+    /// Cylinder along z, `length` is the full height.
+    Cylinder { radius: f64, length: f64 },
+    Sphere { radius: f64 },
+    /// Capsule along z; `length` is the length of the inner segment (URDF convention).
+    Capsule { radius: f64, length: f64 },
+    /// Convex hull of the points (e.g. a mesh's vertices).
+    ConvexHull { points: Vec<Point3<f64>> },
+}
+
+/// A shape attached to a body: `local` places the shape in the body frame.
+#[derive(Clone)]
+pub struct Geometry {
+    pub local: Isometry3<f64>,
+    pub shape: SharedShape,
+}
+
+impl std::fmt::Debug for Geometry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Geometry")
+            .field("local", &self.local)
+            .field("shape", &self.shape.shape_type())
+            .finish()
+    }
+}
+
+impl Geometry {
+    /// Builds the shape of `primitive` placed at `local` in the body frame.
+    /// Returns `None` for degenerate input (a hull of coplanar points, say).
+    pub fn new(primitive: &Primitive, local: Isometry3<f64>) -> Option<Geometry> {
+        let z_to_y = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), FRAC_PI_2);
+        let (shape, local) = match primitive {
+            Primitive::Box { size } => (
+                SharedShape::cuboid(size.x / 2.0, size.y / 2.0, size.z / 2.0),
+                local,
+            ),
+            Primitive::Cylinder { radius, length } => (
+                SharedShape::cylinder(length / 2.0, *radius),
+                local * z_to_y,
+            ),
+            Primitive::Sphere { radius } => (SharedShape::ball(*radius), local),
+            Primitive::Capsule { radius, length } => {
+                (SharedShape::capsule_z(length / 2.0, *radius), local)
+            }
+            Primitive::ConvexHull { points } => (SharedShape::convex_hull(points)?, local),
+        };
+        Some(Geometry { local, shape })
+    }
+
+    /// World pose of the shape when its body is at `body_pose`.
+    #[inline]
+    pub fn world_pose(&self, body_pose: &Isometry3<f64>) -> Isometry3<f64> {
+        body_pose * self.local
+    }
+
+    /// World bounding box when the body is at `body_pose`.
+    #[inline]
+    pub fn aabb(&self, body_pose: &Isometry3<f64>) -> Aabb {
+        self.shape.compute_aabb(&self.world_pose(body_pose))
+    }
+}
+
+/// Bounding box of several shapes of one body, or `None` when it has none.
+pub fn union_aabb(geometry: &[Geometry], body_pose: &Isometry3<f64>) -> Option<Aabb> {
+    use parry3d_f64::bounding_volume::BoundingVolume;
+    geometry
+        .iter()
+        .map(|g| g.aabb(body_pose))
+        .reduce(|a, b| a.merged(&b))
+}

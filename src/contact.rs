@@ -1,0 +1,130 @@
+//! Arm-object contacts: the broad phase, the 3D contact manifolds between links and
+//! objects, and their reduction to the planar contacts of the pushing model
+//! (`physics.md`, "Whole-arm contact in 3D").
+
+use crate::collision::geometry::union_aabb;
+use crate::collision::query::{contact_points, ContactPoint};
+use crate::math::Pose2;
+use crate::physics::PlanarContact;
+use crate::scene::Scene;
+use nalgebra::{Isometry3, Vector2};
+use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
+
+/// One contact point between a link and an object, world frame.
+#[derive(Clone, Copy, Debug)]
+pub struct ArmContact {
+    pub link: usize,
+    pub object: usize,
+    /// `point_a` on the object, `point_b` on the link, normal out of the object.
+    pub point: ContactPoint,
+}
+
+/// Bounding boxes of the robot's solid links at one configuration (the broad phase).
+#[derive(Clone, Debug, Default)]
+pub struct ArmBounds {
+    pub links: Vec<(usize, Aabb)>,
+    /// Box around the whole arm.
+    pub all: Option<Aabb>,
+}
+
+impl ArmBounds {
+    pub fn compute(scene: &Scene, poses: &[Isometry3<f64>], out: &mut ArmBounds) {
+        out.links.clear();
+        out.all = None;
+        for link in scene.robot.solid_links() {
+            let aabb = union_aabb(&scene.robot.chain.links[link].geometry, &poses[link])
+                .expect("solid links have geometry");
+            out.all = Some(out.all.map_or(aabb, |a: Aabb| a.merged(&aabb)));
+            out.links.push((link, aabb));
+        }
+    }
+}
+
+/// Appends every link-object contact point closer than `margin` (m), object by object.
+pub fn find_arm_contacts(
+    scene: &Scene,
+    poses: &[Isometry3<f64>],
+    bounds: &ArmBounds,
+    objects: &[Pose2],
+    margin: f64,
+    out: &mut Vec<ArmContact>,
+) {
+    let Some(all) = bounds.all.map(|a| a.loosened(margin)) else {
+        return;
+    };
+    let mut points = Vec::new();
+    for (index, (object, pose)) in scene.objects.iter().zip(objects).enumerate() {
+        let object_pose = pose.to_isometry(scene.table.top);
+        let object_box = object.geometry.aabb(&object_pose);
+        if !all.intersects(&object_box) {
+            continue;
+        }
+        for (link, link_box) in &bounds.links {
+            if !link_box.loosened(margin).intersects(&object_box) {
+                continue;
+            }
+            for g in &scene.robot.chain.links[*link].geometry {
+                points.clear();
+                contact_points(&object.geometry, &object_pose, g, &poses[*link], margin, &mut points);
+                out.extend(points.iter().map(|&point| ArmContact {
+                    link: *link,
+                    object: index,
+                    point,
+                }));
+            }
+        }
+    }
+}
+
+/// Reduces one object's 3D contacts to planar contacts in the object frame.
+///
+/// The normal is the horizontal part of the 3D normal (renormalised, pointing into the
+/// object); the pusher velocity is the horizontal displacement over the step of the link's
+/// material point at the contact, divided by `dt`. Points closer than 1 mm with the same
+/// normal (the stacked corners of a face contact, seen from above) are merged.
+/// `links` receives the link of each planar contact.
+#[allow(clippy::too_many_arguments)]
+pub fn planar_contacts(
+    contacts: &[ArmContact],
+    pose: &Pose2,
+    poses: &[Isometry3<f64>],
+    poses_new: &[Isometry3<f64>],
+    dt: f64,
+    out: &mut Vec<PlanarContact>,
+    links: &mut Vec<usize>,
+) {
+    out.clear();
+    links.clear();
+    for c in contacts {
+        let n = c.point.normal_a;
+        let horizontal = Vector2::new(-n.x, -n.y);
+        let length = horizontal.norm();
+        if length < 1e-6 {
+            continue; // vertical: outside the planar model (the validity check rejects it)
+        }
+        let p = c.point.point_b;
+        let moved = poses_new[c.link] * (poses[c.link].inverse() * p);
+        let v = (moved - p) / dt;
+        let contact = PlanarContact {
+            point: pose.point_to_local(c.point.point_a.xy().coords),
+            normal: pose.vector_to_local(horizontal / length),
+            pusher_velocity: pose.vector_to_local(v.xy()),
+            gap: c.point.distance,
+        };
+        let duplicate = out.iter_mut().zip(links.iter_mut()).find(|(o, _)| {
+            (o.point - contact.point).norm() < 1e-3 && o.normal.dot(&contact.normal) > 0.99
+        });
+        match duplicate {
+            Some((o, l)) => {
+                if contact.gap < o.gap {
+                    *o = contact;
+                    *l = c.link;
+                }
+            }
+            None => {
+                out.push(contact);
+                links.push(c.link);
+            }
+        }
+    }
+}

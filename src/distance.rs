@@ -1,0 +1,55 @@
+//! The distance metric of Sec. III-D:
+//! `Dist(x, x') = w_q ||q - q'|| + sum_i w_i ||o_i - o'_i||`.
+//!
+//! The SE(2) part is `sqrt(dx^2 + dy^2 + (l dtheta)^2)` with `dtheta` wrapped to
+//! (-pi, pi] and `l` (m/rad) the length one radian counts as. The goal object gets the
+//! higher weight, which steers the search towards moving it.
+
+use crate::math::{wrap_angle, Pose2};
+use crate::scene::{Goal, Scene};
+use crate::state::State;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct DistanceMetric {
+    /// Weight of the joint-space distance (1/rad).
+    pub robot_weight: f64,
+    /// Weight of each object's SE(2) distance (1/m).
+    pub object_weights: Vec<f64>,
+    /// Length (m) one radian of yaw counts as.
+    pub rotation_length: f64,
+}
+
+impl DistanceMetric {
+    /// The metric with the scene's weights; the goal object gets `goal_object_weight`.
+    pub fn from_scene(scene: &Scene) -> Self {
+        let p = &scene.planner;
+        let goal_object = match scene.goal {
+            Goal::ObjectInDisc { object, .. } => Some(object),
+            Goal::Configuration { .. } => None,
+        };
+        Self {
+            robot_weight: p.robot_weight,
+            object_weights: (0..scene.objects.len())
+                .map(|i| if Some(i) == goal_object { p.goal_object_weight } else { p.object_weight })
+                .collect(),
+            rotation_length: p.rotation_length,
+        }
+    }
+
+    /// Distance between two object poses (m).
+    pub fn object_distance(&self, a: &Pose2, b: &Pose2) -> f64 {
+        let dtheta = wrap_angle(a.theta - b.theta) * self.rotation_length;
+        ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + dtheta * dtheta).sqrt()
+    }
+
+    pub fn distance(&self, a: &State, b: &State) -> f64 {
+        let robot = self.robot_weight * (&a.q - &b.q).norm();
+        let objects: f64 = self
+            .object_weights
+            .iter()
+            .zip(a.objects.iter().zip(&b.objects))
+            .map(|(w, (pa, pb))| w * self.object_distance(pa, pb))
+            .sum();
+        robot + objects
+    }
+}

@@ -1,0 +1,91 @@
+//! Errors of loading and validating models. Every error names the file it comes from and,
+//! where there is one, the field (a dotted path such as `objects[2].mu_c`).
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A model-loading error. Display gives `file: field: message`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Error {
+    /// The file could not be read.
+    Io { file: PathBuf, message: String },
+    /// The file is not well-formed (syntax, unknown key, wrong type).
+    Parse {
+        file: PathBuf,
+        field: String,
+        message: String,
+    },
+    /// A value is well-formed but not acceptable (negative mass, NaN, goal off the table ...).
+    Invalid {
+        file: PathBuf,
+        field: String,
+        message: String,
+    },
+    /// The robot description (URDF) is unusable.
+    Urdf { file: PathBuf, message: String },
+    /// A collision mesh is missing or unusable.
+    Mesh { file: PathBuf, message: String },
+    /// The scene's start state violates a validity rule.
+    InvalidStart { file: PathBuf, reason: String },
+}
+
+impl Error {
+    pub fn invalid(file: &Path, field: impl Into<String>, message: impl Into<String>) -> Self {
+        Error::Invalid {
+            file: file.to_path_buf(),
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+
+    /// The file the error is about.
+    pub fn file(&self) -> &Path {
+        match self {
+            Error::Io { file, .. }
+            | Error::Parse { file, .. }
+            | Error::Invalid { file, .. }
+            | Error::Urdf { file, .. }
+            | Error::Mesh { file, .. }
+            | Error::InvalidStart { file, .. } => file,
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Io { file, message } => {
+                write!(f, "{}: cannot read: {message}", file.display())
+            }
+            Error::Parse {
+                file,
+                field,
+                message,
+            } => {
+                if field.is_empty() || field == "." {
+                    write!(f, "{}: {message}", file.display())
+                } else {
+                    write!(f, "{}: {field}: {message}", file.display())
+                }
+            }
+            Error::Invalid {
+                file,
+                field,
+                message,
+            } => write!(f, "{}: {field}: {message}", file.display()),
+            Error::Urdf { file, message } => {
+                write!(f, "{}: URDF: {message}", file.display())
+            }
+            Error::Mesh { file, message } => {
+                write!(f, "{}: mesh: {message}", file.display())
+            }
+            Error::InvalidStart { file, reason } => {
+                write!(f, "{}: start state is invalid: {reason}", file.display())
+            }
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+pub type Result<T> = std::result::Result<T, Error>;

@@ -1,0 +1,34 @@
+//! pushplan: whole-arm rearrangement planning by quasistatic pushing.
+//!
+//! The Rust model behind the planner of King, Haustein, Srinivasa and Asfour,
+//! "Nonprehensile Whole Arm Rearrangement Planning on Physics Manifolds":
+//!
+//! - [`scene`]: scene files (YAML) and their validated form;
+//! - [`robot`]: robots from URDF (and the planar hand), kinematics, the constraint
+//!   projection of actions onto the pushing plane;
+//! - [`collision`]: shapes and geometric queries; [`contact`]: arm-object contacts;
+//! - [`physics`]: quasistatic planar pushing (limit surface, friction, complementarity);
+//! - [`validity`], [`distance`], and [`propagate`] (`ConstrainedProp`, Alg. 2).
+//!
+//! Units are SI throughout (m, rad, s, kg, N); the world frame has z up.
+
+pub mod collision;
+pub mod contact;
+pub mod distance;
+pub mod error;
+pub mod math;
+pub mod physics;
+pub mod propagate;
+pub mod robot;
+pub mod scene;
+pub mod state;
+pub mod validity;
+
+pub use distance::DistanceMetric;
+pub use error::{Error, Result};
+pub use math::Pose2;
+pub use propagate::{Propagation, Propagator, Push};
+pub use robot::EeAction;
+pub use scene::Scene;
+pub use state::State;
+pub use validity::Invalid;

@@ -1,0 +1,140 @@
+//! Planar rigid-body math: SE(2) poses and twists of objects on the table.
+//!
+//! Poses are in the world frame (metres, radians); twists are body twists
+//! `(vx, vy, omega)` expressed in the object frame about its origin (the centre of
+//! friction), in m/s and rad/s.
+
+use nalgebra::{Isometry3, Matrix2, Translation3, UnitQuaternion, Vector2, Vector3};
+use std::f64::consts::PI;
+
+/// Wraps an angle to `(-pi, pi]`.
+pub fn wrap_angle(theta: f64) -> f64 {
+    let mut a = theta % (2.0 * PI);
+    if a <= -PI {
+        a += 2.0 * PI;
+    } else if a > PI {
+        a -= 2.0 * PI;
+    }
+    a
+}
+
+/// An object's configuration on the table: position of its origin (m) and yaw (rad), world frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose2 {
+    pub x: f64,
+    pub y: f64,
+    pub theta: f64,
+}
+
+impl Pose2 {
+    pub const fn new(x: f64, y: f64, theta: f64) -> Self {
+        Self { x, y, theta }
+    }
+
+    pub fn translation(&self) -> Vector2<f64> {
+        Vector2::new(self.x, self.y)
+    }
+
+    /// Rotation taking object-frame vectors to world-frame vectors.
+    pub fn rotation(&self) -> Matrix2<f64> {
+        let (s, c) = self.theta.sin_cos();
+        Matrix2::new(c, -s, s, c)
+    }
+
+    /// World-frame vector expressed in the object frame.
+    pub fn vector_to_local(&self, v: Vector2<f64>) -> Vector2<f64> {
+        self.rotation().transpose() * v
+    }
+
+    /// World-frame point expressed in the object frame.
+    pub fn point_to_local(&self, p: Vector2<f64>) -> Vector2<f64> {
+        self.vector_to_local(p - self.translation())
+    }
+
+    /// The pose reached by holding the body twist `twist` for `dt` seconds
+    /// (exact exponential map of SE(2)).
+    pub fn integrate(&self, twist: &Twist2, dt: f64) -> Pose2 {
+        let dtheta = twist.omega * dt;
+        let (vx, vy) = (twist.vx * dt, twist.vy * dt);
+        // Body-frame displacement of exp([v, w] dt).
+        let (dx, dy) = if dtheta.abs() < 1e-9 {
+            (vx - 0.5 * vy * dtheta, vy + 0.5 * vx * dtheta)
+        } else {
+            let (s, c) = dtheta.sin_cos();
+            let a = s / dtheta;
+            let b = (1.0 - c) / dtheta;
+            (a * vx - b * vy, b * vx + a * vy)
+        };
+        let world = self.rotation() * Vector2::new(dx, dy);
+        Pose2::new(
+            self.x + world.x,
+            self.y + world.y,
+            wrap_angle(self.theta + dtheta),
+        )
+    }
+
+    /// The 3D pose of the object's frame when its base rests at height `z` (m).
+    pub fn to_isometry(&self, z: f64) -> Isometry3<f64> {
+        Isometry3::from_parts(
+            Translation3::new(self.x, self.y, z),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), self.theta),
+        )
+    }
+}
+
+/// A planar body twist: velocity of the object's origin and angular velocity,
+/// in the object frame (m/s, rad/s).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Twist2 {
+    pub vx: f64,
+    pub vy: f64,
+    pub omega: f64,
+}
+
+impl Twist2 {
+    pub const ZERO: Twist2 = Twist2 {
+        vx: 0.0,
+        vy: 0.0,
+        omega: 0.0,
+    };
+
+    pub fn is_zero(&self) -> bool {
+        self.vx == 0.0 && self.vy == 0.0 && self.omega == 0.0
+    }
+}
+
+/// A pose given by translation (m) and URDF-style roll/pitch/yaw (rad).
+pub fn isometry_from_xyz_rpy(xyz: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(xyz[0], xyz[1], xyz[2]),
+        UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_angle_stays_in_range() {
+        assert!((wrap_angle(3.0 * PI) - PI).abs() < 1e-12);
+        assert!((wrap_angle(-PI) - PI).abs() < 1e-12);
+        assert!((wrap_angle(0.5) - 0.5).abs() < 1e-15);
+        assert!((wrap_angle(-7.0) - (-7.0 + 2.0 * PI)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn integrating_a_pure_rotation_about_an_offset_point_traces_a_circle() {
+        // Twist of a body rotating at 1 rad/s about the body point (0, -1):
+        // v = -omega x r = (-1, 0) at the origin.
+        let twist = Twist2 {
+            vx: -1.0,
+            vy: 0.0,
+            omega: 1.0,
+        };
+        let p = Pose2::new(0.0, 0.0, 0.0).integrate(&twist, PI / 2.0);
+        // Origin swings a quarter turn about (0, -1): ends at (-1, -1), yaw pi/2.
+        assert!((p.x + 1.0).abs() < 1e-12 && (p.y + 1.0).abs() < 1e-12);
+        assert!((p.theta - PI / 2.0).abs() < 1e-12);
+    }
+}

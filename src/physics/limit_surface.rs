@@ -1,0 +1,97 @@
+//! The ellipsoidal limit surface of an object sliding on the table.
+//!
+//! With `f_max = mu_g m g` and `m_max = mu_g m g c`, the ellipsoid is
+//! `F^T diag(1/f_max^2, 1/f_max^2, 1/m_max^2) F = 1` and a quasistatic slide has twist
+//! `V ∝ A F` with `A = diag(1, 1, 1/c^2)`: only the characteristic length `c` shapes the
+//! motion. Mass and support friction set the force scale (reported in newtons).
+
+use nalgebra::{Matrix3, Vector2, Vector3};
+
+/// Standard gravity (m/s^2).
+pub const GRAVITY: f64 = 9.81;
+
+/// The footprint of a prism on the table, in the object frame (m).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Footprint {
+    Circle { radius: f64 },
+    /// Convex polygon, counter-clockwise.
+    Polygon { vertices: Vec<Vector2<f64>> },
+}
+
+impl Footprint {
+    /// Area (m^2).
+    pub fn area(&self) -> f64 {
+        match self {
+            Footprint::Circle { radius } => std::f64::consts::PI * radius * radius,
+            Footprint::Polygon { vertices } => polygon_edges(vertices)
+                .map(|(a, b)| 0.5 * cross(a, b))
+                .sum(),
+        }
+    }
+
+    /// Area centroid (m); the centre of friction under uniform pressure.
+    pub fn centroid(&self) -> Vector2<f64> {
+        match self {
+            Footprint::Circle { .. } => Vector2::zeros(),
+            Footprint::Polygon { vertices } => {
+                let sum: Vector2<f64> = polygon_edges(vertices)
+                    .map(|(a, b)| (a + b) * cross(a, b))
+                    .sum();
+                sum / (6.0 * self.area())
+            }
+        }
+    }
+
+    /// Characteristic length `c = (1/A) ∫ |r| dA` (m) about the origin, for uniform pressure.
+    ///
+    /// For a polygon, each edge contributes the triangle it spans with the origin: with
+    /// `d` the edge line's distance from the origin and `s` the position along it,
+    /// `∫|r| dA = (1/6) [d s |p| + d^3 asinh(s/d)]` between the edge's end points.
+    pub fn characteristic_length(&self) -> f64 {
+        match self {
+            Footprint::Circle { radius } => 2.0 * radius / 3.0,
+            Footprint::Polygon { vertices } => {
+                let integral: f64 = polygon_edges(vertices)
+                    .map(|(a, b)| {
+                        let edge = b - a;
+                        let t = edge / edge.norm();
+                        let d = cross(t, a).abs();
+                        if d < 1e-12 {
+                            return 0.0;
+                        }
+                        let primitive = |p: Vector2<f64>| {
+                            let s = p.dot(&t);
+                            d * s * p.norm() + d.powi(3) * (s / d).asinh()
+                        };
+                        cross(a, b).signum() * (primitive(b) - primitive(a)) / 6.0
+                    })
+                    .sum();
+                integral / self.area()
+            }
+        }
+    }
+}
+
+fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+fn polygon_edges(vertices: &[Vector2<f64>]) -> impl Iterator<Item = (Vector2<f64>, Vector2<f64>)> + '_ {
+    (0..vertices.len()).map(move |i| (vertices[i], vertices[(i + 1) % vertices.len()]))
+}
+
+/// An object's limit surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LimitSurface {
+    /// Characteristic length c (m).
+    pub c: f64,
+    /// Largest friction force the table can exert, `mu_g m g` (N).
+    pub f_max: f64,
+}
+
+impl LimitSurface {
+    /// The motion mapping `A = diag(1, 1, 1/c^2)` (twist ∝ A wrench).
+    pub fn mobility(&self) -> Matrix3<f64> {
+        Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 1.0 / (self.c * self.c)))
+    }
+}

@@ -1,0 +1,14 @@
+//! Quasistatic planar pushing (`shared/docs/physics.md`): the ellipsoidal limit surface,
+//! Coulomb friction at every pusher contact, and the per-object complementarity problem
+//! that decides whether each contact separates, sticks or slides.
+//!
+//! Everything here is planar and in the object frame: points in metres, velocities in
+//! m/s, angular velocity in rad/s. The 3D-to-planar reduction of arm contacts lives in
+//! [`crate::contact`].
+
+pub mod lcp;
+pub mod limit_surface;
+pub mod pushing;
+
+pub use limit_surface::{Footprint, LimitSurface};
+pub use pushing::{object_motion, Jammed, ObjectMotion, PlanarContact};

@@ -1,0 +1,134 @@
+//! The motion of one object pushed at one or more points.
+//!
+//! Unknowns per contact i: normal force `fn_i`, friction split into `fl_i` (along +t_i)
+//! and `fr_i` (along -t_i), and the slip speed `lambda_i`. The object twist is
+//! `V = A sum_i (N_i fn_i + T_i (fl_i - fr_i))` with `N_i = J_i^T n_i`, `T_i = J_i^T t_i`.
+//! Complementarity per contact:
+//!
+//! ```text
+//! 0 <= fn  ⊥  N^T V - n.v_p + gap/dt >= 0   (no penetration at the end of the step)
+//! 0 <= fl  ⊥  T^T V - t.v_p + lambda >= 0   (friction opposes slip)
+//! 0 <= fr  ⊥ -T^T V + t.v_p + lambda >= 0
+//! 0 <= lambda ⊥ mu fn - fl - fr >= 0        (Coulomb cone)
+//! ```
+//!
+//! The `gap/dt` term lets a contact that closes within the step push for the rest of it,
+//! and removes residual penetration. For a single contact at zero gap this is exactly
+//! the sticking / sliding / separating solution of `physics.md`.
+
+use super::lcp;
+use super::limit_surface::LimitSurface;
+use crate::math::Twist2;
+use nalgebra::{DMatrix, DVector, Vector2, Vector3};
+
+/// A pusher contact on an object, in the object frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanarContact {
+    /// Contact point on the object's boundary (m).
+    pub point: Vector2<f64>,
+    /// Unit normal pointing into the object.
+    pub normal: Vector2<f64>,
+    /// Velocity of the pusher's material point at the contact (m/s).
+    pub pusher_velocity: Vector2<f64>,
+    /// Distance from pusher to object (m); negative when penetrating.
+    pub gap: f64,
+}
+
+impl PlanarContact {
+    /// Tangent: the normal turned by +90 degrees.
+    pub fn tangent(&self) -> Vector2<f64> {
+        Vector2::new(-self.normal.y, self.normal.x)
+    }
+
+    /// Wrench of a unit force `f` at the contact point: (fx, fy, x fy - y fx).
+    fn wrench(&self, f: Vector2<f64>) -> Vector3<f64> {
+        Vector3::new(f.x, f.y, self.point.x * f.y - self.point.y * f.x)
+    }
+}
+
+/// The pushers hold the object from opposing sides: no motion satisfies every contact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Jammed;
+
+/// The solved motion of a pushed object.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectMotion {
+    /// Body twist (m/s, rad/s) about the centre of friction.
+    pub twist: Twist2,
+    /// Normal force at each contact (N), scaled so the total wrench lies on the limit surface.
+    pub normal_forces: Vec<f64>,
+}
+
+/// Solves the object's twist under the given pusher contacts for a step of `dt` seconds.
+pub fn object_motion(
+    contacts: &[PlanarContact],
+    surface: &LimitSurface,
+    mu_c: f64,
+    dt: f64,
+) -> Result<ObjectMotion, Jammed> {
+    let m = contacts.len();
+    let approach = |c: &PlanarContact| c.normal.dot(&c.pusher_velocity) - c.gap / dt;
+    if contacts.iter().all(|c| approach(c) <= 0.0) {
+        // No pusher closes its gap within the step: nothing pushes the object.
+        return Ok(ObjectMotion {
+            twist: Twist2::ZERO,
+            normal_forces: vec![0.0; m],
+        });
+    }
+
+    let a = surface.mobility();
+    let normals: Vec<Vector3<f64>> = contacts.iter().map(|c| c.wrench(c.normal)).collect();
+    let tangents: Vec<Vector3<f64>> = contacts.iter().map(|c| c.wrench(c.tangent())).collect();
+
+    // Blocks of M: rows/cols ordered (fn, fl, fr, lambda), each of size m.
+    let mut mat = DMatrix::<f64>::zeros(4 * m, 4 * m);
+    let mut q = DVector::<f64>::zeros(4 * m);
+    for i in 0..m {
+        let (ni, ti) = (normals[i], tangents[i]);
+        for j in 0..m {
+            let (nj, tj) = (normals[j], tangents[j]);
+            let nn = ni.dot(&(a * nj));
+            let nt = ni.dot(&(a * tj));
+            let tn = ti.dot(&(a * nj));
+            let tt = ti.dot(&(a * tj));
+            mat[(i, j)] = nn;
+            mat[(i, m + j)] = nt;
+            mat[(i, 2 * m + j)] = -nt;
+            mat[(m + i, j)] = tn;
+            mat[(m + i, m + j)] = tt;
+            mat[(m + i, 2 * m + j)] = -tt;
+            mat[(2 * m + i, j)] = -tn;
+            mat[(2 * m + i, m + j)] = -tt;
+            mat[(2 * m + i, 2 * m + j)] = tt;
+        }
+        mat[(m + i, 3 * m + i)] = 1.0;
+        mat[(2 * m + i, 3 * m + i)] = 1.0;
+        mat[(3 * m + i, i)] = mu_c;
+        mat[(3 * m + i, m + i)] = -1.0;
+        mat[(3 * m + i, 2 * m + i)] = -1.0;
+
+        let c = &contacts[i];
+        let vt = c.tangent().dot(&c.pusher_velocity);
+        q[i] = -approach(c);
+        q[m + i] = -vt;
+        q[2 * m + i] = vt;
+    }
+
+    let z = lcp::solve(&mat, &q).ok_or(Jammed)?;
+    let mut wrench = Vector3::zeros();
+    for i in 0..m {
+        wrench += normals[i] * z[i] + tangents[i] * (z[m + i] - z[2 * m + i]);
+    }
+    let v = a * wrench;
+    // Scale the solver's forces onto the limit surface: F^T A F / f_max^2 = 1.
+    let load = wrench.dot(&v).sqrt();
+    let scale = if load > 0.0 { surface.f_max / load } else { 0.0 };
+    Ok(ObjectMotion {
+        twist: Twist2 {
+            vx: v.x,
+            vy: v.y,
+            omega: v.z,
+        },
+        normal_forces: (0..m).map(|i| z[i] * scale).collect(),
+    })
+}

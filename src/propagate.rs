@@ -1,0 +1,191 @@
+//! `ConstrainedProp` (Alg. 2): hold an action for a duration, step by step.
+//!
+//! Per step of `dt` seconds:
+//! 1. project the end-effector action to a joint step on the pushing plane;
+//! 2. read each contact's pusher velocity from the links' motion and solve each touched
+//!    object's twist (one complementarity problem per object), then move the objects;
+//! 3. check the new state; the first invalid state ends the propagation.
+//!
+//! The contacts found while checking a state are the contacts its next step pushes with,
+//! so each step runs one contact query per nearby link-object pair. Results depend only on
+//! the start state and the action: propagation is deterministic bit for bit.
+
+use crate::contact::{planar_contacts, ArmBounds, ArmContact};
+use crate::math::Pose2;
+use crate::physics::{object_motion, PlanarContact};
+use crate::robot::projection::ProjectionSettings;
+use crate::robot::EeAction;
+use crate::scene::Scene;
+use crate::state::State;
+use crate::validity::{check_arm_objects, check_objects, check_robot, Invalid};
+use nalgebra::{DVector, Isometry3};
+
+/// A link pushing an object during one step, with the force it applies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Push {
+    pub link: usize,
+    pub object: usize,
+    /// Largest normal force of the link's contacts on the object (N).
+    pub force: f64,
+}
+
+/// The outcome of holding one action.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Propagation {
+    /// The last valid state reached.
+    pub state: State,
+    /// Valid steps taken; the valid duration is `steps * dt`.
+    pub steps: usize,
+    /// Valid duration (s).
+    pub duration: f64,
+    /// For each valid step, the links that pushed objects.
+    pub pushes: Vec<Vec<Push>>,
+    /// Why the propagation stopped early (`None` when the full duration was valid).
+    pub stopped_by: Option<Invalid>,
+}
+
+/// Propagates actions through the scene's physics. Holds scratch buffers; one per thread.
+pub struct Propagator<'s> {
+    scene: &'s Scene,
+    settings: ProjectionSettings,
+    dt: f64,
+    poses: Vec<Isometry3<f64>>,
+    poses_new: Vec<Isometry3<f64>>,
+    bounds: ArmBounds,
+    contacts: Vec<ArmContact>,
+    contacts_new: Vec<ArmContact>,
+    planar: Vec<PlanarContact>,
+    planar_links: Vec<usize>,
+    q_new: DVector<f64>,
+    objects_new: Vec<Pose2>,
+    moved: Vec<bool>,
+}
+
+impl<'s> Propagator<'s> {
+    /// A propagator stepping with the scene's `planner.step`.
+    pub fn new(scene: &'s Scene) -> Self {
+        Self::with_step(scene, scene.planner.step)
+    }
+
+    /// A propagator stepping with `dt` seconds.
+    pub fn with_step(scene: &'s Scene, dt: f64) -> Self {
+        Self {
+            scene,
+            settings: scene.projection_settings(),
+            dt,
+            poses: Vec::new(),
+            poses_new: Vec::new(),
+            bounds: ArmBounds::default(),
+            contacts: Vec::new(),
+            contacts_new: Vec::new(),
+            planar: Vec::new(),
+            planar_links: Vec::new(),
+            q_new: DVector::zeros(scene.robot.dof()),
+            objects_new: Vec::new(),
+            moved: vec![false; scene.objects.len()],
+        }
+    }
+
+    pub fn step_size(&self) -> f64 {
+        self.dt
+    }
+
+    /// Holds `action` for `duration` seconds (rounded up to whole steps) from `start`,
+    /// which must be valid.
+    pub fn propagate(&mut self, start: &State, action: &EeAction, duration: f64) -> Propagation {
+        let steps = (duration / self.dt - 1e-9).ceil().max(0.0) as usize;
+        self.propagate_steps(start, action, steps)
+    }
+
+    /// Holds `action` for `steps` steps from `start`, which must be valid.
+    pub fn propagate_steps(&mut self, start: &State, action: &EeAction, steps: usize) -> Propagation {
+        let scene = self.scene;
+        let mut state = start.clone();
+        scene.robot.chain.forward_kinematics(&state.q, &mut self.poses);
+        ArmBounds::compute(scene, &self.poses, &mut self.bounds);
+        let mut pushes = Vec::with_capacity(steps);
+        let mut stopped_by = None;
+        if let Err(e) = check_arm_objects(scene, &self.poses, &self.bounds, &state.objects, &mut self.contacts) {
+            stopped_by = Some(e);
+        } else {
+            for _ in 0..steps {
+                match self.step(&mut state, action) {
+                    Ok(step_pushes) => pushes.push(step_pushes),
+                    Err(e) => {
+                        stopped_by = Some(e);
+                        break;
+                    }
+                }
+            }
+        }
+        let steps = pushes.len();
+        Propagation {
+            state,
+            steps,
+            duration: steps as f64 * self.dt,
+            pushes,
+            stopped_by,
+        }
+    }
+
+    /// One step from `state` (whose link poses and contacts are cached). On success the
+    /// state, poses and contacts advance; on failure nothing changes.
+    fn step(&mut self, state: &mut State, action: &EeAction) -> Result<Vec<Push>, Invalid> {
+        let scene = self.scene;
+        let dt = self.dt;
+        scene
+            .robot
+            .project_step(&state.q, &self.poses, action, dt, &self.settings, &mut self.q_new, &mut self.poses_new)
+            .map_err(Invalid::Projection)?;
+
+        // Physics: every object with contacts.
+        self.objects_new.clone_from(&state.objects);
+        self.moved.iter_mut().for_each(|m| *m = false);
+        let mut pushes = Vec::new();
+        let mut start = 0;
+        while start < self.contacts.len() {
+            let object = self.contacts[start].object;
+            let end = start + self.contacts[start..].iter().take_while(|c| c.object == object).count();
+            let pose = state.objects[object];
+            planar_contacts(
+                &self.contacts[start..end],
+                &pose,
+                &self.poses,
+                &self.poses_new,
+                dt,
+                &mut self.planar,
+                &mut self.planar_links,
+            );
+            let body = &scene.objects[object];
+            let motion = object_motion(&self.planar, &body.limit_surface, body.mu_c, dt).map_err(|_| Invalid::Jammed {
+                object: body.name.clone(),
+            })?;
+            if !motion.twist.is_zero() {
+                self.objects_new[object] = pose.integrate(&motion.twist, dt);
+                self.moved[object] = true;
+            }
+            for (&link, &force) in self.planar_links.iter().zip(&motion.normal_forces) {
+                if force > 0.0 {
+                    match pushes.iter_mut().find(|p: &&mut Push| p.link == link && p.object == object) {
+                        Some(p) => p.force = p.force.max(force),
+                        None => pushes.push(Push { link, object, force }),
+                    }
+                }
+            }
+            start = end;
+        }
+
+        // Validity of the new state; its contacts serve the next step.
+        ArmBounds::compute(scene, &self.poses_new, &mut self.bounds);
+        check_robot(scene, &self.q_new, &self.poses_new, &self.bounds)?;
+        check_arm_objects(scene, &self.poses_new, &self.bounds, &self.objects_new, &mut self.contacts_new)?;
+        let moved = &self.moved;
+        check_objects(scene, &self.objects_new, |i| moved[i])?;
+
+        state.q.copy_from(&self.q_new);
+        state.objects.clone_from(&self.objects_new);
+        std::mem::swap(&mut self.poses, &mut self.poses_new);
+        std::mem::swap(&mut self.contacts, &mut self.contacts_new);
+        Ok(pushes)
+    }
+}

@@ -1,0 +1,173 @@
+//! A kinematic tree with one planning chain: forward kinematics of every link and the
+//! geometric Jacobian of any point on any link.
+//!
+//! Frames: link poses are world-frame isometries (m, rad). Joint axes are unit vectors in
+//! the joint frame (URDF convention: child link frame = parent frame * origin * motion).
+//! Jacobians are 6 x dof, rows (vx, vy, vz, wx, wy, wz) in the world frame.
+
+use super::super::collision::Geometry;
+use nalgebra::{DMatrix, DVector, Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    Revolute,
+    Prismatic,
+    Fixed,
+}
+
+#[derive(Clone, Debug)]
+pub struct Joint {
+    pub name: String,
+    pub kind: JointKind,
+    /// Index of the parent link.
+    pub parent: usize,
+    /// Pose of the joint frame in the parent link frame.
+    pub origin: Isometry3<f64>,
+    /// Unit axis in the joint frame.
+    pub axis: Unit<Vector3<f64>>,
+    /// Position limits (rad or m).
+    pub lower: f64,
+    pub upper: f64,
+    /// Velocity limit (rad/s or m/s).
+    pub max_velocity: f64,
+    /// Index in the configuration vector, for joints on the planning chain.
+    pub dof: Option<usize>,
+    /// Value of a movable joint that is not on the planning chain (held still).
+    pub held_value: f64,
+}
+
+impl Joint {
+    /// Child frame relative to the joint frame at joint value `value`.
+    #[inline]
+    fn motion(&self, value: f64) -> Isometry3<f64> {
+        match self.kind {
+            JointKind::Revolute => Isometry3::from_parts(
+                Translation3::identity(),
+                UnitQuaternion::from_axis_angle(&self.axis, value),
+            ),
+            JointKind::Prismatic => Isometry3::from_parts(
+                Translation3::from(self.axis.into_inner() * value),
+                UnitQuaternion::identity(),
+            ),
+            JointKind::Fixed => Isometry3::identity(),
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Link {
+    pub name: String,
+    /// The joint whose child this link is (`None` for the root).
+    pub joint: Option<Joint>,
+    /// Collision shapes in the link frame.
+    pub geometry: Vec<Geometry>,
+}
+
+/// Links in topological order (every parent before its children; link 0 is the root).
+#[derive(Clone, Debug)]
+pub struct KinematicChain {
+    pub links: Vec<Link>,
+    /// World pose of the root link.
+    pub base: Isometry3<f64>,
+    /// For each configuration index, the link whose joint it drives.
+    pub dof_links: Vec<usize>,
+}
+
+impl KinematicChain {
+    pub fn dof(&self) -> usize {
+        self.dof_links.len()
+    }
+
+    pub fn link_index(&self, name: &str) -> Option<usize> {
+        self.links.iter().position(|l| l.name == name)
+    }
+
+    /// The joint driven by configuration index `i`.
+    pub fn dof_joint(&self, i: usize) -> &Joint {
+        self.links[self.dof_links[i]]
+            .joint
+            .as_ref()
+            .expect("a dof link has a joint")
+    }
+
+    /// Position limits of the configuration, per index.
+    pub fn limits(&self) -> Vec<(f64, f64)> {
+        (0..self.dof())
+            .map(|i| {
+                let j = self.dof_joint(i);
+                (j.lower, j.upper)
+            })
+            .collect()
+    }
+
+    /// World poses of all links at configuration `q`, written to `poses`.
+    pub fn forward_kinematics(&self, q: &DVector<f64>, poses: &mut Vec<Isometry3<f64>>) {
+        poses.clear();
+        for link in &self.links {
+            let pose = match &link.joint {
+                None => self.base,
+                Some(j) => {
+                    let value = j.dof.map_or(j.held_value, |i| q[i]);
+                    poses[j.parent] * j.origin * j.motion(value)
+                }
+            };
+            poses.push(pose);
+        }
+    }
+
+    /// The 6 x dof geometric Jacobian of the world point `point`, rigidly attached to
+    /// `link`, given the link poses from [`forward_kinematics`](Self::forward_kinematics).
+    pub fn point_jacobian(
+        &self,
+        poses: &[Isometry3<f64>],
+        link: usize,
+        point: &Point3<f64>,
+    ) -> DMatrix<f64> {
+        let mut jac = DMatrix::zeros(6, self.dof());
+        let mut current = link;
+        while let Some(joint) = &self.links[current].joint {
+            if let Some(i) = joint.dof {
+                // The joint's motion keeps its axis fixed, so the axis and (for revolute
+                // joints) the axis point can be read off the child link's pose.
+                let pose = &poses[current];
+                let axis = pose.rotation * joint.axis.into_inner();
+                match joint.kind {
+                    JointKind::Revolute => {
+                        let lever = point - Point3::from(pose.translation.vector);
+                        jac.fixed_view_mut::<3, 1>(0, i).copy_from(&axis.cross(&lever));
+                        jac.fixed_view_mut::<3, 1>(3, i).copy_from(&axis);
+                    }
+                    JointKind::Prismatic => {
+                        jac.fixed_view_mut::<3, 1>(0, i).copy_from(&axis);
+                    }
+                    JointKind::Fixed => {}
+                }
+            }
+            current = joint.parent;
+        }
+        jac
+    }
+
+    /// Is `q` inside the joint limits?
+    pub fn within_limits(&self, q: &DVector<f64>) -> Result<(), usize> {
+        for i in 0..self.dof() {
+            let j = self.dof_joint(i);
+            if !(q[i] >= j.lower && q[i] <= j.upper) {
+                return Err(i);
+            }
+        }
+        Ok(())
+    }
+
+    /// Is link `b` a descendant of link `a`?
+    pub fn is_ancestor(&self, a: usize, b: usize) -> bool {
+        let mut current = b;
+        while let Some(j) = &self.links[current].joint {
+            if j.parent == a {
+                return true;
+            }
+            current = j.parent;
+        }
+        false
+    }
+}

@@ -1,0 +1,226 @@
+//! Constraint projection (Alg. 2 line 5, Sec. V of the whole-arm paper).
+//!
+//! An end-effector action `a = (vx, vy, omega_z)` (world frame, m/s and rad/s, about the
+//! tool point) becomes the joint step
+//!
+//! ```text
+//! q_new = q + dt (J+ (a + c) + h),   h = (I - J+ J) z
+//! ```
+//!
+//! where `J` is the tool point's 6 x n geometric Jacobian, `J+` its damped
+//! pseudoinverse, `z` the action's null-space sample (joint velocities, rad/s) and `c`
+//! the correction that keeps the tool on its plane: the height error and the tilt
+//! error are removed within the step (vz, wx, wy rows). Yaw about the vertical is free.
+//! When the first-order step still leaves the plane by more than the tolerance (near a
+//! singularity), a few Newton corrections follow, as in CBiRRT's projection.
+
+use super::Robot;
+use nalgebra::{DVector, Isometry3, Matrix6, UnitQuaternion, Vector3, Vector6};
+
+/// The manifold the tool is held on: a horizontal plane and a fixed tilt.
+#[derive(Clone, Debug)]
+pub struct PushingPlane {
+    /// World height of the tool point (m).
+    pub height: f64,
+    /// Tool orientation at yaw 0 (world frame). Only its tilt is constrained.
+    pub orientation: UnitQuaternion<f64>,
+    /// The world's up axis expressed in the tool frame: constant on the manifold.
+    up_in_tool: Vector3<f64>,
+}
+
+impl PushingPlane {
+    pub fn new(height: f64, orientation: UnitQuaternion<f64>) -> Self {
+        let up_in_tool = orientation.inverse() * Vector3::z();
+        Self {
+            height,
+            orientation,
+            up_in_tool,
+        }
+    }
+
+    /// Height error (m, signed: plane minus tool) and tilt error (rad, >= 0) of a tool pose.
+    pub fn error(&self, tool: &Isometry3<f64>) -> (f64, f64) {
+        let up = tool.rotation * self.up_in_tool;
+        (
+            self.height - tool.translation.z,
+            up.z.clamp(-1.0, 1.0).acos(),
+        )
+    }
+
+    /// The twist (linear z and angular x, y rows; others zero) that removes the error
+    /// in unit time.
+    fn correction(&self, tool: &Isometry3<f64>) -> Vector6<f64> {
+        let up = tool.rotation * self.up_in_tool;
+        let axis = up.cross(&Vector3::z());
+        let sin = axis.norm();
+        let angle = up.z.clamp(-1.0, 1.0).acos();
+        let w = if sin > 1e-12 { axis * (angle / sin) } else { Vector3::zeros() };
+        Vector6::new(0.0, 0.0, self.height - tool.translation.z, w.x, w.y, 0.0)
+    }
+}
+
+/// One action: a planar end-effector velocity and a null-space sample.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EeAction {
+    /// (vx, vy) in m/s and omega_z in rad/s, world frame, at the tool point.
+    pub velocity: [f64; 3],
+    /// Joint velocities (rad/s) projected onto the Jacobian's null space; empty = none.
+    pub nullspace: DVector<f64>,
+}
+
+impl EeAction {
+    pub fn planar(vx: f64, vy: f64, omega_z: f64) -> Self {
+        Self {
+            velocity: [vx, vy, omega_z],
+            nullspace: DVector::zeros(0),
+        }
+    }
+}
+
+/// Limits of the projection.
+#[derive(Clone, Debug)]
+pub struct ProjectionSettings {
+    /// Damping of the pseudoinverse (m); keeps steps bounded near singularities.
+    pub damping: f64,
+    /// Largest joint motion in one step (rad or m); more means a singularity.
+    pub max_joint_step: f64,
+    /// Tolerated distance of the tool from its plane (m).
+    pub height_tolerance: f64,
+    /// Tolerated tilt of the tool (rad).
+    pub tilt_tolerance: f64,
+}
+
+impl Default for ProjectionSettings {
+    fn default() -> Self {
+        Self {
+            damping: 1e-3,
+            max_joint_step: 0.05,
+            height_tolerance: 1e-3,
+            tilt_tolerance: 0.01,
+        }
+    }
+}
+
+/// Why a projected step was refused.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ProjectionFailure {
+    /// A joint would move more than the step allows (a singularity).
+    JointStepTooLarge { joint: usize, step: f64 },
+    /// The tool could not be brought back to its plane.
+    OffPlane { height_error: f64, tilt_error: f64 },
+}
+
+impl std::fmt::Display for ProjectionFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::JointStepTooLarge { joint, step } => {
+                write!(f, "joint {joint} would move {step:.3} in one step (singular)")
+            }
+            Self::OffPlane {
+                height_error,
+                tilt_error,
+            } => write!(
+                f,
+                "tool left its plane by {:.4} m / {tilt_error:.4} rad",
+                height_error.abs()
+            ),
+        }
+    }
+}
+
+const NEWTON_ITERATIONS: usize = 5;
+
+impl Robot {
+    /// Joint velocity that realises the task twist `task` (6 rows) plus the null-space
+    /// part of `z` (empty for none), at the configuration with link poses `poses`.
+    fn joint_velocity(
+        &self,
+        poses: &[Isometry3<f64>],
+        task: &Vector6<f64>,
+        z: &DVector<f64>,
+        damping: f64,
+    ) -> DVector<f64> {
+        let tool = self.tool_pose(poses);
+        let jac = self
+            .chain
+            .point_jacobian(poses, self.ee_link, &tool.translation.vector.into());
+        let jjt: Matrix6<f64> =
+            (&jac * jac.transpose()).fixed_view::<6, 6>(0, 0).into_owned() + Matrix6::identity() * damping.powi(2);
+        let chol = jjt.cholesky().expect("damped J J^T is positive definite");
+        let mut qdot = jac.transpose() * chol.solve(task);
+        if !z.is_empty() {
+            let jz = Vector6::from_iterator((&jac * z).iter().copied());
+            qdot += z - jac.transpose() * chol.solve(&jz);
+        }
+        qdot
+    }
+
+    /// Projects one step of `action` held for `dt` seconds from `q` (link poses `poses`)
+    /// onto the pushing plane. Writes the new configuration and its link poses.
+    pub fn project_step(
+        &self,
+        q: &DVector<f64>,
+        poses: &[Isometry3<f64>],
+        action: &EeAction,
+        dt: f64,
+        settings: &ProjectionSettings,
+        q_new: &mut DVector<f64>,
+        poses_new: &mut Vec<Isometry3<f64>>,
+    ) -> Result<(), ProjectionFailure> {
+        let tool = self.tool_pose(poses);
+        let [vx, vy, wz] = action.velocity;
+        let task = Vector6::new(vx, vy, 0.0, 0.0, 0.0, wz) + self.plane.correction(&tool) / dt;
+        let qdot = self.joint_velocity(poses, &task, &action.nullspace, settings.damping);
+        q_new.copy_from(q);
+        q_new.axpy(dt, &qdot, 1.0);
+        self.check_step(q, q_new, settings)?;
+        self.chain.forward_kinematics(q_new, poses_new);
+        self.restore_plane(q_new, poses_new, settings)?;
+        self.check_step(q, q_new, settings)
+    }
+
+    /// Newton corrections back onto the plane, if the tool has drifted beyond tolerance.
+    pub fn restore_plane(
+        &self,
+        q: &mut DVector<f64>,
+        poses: &mut Vec<Isometry3<f64>>,
+        settings: &ProjectionSettings,
+    ) -> Result<(), ProjectionFailure> {
+        let within = |poses: &[Isometry3<f64>]| {
+            let (h, t) = self.plane.error(&self.tool_pose(poses));
+            (h.abs() <= settings.height_tolerance && t <= settings.tilt_tolerance, h, t)
+        };
+        let empty = DVector::zeros(0);
+        for _ in 0..NEWTON_ITERATIONS {
+            if within(poses).0 {
+                return Ok(());
+            }
+            let correction = self.plane.correction(&self.tool_pose(poses));
+            let dq = self.joint_velocity(poses, &correction, &empty, settings.damping);
+            *q += dq;
+            self.chain.forward_kinematics(q, poses);
+        }
+        match within(poses) {
+            (true, _, _) => Ok(()),
+            (false, height_error, tilt_error) => Err(ProjectionFailure::OffPlane {
+                height_error,
+                tilt_error,
+            }),
+        }
+    }
+
+    fn check_step(
+        &self,
+        q: &DVector<f64>,
+        q_new: &DVector<f64>,
+        settings: &ProjectionSettings,
+    ) -> Result<(), ProjectionFailure> {
+        for i in 0..q.len() {
+            let step = (q_new[i] - q[i]).abs();
+            if !(step <= settings.max_joint_step) {
+                return Err(ProjectionFailure::JointStepTooLarge { joint: i, step });
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,255 @@
+//! The scene file format (YAML), as typed structs. Unknown keys are rejected everywhere.
+//! Units: metres, radians, kilograms, seconds. See the README for an annotated example.
+
+use serde::Deserialize;
+use std::path::PathBuf;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Human-readable scene name (defaults to the file stem).
+    pub name: Option<String>,
+    pub robot: RobotSpec,
+    pub table: TableSpec,
+    #[serde(default)]
+    pub obstacles: Vec<ObstacleSpec>,
+    #[serde(default)]
+    pub objects: Vec<ObjectSpec>,
+    pub goal: GoalSpec,
+    #[serde(default)]
+    pub planner: PlannerSpec,
+    #[serde(default)]
+    pub physics: PhysicsSpec,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum RobotSpec {
+    /// A serial arm from URDF.
+    Arm {
+        /// URDF file, relative to the scene file.
+        urdf: PathBuf,
+        /// World pose of the URDF's root link.
+        #[serde(default)]
+        base_pose: PoseSpec,
+        /// Start configuration (rad / m), one value per joint from base to end effector.
+        start_joints: Vec<f64>,
+        /// The end-effector link.
+        end_effector: String,
+        /// The tool point and frame in the end-effector link (default: the link frame).
+        #[serde(default)]
+        tool: PoseSpec,
+        pushing_plane: PlaneSpec,
+    },
+    /// The free-flying planar pusher.
+    PlanarHand {
+        /// The hand's solid, centred on the hand frame.
+        shape: ShapeSpec,
+        /// Start pose [x, y, yaw] (m, m, rad), world frame.
+        start: [f64; 3],
+        /// Height of the hand frame above the table top (m).
+        height: f64,
+    },
+}
+
+#[derive(Debug, Deserialize, Default, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct PoseSpec {
+    #[serde(default)]
+    pub xyz: [f64; 3],
+    #[serde(default)]
+    pub rpy: [f64; 3],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSpec {
+    /// Height of the tool point above the table top (m).
+    pub height: f64,
+    /// The tool's world orientation at yaw 0 (roll, pitch, yaw in rad); yaw stays free.
+    pub orientation_rpy: [f64; 3],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TableSpec {
+    /// World height of the table top (m).
+    pub height: f64,
+    /// Extent of the support surface along world x and y: [min, max] (m).
+    pub x: [f64; 2],
+    pub y: [f64; 2],
+    /// Thickness of the table top slab (m).
+    #[serde(default = "default_table_thickness")]
+    pub thickness: f64,
+}
+
+fn default_table_thickness() -> f64 {
+    0.05
+}
+
+/// A solid. Cylinders and prisms stand upright (along z), centred on their frame.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ShapeSpec {
+    Box {
+        size: [f64; 3],
+    },
+    Cylinder {
+        radius: f64,
+        height: f64,
+    },
+    /// A convex polygon (x, y vertices in the body frame) extruded to `height`.
+    Polygon {
+        vertices: Vec<[f64; 2]>,
+        height: f64,
+    },
+    /// An STL mesh (file relative to the scene file), used as its convex hull.
+    Mesh {
+        file: PathBuf,
+        #[serde(default = "unit_scale")]
+        scale: [f64; 3],
+    },
+}
+
+fn unit_scale() -> [f64; 3] {
+    [1.0; 3]
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    pub name: String,
+    pub shape: ShapeSpec,
+    /// World pose of the shape's frame.
+    pub pose: PoseSpec,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectSpec {
+    pub name: String,
+    /// box, cylinder or polygon; it rests on the table.
+    pub shape: ShapeSpec,
+    /// [x, y, yaw] of the footprint's centre (m, m, rad), world frame.
+    pub pose: [f64; 3],
+    /// Mass (kg).
+    pub mass: f64,
+    /// Friction coefficient with the table.
+    pub mu_g: f64,
+    /// Friction coefficient with the robot.
+    pub mu_c: f64,
+    /// Pressure distribution over the footprint; sets the characteristic length.
+    #[serde(default)]
+    pub pressure: PressureSpec,
+}
+
+#[derive(Debug, Deserialize, Default)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum PressureSpec {
+    /// Uniform pressure: c is computed from the footprint.
+    #[default]
+    Uniform,
+    /// A given characteristic length c (m).
+    CharacteristicLength { c: f64 },
+}
+
+/// Either `object` + `center` + `radius`, or `configuration` (+ `tolerance`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GoalSpec {
+    /// Name of the goal object.
+    pub object: Option<String>,
+    /// Goal disc centre [x, y] (m), world frame.
+    pub center: Option<[f64; 2]>,
+    /// Goal disc radius (m).
+    pub radius: Option<f64>,
+    /// A robot goal configuration instead.
+    pub configuration: Option<Vec<f64>>,
+    /// Distance in configuration space counted as reached (rad).
+    pub tolerance: Option<f64>,
+}
+
+/// Planner parameters; every field has a default (see [`PlannerSpec::default`]).
+#[derive(Debug, Deserialize, Clone, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct PlannerSpec {
+    /// Search time limit (s).
+    pub time_limit: f64,
+    /// Random seed.
+    pub seed: u64,
+    /// Control samples per extension (Alg. 1).
+    pub k: u32,
+    /// Probability of sampling the goal.
+    pub goal_bias: f64,
+    /// Propagation step dt (s).
+    pub step: f64,
+    /// Shortest and longest control duration (s).
+    pub min_duration: f64,
+    pub max_duration: f64,
+    /// Bound on |vx|, |vy| of the end effector (m/s).
+    pub max_ee_speed: f64,
+    /// Bound on |omega_z| of the end effector (rad/s).
+    pub max_ee_turn_rate: f64,
+    /// Bound on each joint's null-space sample (rad/s).
+    pub max_nullspace_speed: f64,
+    /// Distance weights: robot configuration, each object, the goal object.
+    pub robot_weight: f64,
+    pub object_weight: f64,
+    pub goal_object_weight: f64,
+    /// Length (m) that one radian of object yaw counts as in the distance.
+    pub rotation_length: f64,
+}
+
+impl Default for PlannerSpec {
+    fn default() -> Self {
+        Self {
+            time_limit: 30.0,
+            seed: 1,
+            k: 3,
+            goal_bias: 0.05,
+            step: 0.01,
+            min_duration: 0.1,
+            max_duration: 0.5,
+            max_ee_speed: 0.5,
+            max_ee_turn_rate: 1.0,
+            max_nullspace_speed: 0.5,
+            robot_weight: 1.0,
+            object_weight: 1.0,
+            goal_object_weight: 5.0,
+            rotation_length: 0.1,
+        }
+    }
+}
+
+/// Tolerances of the physics and validity model; every field has a default.
+#[derive(Debug, Deserialize, Clone, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct PhysicsSpec {
+    /// Contacts are tracked from this distance on (m): more than a link moves in a step.
+    pub contact_margin: f64,
+    /// Arm-object penetration tolerated (m).
+    pub penetration_tolerance: f64,
+    /// Object-object overlap tolerated (m).
+    pub overlap_tolerance: f64,
+    /// A contact whose normal is within this angle of vertical is invalid (rad).
+    pub vertical_normal_angle: f64,
+    /// Largest joint motion per step (rad or m).
+    pub max_joint_step: f64,
+    /// Tolerated distance of the tool from its plane (m) and tilt (rad).
+    pub plane_tolerance: f64,
+    pub tilt_tolerance: f64,
+}
+
+impl Default for PhysicsSpec {
+    fn default() -> Self {
+        Self {
+            contact_margin: 0.02,
+            penetration_tolerance: 0.003,
+            overlap_tolerance: 0.001,
+            vertical_normal_angle: 0.35,
+            max_joint_step: 0.05,
+            plane_tolerance: 1e-3,
+            tilt_tolerance: 0.01,
+        }
+    }
+}

@@ -1,0 +1,487 @@
+//! From a scene file to a validated [`Scene`]: every number is checked (finite, in range),
+//! every reference resolved, and every error names the file and the field.
+
+use super::file::{GoalSpec, ObjectSpec, PhysicsSpec, PlannerSpec, PressureSpec, RobotSpec, SceneFile, ShapeSpec, TableSpec};
+use super::{Goal, MovableObject, Obstacle, Scene, Table};
+use crate::collision::{Geometry, Primitive};
+use crate::error::{Error, Result};
+use crate::math::{isometry_from_xyz_rpy, Pose2};
+use crate::physics::limit_surface::GRAVITY;
+use crate::physics::{Footprint, LimitSurface};
+use crate::robot::mesh::load_convex_mesh;
+use crate::robot::planar_hand::planar_hand_chain;
+use crate::robot::projection::ProjectionSettings;
+use crate::robot::urdf::{check_dimensions, load_urdf};
+use crate::robot::{PushingPlane, Robot, RobotKind};
+use crate::state::State;
+use nalgebra::{DVector, Isometry3, Point3, UnitQuaternion, Vector2, Vector3};
+use std::path::{Path, PathBuf};
+
+impl Scene {
+    /// Loads and validates the scene file at `path`.
+    pub fn load(path: impl AsRef<Path>) -> Result<Scene> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+            file: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        Scene::from_yaml(&text, path)
+    }
+
+    /// Parses scene YAML. `source` names the scene in errors, and relative file
+    /// references (URDF, meshes) are resolved against its folder.
+    pub fn from_yaml(text: &str, source: &Path) -> Result<Scene> {
+        let deserializer = serde_yaml::Deserializer::from_str(text);
+        let spec: SceneFile = serde_path_to_error::deserialize(deserializer).map_err(|e| {
+            let field = e.path().to_string();
+            let message = e.inner().to_string();
+            let message = message
+                .strip_prefix(&format!("{field}: "))
+                .map(str::to_string)
+                .unwrap_or(message);
+            Error::Parse {
+                file: source.to_path_buf(),
+                field,
+                message,
+            }
+        })?;
+        Loader { file: source }.scene(spec)
+    }
+
+    /// The projection settings the physics parameters call for.
+    pub fn projection_settings(&self) -> ProjectionSettings {
+        ProjectionSettings {
+            max_joint_step: self.physics.max_joint_step,
+            height_tolerance: self.physics.plane_tolerance,
+            tilt_tolerance: self.physics.tilt_tolerance,
+            ..ProjectionSettings::default()
+        }
+    }
+}
+
+struct Loader<'a> {
+    file: &'a Path,
+}
+
+impl Loader<'_> {
+    fn invalid(&self, field: impl Into<String>, message: impl Into<String>) -> Error {
+        Error::invalid(self.file, field, message)
+    }
+
+    fn finite(&self, field: &str, values: &[f64]) -> Result<()> {
+        match values.iter().position(|v| !v.is_finite()) {
+            None => Ok(()),
+            Some(i) if values.len() == 1 => Err(self.invalid(field, format!("must be a finite number, got {}", values[i]))),
+            Some(i) => Err(self.invalid(format!("{field}[{i}]"), format!("must be a finite number, got {}", values[i]))),
+        }
+    }
+
+    fn positive(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(self.invalid(field, format!("must be positive and finite, got {value}")))
+        }
+    }
+
+    fn relative(&self, path: &Path) -> PathBuf {
+        self.file.parent().unwrap_or(Path::new(".")).join(path)
+    }
+
+    fn scene(&self, spec: SceneFile) -> Result<Scene> {
+        let table = self.table(&spec.table)?;
+        let obstacles = spec
+            .obstacles
+            .iter()
+            .enumerate()
+            .map(|(i, o)| {
+                let field = format!("obstacles[{i}]");
+                self.finite(&format!("{field}.pose.xyz"), &o.pose.xyz)?;
+                self.finite(&format!("{field}.pose.rpy"), &o.pose.rpy)?;
+                let (primitive, _) = self.shape(&format!("{field}.shape"), &o.shape, true)?;
+                let geometry = self.geometry(&format!("{field}.shape"), &primitive, Isometry3::identity())?;
+                Ok(Obstacle {
+                    name: o.name.clone(),
+                    pose: isometry_from_xyz_rpy(o.pose.xyz, o.pose.rpy),
+                    geometry,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let mut objects = Vec::new();
+        let mut poses = Vec::new();
+        for (i, o) in spec.objects.iter().enumerate() {
+            if spec.objects[..i].iter().any(|p| p.name == o.name) {
+                return Err(self.invalid(format!("objects[{i}].name"), format!("'{}' is used twice", o.name)));
+            }
+            let (object, pose) = self.object(&format!("objects[{i}]"), o, &table)?;
+            objects.push(object);
+            poses.push(pose);
+        }
+        let planner = self.planner(&spec.planner)?;
+        let physics = self.physics(&spec.physics)?;
+        let settings = ProjectionSettings {
+            max_joint_step: physics.max_joint_step,
+            height_tolerance: physics.plane_tolerance,
+            tilt_tolerance: physics.tilt_tolerance,
+            ..ProjectionSettings::default()
+        };
+        let (robot, q) = self.robot(&spec.robot, &table, &planner, &settings)?;
+        let goal = self.goal(&spec.goal, &objects, &table, robot.dof())?;
+        let name = spec.name.clone().unwrap_or_else(|| {
+            self.file
+                .file_stem()
+                .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
+        });
+        let scene = Scene {
+            name,
+            source: self.file.to_path_buf(),
+            robot,
+            table,
+            obstacles,
+            objects,
+            goal,
+            planner,
+            physics,
+            start: State { q, objects: poses },
+        };
+        if let Err(reason) = crate::validity::check_state(&scene, &scene.start) {
+            return Err(Error::InvalidStart {
+                file: self.file.to_path_buf(),
+                reason: reason.to_string(),
+            });
+        }
+        Ok(scene)
+    }
+
+    fn table(&self, t: &TableSpec) -> Result<Table> {
+        self.finite("table.height", &[t.height])?;
+        self.finite("table.x", &t.x)?;
+        self.finite("table.y", &t.y)?;
+        self.positive("table.thickness", t.thickness)?;
+        for (field, r) in [("table.x", t.x), ("table.y", t.y)] {
+            if r[0] >= r[1] {
+                return Err(self.invalid(field, format!("must be [min, max] with min < max, got {r:?}")));
+            }
+        }
+        let size = Vector3::new(t.x[1] - t.x[0], t.y[1] - t.y[0], t.thickness);
+        let centre = Isometry3::translation(
+            (t.x[0] + t.x[1]) / 2.0,
+            (t.y[0] + t.y[1]) / 2.0,
+            t.height - t.thickness / 2.0,
+        );
+        Ok(Table {
+            top: t.height,
+            x: (t.x[0], t.x[1]),
+            y: (t.y[0], t.y[1]),
+            geometry: self.geometry("table", &Primitive::Box { size }, centre)?,
+        })
+    }
+
+    fn geometry(&self, field: &str, primitive: &Primitive, local: Isometry3<f64>) -> Result<Geometry> {
+        Geometry::new(primitive, local).ok_or_else(|| self.invalid(field, "the shape is flat (no volume)"))
+    }
+
+    /// The primitive of a shape and, for prisms, its footprint and height.
+    /// Prisms are placed with their base at the frame origin when `centred` is false.
+    fn shape(&self, field: &str, shape: &ShapeSpec, centred: bool) -> Result<(Primitive, Option<(Footprint, f64)>)> {
+        let out = match shape {
+            ShapeSpec::Box { size } => {
+                let [x, y, z] = *size;
+                let footprint = Footprint::Polygon {
+                    vertices: vec![
+                        Vector2::new(-x / 2.0, -y / 2.0),
+                        Vector2::new(x / 2.0, -y / 2.0),
+                        Vector2::new(x / 2.0, y / 2.0),
+                        Vector2::new(-x / 2.0, y / 2.0),
+                    ],
+                };
+                (Primitive::Box { size: Vector3::from(*size) }, Some((footprint, z)))
+            }
+            ShapeSpec::Cylinder { radius, height } => (
+                Primitive::Cylinder {
+                    radius: *radius,
+                    length: *height,
+                },
+                Some((Footprint::Circle { radius: *radius }, *height)),
+            ),
+            ShapeSpec::Polygon { vertices, height } => {
+                let footprint = self.polygon(&format!("{field}.vertices"), vertices)?;
+                let Footprint::Polygon { vertices: v } = &footprint else { unreachable!() };
+                let z0 = if centred { -height / 2.0 } else { 0.0 };
+                let points = v
+                    .iter()
+                    .flat_map(|p| [Point3::new(p.x, p.y, z0), Point3::new(p.x, p.y, z0 + height)])
+                    .collect();
+                (Primitive::ConvexHull { points }, Some((footprint, *height)))
+            }
+            ShapeSpec::Mesh { file, scale } => {
+                self.finite(&format!("{field}.scale"), scale)?;
+                (load_convex_mesh(&self.relative(file), *scale)?, None)
+            }
+        };
+        check_dimensions(&out.0).map_err(|m| self.invalid(field, m))?;
+        if let Some((_, h)) = &out.1 {
+            self.positive(&format!("{field}.height"), *h)?;
+        }
+        Ok(out)
+    }
+
+    /// A convex polygon footprint, made counter-clockwise, whose centroid is the origin.
+    fn polygon(&self, field: &str, vertices: &[[f64; 2]]) -> Result<Footprint> {
+        if vertices.len() < 3 {
+            return Err(self.invalid(field, "a polygon needs at least 3 vertices"));
+        }
+        for (i, v) in vertices.iter().enumerate() {
+            self.finite(&format!("{field}[{i}]"), v)?;
+        }
+        let mut v: Vec<Vector2<f64>> = vertices.iter().map(|p| Vector2::new(p[0], p[1])).collect();
+        let turn = |a: Vector2<f64>, b: Vector2<f64>, c: Vector2<f64>| (b - a).perp(&(c - b));
+        let n = v.len();
+        let turns: Vec<f64> = (0..n).map(|i| turn(v[i], v[(i + 1) % n], v[(i + 2) % n])).collect();
+        if turns.iter().all(|t| *t <= 0.0) {
+            v.reverse();
+        } else if !turns.iter().all(|t| *t >= 0.0) {
+            return Err(self.invalid(field, "the polygon is not convex"));
+        }
+        let footprint = Footprint::Polygon { vertices: v };
+        if footprint.area() <= 1e-8 {
+            return Err(self.invalid(field, "the polygon has no area"));
+        }
+        let c = footprint.centroid();
+        if c.norm() > 1e-3 {
+            return Err(self.invalid(
+                field,
+                format!(
+                    "the footprint's centroid is at ({:.4}, {:.4}); vertices must be given about the centroid (the object's pose is its centre of friction)",
+                    c.x, c.y
+                ),
+            ));
+        }
+        Ok(footprint)
+    }
+
+    fn object(&self, field: &str, o: &ObjectSpec, table: &Table) -> Result<(MovableObject, Pose2)> {
+        let (primitive, prism) = self.shape(&format!("{field}.shape"), &o.shape, false)?;
+        let Some((footprint, height)) = prism else {
+            return Err(self.invalid(format!("{field}.shape"), "a movable object must be a box, cylinder or polygon prism"));
+        };
+        let local = match o.shape {
+            ShapeSpec::Polygon { .. } => Isometry3::identity(),
+            _ => Isometry3::translation(0.0, 0.0, height / 2.0),
+        };
+        let geometry = self.geometry(&format!("{field}.shape"), &primitive, local)?;
+        self.finite(&format!("{field}.pose"), &o.pose)?;
+        let pose = Pose2::new(o.pose[0], o.pose[1], crate::math::wrap_angle(o.pose[2]));
+        if !table.contains(pose.translation()) {
+            return Err(self.invalid(
+                format!("{field}.pose"),
+                format!("centre ({}, {}) is off the table", pose.x, pose.y),
+            ));
+        }
+        self.positive(&format!("{field}.mass"), o.mass)?;
+        self.positive(&format!("{field}.mu_g"), o.mu_g)?;
+        self.positive(&format!("{field}.mu_c"), o.mu_c)?;
+        let c = match o.pressure {
+            PressureSpec::Uniform => footprint.characteristic_length(),
+            PressureSpec::CharacteristicLength { c } => {
+                self.positive(&format!("{field}.pressure.c"), c)?;
+                c
+            }
+        };
+        let bounding_radius = match &footprint {
+            Footprint::Circle { radius } => *radius,
+            Footprint::Polygon { vertices } => vertices.iter().map(|v| v.norm()).fold(0.0, f64::max),
+        };
+        let object = MovableObject {
+            name: o.name.clone(),
+            footprint,
+            height,
+            geometry,
+            bounding_radius,
+            mass: o.mass,
+            mu_g: o.mu_g,
+            mu_c: o.mu_c,
+            limit_surface: LimitSurface {
+                c,
+                f_max: o.mu_g * o.mass * GRAVITY,
+            },
+        };
+        Ok((object, pose))
+    }
+
+    fn robot(
+        &self,
+        spec: &RobotSpec,
+        table: &Table,
+        planner: &PlannerSpec,
+        settings: &ProjectionSettings,
+    ) -> Result<(Robot, DVector<f64>)> {
+        match spec {
+            RobotSpec::Arm {
+                urdf,
+                base_pose,
+                start_joints,
+                end_effector,
+                tool,
+                pushing_plane,
+            } => {
+                for (f, v) in [("robot.base_pose.xyz", base_pose.xyz), ("robot.base_pose.rpy", base_pose.rpy), ("robot.tool.xyz", tool.xyz), ("robot.tool.rpy", tool.rpy), ("robot.pushing_plane.orientation_rpy", pushing_plane.orientation_rpy)] {
+                    self.finite(f, &v)?;
+                }
+                self.finite("robot.pushing_plane.height", &[pushing_plane.height])?;
+                self.finite("robot.start_joints", start_joints)?;
+                let urdf_path = self.relative(urdf);
+                if !urdf_path.is_file() {
+                    return Err(self.invalid("robot.urdf", format!("file {} not found", urdf_path.display())));
+                }
+                let base = isometry_from_xyz_rpy(base_pose.xyz, base_pose.rpy);
+                let chain = load_urdf(&urdf_path, end_effector, base)?;
+                let ee_link = chain.link_index(end_effector).expect("checked by load_urdf");
+                if chain.dof() == 0 {
+                    return Err(self.invalid("robot.end_effector", format!("no movable joint between the root link and '{end_effector}'")));
+                }
+                if start_joints.len() != chain.dof() {
+                    return Err(self.invalid(
+                        "robot.start_joints",
+                        format!("{} values given, the chain to '{end_effector}' has {} joints", start_joints.len(), chain.dof()),
+                    ));
+                }
+                let [r, p, y] = pushing_plane.orientation_rpy;
+                let plane = PushingPlane::new(table.top + pushing_plane.height, UnitQuaternion::from_euler_angles(r, p, y));
+                let robot = Robot::new(RobotKind::Arm, chain, ee_link, isometry_from_xyz_rpy(tool.xyz, tool.rpy), plane);
+                let mut q = DVector::from_column_slice(start_joints);
+                let mut poses = robot.link_poses(&q);
+                // Start exactly on the plane, so drift is measured from zero.
+                let tight = ProjectionSettings {
+                    height_tolerance: settings.height_tolerance * 1e-3,
+                    tilt_tolerance: settings.tilt_tolerance * 1e-3,
+                    ..settings.clone()
+                };
+                robot.restore_plane(&mut q, &mut poses, &tight).map_err(|failure| {
+                    self.invalid("robot.start_joints", format!("the tool cannot be brought onto its pushing plane from here: {failure}"))
+                })?;
+                if let Err(i) = robot.chain.within_limits(&q) {
+                    let j = robot.chain.dof_joint(i);
+                    return Err(self.invalid(
+                        format!("robot.start_joints[{i}]"),
+                        format!("{:.4} (on the plane) is outside joint '{}' limits [{}, {}]", q[i], j.name, j.lower, j.upper),
+                    ));
+                }
+                Ok((robot, q))
+            }
+            RobotSpec::PlanarHand { shape, start, height } => {
+                self.finite("robot.start", start)?;
+                self.positive("robot.height", *height)?;
+                let (primitive, _) = self.shape("robot.shape", shape, true)?;
+                let geometry = self.geometry("robot.shape", &primitive, Isometry3::identity())?;
+                let chain = planar_hand_chain(
+                    table.top + height,
+                    table.x,
+                    table.y,
+                    vec![geometry],
+                    planner.max_ee_speed,
+                    planner.max_ee_turn_rate,
+                );
+                let plane = PushingPlane::new(table.top + height, UnitQuaternion::identity());
+                let ee_link = chain.links.len() - 1;
+                let robot = Robot::new(RobotKind::PlanarHand, chain, ee_link, Isometry3::identity(), plane);
+                let q = DVector::from_column_slice(&[start[0], start[1], crate::math::wrap_angle(start[2])]);
+                if robot.chain.within_limits(&q).is_err() {
+                    return Err(self.invalid("robot.start", "the hand starts off the table"));
+                }
+                Ok((robot, q))
+            }
+        }
+    }
+
+    fn goal(&self, g: &GoalSpec, objects: &[MovableObject], table: &Table, dof: usize) -> Result<Goal> {
+        match (&g.object, &g.configuration) {
+            (Some(name), None) => {
+                if g.tolerance.is_some() {
+                    return Err(self.invalid("goal.tolerance", "applies to configuration goals only"));
+                }
+                let object = objects
+                    .iter()
+                    .position(|o| &o.name == name)
+                    .ok_or_else(|| self.invalid("goal.object", format!("no movable object named '{name}'")))?;
+                let center = g.center.ok_or_else(|| self.invalid("goal.center", "missing (the goal disc's centre [x, y])"))?;
+                self.finite("goal.center", &center)?;
+                let radius = g.radius.ok_or_else(|| self.invalid("goal.radius", "missing (the goal disc's radius)"))?;
+                self.positive("goal.radius", radius)?;
+                let center = Vector2::new(center[0], center[1]);
+                if !table.contains(center) {
+                    return Err(self.invalid("goal.center", format!("({}, {}) is off the table", center.x, center.y)));
+                }
+                Ok(Goal::ObjectInDisc { object, center, radius })
+            }
+            (None, Some(q)) => {
+                if g.center.is_some() || g.radius.is_some() {
+                    return Err(self.invalid("goal", "give either object/center/radius or configuration, not both"));
+                }
+                self.finite("goal.configuration", q)?;
+                if q.len() != dof {
+                    return Err(self.invalid("goal.configuration", format!("{} values given, the robot has {dof} joints", q.len())));
+                }
+                let tolerance = g.tolerance.unwrap_or(0.05);
+                self.positive("goal.tolerance", tolerance)?;
+                Ok(Goal::Configuration {
+                    q: DVector::from_column_slice(q),
+                    tolerance,
+                })
+            }
+            (Some(_), Some(_)) => Err(self.invalid("goal", "give either object or configuration, not both")),
+            (None, None) => Err(self.invalid("goal", "needs object (with center and radius) or configuration")),
+        }
+    }
+
+    fn planner(&self, p: &PlannerSpec) -> Result<PlannerSpec> {
+        for (field, value) in [
+            ("planner.time_limit", p.time_limit),
+            ("planner.step", p.step),
+            ("planner.min_duration", p.min_duration),
+            ("planner.max_duration", p.max_duration),
+            ("planner.max_ee_speed", p.max_ee_speed),
+            ("planner.max_ee_turn_rate", p.max_ee_turn_rate),
+            ("planner.robot_weight", p.robot_weight),
+            ("planner.object_weight", p.object_weight),
+            ("planner.goal_object_weight", p.goal_object_weight),
+            ("planner.rotation_length", p.rotation_length),
+        ] {
+            self.positive(field, value)?;
+        }
+        if !(p.max_nullspace_speed.is_finite() && p.max_nullspace_speed >= 0.0) {
+            return Err(self.invalid("planner.max_nullspace_speed", format!("must be zero or positive, got {}", p.max_nullspace_speed)));
+        }
+        if !(0.0..=1.0).contains(&p.goal_bias) {
+            return Err(self.invalid("planner.goal_bias", format!("must be in [0, 1], got {}", p.goal_bias)));
+        }
+        if p.k == 0 {
+            return Err(self.invalid("planner.k", "must be at least 1"));
+        }
+        if p.min_duration > p.max_duration {
+            return Err(self.invalid("planner.min_duration", "must not exceed planner.max_duration"));
+        }
+        if p.min_duration < p.step {
+            return Err(self.invalid("planner.min_duration", "must be at least one propagation step (planner.step)"));
+        }
+        Ok(p.clone())
+    }
+
+    fn physics(&self, p: &PhysicsSpec) -> Result<PhysicsSpec> {
+        for (field, value) in [
+            ("physics.contact_margin", p.contact_margin),
+            ("physics.penetration_tolerance", p.penetration_tolerance),
+            ("physics.overlap_tolerance", p.overlap_tolerance),
+            ("physics.vertical_normal_angle", p.vertical_normal_angle),
+            ("physics.max_joint_step", p.max_joint_step),
+            ("physics.plane_tolerance", p.plane_tolerance),
+            ("physics.tilt_tolerance", p.tilt_tolerance),
+        ] {
+            self.positive(field, value)?;
+        }
+        if p.penetration_tolerance >= p.contact_margin {
+            return Err(self.invalid("physics.penetration_tolerance", "must be smaller than physics.contact_margin"));
+        }
+        Ok(p.clone())
+    }
+}

@@ -1,0 +1,119 @@
+//! Scenes: the robot, the table, static obstacles, movable objects, the goal and the
+//! planner parameters, loaded from YAML ([`file`]) and validated ([`load`]).
+//!
+//! World frame: z up, the table top horizontal at `table.top`.
+
+pub mod file;
+mod load;
+
+use crate::collision::Geometry;
+use crate::math::Pose2;
+use crate::physics::{Footprint, LimitSurface};
+use crate::robot::Robot;
+use crate::state::State;
+use nalgebra::{DVector, Isometry3, Vector2};
+use std::path::PathBuf;
+
+pub use file::{PhysicsSpec as PhysicsParams, PlannerSpec as PlannerParams};
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub name: String,
+    /// The file the scene came from (or a label for scenes built from text).
+    pub source: PathBuf,
+    pub robot: Robot,
+    pub table: Table,
+    pub obstacles: Vec<Obstacle>,
+    pub objects: Vec<MovableObject>,
+    pub goal: Goal,
+    pub planner: PlannerParams,
+    pub physics: PhysicsParams,
+    /// The start state (robot start projected onto its pushing plane).
+    pub start: State,
+}
+
+/// The support surface: a slab whose top is at `top`, spanning `x` x `y`.
+#[derive(Clone, Debug)]
+pub struct Table {
+    /// World height of the top surface (m).
+    pub top: f64,
+    /// Extent along x and y (m).
+    pub x: (f64, f64),
+    pub y: (f64, f64),
+    /// The slab, in world coordinates (its body pose is the identity).
+    pub geometry: Geometry,
+}
+
+impl Table {
+    /// Is the world point (x, y) over the table?
+    pub fn contains(&self, p: Vector2<f64>) -> bool {
+        p.x >= self.x.0 && p.x <= self.x.1 && p.y >= self.y.0 && p.y <= self.y.1
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Obstacle {
+    pub name: String,
+    /// World pose of the obstacle's frame.
+    pub pose: Isometry3<f64>,
+    pub geometry: Geometry,
+}
+
+/// A rigid prism resting on the table.
+#[derive(Clone, Debug)]
+pub struct MovableObject {
+    pub name: String,
+    /// Footprint in the object frame, centred on the centre of friction (m).
+    pub footprint: Footprint,
+    /// Height of the prism (m).
+    pub height: f64,
+    /// The solid in the object frame (the frame sits on the table top).
+    pub geometry: Geometry,
+    /// Radius of the footprint's bounding circle about the origin (m).
+    pub bounding_radius: f64,
+    /// Mass (kg).
+    pub mass: f64,
+    /// Support friction and contact friction coefficients.
+    pub mu_g: f64,
+    pub mu_c: f64,
+    pub limit_surface: LimitSurface,
+}
+
+impl MovableObject {
+    /// The object frame's world pose for a planar pose (its base on the table top).
+    pub fn isometry(&self, pose: &Pose2, table_top: f64) -> Isometry3<f64> {
+        pose.to_isometry(table_top)
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Goal {
+    /// The goal object's centre inside a disc on the table.
+    ObjectInDisc {
+        object: usize,
+        center: Vector2<f64>,
+        radius: f64,
+    },
+    /// The robot within `tolerance` (Euclidean, joint space) of a configuration.
+    Configuration { q: DVector<f64>, tolerance: f64 },
+}
+
+impl Goal {
+    /// Does the state satisfy the goal?
+    pub fn is_satisfied(&self, state: &State) -> bool {
+        self.distance(state) <= 0.0
+    }
+
+    /// How far the state is from the goal region (m for object goals, rad for
+    /// configuration goals); zero or negative inside.
+    pub fn distance(&self, state: &State) -> f64 {
+        match self {
+            Goal::ObjectInDisc {
+                object,
+                center,
+                radius,
+            } => (state.objects[*object].translation() - center).norm() - radius,
+            Goal::Configuration { q, tolerance } => (&state.q - q).norm() - tolerance,
+        }
+    }
+}
