@@ -25,7 +25,7 @@ use nalgebra::{DVector, Isometry3};
 pub struct Push {
     pub link: usize,
     pub object: usize,
-    /// Largest normal force of the link's contacts on the object (N).
+    /// Total normal force of the link's contacts on the object (N).
     pub force: f64,
 }
 
@@ -167,7 +167,7 @@ impl<'s> Propagator<'s> {
             for (&link, &force) in self.planar_links.iter().zip(&motion.normal_forces) {
                 if force > 0.0 {
                     match pushes.iter_mut().find(|p: &&mut Push| p.link == link && p.object == object) {
-                        Some(p) => p.force = p.force.max(force),
+                        Some(p) => p.force += force,
                         None => pushes.push(Push { link, object, force }),
                     }
                 }
