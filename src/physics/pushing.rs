@@ -21,6 +21,9 @@ use super::limit_surface::LimitSurface;
 use crate::math::Twist2;
 use nalgebra::{DMatrix, DVector, Vector2, Vector3};
 
+/// Pushers slower than this (m/s) along the normal are at rest.
+pub const REST_SPEED: f64 = 1e-6;
+
 /// A pusher contact on an object, in the object frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlanarContact {
@@ -68,8 +71,10 @@ pub fn object_motion(
 ) -> Result<ObjectMotion, Jammed> {
     let m = contacts.len();
     let approach = |c: &PlanarContact| c.normal.dot(&c.pusher_velocity) - c.gap / dt;
-    if contacts.iter().all(|c| approach(c) <= 0.0) {
-        // No pusher closes its gap within the step: nothing pushes the object.
+    let pushes = |c: &PlanarContact| c.normal.dot(&c.pusher_velocity) > REST_SPEED && approach(c) > 0.0;
+    if !contacts.iter().any(pushes) {
+        // No pusher moves into the object and closes its gap within the step: nothing
+        // pushes it. (Residual penetration alone does not move an object at rest.)
         return Ok(ObjectMotion {
             twist: Twist2::ZERO,
             normal_forces: vec![0.0; m],

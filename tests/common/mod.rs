@@ -1,0 +1,40 @@
+//! Scenes built in code for tests: HERB's table and WAM with the given objects.
+#![allow(dead_code)]
+
+use pushplan::Scene;
+use std::path::Path;
+
+/// Start joints with the hand at (0.55, 0.15), as in the shipped HERB scenes.
+pub const HAND_NEAR: [f64; 7] = [0.4168, 0.4078, -0.5623, 2.6434, -0.2157, -1.0298, 0.2641];
+/// Start joints with the hand reaching out to (0.91, 0.15): the forearm slopes over the table.
+pub const HAND_FAR: [f64; 7] = [0.1485, 0.7954, -0.2728, 1.4626, -0.4452, -0.2789, 0.5892];
+
+/// A WAM scene on HERB's table; `objects` is the YAML list of objects (the first is the
+/// goal object), `extra` is appended at the top level.
+pub fn herb_scene(start: [f64; 7], objects: &str, extra: &str) -> Result<Scene, pushplan::Error> {
+    let yaml = format!(
+        "robot:
+  type: arm
+  urdf: ../robots/wam7.urdf
+  base_pose: {{xyz: [0.1, 0.14, 0.346]}}
+  end_effector: hand
+  start_joints: {start:?}
+  pushing_plane: {{height: 0.08, orientation_rpy: [0, 2.0, 0]}}
+table: {{height: 0.76, x: [0.27, 1.03], y: [-0.93, 0.93]}}
+objects:
+{objects}
+goal: {{object: goal, center: [0.85, -0.6], radius: 0.1}}
+{extra}"
+    );
+    Scene::from_yaml(&yaml, Path::new("scenes/test-scene.yaml"))
+}
+
+/// YAML for one object.
+pub fn object(name: &str, shape: &str, pose: [f64; 3]) -> String {
+    format!("  - {{name: {name}, shape: {shape}, pose: {pose:?}, mass: 1.0, mu_g: 0.4, mu_c: 0.3}}\n")
+}
+
+/// The goal box, parked out of the way.
+pub fn parked_goal() -> String {
+    object("goal", "{type: box, size: [0.102, 0.102, 0.215]}", [0.5, -0.6, 0.0])
+}
