@@ -216,6 +216,9 @@ impl Loader<'_> {
             }
             ShapeSpec::Mesh { file, scale } => {
                 self.finite(&format!("{field}.scale"), scale)?;
+                if !self.relative(file).is_file() {
+                    return Err(self.invalid(format!("{field}.file"), format!("mesh {} not found", self.relative(file).display())));
+                }
                 (load_convex_mesh(&self.relative(file), *scale)?, None)
             }
         };
