@@ -1,1 +1,98 @@
-fn main(){}
+//! Propagation steps per second for the WAM with 1, 7 and 20 objects, in free space and
+//! while the hand pushes a box with a two-point (face) contact.
+//!
+//! Run: `cargo bench --bench propagation`. Each measured iteration holds one action for 50
+//! steps from the same state; criterion reports time per step (throughput: steps/s).
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use pushplan::{EeAction, Propagator, Scene, State};
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+const STEPS: usize = 50;
+
+/// `first` (the goal object) and `count - 1` cylinders on a grid in the half of the
+/// table the arm does not sweep here.
+fn objects(first: String, count: usize) -> String {
+    let grid = (0..5)
+        .flat_map(|i| (0..5).map(move |j| [0.35 + 0.15 * i as f64, -0.25 - 0.15 * j as f64, 0.0]));
+    let cylinder = "{type: cylinder, radius: 0.04, height: 0.12}";
+    grid.take(count - 1)
+        .enumerate()
+        .fold(first, |yaml, (k, pose)| {
+            yaml + &common::object(&format!("c{k}"), cylinder, pose)
+        })
+}
+
+/// The goal box right in front of the hand, pushed straight along +x.
+fn pushed_box() -> String {
+    common::object(
+        "goal",
+        "{type: box, size: [0.1, 0.1, 0.14]}",
+        [0.72, 0.15, 0.0],
+    )
+}
+
+/// The goal box far from the hand.
+fn parked_box() -> String {
+    common::object(
+        "goal",
+        "{type: box, size: [0.1, 0.1, 0.14]}",
+        [0.9, 0.6, 0.0],
+    )
+}
+
+/// Advances until the hand pushes the box, so the benchmark starts in contact.
+fn in_contact(scene: &Scene, action: &EeAction) -> State {
+    let mut p = Propagator::new(scene);
+    let mut state = scene.start.clone();
+    for _ in 0..200 {
+        let run = p.propagate_steps(&state, action, 1);
+        state = run.state;
+        if run.pushes.first().is_some_and(|s| !s.is_empty()) {
+            return state;
+        }
+    }
+    panic!("the hand never reached the box");
+}
+
+fn propagation(c: &mut Criterion) {
+    let mut group = c.benchmark_group("wam_step");
+    group.throughput(Throughput::Elements(STEPS as u64));
+    for count in [1, 7, 20] {
+        // Free space: the hand moves away from all objects.
+        let scene =
+            common::herb_scene(common::HAND_NEAR, &objects(parked_box(), count), "").unwrap();
+        let free = EeAction::planar(0.1, 0.1, 0.2);
+        let mut p = Propagator::new(&scene);
+        assert!(p
+            .propagate_steps(&scene.start, &free, STEPS)
+            .stopped_by
+            .is_none());
+        group.bench_with_input(BenchmarkId::new("free", count), &scene, |b, scene| {
+            b.iter(|| p.propagate_steps(&scene.start, &free, STEPS))
+        });
+
+        // Sustained contact: the hand's face pushes a box (two contact points).
+        let scene =
+            common::herb_scene(common::HAND_NEAR, &objects(pushed_box(), count), "").unwrap();
+        let push = EeAction::planar(0.1, 0.0, 0.0);
+        let start = in_contact(&scene, &push);
+        let mut p = Propagator::new(&scene);
+        let check = p.propagate_steps(&start, &push, STEPS);
+        assert!(check.stopped_by.is_none(), "{:?}", check.stopped_by);
+        assert!(
+            check.pushes.iter().all(|s| !s.is_empty()),
+            "contact lost: {:?}",
+            check.pushes
+        );
+        group.bench_with_input(BenchmarkId::new("pushing", count), &start, |b, start| {
+            b.iter(|| p.propagate_steps(start, &push, STEPS))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, propagation);
+criterion_main!(benches);

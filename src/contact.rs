@@ -40,12 +40,26 @@ impl ArmBounds {
     }
 }
 
+/// World bounding box of each object at its pose (the objects' side of the broad phase).
+pub fn object_bounds(scene: &Scene, objects: &[Pose2], out: &mut Vec<Aabb>) {
+    out.clear();
+    out.extend(
+        scene
+            .objects
+            .iter()
+            .zip(objects)
+            .map(|(o, pose)| o.geometry.aabb(&pose.to_isometry(scene.table.top))),
+    );
+}
+
 /// Appends every link-object contact point closer than `margin` (m), object by object.
+/// `object_boxes` are the objects' bounding boxes ([`object_bounds`]).
 pub fn find_arm_contacts(
     scene: &Scene,
     poses: &[Isometry3<f64>],
     bounds: &ArmBounds,
     objects: &[Pose2],
+    object_boxes: &[Aabb],
     margin: f64,
     out: &mut Vec<ArmContact>,
 ) {
@@ -53,19 +67,26 @@ pub fn find_arm_contacts(
         return;
     };
     let mut points = Vec::new();
-    for (index, (object, pose)) in scene.objects.iter().zip(objects).enumerate() {
-        let object_pose = pose.to_isometry(scene.table.top);
-        let object_box = object.geometry.aabb(&object_pose);
-        if !all.intersects(&object_box) {
+    for (index, object_box) in object_boxes.iter().enumerate() {
+        if !all.intersects(object_box) {
             continue;
         }
+        let object = &scene.objects[index];
+        let object_pose = objects[index].to_isometry(scene.table.top);
         for (link, link_box) in &bounds.links {
-            if !link_box.loosened(margin).intersects(&object_box) {
+            if !link_box.loosened(margin).intersects(object_box) {
                 continue;
             }
             for g in &scene.robot.chain.links[*link].geometry {
                 points.clear();
-                contact_points(&object.geometry, &object_pose, g, &poses[*link], margin, &mut points);
+                contact_points(
+                    &object.geometry,
+                    &object_pose,
+                    g,
+                    &poses[*link],
+                    margin,
+                    &mut points,
+                );
                 out.extend(points.iter().map(|&point| ArmContact {
                     link: *link,
                     object: index,

@@ -30,7 +30,13 @@ impl DistanceMetric {
         Self {
             robot_weight: p.robot_weight,
             object_weights: (0..scene.objects.len())
-                .map(|i| if Some(i) == goal_object { p.goal_object_weight } else { p.object_weight })
+                .map(|i| {
+                    if Some(i) == goal_object {
+                        p.goal_object_weight
+                    } else {
+                        p.object_weight
+                    }
+                })
                 .collect(),
             rotation_length: p.rotation_length,
         }

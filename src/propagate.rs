@@ -10,15 +10,15 @@
 //! so each step runs one contact query per nearby link-object pair. Results depend only on
 //! the start state and the action: propagation is deterministic bit for bit.
 
-use crate::contact::{planar_contacts, ArmBounds, ArmContact};
+use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact};
 use crate::math::Pose2;
 use crate::physics::{object_motion, PlanarContact};
-use crate::robot::projection::ProjectionSettings;
 use crate::robot::EeAction;
 use crate::scene::Scene;
 use crate::state::State;
 use crate::validity::{check_arm_objects, check_objects, check_robot, Invalid};
 use nalgebra::{DVector, Isometry3};
+use parry3d_f64::bounding_volume::Aabb;
 
 /// A link pushing an object during one step, with the force it applies.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,11 +47,12 @@ pub struct Propagation {
 /// Propagates actions through the scene's physics. Holds scratch buffers; one per thread.
 pub struct Propagator<'s> {
     scene: &'s Scene,
-    settings: ProjectionSettings,
     dt: f64,
     poses: Vec<Isometry3<f64>>,
     poses_new: Vec<Isometry3<f64>>,
     bounds: ArmBounds,
+    object_boxes: Vec<Aabb>,
+    object_boxes_new: Vec<Aabb>,
     contacts: Vec<ArmContact>,
     contacts_new: Vec<ArmContact>,
     planar: Vec<PlanarContact>,
@@ -71,11 +72,12 @@ impl<'s> Propagator<'s> {
     pub fn with_step(scene: &'s Scene, dt: f64) -> Self {
         Self {
             scene,
-            settings: scene.projection_settings(),
             dt,
             poses: Vec::new(),
             poses_new: Vec::new(),
             bounds: ArmBounds::default(),
+            object_boxes: Vec::new(),
+            object_boxes_new: Vec::new(),
             contacts: Vec::new(),
             contacts_new: Vec::new(),
             planar: Vec::new(),
@@ -98,14 +100,30 @@ impl<'s> Propagator<'s> {
     }
 
     /// Holds `action` for `steps` steps from `start`, which must be valid.
-    pub fn propagate_steps(&mut self, start: &State, action: &EeAction, steps: usize) -> Propagation {
+    pub fn propagate_steps(
+        &mut self,
+        start: &State,
+        action: &EeAction,
+        steps: usize,
+    ) -> Propagation {
         let scene = self.scene;
         let mut state = start.clone();
-        scene.robot.chain.forward_kinematics(&state.q, &mut self.poses);
+        scene
+            .robot
+            .chain
+            .forward_kinematics(&state.q, &mut self.poses);
         ArmBounds::compute(scene, &self.poses, &mut self.bounds);
+        object_bounds(scene, &state.objects, &mut self.object_boxes);
         let mut pushes = Vec::with_capacity(steps);
         let mut stopped_by = None;
-        if let Err(e) = check_arm_objects(scene, &self.poses, &self.bounds, &state.objects, &mut self.contacts) {
+        if let Err(e) = check_arm_objects(
+            scene,
+            &self.poses,
+            &self.bounds,
+            &state.objects,
+            &self.object_boxes,
+            &mut self.contacts,
+        ) {
             stopped_by = Some(e);
         } else {
             for _ in 0..steps {
@@ -135,17 +153,29 @@ impl<'s> Propagator<'s> {
         let dt = self.dt;
         scene
             .robot
-            .project_step(&state.q, &self.poses, action, dt, &self.settings, &mut self.q_new, &mut self.poses_new)
+            .project_step(
+                &state.q,
+                &self.poses,
+                action,
+                dt,
+                &mut self.q_new,
+                &mut self.poses_new,
+            )
             .map_err(Invalid::Projection)?;
 
         // Physics: every object with contacts.
         self.objects_new.clone_from(&state.objects);
+        self.object_boxes_new.clone_from(&self.object_boxes);
         self.moved.iter_mut().for_each(|m| *m = false);
         let mut pushes = Vec::new();
         let mut start = 0;
         while start < self.contacts.len() {
             let object = self.contacts[start].object;
-            let end = start + self.contacts[start..].iter().take_while(|c| c.object == object).count();
+            let end = start
+                + self.contacts[start..]
+                    .iter()
+                    .take_while(|c| c.object == object)
+                    .count();
             let pose = state.objects[object];
             planar_contacts(
                 &self.contacts[start..end],
@@ -157,18 +187,31 @@ impl<'s> Propagator<'s> {
                 &mut self.planar_links,
             );
             let body = &scene.objects[object];
-            let motion = object_motion(&self.planar, &body.limit_surface, body.mu_c, dt).map_err(|_| Invalid::Jammed {
-                object: body.name.clone(),
-            })?;
+            let motion =
+                object_motion(&self.planar, &body.limit_surface, body.mu_c, dt).map_err(|_| {
+                    Invalid::Jammed {
+                        object: body.name.clone(),
+                    }
+                })?;
             if !motion.twist.is_zero() {
-                self.objects_new[object] = pose.integrate(&motion.twist, dt);
+                let moved = pose.integrate(&motion.twist, dt);
+                self.objects_new[object] = moved;
+                self.object_boxes_new[object] =
+                    body.geometry.aabb(&moved.to_isometry(scene.table.top));
                 self.moved[object] = true;
             }
             for (&link, &force) in self.planar_links.iter().zip(&motion.normal_forces) {
                 if force > 0.0 {
-                    match pushes.iter_mut().find(|p: &&mut Push| p.link == link && p.object == object) {
+                    match pushes
+                        .iter_mut()
+                        .find(|p: &&mut Push| p.link == link && p.object == object)
+                    {
                         Some(p) => p.force += force,
-                        None => pushes.push(Push { link, object, force }),
+                        None => pushes.push(Push {
+                            link,
+                            object,
+                            force,
+                        }),
                     }
                 }
             }
@@ -178,7 +221,14 @@ impl<'s> Propagator<'s> {
         // Validity of the new state; its contacts serve the next step.
         ArmBounds::compute(scene, &self.poses_new, &mut self.bounds);
         check_robot(scene, &self.q_new, &self.poses_new, &self.bounds)?;
-        check_arm_objects(scene, &self.poses_new, &self.bounds, &self.objects_new, &mut self.contacts_new)?;
+        check_arm_objects(
+            scene,
+            &self.poses_new,
+            &self.bounds,
+            &self.objects_new,
+            &self.object_boxes_new,
+            &mut self.contacts_new,
+        )?;
         let moved = &self.moved;
         check_objects(scene, &self.objects_new, |i| moved[i])?;
 
@@ -186,6 +236,7 @@ impl<'s> Propagator<'s> {
         state.objects.clone_from(&self.objects_new);
         std::mem::swap(&mut self.poses, &mut self.poses_new);
         std::mem::swap(&mut self.contacts, &mut self.contacts_new);
+        std::mem::swap(&mut self.object_boxes, &mut self.object_boxes_new);
         Ok(pushes)
     }
 }

@@ -8,44 +8,93 @@
 //! the robot pushes.
 
 use crate::collision::query::{intersects, signed_distance};
-use crate::contact::{find_arm_contacts, ArmBounds, ArmContact};
+use crate::contact::{find_arm_contacts, object_bounds, ArmBounds, ArmContact};
 use crate::math::Pose2;
 use crate::robot::ProjectionFailure;
 use crate::scene::Scene;
 use crate::state::State;
 use nalgebra::{DVector, Isometry3};
+use parry3d_f64::bounding_volume::Aabb;
 use std::fmt;
 
 /// Why a state is invalid. Names are the scene's link, object and obstacle names.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Invalid {
-    JointLimit { joint: String, value: f64 },
+    JointLimit {
+        joint: String,
+        value: f64,
+    },
     Projection(ProjectionFailure),
-    SelfCollision { link_a: String, link_b: String },
-    ArmHitsTable { link: String },
-    ArmHitsObstacle { link: String, obstacle: String },
-    ArmPenetratesObject { link: String, object: String, depth: f64 },
-    PressesOnTop { link: String, object: String },
-    ObjectsOverlap { object_a: String, object_b: String },
-    ObjectHitsObstacle { object: String, obstacle: String },
-    ObjectOffTable { object: String },
-    Jammed { object: String },
+    SelfCollision {
+        link_a: String,
+        link_b: String,
+    },
+    ArmHitsTable {
+        link: String,
+    },
+    ArmHitsObstacle {
+        link: String,
+        obstacle: String,
+    },
+    ArmPenetratesObject {
+        link: String,
+        object: String,
+        depth: f64,
+    },
+    PressesOnTop {
+        link: String,
+        object: String,
+    },
+    ObjectsOverlap {
+        object_a: String,
+        object_b: String,
+    },
+    ObjectHitsObstacle {
+        object: String,
+        obstacle: String,
+    },
+    ObjectOffTable {
+        object: String,
+    },
+    Jammed {
+        object: String,
+    },
 }
 
 impl fmt::Display for Invalid {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Invalid::JointLimit { joint, value } => write!(f, "joint '{joint}' at {value:.4} is outside its limits"),
-            Invalid::Projection(p) => write!(f, "projection failed: {p}"),
-            Invalid::SelfCollision { link_a, link_b } => write!(f, "links '{link_a}' and '{link_b}' collide"),
-            Invalid::ArmHitsTable { link } => write!(f, "link '{link}' hits the table"),
-            Invalid::ArmHitsObstacle { link, obstacle } => write!(f, "link '{link}' hits obstacle '{obstacle}'"),
-            Invalid::ArmPenetratesObject { link, object, depth } => {
-                write!(f, "link '{link}' penetrates object '{object}' by {:.1} mm", depth * 1e3)
+            Invalid::JointLimit { joint, value } => {
+                write!(f, "joint '{joint}' at {value:.4} is outside its limits")
             }
-            Invalid::PressesOnTop { link, object } => write!(f, "link '{link}' presses on top of object '{object}'"),
-            Invalid::ObjectsOverlap { object_a, object_b } => write!(f, "objects '{object_a}' and '{object_b}' overlap"),
-            Invalid::ObjectHitsObstacle { object, obstacle } => write!(f, "object '{object}' overlaps obstacle '{obstacle}'"),
+            Invalid::Projection(p) => write!(f, "projection failed: {p}"),
+            Invalid::SelfCollision { link_a, link_b } => {
+                write!(f, "links '{link_a}' and '{link_b}' collide")
+            }
+            Invalid::ArmHitsTable { link } => write!(f, "link '{link}' hits the table"),
+            Invalid::ArmHitsObstacle { link, obstacle } => {
+                write!(f, "link '{link}' hits obstacle '{obstacle}'")
+            }
+            Invalid::ArmPenetratesObject {
+                link,
+                object,
+                depth,
+            } => {
+                write!(
+                    f,
+                    "link '{link}' penetrates object '{object}' by {:.1} mm",
+                    depth * 1e3
+                )
+            }
+            Invalid::PressesOnTop { link, object } => {
+                write!(f, "link '{link}' presses on top of object '{object}'")
+            }
+            Invalid::ObjectsOverlap { object_a, object_b } => {
+                write!(f, "objects '{object_a}' and '{object_b}' overlap")
+            }
+            Invalid::ObjectHitsObstacle { object, obstacle } => {
+                write!(f, "object '{object}' overlaps obstacle '{obstacle}'")
+            }
             Invalid::ObjectOffTable { object } => write!(f, "object '{object}' is off the table"),
             Invalid::Jammed { object } => write!(f, "object '{object}' is jammed between pushers"),
         }
@@ -61,12 +110,26 @@ pub fn check_state(scene: &Scene, state: &State) -> Result<(), Invalid> {
     ArmBounds::compute(scene, &poses, &mut bounds);
     check_robot(scene, &state.q, &poses, &bounds)?;
     let mut contacts = Vec::new();
-    check_arm_objects(scene, &poses, &bounds, &state.objects, &mut contacts)?;
+    let mut boxes = Vec::new();
+    object_bounds(scene, &state.objects, &mut boxes);
+    check_arm_objects(
+        scene,
+        &poses,
+        &bounds,
+        &state.objects,
+        &boxes,
+        &mut contacts,
+    )?;
     check_objects(scene, &state.objects, |_| true)
 }
 
 /// Joint limits, self-collision, table and obstacles.
-pub fn check_robot(scene: &Scene, q: &DVector<f64>, poses: &[Isometry3<f64>], bounds: &ArmBounds) -> Result<(), Invalid> {
+pub fn check_robot(
+    scene: &Scene,
+    q: &DVector<f64>,
+    poses: &[Isometry3<f64>],
+    bounds: &ArmBounds,
+) -> Result<(), Invalid> {
     let robot = &scene.robot;
     let chain = &robot.chain;
     if let Err(i) = chain.within_limits(q) {
@@ -79,7 +142,9 @@ pub fn check_robot(scene: &Scene, q: &DVector<f64>, poses: &[Isometry3<f64>], bo
     let bound_of = |l: usize| bounds.links.iter().find(|(i, _)| *i == l).map(|(_, b)| b);
     use parry3d_f64::bounding_volume::BoundingVolume;
     for &(a, b) in &robot.self_collision_pairs {
-        let (Some(ba), Some(bb)) = (bound_of(a), bound_of(b)) else { continue };
+        let (Some(ba), Some(bb)) = (bound_of(a), bound_of(b)) else {
+            continue;
+        };
         if ba.intersects(bb) && links_intersect(scene, poses, a, b) {
             return Err(Invalid::SelfCollision {
                 link_a: link_name(a),
@@ -92,13 +157,19 @@ pub fn check_robot(scene: &Scene, q: &DVector<f64>, poses: &[Isometry3<f64>], bo
     for (link, aabb) in &bounds.links {
         let shapes = &chain.links[*link].geometry;
         if aabb.intersects(&table_box)
-            && shapes.iter().any(|g| intersects(g, &poses[*link], &scene.table.geometry, &identity))
+            && shapes
+                .iter()
+                .any(|g| intersects(g, &poses[*link], &scene.table.geometry, &identity))
         {
-            return Err(Invalid::ArmHitsTable { link: link_name(*link) });
+            return Err(Invalid::ArmHitsTable {
+                link: link_name(*link),
+            });
         }
         for obstacle in &scene.obstacles {
             if aabb.intersects(&obstacle.geometry.aabb(&obstacle.pose))
-                && shapes.iter().any(|g| intersects(g, &poses[*link], &obstacle.geometry, &obstacle.pose))
+                && shapes
+                    .iter()
+                    .any(|g| intersects(g, &poses[*link], &obstacle.geometry, &obstacle.pose))
             {
                 return Err(Invalid::ArmHitsObstacle {
                     link: link_name(*link),
@@ -112,24 +183,41 @@ pub fn check_robot(scene: &Scene, q: &DVector<f64>, poses: &[Isometry3<f64>], bo
 
 fn links_intersect(scene: &Scene, poses: &[Isometry3<f64>], a: usize, b: usize) -> bool {
     let links = &scene.robot.chain.links;
-    links[a]
-        .geometry
-        .iter()
-        .any(|ga| links[b].geometry.iter().any(|gb| intersects(ga, &poses[a], gb, &poses[b])))
+    links[a].geometry.iter().any(|ga| {
+        links[b]
+            .geometry
+            .iter()
+            .any(|gb| intersects(ga, &poses[a], gb, &poses[b]))
+    })
 }
 
-/// Finds the arm-object contacts within the contact margin (written to `contacts`, for
+/// Finds the arm-object contacts within the contact margin (objects' bounding boxes in
+/// `object_boxes`) (written to `contacts`, for
 /// the physics of the next step) and rejects penetration and pressing on top.
 pub fn check_arm_objects(
     scene: &Scene,
     poses: &[Isometry3<f64>],
     bounds: &ArmBounds,
     objects: &[Pose2],
+    object_boxes: &[Aabb],
     contacts: &mut Vec<ArmContact>,
 ) -> Result<(), Invalid> {
     contacts.clear();
-    find_arm_contacts(scene, poses, bounds, objects, scene.physics.contact_margin, contacts);
-    let names = |c: &ArmContact| (scene.robot.chain.links[c.link].name.clone(), scene.objects[c.object].name.clone());
+    find_arm_contacts(
+        scene,
+        poses,
+        bounds,
+        objects,
+        object_boxes,
+        scene.physics.contact_margin,
+        contacts,
+    );
+    let names = |c: &ArmContact| {
+        (
+            scene.robot.chain.links[c.link].name.clone(),
+            scene.objects[c.object].name.clone(),
+        )
+    };
     let vertical = scene.physics.vertical_normal_angle.cos();
     for c in contacts.iter() {
         if c.point.distance < -scene.physics.penetration_tolerance {
@@ -151,7 +239,11 @@ pub fn check_arm_objects(
 
 /// Objects on the table, apart from each other and from obstacles. Only pairs with at
 /// least one object for which `moved` is true are checked.
-pub fn check_objects(scene: &Scene, objects: &[Pose2], moved: impl Fn(usize) -> bool) -> Result<(), Invalid> {
+pub fn check_objects(
+    scene: &Scene,
+    objects: &[Pose2],
+    moved: impl Fn(usize) -> bool,
+) -> Result<(), Invalid> {
     let top = scene.table.top;
     let tolerance = scene.physics.overlap_tolerance;
     for (i, pose) in objects.iter().enumerate() {
@@ -160,7 +252,9 @@ pub fn check_objects(scene: &Scene, objects: &[Pose2], moved: impl Fn(usize) -> 
         }
         let object = &scene.objects[i];
         if !scene.table.contains(pose.translation()) {
-            return Err(Invalid::ObjectOffTable { object: object.name.clone() });
+            return Err(Invalid::ObjectOffTable {
+                object: object.name.clone(),
+            });
         }
         let iso = pose.to_isometry(top);
         for (j, other_pose) in objects.iter().enumerate() {
@@ -172,7 +266,13 @@ pub fn check_objects(scene: &Scene, objects: &[Pose2], moved: impl Fn(usize) -> 
             if (pose.translation() - other_pose.translation()).norm() >= reach {
                 continue;
             }
-            let d = signed_distance(&object.geometry, &iso, &other.geometry, &other_pose.to_isometry(top), 0.0);
+            let d = signed_distance(
+                &object.geometry,
+                &iso,
+                &other.geometry,
+                &other_pose.to_isometry(top),
+                0.0,
+            );
             if d.is_some_and(|d| d < -tolerance) {
                 return Err(Invalid::ObjectsOverlap {
                     object_a: object.name.clone(),
@@ -181,7 +281,13 @@ pub fn check_objects(scene: &Scene, objects: &[Pose2], moved: impl Fn(usize) -> 
             }
         }
         for obstacle in &scene.obstacles {
-            let d = signed_distance(&object.geometry, &iso, &obstacle.geometry, &obstacle.pose, 0.0);
+            let d = signed_distance(
+                &object.geometry,
+                &iso,
+                &obstacle.geometry,
+                &obstacle.pose,
+                0.0,
+            );
             if d.is_some_and(|d| d < -tolerance) {
                 return Err(Invalid::ObjectHitsObstacle {
                     object: object.name.clone(),

@@ -25,11 +25,21 @@ fn the_metric_weights_robot_objects_and_the_goal_object() {
 
 #[test]
 fn object_angles_wrap_around() {
-    let metric = DistanceMetric { robot_weight: 1.0, object_weights: vec![1.0], rotation_length: 1.0 };
+    let metric = DistanceMetric {
+        robot_weight: 1.0,
+        object_weights: vec![1.0],
+        rotation_length: 1.0,
+    };
     let near_pi = Pose2::new(0.0, 0.0, PI - 0.05);
     let near_minus_pi = Pose2::new(0.0, 0.0, -PI + 0.05);
     assert!((metric.object_distance(&near_pi, &near_minus_pi) - 0.1).abs() < 1e-12);
-    let a = State { q: DVector::zeros(1), objects: vec![near_pi] };
-    let b = State { q: DVector::zeros(1), objects: vec![near_minus_pi] };
+    let a = State {
+        q: DVector::zeros(1),
+        objects: vec![near_pi],
+    };
+    let b = State {
+        q: DVector::zeros(1),
+        objects: vec![near_minus_pi],
+    };
     assert!((metric.distance(&a, &b) - 0.1).abs() < 1e-12);
 }

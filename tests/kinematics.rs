@@ -2,7 +2,6 @@
 //! and the constraint projection (issue points 4 and 5).
 
 use nalgebra::{DVector, Isometry3, Point3, Vector3};
-use pushplan::robot::projection::ProjectionSettings;
 use pushplan::robot::urdf::load_urdf;
 use pushplan::robot::{EeAction, KinematicChain};
 use pushplan::Scene;
@@ -15,7 +14,13 @@ fn chain(file: &str, ee: &str) -> KinematicChain {
 }
 
 fn random_q(chain: &KinematicChain, rng: &mut ChaCha8Rng) -> DVector<f64> {
-    DVector::from_iterator(chain.dof(), chain.limits().into_iter().map(|(lo, hi)| rng.random_range(lo..hi)))
+    DVector::from_iterator(
+        chain.dof(),
+        chain
+            .limits()
+            .into_iter()
+            .map(|(lo, hi)| rng.random_range(lo..hi)),
+    )
 }
 
 #[test]
@@ -43,7 +48,11 @@ fn wam_elbow_at_right_angle_puts_the_forearm_horizontal() {
     // j4 turns about the elbow's axis (world -y at zero): the forearm swings to +x.
     // Wrist = elbow + Ry(pi/2) (-0.045, 0, 0.3) = (0.045 + 0.3, 0, 0.896 + 0.045).
     let wrist = poses[wam.link_index("wam_link6").unwrap()];
-    assert!((wrist.translation.vector - Vector3::new(0.345, 0.0, 0.941)).norm() < 1e-9, "{:?}", wrist.translation);
+    assert!(
+        (wrist.translation.vector - Vector3::new(0.345, 0.0, 0.941)).norm() < 1e-9,
+        "{:?}",
+        wrist.translation
+    );
 }
 
 #[test]
@@ -54,7 +63,11 @@ fn panda_at_zero_has_its_flange_at_the_published_position() {
     panda.forward_kinematics(&DVector::zeros(7), &mut poses);
     let flange = poses[panda.link_index("panda_hand").unwrap()];
     // x = 0.0825 - 0.0825 + 0.088; z = 0.333 + 0.316 + 0.384 - 0.107, pointing down.
-    assert!((flange.translation.vector - Vector3::new(0.088, 0.0, 0.926)).norm() < 1e-9, "{:?}", flange.translation);
+    assert!(
+        (flange.translation.vector - Vector3::new(0.088, 0.0, 0.926)).norm() < 1e-9,
+        "{:?}",
+        flange.translation
+    );
     assert!((flange.rotation * Vector3::z() - Vector3::new(0.0, 0.0, -1.0)).norm() < 1e-9);
 }
 
@@ -70,7 +83,11 @@ fn jacobians_match_finite_differences() {
             c.forward_kinematics(&q, &mut poses);
             // A point rigidly attached to a random link, off its origin.
             let link = rng.random_range(1..c.links.len());
-            let local = Point3::new(rng.random_range(-0.1..0.1), rng.random_range(-0.1..0.1), rng.random_range(-0.1..0.1));
+            let local = Point3::new(
+                rng.random_range(-0.1..0.1),
+                rng.random_range(-0.1..0.1),
+                rng.random_range(-0.1..0.1),
+            );
             let jac = c.point_jacobian(&poses, link, &(poses[link] * local));
             let h = 1e-6;
             for i in 0..c.dof() {
@@ -85,8 +102,14 @@ fn jacobians_match_finite_differences() {
                 let linear = (pp - pm) / (2.0 * h);
                 let angular = (rp * rm.inverse()).scaled_axis() / (2.0 * h);
                 for r in 0..3 {
-                    assert!((jac[(r, i)] - linear[r]).abs() < 1e-7, "{file} link {link} joint {i}");
-                    assert!((jac[(3 + r, i)] - angular[r]).abs() < 1e-7, "{file} link {link} joint {i}");
+                    assert!(
+                        (jac[(r, i)] - linear[r]).abs() < 1e-7,
+                        "{file} link {link} joint {i}"
+                    );
+                    assert!(
+                        (jac[(3 + r, i)] - angular[r]).abs() < 1e-7,
+                        "{file} link {link} joint {i}"
+                    );
                 }
             }
         }
@@ -97,7 +120,6 @@ fn jacobians_match_finite_differences() {
 fn projected_random_actions_keep_the_hand_on_its_plane() {
     let scene = Scene::load("scenes/herb_single_object.yaml").unwrap();
     let robot = &scene.robot;
-    let settings = ProjectionSettings::default();
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let mut q = scene.start.q.clone();
     let mut poses = robot.link_poses(&q);
@@ -108,11 +130,17 @@ fn projected_random_actions_keep_the_hand_on_its_plane() {
         if step % 20 == 0 {
             // A new random action (with a null-space sample) every 20 steps.
             action = EeAction {
-                velocity: [rng.random_range(-0.5..0.5), rng.random_range(-0.5..0.5), rng.random_range(-1.0..1.0)],
+                velocity: [
+                    rng.random_range(-0.5..0.5),
+                    rng.random_range(-0.5..0.5),
+                    rng.random_range(-1.0..1.0),
+                ],
                 nullspace: DVector::from_fn(7, |_, _| rng.random_range(-0.5..0.5)),
             };
         }
-        let ok = robot.project_step(&q, &poses, &action, 0.01, &settings, &mut q_new, &mut poses_new).is_ok()
+        let ok = robot
+            .project_step(&q, &poses, &action, 0.01, &mut q_new, &mut poses_new)
+            .is_ok()
             && robot.chain.within_limits(&q_new).is_ok();
         if !ok {
             action.velocity = action.velocity.map(|v| -v); // turn back from limits and singularities
@@ -138,10 +166,14 @@ fn the_projected_tool_follows_the_commanded_velocity() {
     let poses = robot.link_poses(&q);
     let (mut q_new, mut poses_new) = (q.clone(), Vec::new());
     let action = EeAction::planar(0.2, -0.1, 0.3);
-    robot.project_step(&q, &poses, &action, 0.01, &ProjectionSettings::default(), &mut q_new, &mut poses_new).unwrap();
+    robot
+        .project_step(&q, &poses, &action, 0.01, &mut q_new, &mut poses_new)
+        .unwrap();
     let (before, after) = (robot.tool_pose(&poses), robot.tool_pose(&poses_new));
     let moved = after.translation.vector - before.translation.vector;
-    assert!((moved.x - 0.002).abs() < 2e-5 && (moved.y + 0.001).abs() < 2e-5 && moved.z.abs() < 2e-5);
+    assert!(
+        (moved.x - 0.002).abs() < 2e-5 && (moved.y + 0.001).abs() < 2e-5 && moved.z.abs() < 2e-5
+    );
     let yaw = (after.rotation * before.rotation.inverse()).scaled_axis().z;
     assert!((yaw - 0.003).abs() < 1e-4);
 }
@@ -153,7 +185,11 @@ fn leaving_joint_limits_makes_the_step_invalid() {
     let scene = Scene::load("scenes/planar_hand_single_object.yaml").unwrap();
     let mut propagator = pushplan::Propagator::new(&scene);
     let run = propagator.propagate(&scene.start, &EeAction::planar(-0.3, 0.0, 0.0), 1.0);
-    assert!(matches!(run.stopped_by, Some(Invalid::JointLimit { ref joint, .. }) if joint == "x"), "{:?}", run.stopped_by);
+    assert!(
+        matches!(run.stopped_by, Some(Invalid::JointLimit { ref joint, .. }) if joint == "x"),
+        "{:?}",
+        run.stopped_by
+    );
     // The last valid state is within a step (3 mm) of the limit.
     assert!(run.state.q[0] >= 0.27 && run.state.q[0] < 0.27 + 0.003 + 1e-9);
 
@@ -163,7 +199,11 @@ fn leaving_joint_limits_makes_the_step_invalid() {
     let mut propagator = pushplan::Propagator::new(&scene);
     for w in [1.0, -1.0] {
         let run = propagator.propagate(&scene.start, &EeAction::planar(0.0, 0.0, w), 6.0);
-        assert!(matches!(run.stopped_by, Some(Invalid::JointLimit { .. })), "{:?}", run.stopped_by);
+        assert!(
+            matches!(run.stopped_by, Some(Invalid::JointLimit { .. })),
+            "{:?}",
+            run.stopped_by
+        );
         assert!(run.steps > 0 && scene.robot.chain.within_limits(&run.state.q).is_ok());
     }
 }

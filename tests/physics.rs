@@ -7,7 +7,10 @@ use pushplan::physics::{object_motion, Footprint, LimitSurface, PlanarContact};
 const DT: f64 = 0.01;
 
 fn surface(c: f64) -> LimitSurface {
-    LimitSurface { c, f_max: 0.4 * 1.0 * 9.81 }
+    LimitSurface {
+        c,
+        f_max: 0.4 * 1.0 * 9.81,
+    }
 }
 
 fn contact(point: [f64; 2], normal: [f64; 2], velocity: [f64; 2]) -> PlanarContact {
@@ -30,7 +33,10 @@ fn sticking_twist(c: f64, x: f64, y: f64, vpx: f64, vpy: f64) -> [f64; 3] {
 fn assert_twist(got: &pushplan::math::Twist2, want: [f64; 3], tol: f64) {
     let g = [got.vx, got.vy, got.omega];
     for i in 0..3 {
-        assert!((g[i] - want[i]).abs() < tol, "twist {g:?} != expected {want:?}");
+        assert!(
+            (g[i] - want[i]).abs() < tol,
+            "twist {g:?} != expected {want:?}"
+        );
     }
 }
 
@@ -38,10 +44,21 @@ fn assert_twist(got: &pushplan::math::Twist2, want: [f64; 3], tol: f64) {
 fn push_through_the_centre_of_a_symmetric_box_translates_it_without_rotation() {
     // Box of half-width 0.05: push the face x = -0.05 at its midpoint along +x.
     let c = Footprint::Polygon {
-        vertices: vec![Vector2::new(-0.05, -0.05), Vector2::new(0.05, -0.05), Vector2::new(0.05, 0.05), Vector2::new(-0.05, 0.05)],
+        vertices: vec![
+            Vector2::new(-0.05, -0.05),
+            Vector2::new(0.05, -0.05),
+            Vector2::new(0.05, 0.05),
+            Vector2::new(-0.05, 0.05),
+        ],
     }
     .characteristic_length();
-    let m = object_motion(&[contact([-0.05, 0.0], [1.0, 0.0], [0.1, 0.0])], &surface(c), 0.3, DT).unwrap();
+    let m = object_motion(
+        &[contact([-0.05, 0.0], [1.0, 0.0], [0.1, 0.0])],
+        &surface(c),
+        0.3,
+        DT,
+    )
+    .unwrap();
     assert_twist(&m.twist, [0.1, 0.0, 0.0], 1e-12);
 }
 
@@ -49,20 +66,44 @@ fn push_through_the_centre_of_a_symmetric_box_translates_it_without_rotation() {
 fn off_centre_push_rotates_with_the_sign_of_the_torque() {
     // Push along +x at y = +0.03: torque x fy - y fx = -0.03 fx < 0, so clockwise.
     let c = 0.04;
-    let m = object_motion(&[contact([-0.05, 0.03], [1.0, 0.0], [0.1, 0.0])], &surface(c), 0.8, DT).unwrap();
-    assert!(m.twist.omega < 0.0, "expected clockwise rotation, got {:?}", m.twist);
+    let m = object_motion(
+        &[contact([-0.05, 0.03], [1.0, 0.0], [0.1, 0.0])],
+        &surface(c),
+        0.8,
+        DT,
+    )
+    .unwrap();
+    assert!(
+        m.twist.omega < 0.0,
+        "expected clockwise rotation, got {:?}",
+        m.twist
+    );
     // Below y = 0 the torque and the rotation flip.
-    let m = object_motion(&[contact([-0.05, -0.03], [1.0, 0.0], [0.1, 0.0])], &surface(c), 0.8, DT).unwrap();
+    let m = object_motion(
+        &[contact([-0.05, -0.03], [1.0, 0.0], [0.1, 0.0])],
+        &surface(c),
+        0.8,
+        DT,
+    )
+    .unwrap();
     assert!(m.twist.omega > 0.0);
 }
 
 #[test]
 fn sticking_contact_matches_the_closed_form_twist() {
     let c = 0.045;
-    for (point, v) in [([-0.05, 0.02], [0.1, 0.01]), ([-0.05, -0.04], [0.08, -0.02]), ([-0.05, 0.0], [0.1, 0.03])] {
+    for (point, v) in [
+        ([-0.05, 0.02], [0.1, 0.01]),
+        ([-0.05, -0.04], [0.08, -0.02]),
+        ([-0.05, 0.0], [0.1, 0.03]),
+    ] {
         // High friction: the contact sticks.
         let m = object_motion(&[contact(point, [1.0, 0.0], v)], &surface(c), 2.0, DT).unwrap();
-        assert_twist(&m.twist, sticking_twist(c, point[0], point[1], v[0], v[1]), 1e-10);
+        assert_twist(
+            &m.twist,
+            sticking_twist(c, point[0], point[1], v[0], v[1]),
+            1e-10,
+        );
     }
 }
 
@@ -90,13 +131,22 @@ fn push_outside_the_friction_cone_slides_with_matching_normal_velocity() {
 
 #[test]
 fn a_pusher_moving_away_does_not_move_the_object() {
-    let m = object_motion(&[contact([-0.05, 0.01], [1.0, 0.0], [-0.1, 0.05])], &surface(0.04), 0.5, DT).unwrap();
+    let m = object_motion(
+        &[contact([-0.05, 0.01], [1.0, 0.0], [-0.1, 0.05])],
+        &surface(0.04),
+        0.5,
+        DT,
+    )
+    .unwrap();
     assert!(m.twist.is_zero());
     assert_eq!(m.normal_forces, vec![0.0]);
     // Nor does one that is still too far away to close its gap within the step.
     let mut far = contact([-0.05, 0.0], [1.0, 0.0], [0.1, 0.0]);
     far.gap = 0.002; // 2 mm, and the pusher covers 1 mm per step
-    assert!(object_motion(&[far], &surface(0.04), 0.5, DT).unwrap().twist.is_zero());
+    assert!(object_motion(&[far], &surface(0.04), 0.5, DT)
+        .unwrap()
+        .twist
+        .is_zero());
 }
 
 #[test]
@@ -137,7 +187,11 @@ fn two_contacts_solve_exactly_not_by_averaging() {
     // contact points would not move with the pushers.
     let single = |c: &PlanarContact| object_motion(&[*c], &surface(0.04), 1.0, DT).unwrap().twist;
     let (a, b) = (single(&contacts[0]), single(&contacts[1]));
-    let averaged = [(a.vx + b.vx) / 2.0, (a.vy + b.vy) / 2.0, (a.omega + b.omega) / 2.0];
+    let averaged = [
+        (a.vx + b.vx) / 2.0,
+        (a.vy + b.vy) / 2.0,
+        (a.omega + b.omega) / 2.0,
+    ];
     let error = ((averaged[0] - v[0]).powi(2) + (averaged[1] - v[1]).powi(2)).sqrt();
     assert!(error > 0.01, "averaged {averaged:?}");
 }
@@ -164,14 +218,24 @@ fn characteristic_lengths_match_their_integrals() {
     // Square of side s: s (sqrt(2) + ln(1 + sqrt(2))) / 6.
     let s = 0.1;
     let square = Footprint::Polygon {
-        vertices: vec![Vector2::new(-s / 2.0, -s / 2.0), Vector2::new(s / 2.0, -s / 2.0), Vector2::new(s / 2.0, s / 2.0), Vector2::new(-s / 2.0, s / 2.0)],
+        vertices: vec![
+            Vector2::new(-s / 2.0, -s / 2.0),
+            Vector2::new(s / 2.0, -s / 2.0),
+            Vector2::new(s / 2.0, s / 2.0),
+            Vector2::new(-s / 2.0, s / 2.0),
+        ],
     };
     let closed = s * (2f64.sqrt() + (1.0 + 2f64.sqrt()).ln()) / 6.0;
     assert!((square.characteristic_length() - closed).abs() < 1e-12);
     // A 0.2 x 0.06 rectangle against a midpoint-rule integral.
     let (a, b) = (0.2, 0.06);
     let rect = Footprint::Polygon {
-        vertices: vec![Vector2::new(-a / 2.0, -b / 2.0), Vector2::new(a / 2.0, -b / 2.0), Vector2::new(a / 2.0, b / 2.0), Vector2::new(-a / 2.0, b / 2.0)],
+        vertices: vec![
+            Vector2::new(-a / 2.0, -b / 2.0),
+            Vector2::new(a / 2.0, -b / 2.0),
+            Vector2::new(a / 2.0, b / 2.0),
+            Vector2::new(-a / 2.0, b / 2.0),
+        ],
     };
     let n = 1000;
     let mut sum = 0.0;

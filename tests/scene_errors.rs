@@ -11,15 +11,22 @@ fn base() -> String {
 
 /// Loads `text` as if it were `scenes/bad.yaml`; returns the error message.
 fn error_of(text: &str) -> (Error, String) {
-    let err = Scene::from_yaml(text, Path::new("scenes/bad.yaml")).expect_err("the scene should be rejected");
+    let err = Scene::from_yaml(text, Path::new("scenes/bad.yaml"))
+        .expect_err("the scene should be rejected");
     let message = err.to_string();
-    assert!(message.starts_with("scenes/bad.yaml: "), "the message names the file: {message}");
+    assert!(
+        message.starts_with("scenes/bad.yaml: "),
+        "the message names the file: {message}"
+    );
     (err, message)
 }
 
 fn edited(from: &str, to: &str) -> String {
     let text = base();
-    assert!(text.contains(from), "test setup: '{from}' not in the base scene");
+    assert!(
+        text.contains(from),
+        "test setup: '{from}' not in the base scene"
+    );
     text.replacen(from, to, 1)
 }
 
@@ -33,41 +40,74 @@ fn malformed_yaml_names_the_file_and_the_place() {
 #[test]
 fn unknown_keys_are_rejected_with_their_path() {
     let (_, message) = error_of(&edited("    mu_c: 0.3", "    mu_c: 0.3\n    colour: green"));
-    assert!(message.contains("objects[0].colour") && message.contains("unknown field `colour`"), "{message}");
+    assert!(
+        message.contains("objects[0].colour") && message.contains("unknown field `colour`"),
+        "{message}"
+    );
     let (_, message) = error_of(&format!("{}\nplanner: {{time_limt: 3}}\n", base()));
     assert!(message.contains("planner.time_limt"), "{message}");
 }
 
 #[test]
 fn wrong_shapes_and_types_name_the_field() {
-    let (_, message) = error_of(&edited("size: [0.102, 0.102, 0.215]", "size: [0.102, 0.102]"));
-    assert!(message.contains("objects[0].shape") && message.contains("length 3"), "{message}");
+    let (_, message) = error_of(&edited(
+        "size: [0.102, 0.102, 0.215]",
+        "size: [0.102, 0.102]",
+    ));
+    assert!(
+        message.contains("objects[0].shape") && message.contains("length 3"),
+        "{message}"
+    );
     let (_, message) = error_of(&edited("type: box", "type: sphere"));
-    assert!(message.contains("objects[0].shape.type") && message.contains("sphere"), "{message}");
+    assert!(
+        message.contains("objects[0].shape.type") && message.contains("sphere"),
+        "{message}"
+    );
 }
 
 #[test]
 fn a_missing_urdf_names_the_field_and_the_file() {
     let (_, message) = error_of(&edited("../robots/wam7.urdf", "../robots/nope.urdf"));
-    assert!(message.contains("robot.urdf") && message.contains("nope.urdf") && message.contains("not found"), "{message}");
+    assert!(
+        message.contains("robot.urdf")
+            && message.contains("nope.urdf")
+            && message.contains("not found"),
+        "{message}"
+    );
 }
 
 #[test]
 fn a_missing_obstacle_mesh_names_the_field() {
     let text = format!("{}\nobstacles:\n  - {{name: lamp, shape: {{type: mesh, file: meshes/lamp.stl}}, pose: {{xyz: [0.5, 0.5, 1.0]}}}}\n", base());
     let (_, message) = error_of(&text);
-    assert!(message.contains("obstacles[0].shape.file") && message.contains("lamp.stl"), "{message}");
+    assert!(
+        message.contains("obstacles[0].shape.file") && message.contains("lamp.stl"),
+        "{message}"
+    );
 }
 
 #[test]
 fn an_end_effector_with_no_path_from_the_base_is_rejected() {
     // The URDF is the file at fault here: the error names it.
-    let err = Scene::from_yaml(&edited("end_effector: hand", "end_effector: gripper"), Path::new("scenes/bad.yaml")).unwrap_err();
+    let err = Scene::from_yaml(
+        &edited("end_effector: hand", "end_effector: gripper"),
+        Path::new("scenes/bad.yaml"),
+    )
+    .unwrap_err();
     let message = err.to_string();
-    assert!(matches!(err, Error::Urdf { ref file, .. } if file.ends_with("wam7.urdf")), "{message}");
-    assert!(message.contains("wam7.urdf") && message.contains("'gripper'"), "{message}");
+    assert!(
+        matches!(err, Error::Urdf { ref file, .. } if file.ends_with("wam7.urdf")),
+        "{message}"
+    );
+    assert!(
+        message.contains("wam7.urdf") && message.contains("'gripper'"),
+        "{message}"
+    );
     let (_, message) = error_of(&edited("end_effector: hand", "end_effector: wam_base"));
-    assert!(message.contains("robot.end_effector") && message.contains("no movable joint"), "{message}");
+    assert!(
+        message.contains("robot.end_effector") && message.contains("no movable joint"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -79,7 +119,10 @@ fn non_positive_masses_and_friction_are_rejected() {
         ("    mu_c: 0.3", "    mu_c: -0.1", "objects[0].mu_c"),
     ] {
         let (_, message) = error_of(&edited(from, to));
-        assert!(message.contains(&format!("{field}: must be positive")), "{message}");
+        assert!(
+            message.contains(&format!("{field}: must be positive")),
+            "{message}"
+        );
     }
 }
 
@@ -87,11 +130,27 @@ fn non_positive_masses_and_friction_are_rejected() {
 fn nan_anywhere_is_rejected() {
     for (from, to, field) in [
         ("    mass: 1.0", "    mass: .nan", "objects[0].mass"),
-        ("pose: [0.75, 0.0, 0.0]", "pose: [0.75, .nan, 0.0]", "objects[0].pose[1]"),
-        ("table: {height: 0.76", "table: {height: .nan", "table.height"),
-        ("[0.4168, 0.4078,", "[0.4168, .nan,", "robot.start_joints[1]"),
+        (
+            "pose: [0.75, 0.0, 0.0]",
+            "pose: [0.75, .nan, 0.0]",
+            "objects[0].pose[1]",
+        ),
+        (
+            "table: {height: 0.76",
+            "table: {height: .nan",
+            "table.height",
+        ),
+        (
+            "[0.4168, 0.4078,",
+            "[0.4168, .nan,",
+            "robot.start_joints[1]",
+        ),
         ("radius: 0.1}", "radius: .nan}", "goal.radius"),
-        ("orientation_rpy: [0, 2.0, 0]", "orientation_rpy: [0, .inf, 0]", "robot.pushing_plane.orientation_rpy[1]"),
+        (
+            "orientation_rpy: [0, 2.0, 0]",
+            "orientation_rpy: [0, .inf, 0]",
+            "robot.pushing_plane.orientation_rpy[1]",
+        ),
     ] {
         let (_, message) = error_of(&edited(from, to));
         assert!(message.contains(field), "{field}: {message}");
@@ -105,17 +164,35 @@ fn nan_anywhere_is_rejected() {
 #[test]
 fn goals_must_be_on_the_table_and_name_a_real_object() {
     let (_, message) = error_of(&edited("center: [0.85, -0.25]", "center: [1.5, -0.25]"));
-    assert!(message.contains("goal.center") && message.contains("off the table"), "{message}");
-    let (_, message) = error_of(&edited("goal: {object: green_box", "goal: {object: red_box"));
-    assert!(message.contains("goal.object") && message.contains("red_box"), "{message}");
-    let (_, message) = error_of(&edited("goal: {object: green_box, center: [0.85, -0.25], radius: 0.1}", "goal: {}"));
+    assert!(
+        message.contains("goal.center") && message.contains("off the table"),
+        "{message}"
+    );
+    let (_, message) = error_of(&edited(
+        "goal: {object: green_box",
+        "goal: {object: red_box",
+    ));
+    assert!(
+        message.contains("goal.object") && message.contains("red_box"),
+        "{message}"
+    );
+    let (_, message) = error_of(&edited(
+        "goal: {object: green_box, center: [0.85, -0.25], radius: 0.1}",
+        "goal: {}",
+    ));
     assert!(message.contains("goal:"), "{message}");
 }
 
 #[test]
 fn start_joints_must_match_the_chain() {
-    let (_, message) = error_of(&edited("[0.4168, 0.4078, -0.5623, 2.6434, -0.2157, -1.0298, 0.2641]", "[0.4168, 0.4078]"));
-    assert!(message.contains("robot.start_joints") && message.contains("7 joints"), "{message}");
+    let (_, message) = error_of(&edited(
+        "[0.4168, 0.4078, -0.5623, 2.6434, -0.2157, -1.0298, 0.2641]",
+        "[0.4168, 0.4078]",
+    ));
+    assert!(
+        message.contains("robot.start_joints") && message.contains("7 joints"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -126,10 +203,17 @@ fn an_invalid_start_state_is_reported_with_its_reason() {
     ) + "goal: {object: green_box, center: [0.85, -0.25], radius: 0.1}\n";
     let (err, message) = error_of(&text);
     assert!(matches!(err, Error::InvalidStart { .. }), "{message}");
-    assert!(message.contains("start state is invalid") && message.contains("'green_box' and 'twin' overlap"), "{message}");
+    assert!(
+        message.contains("start state is invalid")
+            && message.contains("'green_box' and 'twin' overlap"),
+        "{message}"
+    );
     // An object off the table is caught at its field.
     let (_, message) = error_of(&edited("pose: [0.75, 0.0, 0.0]", "pose: [1.2, 0.0, 0.0]"));
-    assert!(message.contains("objects[0].pose") && message.contains("off the table"), "{message}");
+    assert!(
+        message.contains("objects[0].pose") && message.contains("off the table"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -141,9 +225,19 @@ fn a_missing_scene_file_is_an_io_error() {
 
 #[test]
 fn non_convex_or_off_centre_polygons_are_rejected() {
-    let poly = |v: &str| edited("{type: box, size: [0.102, 0.102, 0.215]}", &format!("{{type: polygon, vertices: {v}, height: 0.1}}"));
-    let (_, message) = error_of(&poly("[[-0.05, -0.05], [0.05, -0.05], [0.0, 0.0], [0.05, 0.05], [-0.05, 0.05]]"));
-    assert!(message.contains("objects[0].shape.vertices") && message.contains("not convex"), "{message}");
+    let poly = |v: &str| {
+        edited(
+            "{type: box, size: [0.102, 0.102, 0.215]}",
+            &format!("{{type: polygon, vertices: {v}, height: 0.1}}"),
+        )
+    };
+    let (_, message) = error_of(&poly(
+        "[[-0.05, -0.05], [0.05, -0.05], [0.0, 0.0], [0.05, 0.05], [-0.05, 0.05]]",
+    ));
+    assert!(
+        message.contains("objects[0].shape.vertices") && message.contains("not convex"),
+        "{message}"
+    );
     let (_, message) = error_of(&poly("[[0, 0], [0.1, 0], [0.1, 0.1], [0, 0.1]]"));
     assert!(message.contains("centroid"), "{message}");
     // A clockwise triangle about its centroid is fine.

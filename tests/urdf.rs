@@ -19,13 +19,35 @@ fn write_box_stl(path: &Path, h: [f32; 3]) {
     use stl_io::{Normal, Triangle, Vertex};
     let v = |x: f32, y: f32, z: f32| Vertex::new([x * h[0], y * h[1], z * h[2]]);
     let corners = [
-        v(-1., -1., -1.), v(1., -1., -1.), v(1., 1., -1.), v(-1., 1., -1.),
-        v(-1., -1., 1.), v(1., -1., 1.), v(1., 1., 1.), v(-1., 1., 1.),
+        v(-1., -1., -1.),
+        v(1., -1., -1.),
+        v(1., 1., -1.),
+        v(-1., 1., -1.),
+        v(-1., -1., 1.),
+        v(1., -1., 1.),
+        v(1., 1., 1.),
+        v(-1., 1., 1.),
     ];
-    let faces = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [2, 3, 7], [2, 7, 6], [1, 2, 6], [1, 6, 5], [0, 4, 7], [0, 7, 3]];
+    let faces = [
+        [0, 2, 1],
+        [0, 3, 2],
+        [4, 5, 6],
+        [4, 6, 7],
+        [0, 1, 5],
+        [0, 5, 4],
+        [2, 3, 7],
+        [2, 7, 6],
+        [1, 2, 6],
+        [1, 6, 5],
+        [0, 4, 7],
+        [0, 7, 3],
+    ];
     let triangles: Vec<Triangle> = faces
         .iter()
-        .map(|f| Triangle { normal: Normal::new([0.0, 0.0, 0.0]), vertices: [corners[f[0]], corners[f[1]], corners[f[2]]] })
+        .map(|f| Triangle {
+            normal: Normal::new([0.0, 0.0, 0.0]),
+            vertices: [corners[f[0]], corners[f[1]], corners[f[2]]],
+        })
         .collect();
     std::fs::create_dir_all(path.parent().unwrap()).unwrap();
     let mut file = std::fs::File::create(path).unwrap();
@@ -49,21 +71,47 @@ fn urdf_with_mesh(filename: &str, scale: &str) -> String {
 #[test]
 fn package_paths_resolve_without_ros_and_meshes_become_convex_hulls() {
     let root = temp_dir("package");
-    write_box_stl(&root.join("my_robot_description/meshes/arm.stl"), [0.05, 0.1, 0.2]);
+    write_box_stl(
+        &root.join("my_robot_description/meshes/arm.stl"),
+        [0.05, 0.1, 0.2],
+    );
     let urdf = root.join("my_robot_description/urdf/r.urdf");
     std::fs::create_dir_all(urdf.parent().unwrap()).unwrap();
-    std::fs::write(&urdf, urdf_with_mesh("package://my_robot_description/meshes/arm.stl", r#"scale="2 1 1""#)).unwrap();
+    std::fs::write(
+        &urdf,
+        urdf_with_mesh(
+            "package://my_robot_description/meshes/arm.stl",
+            r#"scale="2 1 1""#,
+        ),
+    )
+    .unwrap();
     let chain = load_urdf(&urdf, "finger", Isometry3::identity()).unwrap();
     assert_eq!(chain.dof(), 2);
     assert_eq!(chain.dof_joint(0).kind, JointKind::Revolute);
     assert_eq!(chain.dof_joint(1).kind, JointKind::Prismatic);
-    assert_eq!((chain.dof_joint(1).lower, chain.dof_joint(1).upper, chain.dof_joint(1).max_velocity), (0.0, 0.2, 0.5));
+    assert_eq!(
+        (
+            chain.dof_joint(1).lower,
+            chain.dof_joint(1).upper,
+            chain.dof_joint(1).max_velocity
+        ),
+        (0.0, 0.2, 0.5)
+    );
     let arm = &chain.links[chain.link_index("arm").unwrap()];
     let aabb = arm.geometry[0].aabb(&Isometry3::identity());
     // Scaled by 2 along x; placed 0.5 up.
-    assert!((aabb.maxs.coords - Vector3::new(0.1, 0.1, 0.7)).norm() < 1e-6, "{aabb:?}");
-    assert!((aabb.mins.coords - Vector3::new(-0.1, -0.1, 0.3)).norm() < 1e-6, "{aabb:?}");
-    assert_eq!(arm.geometry[0].shape.shape_type(), parry3d_f64::shape::ShapeType::ConvexPolyhedron);
+    assert!(
+        (aabb.maxs.coords - Vector3::new(0.1, 0.1, 0.7)).norm() < 1e-6,
+        "{aabb:?}"
+    );
+    assert!(
+        (aabb.mins.coords - Vector3::new(-0.1, -0.1, 0.3)).norm() < 1e-6,
+        "{aabb:?}"
+    );
+    assert_eq!(
+        arm.geometry[0].shape.shape_type(),
+        parry3d_f64::shape::ShapeType::ConvexPolyhedron
+    );
 }
 
 #[test]
@@ -83,13 +131,22 @@ fn a_missing_mesh_names_the_urdf_and_the_mesh() {
     let err = load_urdf(&urdf, "finger", Isometry3::identity()).unwrap_err();
     assert!(matches!(err, Error::Mesh { .. }));
     let message = err.to_string();
-    assert!(message.contains("r.urdf") && message.contains("package://nowhere/arm.stl") && message.contains("'arm'"), "{message}");
+    assert!(
+        message.contains("r.urdf")
+            && message.contains("package://nowhere/arm.stl")
+            && message.contains("'arm'"),
+        "{message}"
+    );
 }
 
 #[test]
 fn a_garbage_mesh_is_an_error_not_a_panic() {
     let root = temp_dir("garbage-mesh");
-    std::fs::write(root.join("arm.stl"), b"solid nonsense\nthis is not an stl\n").unwrap();
+    std::fs::write(
+        root.join("arm.stl"),
+        b"solid nonsense\nthis is not an stl\n",
+    )
+    .unwrap();
     let urdf = root.join("r.urdf");
     std::fs::write(&urdf, urdf_with_mesh("arm.stl", "")).unwrap();
     let err = load_urdf(&urdf, "finger", Isometry3::identity()).unwrap_err();
@@ -105,20 +162,35 @@ fn broken_urdfs_are_errors() {
         path
     };
     let not_xml = write("a.urdf", "<robot name='r'><link name='a'>");
-    assert!(matches!(load_urdf(&not_xml, "a", Isometry3::identity()), Err(Error::Urdf { .. })));
-    let two_roots = write("b.urdf", "<robot name='r'><link name='a'/><link name='b'/></robot>");
-    let message = load_urdf(&two_roots, "b", Isometry3::identity()).unwrap_err().to_string();
+    assert!(matches!(
+        load_urdf(&not_xml, "a", Isometry3::identity()),
+        Err(Error::Urdf { .. })
+    ));
+    let two_roots = write(
+        "b.urdf",
+        "<robot name='r'><link name='a'/><link name='b'/></robot>",
+    );
+    let message = load_urdf(&two_roots, "b", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
     assert!(message.contains("several root links"), "{message}");
     let bad_limits = write(
         "c.urdf",
         "<robot name='r'><link name='a'/><link name='b'/><joint name='j' type='revolute'><parent link='a'/><child link='b'/><axis xyz='0 0 1'/><limit lower='1' upper='-1' effort='1' velocity='1'/></joint></robot>",
     );
-    let message = load_urdf(&bad_limits, "b", Isometry3::identity()).unwrap_err().to_string();
-    assert!(message.contains("joint 'j'") && message.contains("lower"), "{message}");
+    let message = load_urdf(&bad_limits, "b", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("joint 'j'") && message.contains("lower"),
+        "{message}"
+    );
     let floating = write(
         "d.urdf",
         "<robot name='r'><link name='a'/><link name='b'/><joint name='j' type='floating'><parent link='a'/><child link='b'/></joint></robot>",
     );
-    let message = load_urdf(&floating, "b", Isometry3::identity()).unwrap_err().to_string();
+    let message = load_urdf(&floating, "b", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
     assert!(message.contains("not supported"), "{message}");
 }

@@ -11,7 +11,12 @@ use std::path::Path;
 const BOX: &str = "{type: box, size: [0.1, 0.1, 0.14]}";
 
 fn herb() -> Scene {
-    herb_scene(HAND_NEAR, &(parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0])), "").unwrap()
+    herb_scene(
+        HAND_NEAR,
+        &(parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0])),
+        "",
+    )
+    .unwrap()
 }
 
 fn with_object(scene: &Scene, index: usize, pose: Pose2) -> State {
@@ -30,7 +35,9 @@ fn joints_outside_their_limits_are_invalid() {
     let scene = herb();
     let mut state = scene.start.clone();
     state.q[0] = 2.7; // j1 limit is 2.6
-    assert!(matches!(check_state(&scene, &state), Err(Invalid::JointLimit { joint, .. }) if joint == "j1"));
+    assert!(
+        matches!(check_state(&scene, &state), Err(Invalid::JointLimit { joint, .. }) if joint == "j1")
+    );
 }
 
 #[test]
@@ -44,8 +51,20 @@ fn the_arm_folded_onto_itself_is_invalid_but_adjacent_links_are_not_checked() {
     ));
     // The shoulder sphere overlaps the base column and the upper arm at every
     // configuration; they are adjacent (through the geometry-less link1), so not checked.
-    let pairs: Vec<_> = scene.robot.self_collision_pairs.iter().map(|&(a, b)| (scene.robot.chain.links[a].name.as_str(), scene.robot.chain.links[b].name.as_str())).collect();
-    assert!(!pairs.contains(&("wam_base", "wam_link2")) && !pairs.contains(&("wam_link2", "wam_link3")));
+    let pairs: Vec<_> = scene
+        .robot
+        .self_collision_pairs
+        .iter()
+        .map(|&(a, b)| {
+            (
+                scene.robot.chain.links[a].name.as_str(),
+                scene.robot.chain.links[b].name.as_str(),
+            )
+        })
+        .collect();
+    assert!(
+        !pairs.contains(&("wam_base", "wam_link2")) && !pairs.contains(&("wam_link2", "wam_link3"))
+    );
     assert!(pairs.contains(&("wam_link3", "wam_link5")) && pairs.contains(&("wam_link2", "hand")));
 }
 
@@ -53,13 +72,26 @@ fn the_arm_folded_onto_itself_is_invalid_but_adjacent_links_are_not_checked() {
 fn the_arm_in_the_table_is_invalid() {
     // The planar hand lowered into the table top.
     let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
-    let scene = Scene::from_yaml(&text.replace("height: 0.05", "height: 0.03"), Path::new("scenes/x.yaml"));
-    assert!(matches!(scene, Err(pushplan::Error::InvalidStart { ref reason, .. }) if reason.contains("hits the table")), "{scene:?}");
+    let scene = Scene::from_yaml(
+        &text.replace("height: 0.05", "height: 0.03"),
+        Path::new("scenes/x.yaml"),
+    );
+    assert!(
+        matches!(scene, Err(pushplan::Error::InvalidStart { ref reason, .. }) if reason.contains("hits the table")),
+        "{scene:?}"
+    );
     // The arm's shoulder pitched forward drives the hand down into the table.
     let scene = herb();
     let mut state = scene.start.clone();
     state.q[1] += 0.3;
-    assert!(matches!(check_state(&scene, &state), Err(Invalid::ArmHitsTable { .. })), "{:?}", check_state(&scene, &state));
+    assert!(
+        matches!(
+            check_state(&scene, &state),
+            Err(Invalid::ArmHitsTable { .. })
+        ),
+        "{:?}",
+        check_state(&scene, &state)
+    );
 }
 
 #[test]
@@ -81,24 +113,49 @@ fn the_arm_in_a_static_obstacle_is_invalid() {
 fn arm_object_contact_is_allowed_but_penetration_is_not() {
     let scene = herb();
     // Slide the box towards the hand until the arm-object distance crosses zero.
-    let tool = scene.robot.tool_pose(&scene.robot.link_poses(&scene.start.q)).translation;
+    let tool = scene
+        .robot
+        .tool_pose(&scene.robot.link_poses(&scene.start.q))
+        .translation;
     let place = |x: f64| with_object(&scene, 1, Pose2::new(x, tool.y, 0.0));
     let distance = |x: f64| {
         let mut contacts = Vec::new();
         let poses = scene.robot.link_poses(&scene.start.q);
         let mut bounds = pushplan::contact::ArmBounds::default();
         pushplan::contact::ArmBounds::compute(&scene, &poses, &mut bounds);
-        pushplan::contact::find_arm_contacts(&scene, &poses, &bounds, &place(x).objects, 0.05, &mut contacts);
-        contacts.iter().map(|c| c.point.distance).fold(f64::INFINITY, f64::min)
+        let objects = place(x).objects;
+        let mut boxes = Vec::new();
+        pushplan::contact::object_bounds(&scene, &objects, &mut boxes);
+        pushplan::contact::find_arm_contacts(
+            &scene,
+            &poses,
+            &bounds,
+            &objects,
+            &boxes,
+            0.05,
+            &mut contacts,
+        );
+        contacts
+            .iter()
+            .map(|c| c.point.distance)
+            .fold(f64::INFINITY, f64::min)
     };
     // Bisect for the touching position.
     let (mut lo, mut hi) = (tool.x, tool.x + 0.3); // penetrating .. apart
     for _ in 0..60 {
         let mid = (lo + hi) / 2.0;
-        if distance(mid) < 0.0 { lo = mid } else { hi = mid }
+        if distance(mid) < 0.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
     }
     assert_eq!(check_state(&scene, &place(hi)), Ok(()));
-    assert_eq!(check_state(&scene, &place(hi - 0.002)), Ok(()), "2 mm is within the 3 mm tolerance");
+    assert_eq!(
+        check_state(&scene, &place(hi - 0.002)),
+        Ok(()),
+        "2 mm is within the 3 mm tolerance"
+    );
     assert!(matches!(
         check_state(&scene, &place(hi - 0.01)),
         Err(Invalid::ArmPenetratesObject { link, object, depth }) if link == "hand" && object == "box" && depth > 0.009
@@ -113,7 +170,10 @@ fn overlapping_objects_are_invalid_touching_ones_are_not() {
     let touching = with_object(&scene, 1, Pose2::new(goal.x + 0.101, goal.y, 0.0));
     assert_eq!(check_state(&scene, &touching), Ok(()));
     let overlapping = with_object(&scene, 1, Pose2::new(goal.x + 0.09, goal.y, 0.0));
-    assert!(matches!(check_state(&scene, &overlapping), Err(Invalid::ObjectsOverlap { .. })));
+    assert!(matches!(
+        check_state(&scene, &overlapping),
+        Err(Invalid::ObjectsOverlap { .. })
+    ));
 }
 
 #[test]
@@ -122,15 +182,24 @@ fn an_object_whose_centre_leaves_the_table_is_invalid() {
     let over_edge = with_object(&scene, 1, Pose2::new(1.02, -0.2, 0.0)); // overhangs, centre on
     assert_eq!(check_state(&scene, &over_edge), Ok(()));
     let off = with_object(&scene, 1, Pose2::new(1.04, -0.2, 0.0));
-    assert!(matches!(check_state(&scene, &off), Err(Invalid::ObjectOffTable { object }) if object == "box"));
+    assert!(
+        matches!(check_state(&scene, &off), Err(Invalid::ObjectOffTable { object }) if object == "box")
+    );
 }
 
 #[test]
 fn an_object_in_a_static_obstacle_is_invalid() {
     let obstacle = "obstacles:\n  - {name: wall, shape: {type: box, size: [0.02, 0.5, 0.3]}, pose: {xyz: [0.95, -0.4, 0.91]}}";
-    let scene = herb_scene(HAND_NEAR, &(parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0])), obstacle).unwrap();
+    let scene = herb_scene(
+        HAND_NEAR,
+        &(parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0])),
+        obstacle,
+    )
+    .unwrap();
     let into_wall = with_object(&scene, 1, Pose2::new(0.92, -0.4, 0.0));
-    assert!(matches!(check_state(&scene, &into_wall), Err(Invalid::ObjectHitsObstacle { object, obstacle }) if object == "box" && obstacle == "wall"));
+    assert!(
+        matches!(check_state(&scene, &into_wall), Err(Invalid::ObjectHitsObstacle { object, obstacle }) if object == "box" && obstacle == "wall")
+    );
 }
 
 #[test]
@@ -139,10 +208,15 @@ fn a_link_pressing_on_top_of_an_object_is_invalid() {
     // is pressed from above (0.5 mm, within the penetration tolerance).
     let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
     let scene = Scene::from_yaml(&text, Path::new("scenes/x.yaml")).unwrap();
-    let puck = text.replace("shape: {type: box, size: [0.1, 0.1, 0.14]}", "shape: {type: cylinder, radius: 0.03, height: 0.0105}");
+    let puck = text.replace(
+        "shape: {type: box, size: [0.1, 0.1, 0.14]}",
+        "shape: {type: cylinder, radius: 0.03, height: 0.0105}",
+    );
     let scene_puck = Scene::from_yaml(&puck, Path::new("scenes/x.yaml")).unwrap();
     let under_hand = with_object(&scene_puck, 0, Pose2::new(0.4, 0.0, 0.0));
-    assert!(matches!(check_state(&scene_puck, &under_hand), Err(Invalid::PressesOnTop { link, object }) if link == "hand" && object == "box"));
+    assert!(
+        matches!(check_state(&scene_puck, &under_hand), Err(Invalid::PressesOnTop { link, object }) if link == "hand" && object == "box")
+    );
     // The same hand beside the tall box touches its side: fine.
     let beside = with_object(&scene, 0, Pose2::new(0.4 + 0.02 + 0.05, 0.0, 0.0));
     assert_eq!(check_state(&scene, &beside), Ok(()));
@@ -166,15 +240,30 @@ goal: {object: can, center: [0.8, 0.0], radius: 0.1}
     let mut p = Propagator::new(&scene);
     // Hold the finger (the end effector) still and close the palm on it through the
     // null space: finger A moves in at 0.1 m/s, finger B stays.
-    let squeeze = EeAction { velocity: [0.0; 3], nullspace: nalgebra::DVector::from_column_slice(&[0.0, 0.0, 0.0, 0.2]) };
+    let squeeze = EeAction {
+        velocity: [0.0; 3],
+        nullspace: nalgebra::DVector::from_column_slice(&[0.0, 0.0, 0.0, 0.2]),
+    };
     let run = p.propagate(&scene.start, &squeeze, 1.0);
-    assert!(matches!(run.stopped_by, Some(Invalid::Jammed { ref object }) if object == "can"), "{:?}", run.stopped_by);
+    assert!(
+        matches!(run.stopped_by, Some(Invalid::Jammed { ref object }) if object == "can"),
+        "{:?}",
+        run.stopped_by
+    );
     // Before jamming, finger A pushed the can across the 2 cm gap onto finger B.
-    assert!(run.state.objects[0].y < -0.015, "{:?}", run.state.objects[0]);
+    assert!(
+        run.state.objects[0].y < -0.015,
+        "{:?}",
+        run.state.objects[0]
+    );
     // Moving the end effector sideways pushes the can with one finger: no jam. The
     // minimum-norm joint motion splits the 0.1 m/s between palm and slide, so finger A
     // moves at 0.05 m/s and, after the 2 cm gap, pushes the can 3 cm.
     let slide = p.propagate(&scene.start, &EeAction::planar(0.0, -0.1, 0.0), 1.0);
     assert!(slide.stopped_by.is_none(), "{:?}", slide.stopped_by);
-    assert!((slide.state.objects[0].y + 0.03).abs() < 2e-3, "{:?}", slide.state.objects[0]);
+    assert!(
+        (slide.state.objects[0].y + 0.03).abs() < 2e-3,
+        "{:?}",
+        slide.state.objects[0]
+    );
 }

@@ -13,14 +13,26 @@ use std::f64::consts::FRAC_PI_2;
 #[derive(Clone, Debug, PartialEq)]
 pub enum Primitive {
     /// Box with full side lengths along x, y, z.
-    Box { size: Vector3<f64> },
+    Box {
+        size: Vector3<f64>,
+    },
     /// Cylinder along z, `length` is the full height.
-    Cylinder { radius: f64, length: f64 },
-    Sphere { radius: f64 },
+    Cylinder {
+        radius: f64,
+        length: f64,
+    },
+    Sphere {
+        radius: f64,
+    },
     /// Capsule along z; `length` is the length of the inner segment (URDF convention).
-    Capsule { radius: f64, length: f64 },
+    Capsule {
+        radius: f64,
+        length: f64,
+    },
     /// Convex hull of the points (e.g. a mesh's vertices).
-    ConvexHull { points: Vec<Point3<f64>> },
+    ConvexHull {
+        points: Vec<Point3<f64>>,
+    },
 }
 
 /// A shape attached to a body: `local` places the shape in the body frame.
@@ -49,10 +61,9 @@ impl Geometry {
                 SharedShape::cuboid(size.x / 2.0, size.y / 2.0, size.z / 2.0),
                 local,
             ),
-            Primitive::Cylinder { radius, length } => (
-                SharedShape::cylinder(length / 2.0, *radius),
-                local * z_to_y,
-            ),
+            Primitive::Cylinder { radius, length } => {
+                (SharedShape::cylinder(length / 2.0, *radius), local * z_to_y)
+            }
             Primitive::Sphere { radius } => (SharedShape::ball(*radius), local),
             Primitive::Capsule { radius, length } => {
                 (SharedShape::capsule_z(length / 2.0, *radius), local)

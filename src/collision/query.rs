@@ -2,10 +2,17 @@
 
 use super::geometry::Geometry;
 use nalgebra::{Isometry3, Point3, Unit, Vector3};
-use parry3d_f64::query::{self, ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher};
+use parry3d_f64::query::{
+    self, ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher,
+};
 
 /// Do the shapes overlap (touching counts)?
-pub fn intersects(a: &Geometry, pose_a: &Isometry3<f64>, b: &Geometry, pose_b: &Isometry3<f64>) -> bool {
+pub fn intersects(
+    a: &Geometry,
+    pose_a: &Isometry3<f64>,
+    b: &Geometry,
+    pose_b: &Isometry3<f64>,
+) -> bool {
     query::intersection_test(
         &a.world_pose(pose_a),
         a.shape.as_ref(),
@@ -93,7 +100,13 @@ pub fn contact_points(
         return;
     }
     // Pairs without a manifold generator fall back to the single closest-point contact.
-    if let Ok(Some(c)) = query::contact(&world_a, a.shape.as_ref(), &world_b, b.shape.as_ref(), prediction) {
+    if let Ok(Some(c)) = query::contact(
+        &world_a,
+        a.shape.as_ref(),
+        &world_b,
+        b.shape.as_ref(),
+        prediction,
+    ) {
         out.push(ContactPoint {
             point_a: c.point1,
             point_b: c.point2,

@@ -41,7 +41,11 @@ pub fn solve(m: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
     let mut leaving = std::mem::replace(&mut basis[row], z0);
 
     for _ in 0..(50 * n + 50) {
-        let entering = if leaving < n { leaving + n } else { leaving - n };
+        let entering = if leaving < n {
+            leaving + n
+        } else {
+            leaving - n
+        };
         // Minimum ratio test; prefer z0 on ties (ends the method), then larger pivots.
         let mut best: Option<(usize, f64)> = None;
         for i in 0..n {
@@ -57,7 +61,11 @@ pub fn solve(m: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
                         } else {
                             ratio < br
                         };
-                        if better { Some((i, ratio)) } else { Some((bi, br)) }
+                        if better {
+                            Some((i, ratio))
+                        } else {
+                            Some((bi, br))
+                        }
                     }
                 };
             }
@@ -104,7 +112,9 @@ pub fn is_solution(m: &DMatrix<f64>, q: &DVector<f64>, z: &DVector<f64>) -> bool
     let tol = 1e-8 * scale;
     z.iter().all(|&v| v >= -tol)
         && w.iter().all(|&v| v >= -tol)
-        && w.iter().zip(z.iter()).all(|(a, b)| (a * b).abs() <= tol * (1.0 + b.abs()))
+        && w.iter()
+            .zip(z.iter())
+            .all(|(a, b)| (a * b).abs() <= tol * (1.0 + b.abs()))
 }
 
 #[cfg(test)]

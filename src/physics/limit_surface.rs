@@ -13,9 +13,13 @@ pub const GRAVITY: f64 = 9.81;
 /// The footprint of a prism on the table, in the object frame (m).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Footprint {
-    Circle { radius: f64 },
+    Circle {
+        radius: f64,
+    },
     /// Convex polygon, counter-clockwise.
-    Polygon { vertices: Vec<Vector2<f64>> },
+    Polygon {
+        vertices: Vec<Vector2<f64>>,
+    },
 }
 
 impl Footprint {
@@ -76,7 +80,9 @@ fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
-fn polygon_edges(vertices: &[Vector2<f64>]) -> impl Iterator<Item = (Vector2<f64>, Vector2<f64>)> + '_ {
+fn polygon_edges(
+    vertices: &[Vector2<f64>],
+) -> impl Iterator<Item = (Vector2<f64>, Vector2<f64>)> + '_ {
     (0..vertices.len()).map(move |i| (vertices[i], vertices[(i + 1) % vertices.len()]))
 }
 

@@ -71,7 +71,8 @@ pub fn object_motion(
 ) -> Result<ObjectMotion, Jammed> {
     let m = contacts.len();
     let approach = |c: &PlanarContact| c.normal.dot(&c.pusher_velocity) - c.gap / dt;
-    let pushes = |c: &PlanarContact| c.normal.dot(&c.pusher_velocity) > REST_SPEED && approach(c) > 0.0;
+    let pushes =
+        |c: &PlanarContact| c.normal.dot(&c.pusher_velocity) > REST_SPEED && approach(c) > 0.0;
     if !contacts.iter().any(pushes) {
         // No pusher moves into the object and closes its gap within the step: nothing
         // pushes it. (Residual penetration alone does not move an object at rest.)
@@ -127,7 +128,11 @@ pub fn object_motion(
     let v = a * wrench;
     // Scale the solver's forces onto the limit surface: F^T A F / f_max^2 = 1.
     let load = wrench.dot(&v).sqrt();
-    let scale = if load > 0.0 { surface.f_max / load } else { 0.0 };
+    let scale = if load > 0.0 {
+        surface.f_max / load
+    } else {
+        0.0
+    };
     Ok(ObjectMotion {
         twist: Twist2 {
             vx: v.x,

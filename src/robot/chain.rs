@@ -134,7 +134,8 @@ impl KinematicChain {
                 match joint.kind {
                     JointKind::Revolute => {
                         let lever = point - Point3::from(pose.translation.vector);
-                        jac.fixed_view_mut::<3, 1>(0, i).copy_from(&axis.cross(&lever));
+                        jac.fixed_view_mut::<3, 1>(0, i)
+                            .copy_from(&axis.cross(&lever));
                         jac.fixed_view_mut::<3, 1>(3, i).copy_from(&axis);
                     }
                     JointKind::Prismatic => {

@@ -66,7 +66,11 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
             )
         })
         .collect();
-    if points.len() < 4 || points.iter().any(|p| !p.coords.iter().all(|c| c.is_finite())) {
+    if points.len() < 4
+        || points
+            .iter()
+            .any(|p| !p.coords.iter().all(|c| c.is_finite()))
+    {
         return Err(mesh_error(
             "needs at least 4 finite vertices to make a solid".into(),
         ));

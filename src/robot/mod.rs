@@ -13,7 +13,7 @@ pub mod projection;
 pub mod urdf;
 
 pub use chain::{Joint, JointKind, KinematicChain, Link};
-pub use projection::{PushingPlane, EeAction, ProjectionFailure};
+pub use projection::{EeAction, ProjectionFailure, ProjectionSettings, PushingPlane};
 
 use nalgebra::{DVector, Isometry3};
 
@@ -37,6 +37,8 @@ pub struct Robot {
     pub plane: PushingPlane,
     /// Link pairs checked for self-collision.
     pub self_collision_pairs: Vec<(usize, usize)>,
+    /// Tolerances of the constraint projection.
+    pub projection: ProjectionSettings,
 }
 
 impl Robot {
@@ -46,6 +48,7 @@ impl Robot {
         ee_link: usize,
         tool: Isometry3<f64>,
         plane: PushingPlane,
+        projection: ProjectionSettings,
     ) -> Robot {
         let self_collision_pairs = non_adjacent_pairs(&chain);
         Robot {
@@ -55,6 +58,7 @@ impl Robot {
             tool,
             plane,
             self_collision_pairs,
+            projection,
         }
     }
 
@@ -122,5 +126,6 @@ fn rigidly_joined(chain: &KinematicChain, a: usize, b: usize) -> bool {
         }
         true
     };
-    (chain.is_ancestor(a, b) && path_is_rigid(a, b)) || (chain.is_ancestor(b, a) && path_is_rigid(b, a))
+    (chain.is_ancestor(a, b) && path_is_rigid(a, b))
+        || (chain.is_ancestor(b, a) && path_is_rigid(b, a))
 }

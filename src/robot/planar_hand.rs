@@ -16,18 +16,19 @@ pub fn planar_hand_chain(
     max_speed: f64,
     max_turn_rate: f64,
 ) -> KinematicChain {
-    let joint = |name: &str, kind, parent, axis: Vector3<f64>, (lower, upper), max_velocity, dof| Joint {
-        name: name.to_string(),
-        kind,
-        parent,
-        origin: Isometry3::identity(),
-        axis: nalgebra::Unit::new_normalize(axis),
-        lower,
-        upper,
-        max_velocity,
-        dof: Some(dof),
-        held_value: 0.0,
-    };
+    let joint =
+        |name: &str, kind, parent, axis: Vector3<f64>, (lower, upper), max_velocity, dof| Joint {
+            name: name.to_string(),
+            kind,
+            parent,
+            origin: Isometry3::identity(),
+            axis: nalgebra::Unit::new_normalize(axis),
+            lower,
+            upper,
+            max_velocity,
+            dof: Some(dof),
+            held_value: 0.0,
+        };
     let pi = std::f64::consts::PI;
     KinematicChain {
         links: vec![
@@ -38,17 +39,41 @@ pub fn planar_hand_chain(
             },
             Link {
                 name: "hand_x".into(),
-                joint: Some(joint("x", JointKind::Prismatic, 0, Vector3::x(), x_range, max_speed, 0)),
+                joint: Some(joint(
+                    "x",
+                    JointKind::Prismatic,
+                    0,
+                    Vector3::x(),
+                    x_range,
+                    max_speed,
+                    0,
+                )),
                 geometry: vec![],
             },
             Link {
                 name: "hand_y".into(),
-                joint: Some(joint("y", JointKind::Prismatic, 1, Vector3::y(), y_range, max_speed, 1)),
+                joint: Some(joint(
+                    "y",
+                    JointKind::Prismatic,
+                    1,
+                    Vector3::y(),
+                    y_range,
+                    max_speed,
+                    1,
+                )),
                 geometry: vec![],
             },
             Link {
                 name: "hand".into(),
-                joint: Some(joint("yaw", JointKind::Revolute, 2, Vector3::z(), (-pi, pi), max_turn_rate, 2)),
+                joint: Some(joint(
+                    "yaw",
+                    JointKind::Revolute,
+                    2,
+                    Vector3::z(),
+                    (-pi, pi),
+                    max_turn_rate,
+                    2,
+                )),
                 geometry,
             },
         ],

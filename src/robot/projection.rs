@@ -54,7 +54,11 @@ impl PushingPlane {
         let axis = up.cross(&Vector3::z());
         let sin = axis.norm();
         let angle = up.z.clamp(-1.0, 1.0).acos();
-        let w = if sin > 1e-12 { axis * (angle / sin) } else { Vector3::zeros() };
+        let w = if sin > 1e-12 {
+            axis * (angle / sin)
+        } else {
+            Vector3::zeros()
+        };
         Vector6::new(0.0, 0.0, self.height - tool.translation.z, w.x, w.y, 0.0)
     }
 }
@@ -114,7 +118,10 @@ impl std::fmt::Display for ProjectionFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::JointStepTooLarge { joint, step } => {
-                write!(f, "joint {joint} would move {step:.3} in one step (singular)")
+                write!(
+                    f,
+                    "joint {joint} would move {step:.3} in one step (singular)"
+                )
             }
             Self::OffPlane {
                 height_error,
@@ -144,8 +151,10 @@ impl Robot {
         let jac = self
             .chain
             .point_jacobian(poses, self.ee_link, &tool.translation.vector.into());
-        let jjt: Matrix6<f64> =
-            (&jac * jac.transpose()).fixed_view::<6, 6>(0, 0).into_owned() + Matrix6::identity() * damping.powi(2);
+        let jjt: Matrix6<f64> = (&jac * jac.transpose())
+            .fixed_view::<6, 6>(0, 0)
+            .into_owned()
+            + Matrix6::identity() * damping.powi(2);
         let chol = jjt.cholesky().expect("damped J J^T is positive definite");
         let mut qdot = jac.transpose() * chol.solve(task);
         if !z.is_empty() {
@@ -156,17 +165,18 @@ impl Robot {
     }
 
     /// Projects one step of `action` held for `dt` seconds from `q` (link poses `poses`)
-    /// onto the pushing plane. Writes the new configuration and its link poses.
+    /// onto the pushing plane, within the robot's projection settings. Writes the new
+    /// configuration and its link poses.
     pub fn project_step(
         &self,
         q: &DVector<f64>,
         poses: &[Isometry3<f64>],
         action: &EeAction,
         dt: f64,
-        settings: &ProjectionSettings,
         q_new: &mut DVector<f64>,
         poses_new: &mut Vec<Isometry3<f64>>,
     ) -> Result<(), ProjectionFailure> {
+        let settings = &self.projection;
         let tool = self.tool_pose(poses);
         let [vx, vy, wz] = action.velocity;
         let task = Vector6::new(vx, vy, 0.0, 0.0, 0.0, wz) + self.plane.correction(&tool) / dt;
@@ -188,7 +198,11 @@ impl Robot {
     ) -> Result<(), ProjectionFailure> {
         let within = |poses: &[Isometry3<f64>]| {
             let (h, t) = self.plane.error(&self.tool_pose(poses));
-            (h.abs() <= settings.height_tolerance && t <= settings.tilt_tolerance, h, t)
+            (
+                h.abs() <= settings.height_tolerance && t <= settings.tilt_tolerance,
+                h,
+                t,
+            )
         };
         let empty = DVector::zeros(0);
         for _ in 0..NEWTON_ITERATIONS {
@@ -217,7 +231,7 @@ impl Robot {
     ) -> Result<(), ProjectionFailure> {
         for i in 0..q.len() {
             let step = (q_new[i] - q[i]).abs();
-            if !(step <= settings.max_joint_step) {
+            if step.is_nan() || step > settings.max_joint_step {
                 return Err(ProjectionFailure::JointStepTooLarge { joint: i, step });
             }
         }

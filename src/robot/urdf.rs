@@ -148,9 +148,19 @@ fn convert_joint(path: &Path, j: &urdf_rs::Joint, links: &[Link]) -> Result<Join
         urdf_rs::JointType::Fixed => (JointKind::Fixed, 0.0, 0.0),
         ref other => return Err(urdf_error(format!("{other:?} joints are not supported"))),
     };
-    let numbers = j.origin.xyz.iter().chain(j.origin.rpy.iter()).chain(j.axis.xyz.iter());
-    if numbers.chain([&lower, &upper, &j.limit.velocity]).any(|v| !v.is_finite()) {
-        return Err(urdf_error("origin, axis and limits must be finite numbers".into()));
+    let numbers = j
+        .origin
+        .xyz
+        .iter()
+        .chain(j.origin.rpy.iter())
+        .chain(j.axis.xyz.iter());
+    if numbers
+        .chain([&lower, &upper, &j.limit.velocity])
+        .any(|v| !v.is_finite())
+    {
+        return Err(urdf_error(
+            "origin, axis and limits must be finite numbers".into(),
+        ));
     }
     if kind != JointKind::Fixed && lower >= upper {
         return Err(urdf_error(format!(
@@ -228,6 +238,8 @@ pub fn check_dimensions(primitive: &Primitive) -> std::result::Result<(), String
     if dims.iter().all(|d| d.is_finite() && *d > 0.0) {
         Ok(())
     } else {
-        Err(format!("dimensions must be positive and finite, got {dims:?}"))
+        Err(format!(
+            "dimensions must be positive and finite, got {dims:?}"
+        ))
     }
 }

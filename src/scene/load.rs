@@ -1,7 +1,10 @@
 //! From a scene file to a validated [`Scene`]: every number is checked (finite, in range),
 //! every reference resolved, and every error names the file and the field.
 
-use super::file::{GoalSpec, ObjectSpec, PhysicsSpec, PlannerSpec, PressureSpec, RobotSpec, SceneFile, ShapeSpec, TableSpec};
+use super::file::{
+    GoalSpec, ObjectSpec, PhysicsSpec, PlannerSpec, PressureSpec, RobotSpec, SceneFile, ShapeSpec,
+    TableSpec,
+};
 use super::{Goal, MovableObject, Obstacle, Scene, Table};
 use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
@@ -47,16 +50,6 @@ impl Scene {
         })?;
         Loader { file: source }.scene(spec)
     }
-
-    /// The projection settings the physics parameters call for.
-    pub fn projection_settings(&self) -> ProjectionSettings {
-        ProjectionSettings {
-            max_joint_step: self.physics.max_joint_step,
-            height_tolerance: self.physics.plane_tolerance,
-            tilt_tolerance: self.physics.tilt_tolerance,
-            ..ProjectionSettings::default()
-        }
-    }
 }
 
 struct Loader<'a> {
@@ -71,8 +64,13 @@ impl Loader<'_> {
     fn finite(&self, field: &str, values: &[f64]) -> Result<()> {
         match values.iter().position(|v| !v.is_finite()) {
             None => Ok(()),
-            Some(i) if values.len() == 1 => Err(self.invalid(field, format!("must be a finite number, got {}", values[i]))),
-            Some(i) => Err(self.invalid(format!("{field}[{i}]"), format!("must be a finite number, got {}", values[i]))),
+            Some(i) if values.len() == 1 => {
+                Err(self.invalid(field, format!("must be a finite number, got {}", values[i])))
+            }
+            Some(i) => Err(self.invalid(
+                format!("{field}[{i}]"),
+                format!("must be a finite number, got {}", values[i]),
+            )),
         }
     }
 
@@ -99,7 +97,8 @@ impl Loader<'_> {
                 self.finite(&format!("{field}.pose.xyz"), &o.pose.xyz)?;
                 self.finite(&format!("{field}.pose.rpy"), &o.pose.rpy)?;
                 let (primitive, _) = self.shape(&format!("{field}.shape"), &o.shape, true)?;
-                let geometry = self.geometry(&format!("{field}.shape"), &primitive, Isometry3::identity())?;
+                let geometry =
+                    self.geometry(&format!("{field}.shape"), &primitive, Isometry3::identity())?;
                 Ok(Obstacle {
                     name: o.name.clone(),
                     pose: isometry_from_xyz_rpy(o.pose.xyz, o.pose.rpy),
@@ -111,7 +110,10 @@ impl Loader<'_> {
         let mut poses = Vec::new();
         for (i, o) in spec.objects.iter().enumerate() {
             if spec.objects[..i].iter().any(|p| p.name == o.name) {
-                return Err(self.invalid(format!("objects[{i}].name"), format!("'{}' is used twice", o.name)));
+                return Err(self.invalid(
+                    format!("objects[{i}].name"),
+                    format!("'{}' is used twice", o.name),
+                ));
             }
             let (object, pose) = self.object(&format!("objects[{i}]"), o, &table)?;
             objects.push(object);
@@ -160,7 +162,10 @@ impl Loader<'_> {
         self.positive("table.thickness", t.thickness)?;
         for (field, r) in [("table.x", t.x), ("table.y", t.y)] {
             if r[0] >= r[1] {
-                return Err(self.invalid(field, format!("must be [min, max] with min < max, got {r:?}")));
+                return Err(self.invalid(
+                    field,
+                    format!("must be [min, max] with min < max, got {r:?}"),
+                ));
             }
         }
         let size = Vector3::new(t.x[1] - t.x[0], t.y[1] - t.y[0], t.thickness);
@@ -177,13 +182,24 @@ impl Loader<'_> {
         })
     }
 
-    fn geometry(&self, field: &str, primitive: &Primitive, local: Isometry3<f64>) -> Result<Geometry> {
-        Geometry::new(primitive, local).ok_or_else(|| self.invalid(field, "the shape is flat (no volume)"))
+    fn geometry(
+        &self,
+        field: &str,
+        primitive: &Primitive,
+        local: Isometry3<f64>,
+    ) -> Result<Geometry> {
+        Geometry::new(primitive, local)
+            .ok_or_else(|| self.invalid(field, "the shape is flat (no volume)"))
     }
 
     /// The primitive of a shape and, for prisms, its footprint and height.
     /// Prisms are placed with their base at the frame origin when `centred` is false.
-    fn shape(&self, field: &str, shape: &ShapeSpec, centred: bool) -> Result<(Primitive, Option<(Footprint, f64)>)> {
+    fn shape(
+        &self,
+        field: &str,
+        shape: &ShapeSpec,
+        centred: bool,
+    ) -> Result<(Primitive, Option<(Footprint, f64)>)> {
         let out = match shape {
             ShapeSpec::Box { size } => {
                 let [x, y, z] = *size;
@@ -195,7 +211,12 @@ impl Loader<'_> {
                         Vector2::new(-x / 2.0, y / 2.0),
                     ],
                 };
-                (Primitive::Box { size: Vector3::from(*size) }, Some((footprint, z)))
+                (
+                    Primitive::Box {
+                        size: Vector3::from(*size),
+                    },
+                    Some((footprint, z)),
+                )
             }
             ShapeSpec::Cylinder { radius, height } => (
                 Primitive::Cylinder {
@@ -206,18 +227,28 @@ impl Loader<'_> {
             ),
             ShapeSpec::Polygon { vertices, height } => {
                 let footprint = self.polygon(&format!("{field}.vertices"), vertices)?;
-                let Footprint::Polygon { vertices: v } = &footprint else { unreachable!() };
+                let Footprint::Polygon { vertices: v } = &footprint else {
+                    unreachable!()
+                };
                 let z0 = if centred { -height / 2.0 } else { 0.0 };
                 let points = v
                     .iter()
-                    .flat_map(|p| [Point3::new(p.x, p.y, z0), Point3::new(p.x, p.y, z0 + height)])
+                    .flat_map(|p| {
+                        [
+                            Point3::new(p.x, p.y, z0),
+                            Point3::new(p.x, p.y, z0 + height),
+                        ]
+                    })
                     .collect();
                 (Primitive::ConvexHull { points }, Some((footprint, *height)))
             }
             ShapeSpec::Mesh { file, scale } => {
                 self.finite(&format!("{field}.scale"), scale)?;
                 if !self.relative(file).is_file() {
-                    return Err(self.invalid(format!("{field}.file"), format!("mesh {} not found", self.relative(file).display())));
+                    return Err(self.invalid(
+                        format!("{field}.file"),
+                        format!("mesh {} not found", self.relative(file).display()),
+                    ));
                 }
                 (load_convex_mesh(&self.relative(file), *scale)?, None)
             }
@@ -240,7 +271,9 @@ impl Loader<'_> {
         let mut v: Vec<Vector2<f64>> = vertices.iter().map(|p| Vector2::new(p[0], p[1])).collect();
         let turn = |a: Vector2<f64>, b: Vector2<f64>, c: Vector2<f64>| (b - a).perp(&(c - b));
         let n = v.len();
-        let turns: Vec<f64> = (0..n).map(|i| turn(v[i], v[(i + 1) % n], v[(i + 2) % n])).collect();
+        let turns: Vec<f64> = (0..n)
+            .map(|i| turn(v[i], v[(i + 1) % n], v[(i + 2) % n]))
+            .collect();
         if turns.iter().all(|t| *t <= 0.0) {
             v.reverse();
         } else if !turns.iter().all(|t| *t >= 0.0) {
@@ -266,7 +299,10 @@ impl Loader<'_> {
     fn object(&self, field: &str, o: &ObjectSpec, table: &Table) -> Result<(MovableObject, Pose2)> {
         let (primitive, prism) = self.shape(&format!("{field}.shape"), &o.shape, false)?;
         let Some((footprint, height)) = prism else {
-            return Err(self.invalid(format!("{field}.shape"), "a movable object must be a box, cylinder or polygon prism"));
+            return Err(self.invalid(
+                format!("{field}.shape"),
+                "a movable object must be a box, cylinder or polygon prism",
+            ));
         };
         let local = match o.shape {
             ShapeSpec::Polygon { .. } => Isometry3::identity(),
@@ -293,7 +329,9 @@ impl Loader<'_> {
         };
         let bounding_radius = match &footprint {
             Footprint::Circle { radius } => *radius,
-            Footprint::Polygon { vertices } => vertices.iter().map(|v| v.norm()).fold(0.0, f64::max),
+            Footprint::Polygon { vertices } => {
+                vertices.iter().map(|v| v.norm()).fold(0.0, f64::max)
+            }
         };
         let object = MovableObject {
             name: o.name.clone(),
@@ -328,30 +366,61 @@ impl Loader<'_> {
                 tool,
                 pushing_plane,
             } => {
-                for (f, v) in [("robot.base_pose.xyz", base_pose.xyz), ("robot.base_pose.rpy", base_pose.rpy), ("robot.tool.xyz", tool.xyz), ("robot.tool.rpy", tool.rpy), ("robot.pushing_plane.orientation_rpy", pushing_plane.orientation_rpy)] {
+                for (f, v) in [
+                    ("robot.base_pose.xyz", base_pose.xyz),
+                    ("robot.base_pose.rpy", base_pose.rpy),
+                    ("robot.tool.xyz", tool.xyz),
+                    ("robot.tool.rpy", tool.rpy),
+                    (
+                        "robot.pushing_plane.orientation_rpy",
+                        pushing_plane.orientation_rpy,
+                    ),
+                ] {
                     self.finite(f, &v)?;
                 }
                 self.finite("robot.pushing_plane.height", &[pushing_plane.height])?;
                 self.finite("robot.start_joints", start_joints)?;
                 let urdf_path = self.relative(urdf);
                 if !urdf_path.is_file() {
-                    return Err(self.invalid("robot.urdf", format!("file {} not found", urdf_path.display())));
+                    return Err(self.invalid(
+                        "robot.urdf",
+                        format!("file {} not found", urdf_path.display()),
+                    ));
                 }
                 let base = isometry_from_xyz_rpy(base_pose.xyz, base_pose.rpy);
                 let chain = load_urdf(&urdf_path, end_effector, base)?;
-                let ee_link = chain.link_index(end_effector).expect("checked by load_urdf");
+                let ee_link = chain
+                    .link_index(end_effector)
+                    .expect("checked by load_urdf");
                 if chain.dof() == 0 {
-                    return Err(self.invalid("robot.end_effector", format!("no movable joint between the root link and '{end_effector}'")));
+                    return Err(self.invalid(
+                        "robot.end_effector",
+                        format!("no movable joint between the root link and '{end_effector}'"),
+                    ));
                 }
                 if start_joints.len() != chain.dof() {
                     return Err(self.invalid(
                         "robot.start_joints",
-                        format!("{} values given, the chain to '{end_effector}' has {} joints", start_joints.len(), chain.dof()),
+                        format!(
+                            "{} values given, the chain to '{end_effector}' has {} joints",
+                            start_joints.len(),
+                            chain.dof()
+                        ),
                     ));
                 }
                 let [r, p, y] = pushing_plane.orientation_rpy;
-                let plane = PushingPlane::new(table.top + pushing_plane.height, UnitQuaternion::from_euler_angles(r, p, y));
-                let robot = Robot::new(RobotKind::Arm, chain, ee_link, isometry_from_xyz_rpy(tool.xyz, tool.rpy), plane);
+                let plane = PushingPlane::new(
+                    table.top + pushing_plane.height,
+                    UnitQuaternion::from_euler_angles(r, p, y),
+                );
+                let robot = Robot::new(
+                    RobotKind::Arm,
+                    chain,
+                    ee_link,
+                    isometry_from_xyz_rpy(tool.xyz, tool.rpy),
+                    plane,
+                    settings.clone(),
+                );
                 let mut q = DVector::from_column_slice(start_joints);
                 let mut poses = robot.link_poses(&q);
                 // Start exactly on the plane, so drift is measured from zero.
@@ -367,12 +436,19 @@ impl Loader<'_> {
                     let j = robot.chain.dof_joint(i);
                     return Err(self.invalid(
                         format!("robot.start_joints[{i}]"),
-                        format!("{:.4} (on the plane) is outside joint '{}' limits [{}, {}]", q[i], j.name, j.lower, j.upper),
+                        format!(
+                            "{:.4} (on the plane) is outside joint '{}' limits [{}, {}]",
+                            q[i], j.name, j.lower, j.upper
+                        ),
                     ));
                 }
                 Ok((robot, q))
             }
-            RobotSpec::PlanarHand { shape, start, height } => {
+            RobotSpec::PlanarHand {
+                shape,
+                start,
+                height,
+            } => {
                 self.finite("robot.start", start)?;
                 self.positive("robot.height", *height)?;
                 let (primitive, _) = self.shape("robot.shape", shape, true)?;
@@ -387,8 +463,19 @@ impl Loader<'_> {
                 );
                 let plane = PushingPlane::new(table.top + height, UnitQuaternion::identity());
                 let ee_link = chain.links.len() - 1;
-                let robot = Robot::new(RobotKind::PlanarHand, chain, ee_link, Isometry3::identity(), plane);
-                let q = DVector::from_column_slice(&[start[0], start[1], crate::math::wrap_angle(start[2])]);
+                let robot = Robot::new(
+                    RobotKind::PlanarHand,
+                    chain,
+                    ee_link,
+                    Isometry3::identity(),
+                    plane,
+                    settings.clone(),
+                );
+                let q = DVector::from_column_slice(&[
+                    start[0],
+                    start[1],
+                    crate::math::wrap_angle(start[2]),
+                ]);
                 if robot.chain.within_limits(&q).is_err() {
                     return Err(self.invalid("robot.start", "the hand starts off the table"));
                 }
@@ -397,33 +484,60 @@ impl Loader<'_> {
         }
     }
 
-    fn goal(&self, g: &GoalSpec, objects: &[MovableObject], table: &Table, dof: usize) -> Result<Goal> {
+    fn goal(
+        &self,
+        g: &GoalSpec,
+        objects: &[MovableObject],
+        table: &Table,
+        dof: usize,
+    ) -> Result<Goal> {
         match (&g.object, &g.configuration) {
             (Some(name), None) => {
                 if g.tolerance.is_some() {
-                    return Err(self.invalid("goal.tolerance", "applies to configuration goals only"));
+                    return Err(
+                        self.invalid("goal.tolerance", "applies to configuration goals only")
+                    );
                 }
                 let object = objects
                     .iter()
                     .position(|o| &o.name == name)
-                    .ok_or_else(|| self.invalid("goal.object", format!("no movable object named '{name}'")))?;
-                let center = g.center.ok_or_else(|| self.invalid("goal.center", "missing (the goal disc's centre [x, y])"))?;
+                    .ok_or_else(|| {
+                        self.invalid("goal.object", format!("no movable object named '{name}'"))
+                    })?;
+                let center = g.center.ok_or_else(|| {
+                    self.invalid("goal.center", "missing (the goal disc's centre [x, y])")
+                })?;
                 self.finite("goal.center", &center)?;
-                let radius = g.radius.ok_or_else(|| self.invalid("goal.radius", "missing (the goal disc's radius)"))?;
+                let radius = g.radius.ok_or_else(|| {
+                    self.invalid("goal.radius", "missing (the goal disc's radius)")
+                })?;
                 self.positive("goal.radius", radius)?;
                 let center = Vector2::new(center[0], center[1]);
                 if !table.contains(center) {
-                    return Err(self.invalid("goal.center", format!("({}, {}) is off the table", center.x, center.y)));
+                    return Err(self.invalid(
+                        "goal.center",
+                        format!("({}, {}) is off the table", center.x, center.y),
+                    ));
                 }
-                Ok(Goal::ObjectInDisc { object, center, radius })
+                Ok(Goal::ObjectInDisc {
+                    object,
+                    center,
+                    radius,
+                })
             }
             (None, Some(q)) => {
                 if g.center.is_some() || g.radius.is_some() {
-                    return Err(self.invalid("goal", "give either object/center/radius or configuration, not both"));
+                    return Err(self.invalid(
+                        "goal",
+                        "give either object/center/radius or configuration, not both",
+                    ));
                 }
                 self.finite("goal.configuration", q)?;
                 if q.len() != dof {
-                    return Err(self.invalid("goal.configuration", format!("{} values given, the robot has {dof} joints", q.len())));
+                    return Err(self.invalid(
+                        "goal.configuration",
+                        format!("{} values given, the robot has {dof} joints", q.len()),
+                    ));
                 }
                 let tolerance = g.tolerance.unwrap_or(0.05);
                 self.positive("goal.tolerance", tolerance)?;
@@ -432,8 +546,13 @@ impl Loader<'_> {
                     tolerance,
                 })
             }
-            (Some(_), Some(_)) => Err(self.invalid("goal", "give either object or configuration, not both")),
-            (None, None) => Err(self.invalid("goal", "needs object (with center and radius) or configuration")),
+            (Some(_), Some(_)) => {
+                Err(self.invalid("goal", "give either object or configuration, not both"))
+            }
+            (None, None) => Err(self.invalid(
+                "goal",
+                "needs object (with center and radius) or configuration",
+            )),
         }
     }
 
@@ -453,19 +572,31 @@ impl Loader<'_> {
             self.positive(field, value)?;
         }
         if !(p.max_nullspace_speed.is_finite() && p.max_nullspace_speed >= 0.0) {
-            return Err(self.invalid("planner.max_nullspace_speed", format!("must be zero or positive, got {}", p.max_nullspace_speed)));
+            return Err(self.invalid(
+                "planner.max_nullspace_speed",
+                format!("must be zero or positive, got {}", p.max_nullspace_speed),
+            ));
         }
         if !(0.0..=1.0).contains(&p.goal_bias) {
-            return Err(self.invalid("planner.goal_bias", format!("must be in [0, 1], got {}", p.goal_bias)));
+            return Err(self.invalid(
+                "planner.goal_bias",
+                format!("must be in [0, 1], got {}", p.goal_bias),
+            ));
         }
         if p.k == 0 {
             return Err(self.invalid("planner.k", "must be at least 1"));
         }
         if p.min_duration > p.max_duration {
-            return Err(self.invalid("planner.min_duration", "must not exceed planner.max_duration"));
+            return Err(self.invalid(
+                "planner.min_duration",
+                "must not exceed planner.max_duration",
+            ));
         }
         if p.min_duration < p.step {
-            return Err(self.invalid("planner.min_duration", "must be at least one propagation step (planner.step)"));
+            return Err(self.invalid(
+                "planner.min_duration",
+                "must be at least one propagation step (planner.step)",
+            ));
         }
         Ok(p.clone())
     }
@@ -483,7 +614,10 @@ impl Loader<'_> {
             self.positive(field, value)?;
         }
         if p.penetration_tolerance >= p.contact_margin {
-            return Err(self.invalid("physics.penetration_tolerance", "must be smaller than physics.contact_margin"));
+            return Err(self.invalid(
+                "physics.penetration_tolerance",
+                "must be smaller than physics.contact_margin",
+            ));
         }
         Ok(p.clone())
     }

@@ -31,10 +31,16 @@ goal: {{object: goal, center: [0.85, -0.6], radius: 0.1}}
 
 /// YAML for one object.
 pub fn object(name: &str, shape: &str, pose: [f64; 3]) -> String {
-    format!("  - {{name: {name}, shape: {shape}, pose: {pose:?}, mass: 1.0, mu_g: 0.4, mu_c: 0.3}}\n")
+    format!(
+        "  - {{name: {name}, shape: {shape}, pose: {pose:?}, mass: 1.0, mu_g: 0.4, mu_c: 0.3}}\n"
+    )
 }
 
 /// The goal box, parked out of the way.
 pub fn parked_goal() -> String {
-    object("goal", "{type: box, size: [0.102, 0.102, 0.215]}", [0.5, -0.6, 0.0])
+    object(
+        "goal",
+        "{type: box, size: [0.102, 0.102, 0.215]}",
+        [0.5, -0.6, 0.0],
+    )
 }
