@@ -2,6 +2,8 @@
 //! and the constraint projection (issue points 4 and 5).
 
 use nalgebra::{DVector, Isometry3, Point3, Vector3};
+mod common;
+
 use pushplan::robot::urdf::load_urdf;
 use pushplan::robot::{EeAction, KinematicChain};
 use pushplan::Scene;
@@ -195,7 +197,7 @@ fn leaving_joint_limits_makes_the_step_invalid() {
 
     // The arm: turning the hand on the spot about the vertical winds the wrist until a
     // joint reaches its limit.
-    let scene = Scene::load("scenes/herb_single_object.yaml").unwrap();
+    let scene = common::herb_scene(common::HAND_NEAR, &common::parked_goal(), "").unwrap();
     let mut propagator = pushplan::Propagator::new(&scene);
     for w in [1.0, -1.0] {
         let run = propagator.propagate(&scene.start, &EeAction::planar(0.0, 0.0, w), 6.0);

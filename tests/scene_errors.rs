@@ -141,8 +141,8 @@ fn nan_anywhere_is_rejected() {
             "table.height",
         ),
         (
-            "[0.4168, 0.4078,",
-            "[0.4168, .nan,",
+            "[1.1203, 0.9148,",
+            "[1.1203, .nan,",
             "robot.start_joints[1]",
         ),
         ("radius: 0.1}", "radius: .nan}", "goal.radius"),
@@ -186,8 +186,8 @@ fn goals_must_be_on_the_table_and_name_a_real_object() {
 #[test]
 fn start_joints_must_match_the_chain() {
     let (_, message) = error_of(&edited(
-        "[0.4168, 0.4078, -0.5623, 2.6434, -0.2157, -1.0298, 0.2641]",
-        "[0.4168, 0.4078]",
+        "[1.1203, 0.9148, -0.7126, 1.8616, 0.6553, -0.4267, 0.1763]",
+        "[1.1203, 0.9148]",
     ));
     assert!(
         message.contains("robot.start_joints") && message.contains("7 joints"),
