@@ -43,3 +43,34 @@ fn object_angles_wrap_around() {
     };
     assert!((metric.distance(&a, &b) - 0.1).abs() < 1e-12);
 }
+
+#[test]
+fn goals_measure_their_distance() {
+    use pushplan::scene::Goal;
+    let scene = Scene::load("scenes/herb_single_object.yaml").unwrap();
+    // The box starts at (0.75, 0) and the disc is centred at (0.85, -0.25), r = 0.1.
+    let expected = (0.1f64.powi(2) + 0.25f64.powi(2)).sqrt() - 0.1;
+    assert!((scene.goal.distance(&scene.start) - expected).abs() < 1e-12);
+    assert!(!scene.goal.is_satisfied(&scene.start));
+    let mut inside = scene.start.clone();
+    inside.objects[0] = Pose2::new(0.9, -0.2, 1.0);
+    assert!(scene.goal.is_satisfied(&inside));
+
+    // A robot-configuration goal.
+    let text = std::fs::read_to_string("scenes/herb_single_object.yaml").unwrap();
+    let text = text.replace(
+        "goal: {object: green_box, center: [0.85, -0.25], radius: 0.1}",
+        "goal: {configuration: [1.0, 0.9, -0.7, 1.8, 0.6, -0.4, 0.2], tolerance: 0.1}",
+    );
+    let scene = Scene::from_yaml(&text, std::path::Path::new("scenes/x.yaml")).unwrap();
+    let Goal::Configuration { q, tolerance } = &scene.goal else {
+        panic!("{:?}", scene.goal)
+    };
+    assert_eq!(*tolerance, 0.1);
+    let mut at_goal = scene.start.clone();
+    at_goal.q = q.clone();
+    assert!(scene.goal.is_satisfied(&at_goal));
+    assert!(
+        (scene.goal.distance(&scene.start) - ((&scene.start.q - q).norm() - 0.1)).abs() < 1e-12
+    );
+}

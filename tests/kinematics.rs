@@ -209,3 +209,34 @@ fn leaving_joint_limits_makes_the_step_invalid() {
         assert!(run.steps > 0 && scene.robot.chain.within_limits(&run.state.q).is_ok());
     }
 }
+
+#[test]
+fn non_finite_actions_are_refused_not_panicked_on() {
+    use pushplan::Invalid;
+    let scene = Scene::load("scenes/herb_single_object.yaml").unwrap();
+    let mut propagator = pushplan::Propagator::new(&scene);
+    for action in [
+        EeAction::planar(f64::NAN, 0.0, 0.0),
+        EeAction::planar(0.0, f64::INFINITY, 0.0),
+        EeAction {
+            velocity: [0.1, 0.0, 0.0],
+            nullspace: DVector::from_element(7, f64::NAN),
+        },
+    ] {
+        let run = propagator.propagate(&scene.start, &action, 0.1);
+        assert_eq!(run.steps, 0);
+        assert_eq!(
+            run.stopped_by,
+            Some(Invalid::Projection(
+                pushplan::robot::ProjectionFailure::NotFinite
+            ))
+        );
+        assert_eq!(run.state, scene.start);
+    }
+    // A NaN configuration is refused too.
+    let mut broken = scene.start.clone();
+    broken.q[2] = f64::NAN;
+    let run = propagator.propagate(&broken, &EeAction::planar(0.1, 0.0, 0.0), 0.1);
+    assert_eq!(run.steps, 0);
+    assert!(run.stopped_by.is_some());
+}

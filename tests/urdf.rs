@@ -194,3 +194,25 @@ fn broken_urdfs_are_errors() {
         .to_string();
     assert!(message.contains("not supported"), "{message}");
 }
+
+#[test]
+fn scene_obstacles_can_be_stl_meshes() {
+    use pushplan::{validity::check_state, Invalid, Scene};
+    let root = temp_dir("scene-mesh");
+    write_box_stl(&root.join("meshes/crate.stl"), [0.05, 0.05, 0.05]);
+    let scene_text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml")
+        .unwrap()
+        .replace("../robots", "robots")
+        + "obstacles:\n  - {name: crate, shape: {type: mesh, file: meshes/crate.stl, scale: [2, 2, 2]}, pose: {xyz: [0.4, 0.4, 0.86]}}\n";
+    let path = root.join("scene.yaml");
+    std::fs::write(&path, scene_text).unwrap();
+    let scene = Scene::load(&path).unwrap();
+    // A 0.2 m crate centred at (0.4, 0.4): the hand inside it is invalid, beside it is not.
+    let mut state = scene.start.clone();
+    state.q[1] = 0.4;
+    assert!(
+        matches!(check_state(&scene, &state), Err(Invalid::ArmHitsObstacle { obstacle, .. }) if obstacle == "crate")
+    );
+    state.q[1] = 0.4 - 0.1 - 0.06 - 0.005;
+    assert_eq!(check_state(&scene, &state), Ok(()));
+}

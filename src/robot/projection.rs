@@ -112,6 +112,8 @@ pub enum ProjectionFailure {
     JointStepTooLarge { joint: usize, step: f64 },
     /// The tool could not be brought back to its plane.
     OffPlane { height_error: f64, tilt_error: f64 },
+    /// The configuration or the action is not finite (NaN or infinite).
+    NotFinite,
 }
 
 impl std::fmt::Display for ProjectionFailure {
@@ -131,6 +133,7 @@ impl std::fmt::Display for ProjectionFailure {
                 "tool left its plane by {:.4} m / {tilt_error:.4} rad",
                 height_error.abs()
             ),
+            Self::NotFinite => write!(f, "the configuration or the action is not finite"),
         }
     }
 }
@@ -146,7 +149,7 @@ impl Robot {
         task: &Vector6<f64>,
         z: &DVector<f64>,
         damping: f64,
-    ) -> DVector<f64> {
+    ) -> Result<DVector<f64>, ProjectionFailure> {
         let tool = self.tool_pose(poses);
         let jac = self
             .chain
@@ -155,13 +158,14 @@ impl Robot {
             .fixed_view::<6, 6>(0, 0)
             .into_owned()
             + Matrix6::identity() * damping.powi(2);
-        let chol = jjt.cholesky().expect("damped J J^T is positive definite");
+        // Damped J J^T is positive definite for finite J; NaN input ends here, not in a panic.
+        let chol = jjt.cholesky().ok_or(ProjectionFailure::NotFinite)?;
         let mut qdot = jac.transpose() * chol.solve(task);
         if !z.is_empty() {
             let jz = Vector6::from_iterator((&jac * z).iter().copied());
             qdot += z - jac.transpose() * chol.solve(&jz);
         }
-        qdot
+        Ok(qdot)
     }
 
     /// Projects one step of `action` held for `dt` seconds from `q` (link poses `poses`)
@@ -180,7 +184,14 @@ impl Robot {
         let tool = self.tool_pose(poses);
         let [vx, vy, wz] = action.velocity;
         let task = Vector6::new(vx, vy, 0.0, 0.0, 0.0, wz) + self.plane.correction(&tool) / dt;
-        let qdot = self.joint_velocity(poses, &task, &action.nullspace, settings.damping);
+        if !task
+            .iter()
+            .chain(action.nullspace.iter())
+            .all(|v| v.is_finite())
+        {
+            return Err(ProjectionFailure::NotFinite);
+        }
+        let qdot = self.joint_velocity(poses, &task, &action.nullspace, settings.damping)?;
         q_new.copy_from(q);
         q_new.axpy(dt, &qdot, 1.0);
         self.check_step(q, q_new, settings)?;
@@ -210,7 +221,7 @@ impl Robot {
                 return Ok(());
             }
             let correction = self.plane.correction(&self.tool_pose(poses));
-            let dq = self.joint_velocity(poses, &correction, &empty, settings.damping);
+            let dq = self.joint_velocity(poses, &correction, &empty, settings.damping)?;
             *q += dq;
             self.chain.forward_kinematics(q, poses);
         }
