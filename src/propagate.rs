@@ -7,8 +7,10 @@
 //! 3. check the new state; the first invalid state ends the propagation.
 //!
 //! The contacts found while checking a state are the contacts its next step pushes with,
-//! so each step runs one contact query per nearby link-object pair. Results depend only on
-//! the start state and the action: propagation is deterministic bit for bit.
+//! so each step runs one contact query per nearby link-object pair; the propagator also
+//! remembers the last state it reached, so propagating on from it (as OMPL does, one step
+//! per call) skips preparing it again. Results depend only on the start state and the
+//! action: propagation is deterministic bit for bit.
 
 use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact};
 use crate::math::Pose2;
@@ -18,6 +20,7 @@ use crate::scene::Scene;
 use crate::state::State;
 use crate::validity::{check_arm_objects, check_objects, check_robot, Invalid};
 use nalgebra::{DVector, Isometry3};
+use std::sync::Arc;
 use parry3d_f64::bounding_volume::Aabb;
 
 /// A link pushing an object during one step, with the force it applies.
@@ -45,8 +48,10 @@ pub struct Propagation {
 }
 
 /// Propagates actions through the scene's physics. Holds scratch buffers; one per thread.
-pub struct Propagator<'s> {
-    scene: &'s Scene,
+pub struct Propagator {
+    scene: Arc<Scene>,
+    /// The valid state the buffers below describe (link poses, bounds, contacts).
+    prepared: Option<State>,
     dt: f64,
     poses: Vec<Isometry3<f64>>,
     poses_new: Vec<Isometry3<f64>>,
@@ -62,16 +67,21 @@ pub struct Propagator<'s> {
     moved: Vec<bool>,
 }
 
-impl<'s> Propagator<'s> {
+impl Propagator {
     /// A propagator stepping with the scene's `planner.step`.
-    pub fn new(scene: &'s Scene) -> Self {
-        Self::with_step(scene, scene.planner.step)
+    pub fn new(scene: impl Into<Arc<Scene>>) -> Self {
+        let scene = scene.into();
+        let dt = scene.planner.step;
+        Self::with_step(scene, dt)
     }
 
     /// A propagator stepping with `dt` seconds.
-    pub fn with_step(scene: &'s Scene, dt: f64) -> Self {
+    pub fn with_step(scene: impl Into<Arc<Scene>>, dt: f64) -> Self {
+        let scene: Arc<Scene> = scene.into();
+        let (dof, objects) = (scene.robot.dof(), scene.objects.len());
         Self {
             scene,
+            prepared: None,
             dt,
             poses: Vec::new(),
             poses_new: Vec::new(),
@@ -82,14 +92,27 @@ impl<'s> Propagator<'s> {
             contacts_new: Vec::new(),
             planar: Vec::new(),
             planar_links: Vec::new(),
-            q_new: DVector::zeros(scene.robot.dof()),
+            q_new: DVector::zeros(dof),
             objects_new: Vec::new(),
-            moved: vec![false; scene.objects.len()],
+            moved: vec![false; objects],
         }
     }
 
     pub fn step_size(&self) -> f64 {
         self.dt
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The state the last failed step tried to reach (invalid; for callers that must
+    /// report a result state anyway, like OMPL's propagator).
+    pub fn attempted_state(&self) -> State {
+        State {
+            q: self.q_new.clone(),
+            objects: self.objects_new.clone(),
+        }
     }
 
     /// Holds `action` for `duration` seconds (rounded up to whole steps) from `start`,
@@ -100,32 +123,11 @@ impl<'s> Propagator<'s> {
     }
 
     /// Holds `action` for `steps` steps from `start`, which must be valid.
-    pub fn propagate_steps(
-        &mut self,
-        start: &State,
-        action: &EeAction,
-        steps: usize,
-    ) -> Propagation {
-        let scene = self.scene;
+    pub fn propagate_steps(&mut self, start: &State, action: &EeAction, steps: usize) -> Propagation {
         let mut state = start.clone();
-        scene
-            .robot
-            .chain
-            .forward_kinematics(&state.q, &mut self.poses);
-        ArmBounds::compute(scene, &self.poses, &mut self.bounds);
-        object_bounds(scene, &state.objects, &mut self.object_boxes);
         let mut pushes = Vec::with_capacity(steps);
-        let mut stopped_by = None;
-        if let Err(e) = check_arm_objects(
-            scene,
-            &self.poses,
-            &self.bounds,
-            &state.objects,
-            &self.object_boxes,
-            &mut self.contacts,
-        ) {
-            stopped_by = Some(e);
-        } else {
+        let mut stopped_by = self.prepare(start).err();
+        if stopped_by.is_none() {
             for _ in 0..steps {
                 match self.step(&mut state, action) {
                     Ok(step_pushes) => pushes.push(step_pushes),
@@ -135,6 +137,7 @@ impl<'s> Propagator<'s> {
                     }
                 }
             }
+            self.prepared = Some(state.clone());
         }
         let steps = pushes.len();
         Propagation {
@@ -146,10 +149,32 @@ impl<'s> Propagator<'s> {
         }
     }
 
+    /// Fills the buffers for `state` (link poses, contacts), unless they hold it already.
+    fn prepare(&mut self, state: &State) -> Result<(), Invalid> {
+        if self.prepared.as_ref().is_some_and(|p| same_bits(p, state)) {
+            return Ok(());
+        }
+        self.prepared = None;
+        let scene = &*self.scene;
+        scene.robot.chain.forward_kinematics(&state.q, &mut self.poses);
+        ArmBounds::compute(scene, &self.poses, &mut self.bounds);
+        object_bounds(scene, &state.objects, &mut self.object_boxes);
+        check_arm_objects(
+            scene,
+            &self.poses,
+            &self.bounds,
+            &state.objects,
+            &self.object_boxes,
+            &mut self.contacts,
+        )?;
+        self.prepared = Some(state.clone());
+        Ok(())
+    }
+
     /// One step from `state` (whose link poses and contacts are cached). On success the
     /// state, poses and contacts advance; on failure nothing changes.
     fn step(&mut self, state: &mut State, action: &EeAction) -> Result<Vec<Push>, Invalid> {
-        let scene = self.scene;
+        let scene = &*self.scene;
         let dt = self.dt;
         scene
             .robot
@@ -238,5 +263,21 @@ impl<'s> Propagator<'s> {
         std::mem::swap(&mut self.contacts, &mut self.contacts_new);
         std::mem::swap(&mut self.object_boxes, &mut self.object_boxes_new);
         Ok(pushes)
+    }
+}
+
+/// Bitwise equality of two states (NaN-safe, distinguishes -0.0).
+fn same_bits(a: &State, b: &State) -> bool {
+    a.q.len() == b.q.len()
+        && a.objects.len() == b.objects.len()
+        && a.q.iter().zip(b.q.iter()).all(|(x, y)| x.to_bits() == y.to_bits())
+        && a.objects.iter().zip(&b.objects).all(|(p, o)| {
+            p.x.to_bits() == o.x.to_bits() && p.y.to_bits() == o.y.to_bits() && p.theta.to_bits() == o.theta.to_bits()
+        })
+}
+
+impl From<&Scene> for Arc<Scene> {
+    fn from(scene: &Scene) -> Self {
+        Arc::new(scene.clone())
     }
 }
