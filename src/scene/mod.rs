@@ -117,3 +117,34 @@ impl Goal {
         }
     }
 }
+
+impl Scene {
+    /// The scene of the Static RRT baseline: every movable object except the goal object
+    /// becomes a static obstacle where it starts.
+    pub fn with_static_clutter(&self) -> Scene {
+        let keep = match self.goal {
+            Goal::ObjectInDisc { object, .. } => Some(object),
+            Goal::Configuration { .. } => None,
+        };
+        let mut scene = self.clone();
+        scene.name = format!("{} (static clutter)", self.name);
+        scene.objects.clear();
+        scene.start.objects.clear();
+        for (i, (object, pose)) in self.objects.iter().zip(&self.start.objects).enumerate() {
+            if Some(i) == keep {
+                scene.objects.push(object.clone());
+                scene.start.objects.push(*pose);
+            } else {
+                scene.obstacles.push(Obstacle {
+                    name: object.name.clone(),
+                    pose: pose.to_isometry(self.table.top),
+                    geometry: object.geometry.clone(),
+                });
+            }
+        }
+        if let Goal::ObjectInDisc { object, .. } = &mut scene.goal {
+            *object = 0;
+        }
+        scene
+    }
+}

@@ -1,0 +1,53 @@
+#include "goal.h"
+#include "state_space.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pushplan::detail
+{
+    PushGoal::PushGoal(const ompl::base::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed)
+      : ompl::base::GoalSampleableRegion(si), model_(std::move(model))
+    {
+        rng_.setLocalSeed(seed);
+        setThreshold(0.0);
+    }
+
+    // Signed: negative inside the region. OMPL's GoalRegion accepts distance < threshold
+    // (here 0), so a state OMPL accepts is one the model accepts (distance <= 0) too.
+    double PushGoal::distanceGoal(const ompl::base::State *state) const
+    {
+        return model_->goalDistance(state);
+    }
+
+    void PushGoal::sampleGoal(ompl::base::State *state) const
+    {
+        const auto &info = model_->info();
+        for (int attempt = 0; attempt < kRejectionTries; ++attempt)
+        {
+            PushStateSampler::sampleRaw(info, rng_, buffer_);
+            if (info.goal_object >= 0)
+            {
+                // Uniform in the disc: radius ~ R sqrt(u).
+                const double r = info.goal_radius * std::sqrt(rng_.uniform01());
+                const double a = rng_.uniformReal(-M_PI, M_PI);
+                const std::size_t at = info.dof + 3 * static_cast<std::size_t>(info.goal_object);
+                buffer_[at] = info.goal_center_x + r * std::cos(a);
+                buffer_[at + 1] = info.goal_center_y + r * std::sin(a);
+            }
+            else
+            {
+                std::copy(info.goal_configuration.begin(), info.goal_configuration.end(), buffer_.begin());
+            }
+            model_->write(buffer_, state);
+            if (model_->isValid(state))
+                return;
+        }
+    }
+
+    unsigned int PushGoal::maxSampleCount() const
+    {
+        return std::numeric_limits<unsigned int>::max();
+    }
+}  // namespace pushplan::detail

@@ -1,0 +1,29 @@
+// Goals: the goal object's centre in a disc, or a robot configuration. Both can be
+// sampled, so RRT's goal bias works.
+#pragma once
+
+#include "model_handle.h"
+
+#include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/util/RandomNumbers.h>
+
+namespace pushplan::detail
+{
+    /// X_G = states whose goal object's centre is in the disc (or whose robot is within
+    /// tolerance of the goal configuration). distanceGoal is the model's signed distance
+    /// to the region (m or rad), negative inside. Samples are valid states in the region, found
+    /// by rejection.
+    class PushGoal : public ompl::base::GoalSampleableRegion
+    {
+    public:
+        PushGoal(const ompl::base::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed);
+        double distanceGoal(const ompl::base::State *state) const override;
+        void sampleGoal(ompl::base::State *state) const override;
+        unsigned int maxSampleCount() const override;
+
+    private:
+        ModelHandlePtr model_;
+        mutable ompl::RNG rng_;
+        mutable std::vector<double> buffer_;
+    };
+}  // namespace pushplan::detail

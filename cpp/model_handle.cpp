@@ -1,0 +1,81 @@
+#include "model_handle.h"
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+
+namespace pushplan::detail
+{
+    ModelHandle::ModelHandle(rust::Box<bridge::Model> model) : model_(std::move(model)), info_(model_->info())
+    {
+    }
+
+    // The state space is the compound [joints (RealVector), object 1 (SE2), ...].
+    void ModelHandle::read(const ob::State *state, std::vector<double> &out) const
+    {
+        const auto *compound = state->as<ob::CompoundState>();
+        const double *q = compound->as<ob::RealVectorStateSpace::StateType>(0)->values;
+        out.assign(q, q + info_.dof);
+        for (std::size_t i = 0; i < info_.objects; ++i)
+        {
+            const auto *pose = compound->as<ob::SE2StateSpace::StateType>(1 + i);
+            out.push_back(pose->getX());
+            out.push_back(pose->getY());
+            out.push_back(pose->getYaw());
+        }
+    }
+
+    void ModelHandle::write(const std::vector<double> &in, ob::State *state) const
+    {
+        auto *compound = state->as<ob::CompoundState>();
+        double *q = compound->as<ob::RealVectorStateSpace::StateType>(0)->values;
+        std::copy(in.begin(), in.begin() + info_.dof, q);
+        for (std::size_t i = 0; i < info_.objects; ++i)
+        {
+            auto *pose = compound->as<ob::SE2StateSpace::StateType>(1 + i);
+            const std::size_t at = info_.dof + 3 * i;
+            pose->setXY(in[at], in[at + 1]);
+            pose->setYaw(in[at + 2]);
+        }
+    }
+
+    void ModelHandle::readControl(const oc::Control *control, std::vector<double> &out) const
+    {
+        const double *values = control->as<oc::RealVectorControlSpace::ControlType>()->values;
+        out.assign(values, values + controlSize());
+    }
+
+    bool ModelHandle::isValid(const ob::State *state) const
+    {
+        read(state, a_);
+        return model_->is_valid(slice(a_));
+    }
+
+    double ModelHandle::distance(const ob::State *a, const ob::State *b) const
+    {
+        read(a, a_);
+        read(b, b_);
+        return model_->distance(slice(a_), slice(b_));
+    }
+
+    double ModelHandle::goalDistance(const ob::State *state) const
+    {
+        read(state, a_);
+        return model_->goal_distance(slice(a_));
+    }
+
+    bool ModelHandle::propagate(const ob::State *state, const oc::Control *control, std::size_t steps,
+                                ob::State *result) const
+    {
+        read(state, a_);  // copies first: OMPL may pass state == result
+        readControl(control, control_);
+        b_.resize(a_.size());
+        const bool valid = model_->propagate(slice(a_), slice(control_), steps,
+                                             rust::Slice<double>(b_.data(), b_.size()));
+        write(b_, result);
+        return valid;
+    }
+}  // namespace pushplan::detail

@@ -1,0 +1,52 @@
+// The Rust model as the OMPL classes of one planning problem share it.
+#pragma once
+
+#include "pushplan/src/ffi.rs.h"
+
+#include <ompl/base/State.h>
+#include <ompl/control/Control.h>
+#include <memory>
+#include <vector>
+
+namespace pushplan::detail
+{
+    /// Owns the Rust model and converts OMPL states and controls to the flat layouts of
+    /// the bridge. Single-threaded, like the planners that use it (OMPL calls its
+    /// const methods, hence the mutable scratch buffers).
+    class ModelHandle
+    {
+    public:
+        explicit ModelHandle(rust::Box<bridge::Model> model);
+
+        const bridge::SceneInfo &info() const { return info_; }
+        std::size_t stateSize() const { return info_.dof + 3 * info_.objects; }
+        std::size_t controlSize() const { return 3 + info_.dof; }
+
+        /// Flat copy of an OMPL state of the pushplan state space.
+        void read(const ompl::base::State *state, std::vector<double> &out) const;
+        /// Writes a flat state into an OMPL state.
+        void write(const std::vector<double> &in, ompl::base::State *state) const;
+        void readControl(const ompl::control::Control *control, std::vector<double> &out) const;
+
+        bool isValid(const ompl::base::State *state) const;
+        double distance(const ompl::base::State *a, const ompl::base::State *b) const;
+        double goalDistance(const ompl::base::State *state) const;
+        /// Holds `control` for `steps` steps; writes the state reached; true if valid.
+        bool propagate(const ompl::base::State *state, const ompl::control::Control *control,
+                       std::size_t steps, ompl::base::State *result) const;
+
+        bridge::Model &model() const { return *model_; }
+
+    private:
+        mutable rust::Box<bridge::Model> model_;
+        bridge::SceneInfo info_;
+        mutable std::vector<double> a_, b_, control_;
+    };
+
+    using ModelHandlePtr = std::shared_ptr<ModelHandle>;
+
+    inline rust::Slice<const double> slice(const std::vector<double> &v)
+    {
+        return rust::Slice<const double>(v.data(), v.size());
+    }
+}  // namespace pushplan::detail

@@ -1,0 +1,253 @@
+// pushplan::Planner: the OMPL problem of Alg. 1 set up from a scene, solved with
+// ompl::control::RRT, and the plan checked by re-simulation before it is returned.
+
+#include "pushplan/pushplan.h"
+
+#include "control.h"
+#include "goal.h"
+#include "model_handle.h"
+#include "propagator.h"
+#include "state_space.h"
+#include "validity.h"
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/control/SimpleDirectedControlSampler.h>
+#include <ompl/control/SimpleSetup.h>
+#include <ompl/control/planners/rrt/RRT.h>
+#include <ompl/util/Console.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+
+namespace pushplan
+{
+    namespace detail
+    {
+        /// oc::RRT whose own random numbers (goal bias) come from the plan's seed.
+        class SeededRRT : public oc::RRT
+        {
+        public:
+            SeededRRT(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed, const std::string &name) : oc::RRT(si)
+            {
+                rng_.setLocalSeed(seed);
+                setName(name);
+            }
+        };
+
+        /// Independent seeds for the random sources of one plan.
+        std::uint_fast32_t subSeed(std::uint64_t seed, std::uint64_t stream)
+        {
+            std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (stream + 1);
+            z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+            z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+            return static_cast<std::uint_fast32_t>((z ^ (z >> 31)) & 0xFFFFFFFFULL);
+        }
+
+        template <typename T>
+        T checked(const char *name, T value, bool ok)
+        {
+            if (!ok)
+                throw Error(std::string("option ") + name + " is out of range: " + std::to_string(value));
+            return value;
+        }
+    }  // namespace detail
+
+    struct Planner::Source
+    {
+        std::string path;  // the scene file, or the label of YAML text
+        std::string yaml;
+        bool from_yaml = false;
+        std::string name;
+
+        rust::Box<bridge::Model> load(bool static_clutter) const
+        {
+            try
+            {
+                return from_yaml ? bridge::model_from_yaml(yaml, path, static_clutter) :
+                                   bridge::load_model(path, static_clutter);
+            }
+            catch (const rust::Error &e)
+            {
+                throw Error(e.what());
+            }
+        }
+    };
+
+    Planner::Planner(const std::string &scene_file) : Planner(std::make_unique<Source>(Source{scene_file, "", false, ""}))
+    {
+    }
+
+    Planner Planner::fromYaml(const std::string &yaml, const std::string &source)
+    {
+        return Planner(std::make_unique<Source>(Source{source, yaml, true, ""}));
+    }
+
+    Planner::Planner(std::unique_ptr<Source> source) : source_(std::move(source))
+    {
+        source_->name = std::string(source_->load(false)->info().name);  // validates now
+    }
+
+    Planner::~Planner() = default;
+    Planner::Planner(Planner &&) noexcept = default;
+    Planner &Planner::operator=(Planner &&) noexcept = default;
+
+    std::string Planner::sceneName() const
+    {
+        return source_->name;
+    }
+
+    double Plan::duration() const
+    {
+        double total = 0.0;
+        for (const auto &c : controls)
+            total += c.duration;
+        return total;
+    }
+
+    Plan Planner::solve(const Options &options) const
+    {
+        using detail::checked;
+        const bool static_clutter = options.planner == PlannerType::StaticRrt;
+        auto model = std::make_shared<detail::ModelHandle>(source_->load(static_clutter));
+        const bridge::SceneInfo &info = model->info();
+        const double time_limit = options.time_limit.value_or(info.time_limit);
+        checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
+        const std::uint64_t seed = options.seed.value_or(info.seed);
+        const unsigned k = checked("k", options.k.value_or(info.k), options.k.value_or(info.k) >= 1);
+        const double goal_bias = options.goal_bias.value_or(info.goal_bias);
+        checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
+
+        ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+
+        // Spaces: X = C_R x SE(2)^M; actions (vx, vy, omega_z, null-space sample).
+        auto space = std::make_shared<detail::PushStateSpace>(model);
+        auto sampler_count = std::make_shared<std::uint64_t>(0);
+        space->setStateSamplerAllocator([seed, sampler_count](const ob::StateSpace *s) {
+            return std::make_shared<detail::PushStateSampler>(s->as<detail::PushStateSpace>(),
+                                                              detail::subSeed(seed, 10 + (*sampler_count)++));
+        });
+        auto controls = detail::makeControlSpace(space, info);
+        auto control_count = std::make_shared<std::uint64_t>(0);
+        controls->setControlSamplerAllocator([seed, control_count](const oc::ControlSpace *c) {
+            return std::make_shared<detail::EeControlSampler>(c, detail::subSeed(seed, 1000 + (*control_count)++));
+        });
+
+        oc::SimpleSetup setup(controls);
+        const oc::SpaceInformationPtr &si = setup.getSpaceInformation();
+        setup.setStateValidityChecker(std::make_shared<detail::PushValidityChecker>(si, model));
+        setup.setStatePropagator(std::make_shared<detail::PushStatePropagator>(si, model));
+        si->setPropagationStepSize(info.step);
+        const auto min_steps = static_cast<unsigned>(std::max(1.0, std::round(info.min_duration / info.step)));
+        const auto max_steps = std::max(min_steps, static_cast<unsigned>(std::round(info.max_duration / info.step)));
+        si->setMinMaxControlDuration(min_steps, max_steps);
+        // Alg. 1 lines 5-8: the best of k sampled actions, by the model's distance.
+        si->setDirectedControlSamplerAllocator([k](const oc::SpaceInformation *s) {
+            return std::make_shared<oc::SimpleDirectedControlSampler>(s, k);
+        });
+
+        ob::ScopedState<> start(space);
+        model->write(std::vector<double>(info.start.begin(), info.start.end()), start.get());
+        setup.setStartState(start);
+        setup.setGoal(std::make_shared<detail::PushGoal>(si, model, detail::subSeed(seed, 2)));
+
+        auto rrt = std::make_shared<detail::SeededRRT>(si, detail::subSeed(seed, 3),
+                                                       static_clutter ? "StaticRRT" : "PCRRT");
+        rrt->setGoalBias(goal_bias);
+        rrt->setIntermediateStates(options.intermediate_states);
+        setup.setPlanner(rrt);
+        setup.setup();
+
+        // Search until an exact solution or the time limit; progress once a second.
+        const auto started = std::chrono::steady_clock::now();
+        const auto elapsed = [&] {
+            return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        };
+        double next_report = 1.0;
+        ob::PlannerTerminationCondition done([&] {
+            const double t = elapsed();
+            if (options.progress && t >= next_report)
+            {
+                std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps\n", t,
+                             static_cast<unsigned long long>(model->model().propagation_steps()));
+                next_report += 1.0;
+            }
+            return t >= time_limit;
+        });
+        try
+        {
+            setup.solve(done);
+        }
+        catch (const rust::Error &e)
+        {
+            throw Error(std::string("planning failed: ") + e.what());
+        }
+
+        Plan plan;
+        plan.planning_time = elapsed();
+        plan.propagation_steps = model->model().propagation_steps();
+        plan.step = info.step;
+        ob::PlannerData data(si);
+        rrt->getPlannerData(data);
+        plan.tree_size = data.numVertices();
+        plan.solved = setup.haveExactSolutionPath();
+        for (const auto &n : info.joint_names)
+            plan.joint_names.emplace_back(n);
+        for (const auto &n : info.object_names)
+            plan.object_names.emplace_back(n);
+        if (!setup.haveSolutionPath())
+            return plan;
+
+        // The path: controls with their step counts, and the states OMPL reached.
+        const oc::PathControl &path = setup.getSolutionPath();
+        std::vector<double> flat_controls, control, state, path_states;
+        std::vector<std::size_t> steps;
+        for (std::size_t i = 0; i < path.getControlCount(); ++i)
+        {
+            model->readControl(path.getControl(i), control);
+            flat_controls.insert(flat_controls.end(), control.begin(), control.end());
+            steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info.step)));
+        }
+        for (std::size_t i = 0; i < path.getStateCount(); ++i)
+        {
+            model->read(path.getState(i), state);
+            path_states.insert(path_states.end(), state.begin(), state.end());
+        }
+
+        // Every plan is checked: re-simulating its controls reproduces its states.
+        const bridge::Simulation sim = model->model().simulate(
+            rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+            rust::Slice<const std::size_t>(steps.data(), steps.size()));
+        const bool reproduced = sim.valid && sim.states.size() == path_states.size() &&
+                                std::equal(path_states.begin(), path_states.end(), sim.states.begin());
+        if (!reproduced || (plan.solved && !sim.goal_reached))
+            throw Error("internal error: re-simulating the plan does not reproduce it (" + std::string(sim.message) + ")");
+
+        const std::size_t width = model->stateSize();
+        for (std::size_t s = 0; s * width < sim.states.size(); ++s)
+        {
+            const double *x = sim.states.data() + s * width;
+            plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
+            std::vector<Eigen::Vector3d> poses;
+            for (std::size_t o = 0; o < info.objects; ++o)
+                poses.emplace_back(x[info.dof + 3 * o], x[info.dof + 3 * o + 1], x[info.dof + 3 * o + 2]);
+            plan.object_poses.push_back(std::move(poses));
+        }
+        const std::size_t cwidth = model->controlSize();
+        for (std::size_t i = 0; i < steps.size(); ++i)
+        {
+            const double *c = flat_controls.data() + i * cwidth;
+            plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
+                                            Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
+                                            static_cast<double>(steps[i]) * info.step, steps[i]});
+        }
+        plan.contacts.resize(steps.size());
+        for (const auto &c : sim.contacts)
+            plan.contacts[c.control].push_back(
+                Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
+        return plan;
+    }
+}  // namespace pushplan

@@ -1,0 +1,52 @@
+#include "solve.h"
+
+#include "pushplan/pushplan.h"
+#include "pushplan/src/ffi.rs.h"
+
+#include <ompl/util/RandomNumbers.h>
+
+namespace pushplan::bridge
+{
+    SolveOutput solve(rust::Str scene_path, const SolveOptions &options)
+    {
+        Options o;
+        o.time_limit = options.time_limit;
+        o.seed = options.seed;
+        o.k = options.k;
+        o.goal_bias = options.goal_bias;
+        o.intermediate_states = options.intermediate_states;
+        o.progress = options.progress;
+        const std::string planner(options.planner);
+        if (planner == "pcrrt")
+            o.planner = PlannerType::PcRrt;
+        else if (planner == "static")
+            o.planner = PlannerType::StaticRrt;
+        else
+            throw Error("unknown planner '" + planner + "' (pcrrt or static)");
+
+        const Plan plan = Planner(std::string(scene_path)).solve(o);
+        SolveOutput out;
+        out.exact = plan.solved;
+        out.approximate = !plan.solved && !plan.controls.empty();
+        out.planning_time = plan.planning_time;
+        out.tree_size = plan.tree_size;
+        out.propagation_steps = plan.propagation_steps;
+        for (std::size_t i = 0; i < plan.joint_trajectory.size(); ++i)
+        {
+            for (double v : plan.joint_trajectory[i])
+                out.states.push_back(v);
+            for (const auto &p : plan.object_poses[i])
+                for (double v : p)
+                    out.states.push_back(v);
+        }
+        for (const auto &c : plan.controls)
+        {
+            for (double v : c.ee_velocity)
+                out.controls.push_back(v);
+            for (double v : c.nullspace)
+                out.controls.push_back(v);
+            out.steps.push_back(c.steps);
+        }
+        return out;
+    }
+}  // namespace pushplan::bridge

@@ -1,0 +1,13 @@
+// The CLI's way into the C++ planner (declared for the cxx bridge in src/ffi.rs).
+#pragma once
+
+#include "rust/cxx.h"
+
+namespace pushplan::bridge
+{
+    struct SolveOptions;
+    struct SolveOutput;
+
+    /// Plans a scene file; throws (a Rust Err) on bad input.
+    SolveOutput solve(rust::Str scene_path, const SolveOptions &options);
+}  // namespace pushplan::bridge

@@ -1,0 +1,48 @@
+// The state space X = C_R x SE(2)^M of the paper (Sec. II-A) and its state sampler
+// (Sec. III-B).
+#pragma once
+
+#include "model_handle.h"
+
+#include <ompl/base/StateSampler.h>
+#include <ompl/base/StateSpace.h>
+#include <ompl/util/RandomNumbers.h>
+
+namespace pushplan::detail
+{
+    /// Joints (RealVector, joint-limit bounds) x one SE2 per movable object (table
+    /// bounds). Its distance is the model's weighted metric.
+    class PushStateSpace : public ompl::base::CompoundStateSpace
+    {
+    public:
+        explicit PushStateSpace(ModelHandlePtr model);
+        double distance(const ompl::base::State *a, const ompl::base::State *b) const override;
+        const ModelHandlePtr &model() const { return model_; }
+
+    private:
+        ModelHandlePtr model_;
+    };
+
+    /// Samples the robot and every object uniformly (joint limits, table extent, any
+    /// yaw) and rejects invalid states (object overlap, arm penetration, ...).
+    class PushStateSampler : public ompl::base::StateSampler
+    {
+    public:
+        PushStateSampler(const PushStateSpace *space, std::uint_fast32_t seed);
+        void sampleUniform(ompl::base::State *state) override;
+        /// Not used by the control planners: uniform as well.
+        void sampleUniformNear(ompl::base::State *state, const ompl::base::State *near, double distance) override;
+        void sampleGaussian(ompl::base::State *state, const ompl::base::State *mean, double stdDev) override;
+
+        /// One uniform sample (not checked): robot and objects; `fixed_object` (if >= 0)
+        /// is left to the caller.
+        static void sampleRaw(const bridge::SceneInfo &info, ompl::RNG &rng, std::vector<double> &out);
+
+    private:
+        ModelHandlePtr model_;
+        std::vector<double> buffer_;
+    };
+
+    /// Tries before a sampler gives up rejecting and returns its last (invalid) sample.
+    constexpr int kRejectionTries = 1000;
+}  // namespace pushplan::detail

@@ -1,0 +1,120 @@
+// pushplan: whole-arm rearrangement planning by quasistatic pushing.
+//
+// The C++ API. Load a scene (a YAML file, or YAML text built in code), choose planner
+// options, solve, and read the plan as Eigen types. Errors are thrown as
+// pushplan::Error with a message naming the file and field at fault.
+//
+//   pushplan::Planner planner("scenes/herb_fig1_clutter.yaml");
+//   pushplan::Options options;
+//   options.time_limit = 10.0;
+//   pushplan::Plan plan = planner.solve(options);
+//   if (plan.solved) { /* plan.joint_trajectory, plan.object_poses, plan.controls ... */ }
+//
+// Link with libpushplan.a and -lompl; `pkg-config --cflags --libs pushplan` gives the
+// flags (see the README). Units: m, rad, s, N. A Planner is not thread-safe; use one per
+// thread.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pushplan
+{
+    /// Any failure: bad scene, bad option, internal error. what() says which and why.
+    class Error : public std::runtime_error
+    {
+    public:
+        using std::runtime_error::runtime_error;
+    };
+
+    enum class PlannerType
+    {
+        /// Physics-constrained RRT: objects are pushed (the paper's PC RRT).
+        PcRrt,
+        /// The same planner where only the goal object can move; other objects are
+        /// static obstacles (the paper's Static RRT baseline).
+        StaticRrt,
+    };
+
+    /// Planner options. Unset values take the scene file's `planner:` values.
+    struct Options
+    {
+        std::optional<double> time_limit;     ///< search time (s)
+        std::optional<std::uint64_t> seed;    ///< random seed
+        std::optional<unsigned> k;            ///< control samples per extension
+        std::optional<double> goal_bias;      ///< probability of sampling the goal
+        PlannerType planner = PlannerType::PcRrt;
+        /// Add every propagation step to the tree (OMPL RRT's intermediate_states).
+        bool intermediate_states = false;
+        /// Print progress to stderr once a second.
+        bool progress = false;
+    };
+
+    /// A link pushing an object during one propagation step.
+    struct Contact
+    {
+        std::size_t step;    ///< step within its control
+        std::string link;
+        std::string object;
+        double force;        ///< normal force (N)
+    };
+
+    /// The end-effector action of one control.
+    struct Control
+    {
+        Eigen::Vector3d ee_velocity;  ///< (vx, vy) m/s and omega_z rad/s, world frame
+        Eigen::VectorXd nullspace;    ///< null-space sample (rad/s per joint)
+        double duration;              ///< s
+        std::size_t steps;            ///< propagation steps (duration / step)
+    };
+
+    struct Plan
+    {
+        bool solved = false;          ///< an exact solution: the goal is reached
+        double planning_time = 0.0;   ///< s
+        std::size_t tree_size = 0;    ///< RRT nodes
+        std::uint64_t propagation_steps = 0;
+        double step = 0.0;            ///< propagation step (s)
+        std::vector<std::string> joint_names;
+        std::vector<std::string> object_names;
+        /// States: joint values and object poses (x, y, yaw) at the start and after each
+        /// control: controls.size() + 1 entries.
+        std::vector<Eigen::VectorXd> joint_trajectory;
+        std::vector<std::vector<Eigen::Vector3d>> object_poses;
+        std::vector<Control> controls;
+        /// Per control, the pushes during its steps.
+        std::vector<std::vector<Contact>> contacts;
+        /// Total duration of the controls (s).
+        double duration() const;
+    };
+
+    class Planner
+    {
+    public:
+        /// Loads and validates a scene file.
+        explicit Planner(const std::string &scene_file);
+        /// A scene from YAML text; relative paths resolve against `source`'s folder.
+        static Planner fromYaml(const std::string &yaml, const std::string &source);
+        ~Planner();
+        Planner(Planner &&) noexcept;
+        Planner &operator=(Planner &&) noexcept;
+
+        /// Plans. Throws pushplan::Error on bad options or internal failure; a search that
+        /// finds no exact solution returns a Plan with solved == false (and the closest
+        /// path found, if any).
+        Plan solve(const Options &options = Options()) const;
+
+        /// The scene's name.
+        std::string sceneName() const;
+
+    private:
+        struct Source;
+        explicit Planner(std::unique_ptr<Source> source);
+        std::unique_ptr<Source> source_;
+    };
+}  // namespace pushplan

@@ -1,0 +1,367 @@
+//! The bridge between the Rust model and the OMPL side (cxx). Thin on purpose: states and
+//! controls cross as flat arrays, every call catches panics so none unwinds into C++,
+//! and every failure crosses as an error (a C++ exception) with its message.
+//!
+//! Layouts:
+//! - state: `[q_0 .. q_{n-1}, x_1, y_1, theta_1, .., x_M, y_M, theta_M]`;
+//! - control: `[vx, vy, omega_z, z_0 .. z_{n-1}]` (end-effector velocity, null-space sample).
+
+use crate::distance::DistanceMetric;
+use crate::math::Pose2;
+use crate::propagate::Propagator;
+use crate::robot::EeAction;
+use crate::scene::{Goal, Scene};
+use crate::state::State;
+use crate::validity::check_state;
+use nalgebra::DVector;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
+
+#[cxx::bridge(namespace = "pushplan::bridge")]
+pub mod bridge {
+    /// What the OMPL side needs to know about a scene.
+    #[derive(Debug, Clone)]
+    pub struct SceneInfo {
+        pub name: String,
+        pub dof: usize,
+        pub objects: usize,
+        pub joint_names: Vec<String>,
+        pub joint_lower: Vec<f64>,
+        pub joint_upper: Vec<f64>,
+        pub object_names: Vec<String>,
+        pub link_names: Vec<String>,
+        /// Table extent (m).
+        pub table_min_x: f64,
+        pub table_max_x: f64,
+        pub table_min_y: f64,
+        pub table_max_y: f64,
+        /// Planner parameters from the scene file.
+        pub step: f64,
+        pub min_duration: f64,
+        pub max_duration: f64,
+        pub max_ee_speed: f64,
+        pub max_ee_turn_rate: f64,
+        pub max_nullspace_speed: f64,
+        pub k: u32,
+        pub goal_bias: f64,
+        pub time_limit: f64,
+        pub seed: u64,
+        /// Index of the goal object, or -1 for a configuration goal.
+        pub goal_object: i64,
+        pub goal_center_x: f64,
+        pub goal_center_y: f64,
+        pub goal_radius: f64,
+        pub goal_configuration: Vec<f64>,
+        pub start: Vec<f64>,
+    }
+
+    /// A link pushing an object during one step of a simulated plan.
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct PlanContact {
+        pub control: usize,
+        pub step: usize,
+        pub link: usize,
+        pub object: usize,
+        /// Normal force (N).
+        pub force: f64,
+    }
+
+    /// A plan re-simulated by the model.
+    #[derive(Debug, Clone)]
+    pub struct Simulation {
+        /// The state after each control, flat, starting with the start state.
+        pub states: Vec<f64>,
+        pub contacts: Vec<PlanContact>,
+        /// Every step valid (no control stopped early).
+        pub valid: bool,
+        pub goal_reached: bool,
+        /// Why the simulation is not valid, empty if it is.
+        pub message: String,
+    }
+
+    /// Options of one planning run (the CLI's).
+    #[derive(Debug, Clone)]
+    pub struct SolveOptions {
+        pub time_limit: f64,
+        pub seed: u64,
+        pub k: u32,
+        pub goal_bias: f64,
+        /// "pcrrt" or "static".
+        pub planner: String,
+        pub intermediate_states: bool,
+        pub progress: bool,
+    }
+
+    /// The outcome of one planning run.
+    #[derive(Debug, Clone)]
+    pub struct SolveOutput {
+        pub exact: bool,
+        pub approximate: bool,
+        pub planning_time: f64,
+        pub tree_size: usize,
+        pub propagation_steps: u64,
+        /// States along the path (flat), controls (flat) and step counts per control.
+        pub states: Vec<f64>,
+        pub controls: Vec<f64>,
+        pub steps: Vec<usize>,
+    }
+
+    extern "Rust" {
+        type Model;
+        fn load_model(path: &str, static_clutter: bool) -> Result<Box<Model>>;
+        fn model_from_yaml(yaml: &str, source: &str, static_clutter: bool) -> Result<Box<Model>>;
+        fn info(self: &Model) -> SceneInfo;
+        fn propagate(
+            self: &mut Model,
+            state: &[f64],
+            control: &[f64],
+            steps: usize,
+            result: &mut [f64],
+        ) -> Result<bool>;
+        fn is_valid(self: &mut Model, state: &[f64]) -> Result<bool>;
+        fn distance(self: &Model, a: &[f64], b: &[f64]) -> Result<f64>;
+        fn goal_distance(self: &Model, state: &[f64]) -> Result<f64>;
+        fn simulate(self: &mut Model, controls: &[f64], steps: &[usize]) -> Result<Simulation>;
+        fn propagation_steps(self: &Model) -> u64;
+    }
+
+    unsafe extern "C++" {
+        include!("pushplan/cpp/solve.h");
+        /// Plans the scene file with OMPL (the CLI's entry point).
+        fn solve(scene_path: &str, options: &SolveOptions) -> Result<SolveOutput>;
+    }
+}
+
+pub use bridge::{PlanContact, SceneInfo, Simulation, SolveOptions, SolveOutput};
+
+/// The model as the OMPL side holds it: a scene, its propagator and metric.
+pub struct Model {
+    propagator: Propagator,
+    metric: DistanceMetric,
+    /// The last state `propagate` produced and whether it was valid: OMPL asks
+    /// `isValid` of exactly that state next, and the propagation already knows.
+    last_result: Option<(Vec<f64>, bool)>,
+    steps_taken: u64,
+}
+
+/// Runs `f`, turning a panic into an error message: nothing unwinds into C++.
+fn guarded<T>(what: &str, f: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(result) => result,
+        Err(panic) => {
+            let detail = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(format!("internal error in {what}: {detail}"))
+        }
+    }
+}
+
+fn load_model(path: &str, static_clutter: bool) -> Result<Box<Model>, String> {
+    guarded("load_model", || {
+        let scene = Scene::load(path).map_err(|e| e.to_string())?;
+        Ok(Box::new(Model::new(scene, static_clutter)))
+    })
+}
+
+fn model_from_yaml(yaml: &str, source: &str, static_clutter: bool) -> Result<Box<Model>, String> {
+    guarded("model_from_yaml", || {
+        let scene = Scene::from_yaml(yaml, Path::new(source)).map_err(|e| e.to_string())?;
+        Ok(Box::new(Model::new(scene, static_clutter)))
+    })
+}
+
+impl Model {
+    pub fn new(scene: Scene, static_clutter: bool) -> Model {
+        let scene = if static_clutter { scene.with_static_clutter() } else { scene };
+        Model {
+            metric: DistanceMetric::from_scene(&scene),
+            propagator: Propagator::new(scene),
+            last_result: None,
+            steps_taken: 0,
+        }
+    }
+
+    pub fn scene(&self) -> &Scene {
+        self.propagator.scene()
+    }
+
+    fn state_len(&self) -> usize {
+        self.scene().robot.dof() + 3 * self.scene().objects.len()
+    }
+
+    /// The state in a flat array, checking its length.
+    fn unpack(&self, flat: &[f64]) -> Result<State, String> {
+        if flat.len() != self.state_len() {
+            return Err(format!("a state has {} values, this scene needs {}", flat.len(), self.state_len()));
+        }
+        Ok(unpack_state(flat, self.scene().robot.dof()))
+    }
+
+    fn action(&self, control: &[f64]) -> Result<EeAction, String> {
+        let dof = self.scene().robot.dof();
+        if control.len() != 3 + dof {
+            return Err(format!("a control has {} values, this scene needs {}", control.len(), 3 + dof));
+        }
+        Ok(EeAction {
+            velocity: [control[0], control[1], control[2]],
+            nullspace: DVector::from_column_slice(&control[3..]),
+        })
+    }
+
+    pub fn info(&self) -> SceneInfo {
+        let scene = self.scene();
+        let chain = &scene.robot.chain;
+        let limits = chain.limits();
+        let (goal_object, center, radius, configuration) = match &scene.goal {
+            Goal::ObjectInDisc { object, center, radius } => (*object as i64, *center, *radius, vec![]),
+            Goal::Configuration { q, tolerance } => (-1, nalgebra::Vector2::zeros(), *tolerance, q.as_slice().to_vec()),
+        };
+        let p = &scene.planner;
+        SceneInfo {
+            name: scene.name.clone(),
+            dof: scene.robot.dof(),
+            objects: scene.objects.len(),
+            joint_names: (0..chain.dof()).map(|i| chain.dof_joint(i).name.clone()).collect(),
+            joint_lower: limits.iter().map(|l| l.0).collect(),
+            joint_upper: limits.iter().map(|l| l.1).collect(),
+            object_names: scene.objects.iter().map(|o| o.name.clone()).collect(),
+            link_names: chain.links.iter().map(|l| l.name.clone()).collect(),
+            table_min_x: scene.table.x.0,
+            table_max_x: scene.table.x.1,
+            table_min_y: scene.table.y.0,
+            table_max_y: scene.table.y.1,
+            step: p.step,
+            min_duration: p.min_duration,
+            max_duration: p.max_duration,
+            max_ee_speed: p.max_ee_speed,
+            max_ee_turn_rate: p.max_ee_turn_rate,
+            max_nullspace_speed: p.max_nullspace_speed,
+            k: p.k,
+            goal_bias: p.goal_bias,
+            time_limit: p.time_limit,
+            seed: p.seed,
+            goal_object,
+            goal_center_x: center.x,
+            goal_center_y: center.y,
+            goal_radius: radius,
+            goal_configuration: configuration,
+            start: pack_state(&scene.start),
+        }
+    }
+
+    /// Holds `control` for `steps` steps from `state`; writes the state reached (or, if a
+    /// step was invalid, the invalid state it tried to reach) and says whether it is valid.
+    pub fn propagate(&mut self, state: &[f64], control: &[f64], steps: usize, result: &mut [f64]) -> Result<bool, String> {
+        guarded("propagate", || {
+            let start = self.unpack(state)?;
+            let action = self.action(control)?;
+            if result.len() != state.len() {
+                return Err("the result state has the wrong length".into());
+            }
+            let run = self.propagator.propagate_steps(&start, &action, steps);
+            self.steps_taken += run.steps as u64 + u64::from(run.stopped_by.is_some());
+            let valid = run.stopped_by.is_none();
+            let reached = if valid { run.state } else { self.propagator.attempted_state() };
+            write_state(&reached, result);
+            self.last_result = Some((result.to_vec(), valid));
+            Ok(valid)
+        })
+    }
+
+    pub fn is_valid(&mut self, state: &[f64]) -> Result<bool, String> {
+        guarded("is_valid", || {
+            if let Some((last, valid)) = &self.last_result {
+                if last.len() == state.len() && last.iter().zip(state).all(|(a, b)| a.to_bits() == b.to_bits()) {
+                    return Ok(*valid);
+                }
+            }
+            let state = self.unpack(state)?;
+            Ok(check_state(self.scene(), &state).is_ok())
+        })
+    }
+
+    pub fn distance(&self, a: &[f64], b: &[f64]) -> Result<f64, String> {
+        guarded("distance", || Ok(self.metric.distance(&self.unpack(a)?, &self.unpack(b)?)))
+    }
+
+    pub fn goal_distance(&self, state: &[f64]) -> Result<f64, String> {
+        guarded("goal_distance", || Ok(self.scene().goal.distance(&self.unpack(state)?)))
+    }
+
+    pub fn propagation_steps(&self) -> u64 {
+        self.steps_taken
+    }
+
+    /// Re-simulates a plan from the scene's start: each control (flat, one after another)
+    /// held for its step count.
+    pub fn simulate(&mut self, controls: &[f64], steps: &[usize]) -> Result<Simulation, String> {
+        guarded("simulate", || {
+            let width = 3 + self.scene().robot.dof();
+            if controls.len() != width * steps.len() {
+                return Err(format!("{} control values for {} controls of {width}", controls.len(), steps.len()));
+            }
+            let mut state = self.scene().start.clone();
+            let mut states = pack_state(&state);
+            let mut contacts = Vec::new();
+            let mut message = String::new();
+            for (i, (control, &n)) in controls.chunks(width).zip(steps).enumerate() {
+                let action = self.action(control)?;
+                let run = self.propagator.propagate_steps(&state, &action, n);
+                for (step, pushes) in run.pushes.iter().enumerate() {
+                    contacts.extend(pushes.iter().map(|p| PlanContact {
+                        control: i,
+                        step,
+                        link: p.link,
+                        object: p.object,
+                        force: p.force,
+                    }));
+                }
+                state = run.state;
+                states.extend(pack_state(&state));
+                if let Some(reason) = run.stopped_by {
+                    message = format!("control {i} stops after {} of {n} steps: {reason}", run.steps);
+                    break;
+                }
+            }
+            let goal_reached = self.scene().goal.is_satisfied(&state);
+            Ok(Simulation {
+                states,
+                contacts,
+                valid: message.is_empty(),
+                goal_reached,
+                message,
+            })
+        })
+    }
+}
+
+/// A state as a flat array (see the module docs for the layout).
+pub fn pack_state(state: &State) -> Vec<f64> {
+    let mut out = vec![0.0; state.q.len() + 3 * state.objects.len()];
+    write_state(state, &mut out);
+    out
+}
+
+fn write_state(state: &State, out: &mut [f64]) {
+    let n = state.q.len();
+    out[..n].copy_from_slice(state.q.as_slice());
+    for (i, p) in state.objects.iter().enumerate() {
+        out[n + 3 * i..n + 3 * i + 3].copy_from_slice(&[p.x, p.y, p.theta]);
+    }
+}
+
+/// The state of a flat array for a robot with `dof` joints.
+pub fn unpack_state(flat: &[f64], dof: usize) -> State {
+    State {
+        q: DVector::from_column_slice(&flat[..dof]),
+        objects: flat[dof..].chunks(3).map(|c| Pose2::new(c[0], c[1], c[2])).collect(),
+    }
+}
+
+/// Plans a scene file with OMPL (the C++ side), as the CLI does.
+pub fn solve(scene_path: &Path, options: &SolveOptions) -> Result<SolveOutput, String> {
+    bridge::solve(&scene_path.to_string_lossy(), options).map_err(|e| e.what().to_string())
+}

@@ -1,0 +1,192 @@
+//! The `pushplan` command: plan a scene with OMPL, check a plan by re-simulating it.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use pushplan::ffi::{solve, SolveOptions};
+use pushplan::plan::PlanFile;
+use pushplan::Scene;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// The built-in default scene: the whole-arm paper's Fig. 1 situation.
+const DEFAULT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/herb_fig1_clutter.yaml");
+
+#[derive(Parser)]
+#[command(name = "pushplan", version, about = "Whole-arm rearrangement planning by quasistatic pushing")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Plan a scene (default: the built-in Fig. 1 clutter scene) and write the plan file.
+    Plan {
+        /// Scene file (YAML).
+        scene: Option<PathBuf>,
+        /// Search time limit (s); default: the scene's planner.time_limit.
+        #[arg(long)]
+        time: Option<f64>,
+        /// Random seed; default: the scene's planner.seed.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Control samples per extension; default: the scene's planner.k.
+        #[arg(long)]
+        k: Option<u32>,
+        /// pcrrt (pushes objects) or static (only the goal object moves).
+        #[arg(long, value_enum, default_value_t = PlannerChoice::Pcrrt)]
+        planner: PlannerChoice,
+        /// Where to write the plan.
+        #[arg(long, default_value = "plan.json")]
+        out: PathBuf,
+        /// No progress output.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Re-simulate a plan file and report whether every state is valid and the goal is reached.
+    Check {
+        plan: PathBuf,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum PlannerChoice {
+    Pcrrt,
+    Static,
+}
+
+impl PlannerChoice {
+    fn name(self) -> &'static str {
+        match self {
+            PlannerChoice::Pcrrt => "pcrrt",
+            PlannerChoice::Static => "static",
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Plan { scene, time, seed, k, planner, out, quiet } => {
+            let scene = scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
+            plan(&scene, time, seed, k, planner, &out, quiet)
+        }
+        Command::Check { plan } => check(&plan),
+    };
+    match result {
+        Ok(code) => code,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn plan(
+    scene_path: &Path,
+    time: Option<f64>,
+    seed: Option<u64>,
+    k: Option<u32>,
+    planner: PlannerChoice,
+    out: &Path,
+    quiet: bool,
+) -> Result<ExitCode, String> {
+    let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
+    let p = scene.planner.clone();
+    let options = SolveOptions {
+        time_limit: time.unwrap_or(p.time_limit),
+        seed: seed.unwrap_or(p.seed),
+        k: k.unwrap_or(p.k),
+        goal_bias: p.goal_bias,
+        planner: planner.name().into(),
+        intermediate_states: false,
+        progress: !quiet,
+    };
+    if !(options.time_limit.is_finite() && options.time_limit > 0.0) {
+        return Err(format!("--time must be positive, got {}", options.time_limit));
+    }
+    if options.k == 0 {
+        return Err("--k must be at least 1".into());
+    }
+    if !quiet {
+        eprintln!(
+            "planning '{}' with {} (k = {}, seed = {}, up to {} s)",
+            scene.name,
+            planner.name(),
+            options.k,
+            options.seed,
+            options.time_limit
+        );
+    }
+    let solution = solve(scene_path, &options)?;
+    let reference = scene_path.to_string_lossy().into_owned();
+    let start_objects = if planner.name() == "static" { scene.with_static_clutter().start.objects } else { scene.start.objects.clone() };
+    let file = PlanFile::from_controls(
+        &reference,
+        scene,
+        planner.name(),
+        options.seed,
+        options.k,
+        options.goal_bias,
+        options.time_limit,
+        &solution.controls,
+        &solution.steps,
+    )?;
+    std::fs::write(out, file.to_json()).map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+
+    let end = file.controls.last().map_or(&file.start, |c| &c.state);
+    let moved: Vec<&str> = file
+        .objects
+        .iter()
+        .zip(start_objects.iter().zip(&end.objects))
+        .filter(|(_, (a, b))| ((a.x - b[0]).powi(2) + (a.y - b[1]).powi(2)).sqrt() > 1e-3)
+        .map(|(name, _)| name.as_str())
+        .collect();
+    let duration: f64 = file.controls.iter().map(|c| c.duration).sum();
+    let status = if solution.exact {
+        "solved"
+    } else if solution.approximate {
+        "not solved (approximate path written)"
+    } else {
+        "not solved"
+    };
+    println!("{status} in {:.2} s: tree of {} states, {} propagation steps ({:.0} steps/s)",
+        solution.planning_time,
+        solution.tree_size,
+        solution.propagation_steps,
+        solution.propagation_steps as f64 / solution.planning_time.max(1e-9)
+    );
+    println!(
+        "path: {} controls, {:.2} s; objects moved: {}",
+        file.controls.len(),
+        duration,
+        if moved.is_empty() { "none".to_string() } else { moved.join(", ") }
+    );
+    println!("plan written to {}", out.display());
+    Ok(if solution.exact { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+fn check(path: &Path) -> Result<ExitCode, String> {
+    let plan = PlanFile::read(path)?;
+    let report = plan.check(path)?;
+    println!(
+        "{}: {} controls; every state valid: {}; states reproduced: {}; goal reached: {}",
+        path.display(),
+        plan.controls.len(),
+        yes(report.all_valid),
+        yes(report.states_match),
+        yes(report.goal_reached)
+    );
+    for problem in &report.problems {
+        println!("  {problem}");
+    }
+    println!("{}", if report.passed() { "plan OK" } else { "plan FAILED" });
+    Ok(if report.passed() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+fn yes(b: bool) -> &'static str {
+    if b {
+        "yes"
+    } else {
+        "no"
+    }
+}

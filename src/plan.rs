@@ -1,0 +1,239 @@
+//! Plan files (JSON) and their independent check.
+//!
+//! A plan file holds what is needed to reproduce a plan: the scene reference, the planner
+//! and its parameters and seed, the start state, and per control the action, its step
+//! count, the state it reaches and the pushes during its steps. Nothing in it depends on
+//! the machine or the clock, so the same scene, parameters and seed give the same bytes.
+
+use crate::ffi::{pack_state, unpack_state, Model};
+use crate::scene::Scene;
+use crate::state::State;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+pub const FORMAT: &str = "pushplan-plan/1";
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanFile {
+    /// Always "pushplan-plan/1".
+    pub format: String,
+    /// The scene file, as given to the planner.
+    pub scene: String,
+    pub scene_name: String,
+    /// "pcrrt" or "static".
+    pub planner: String,
+    pub seed: u64,
+    pub k: u32,
+    pub goal_bias: f64,
+    pub time_limit: f64,
+    /// Propagation step (s).
+    pub step: f64,
+    /// True when the plan reaches the goal.
+    pub solved: bool,
+    pub joints: Vec<String>,
+    pub objects: Vec<String>,
+    pub start: StateRecord,
+    pub controls: Vec<ControlRecord>,
+}
+
+/// Joint values and object poses `[x, y, yaw]`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StateRecord {
+    pub q: Vec<f64>,
+    pub objects: Vec<[f64; 3]>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControlRecord {
+    /// (vx, vy) m/s and omega_z rad/s, world frame.
+    pub ee_velocity: [f64; 3],
+    /// Null-space sample (rad/s per joint).
+    pub nullspace: Vec<f64>,
+    /// Propagation steps; duration = steps * step.
+    pub steps: usize,
+    pub duration: f64,
+    /// The state reached at the end of the control.
+    pub state: StateRecord,
+    /// Links pushing objects during the control's steps.
+    pub contacts: Vec<ContactRecord>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactRecord {
+    /// Step within the control.
+    pub step: usize,
+    pub link: String,
+    pub object: String,
+    /// Normal force (N).
+    pub force: f64,
+}
+
+impl StateRecord {
+    pub fn from_state(state: &State) -> Self {
+        StateRecord {
+            q: state.q.as_slice().to_vec(),
+            objects: state.objects.iter().map(|p| [p.x, p.y, p.theta]).collect(),
+        }
+    }
+
+    pub fn flat(&self) -> Vec<f64> {
+        let mut out = self.q.clone();
+        out.extend(self.objects.iter().flatten());
+        out
+    }
+}
+
+/// What re-simulating a plan found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CheckReport {
+    /// Every step of every control valid.
+    pub all_valid: bool,
+    /// The re-simulated states equal the plan's, bit for bit.
+    pub states_match: bool,
+    pub goal_reached: bool,
+    /// Human-readable details of any failure.
+    pub problems: Vec<String>,
+}
+
+impl CheckReport {
+    pub fn passed(&self) -> bool {
+        self.all_valid && self.states_match && self.goal_reached
+    }
+}
+
+impl PlanFile {
+    pub fn read(path: &Path) -> Result<PlanFile, String> {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        let plan: PlanFile = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        if plan.format != FORMAT {
+            return Err(format!("{}: format is '{}', expected '{FORMAT}'", path.display(), plan.format));
+        }
+        Ok(plan)
+    }
+
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("plan files serialise") + "\n"
+    }
+
+    /// The scene file: as recorded, or relative to the plan file's folder.
+    pub fn scene_path(&self, plan_path: &Path) -> PathBuf {
+        let recorded = PathBuf::from(&self.scene);
+        if recorded.is_file() {
+            return recorded;
+        }
+        plan_path.parent().unwrap_or(Path::new(".")).join(&recorded)
+    }
+
+    /// Builds a plan file from a scene, the planner's controls (flat) and step counts, by
+    /// simulating them (which also gives the per-step contacts).
+    #[allow(clippy::too_many_arguments)]
+    pub fn from_controls(
+        scene_ref: &str,
+        scene: Scene,
+        planner: &str,
+        seed: u64,
+        k: u32,
+        goal_bias: f64,
+        time_limit: f64,
+        controls: &[f64],
+        steps: &[usize],
+    ) -> Result<PlanFile, String> {
+        let mut model = Model::new(scene, planner == "static");
+        let sim = model.simulate(controls, steps)?;
+        let scene = model.scene();
+        let dof = scene.robot.dof();
+        let width = dof + 3 * scene.objects.len();
+        let link_names: Vec<&str> = scene.robot.chain.links.iter().map(|l| l.name.as_str()).collect();
+        let records: Vec<ControlRecord> = controls
+            .chunks(3 + dof)
+            .zip(steps)
+            .enumerate()
+            .map(|(i, (c, &n))| ControlRecord {
+                ee_velocity: [c[0], c[1], c[2]],
+                nullspace: c[3..].to_vec(),
+                steps: n,
+                duration: n as f64 * scene.planner.step,
+                state: StateRecord::from_state(&unpack_state(&sim.states[(i + 1) * width..(i + 2) * width], dof)),
+                contacts: sim
+                    .contacts
+                    .iter()
+                    .filter(|p| p.control == i)
+                    .map(|p| ContactRecord {
+                        step: p.step,
+                        link: link_names[p.link].to_string(),
+                        object: scene.objects[p.object].name.clone(),
+                        force: p.force,
+                    })
+                    .collect(),
+            })
+            .collect();
+        if !sim.valid {
+            return Err(format!("the plan does not simulate: {}", sim.message));
+        }
+        Ok(PlanFile {
+            format: FORMAT.into(),
+            scene: scene_ref.into(),
+            scene_name: scene.name.clone(),
+            planner: planner.into(),
+            seed,
+            k,
+            goal_bias,
+            time_limit,
+            step: scene.planner.step,
+            solved: sim.goal_reached,
+            joints: (0..dof).map(|i| scene.robot.chain.dof_joint(i).name.clone()).collect(),
+            objects: scene.objects.iter().map(|o| o.name.clone()).collect(),
+            start: StateRecord::from_state(&scene.start),
+            controls: records,
+        })
+    }
+
+    /// Re-simulates the plan with the model from the scene's start, independently of the
+    /// planner: every state valid, the recorded states reproduced, the goal reached.
+    pub fn check(&self, plan_path: &Path) -> Result<CheckReport, String> {
+        let scene = Scene::load(self.scene_path(plan_path)).map_err(|e| e.to_string())?;
+        let mut model = Model::new(scene, self.planner == "static");
+        let dof = model.scene().robot.dof();
+        let mut problems = Vec::new();
+        if self.start.flat() != pack_state(&model.scene().start) {
+            problems.push("the plan's start state is not the scene's".to_string());
+        }
+        let mut controls = Vec::new();
+        let mut steps = Vec::new();
+        for (i, c) in self.controls.iter().enumerate() {
+            if c.nullspace.len() != dof {
+                return Err(format!("control {i}: null-space sample has {} values, the robot {dof} joints", c.nullspace.len()));
+            }
+            controls.extend(c.ee_velocity);
+            controls.extend(&c.nullspace);
+            steps.push(c.steps);
+        }
+        let sim = model.simulate(&controls, &steps)?;
+        if !sim.valid {
+            problems.push(sim.message.clone());
+        }
+        let width = model.scene().robot.dof() + 3 * model.scene().objects.len();
+        let mut states_match = sim.states.len() == width * (self.controls.len() + 1);
+        for (i, c) in self.controls.iter().enumerate() {
+            let simulated = sim.states.get((i + 1) * width..(i + 2) * width);
+            if simulated.map(|s| s.iter().zip(c.state.flat()).any(|(a, b)| a.to_bits() != b.to_bits())) != Some(false) {
+                states_match = false;
+                problems.push(format!("control {i}: the re-simulated state differs from the recorded one"));
+                break;
+            }
+        }
+        if !sim.goal_reached {
+            problems.push("the goal is not reached".to_string());
+        }
+        Ok(CheckReport {
+            all_valid: sim.valid,
+            states_match,
+            goal_reached: sim.goal_reached,
+            problems,
+        })
+    }
+}
