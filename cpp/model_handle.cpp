@@ -16,15 +16,20 @@ namespace pushplan::detail
     // The state space is the compound [joints (RealVector), object 1 (SE2), ...].
     void ModelHandle::read(const ob::State *state, std::vector<double> &out) const
     {
+        // Hot: every distance in a nearest-neighbour query reads two states.
+        out.resize(stateSize());
         const auto *compound = state->as<ob::CompoundState>();
         const double *q = compound->as<ob::RealVectorStateSpace::StateType>(0)->values;
-        out.assign(q, q + info_.dof);
-        for (std::size_t i = 0; i < info_.objects; ++i)
+        double *to = out.data();
+        for (std::size_t i = 0; i < info_.dof; ++i)
+            to[i] = q[i];
+        to += info_.dof;
+        for (std::size_t i = 0; i < info_.objects; ++i, to += 3)
         {
             const auto *pose = compound->as<ob::SE2StateSpace::StateType>(1 + i);
-            out.push_back(pose->getX());
-            out.push_back(pose->getY());
-            out.push_back(pose->getYaw());
+            to[0] = pose->getX();
+            to[1] = pose->getY();
+            to[2] = pose->getYaw();
         }
     }
 

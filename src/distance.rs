@@ -49,13 +49,29 @@ impl DistanceMetric {
     }
 
     pub fn distance(&self, a: &State, b: &State) -> f64 {
-        let robot = self.robot_weight * (&a.q - &b.q).norm();
+        self.combine(
+            (&a.q - &b.q).norm(),
+            a.objects.iter().copied().zip(b.objects.iter().copied()),
+        )
+    }
+
+    /// The same distance for states in the flat layout `[q, x_1, y_1, theta_1, ...]`
+    /// (no allocation: the planner's nearest-neighbour queries call this a lot).
+    pub fn distance_flat(&self, a: &[f64], b: &[f64]) -> f64 {
+        let dof = a.len() - 3 * self.object_weights.len();
+        let robot = a[..dof].iter().zip(&b[..dof]).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt();
+        let pose = |s: &[f64], i: usize| Pose2::new(s[dof + 3 * i], s[dof + 3 * i + 1], s[dof + 3 * i + 2]);
+        let objects = (0..self.object_weights.len()).map(|i| (pose(a, i), pose(b, i)));
+        self.combine(robot, objects)
+    }
+
+    fn combine(&self, robot: f64, objects: impl Iterator<Item = (Pose2, Pose2)>) -> f64 {
         let objects: f64 = self
             .object_weights
             .iter()
-            .zip(a.objects.iter().zip(&b.objects))
-            .map(|(w, (pa, pb))| w * self.object_distance(pa, pb))
+            .zip(objects)
+            .map(|(w, (pa, pb))| w * self.object_distance(&pa, &pb))
             .sum();
-        robot + objects
+        self.robot_weight * robot + objects
     }
 }

@@ -284,7 +284,13 @@ impl Model {
     }
 
     pub fn distance(&self, a: &[f64], b: &[f64]) -> Result<f64, String> {
-        guarded("distance", || Ok(self.metric.distance(&self.unpack(a)?, &self.unpack(b)?)))
+        guarded("distance", || {
+            let n = self.state_len();
+            if a.len() != n || b.len() != n {
+                return Err(format!("states of {} and {} values, this scene needs {n}", a.len(), b.len()));
+            }
+            Ok(self.metric.distance_flat(a, b))
+        })
     }
 
     pub fn goal_distance(&self, state: &[f64]) -> Result<f64, String> {

@@ -74,3 +74,16 @@ fn goals_measure_their_distance() {
         (scene.goal.distance(&scene.start) - ((&scene.start.q - q).norm() - 0.1)).abs() < 1e-12
     );
 }
+
+#[test]
+fn the_flat_distance_is_the_same_metric() {
+    let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
+    let metric = DistanceMetric::from_scene(&scene);
+    let a = scene.start.clone();
+    let mut b = a.clone();
+    b.q[1] -= 0.2;
+    b.objects[0] = Pose2::new(0.7, 0.1, -3.0);
+    b.objects[3].theta = 3.1;
+    let flat = |s: &State| pushplan::ffi::pack_state(s);
+    assert_eq!(metric.distance_flat(&flat(&a), &flat(&b)), metric.distance(&a, &b));
+}
