@@ -10,9 +10,19 @@ const INSTALL: &str = "sudo apt-get install -y libompl-dev libeigen3-dev libfcl-
 
 fn main() {
     let missing: Vec<&str> = [
-        (Path::new(OMPL_INCLUDE).join("ompl/control/SimpleSetup.h"), "OMPL headers"),
+        (
+            Path::new(OMPL_INCLUDE).join("ompl/control/SimpleSetup.h"),
+            "OMPL headers",
+        ),
         (Path::new(EIGEN_INCLUDE).join("Eigen/Core"), "Eigen headers"),
-        (PathBuf::from("/usr/lib/x86_64-linux-gnu/libompl.so"), "the OMPL library"),
+        (
+            PathBuf::from("/usr/lib/x86_64-linux-gnu/libompl.so"),
+            "the OMPL library",
+        ),
+        (
+            PathBuf::from("/usr/include/fcl/fcl.h"),
+            "FCL headers (for the tests)",
+        ),
     ]
     .iter()
     .filter(|(path, _)| !path.exists() && !alternative_exists(path))
@@ -23,7 +33,16 @@ fn main() {
         std::process::exit(1);
     }
 
-    let sources = ["model_handle", "state_space", "control", "propagator", "validity", "goal", "planner", "solve"];
+    let sources = [
+        "model_handle",
+        "state_space",
+        "control",
+        "propagator",
+        "validity",
+        "goal",
+        "planner",
+        "solve",
+    ];
     let mut build = cxx_build::bridge("src/ffi.rs");
     for s in sources {
         build.file(format!("cpp/{s}.cpp"));
@@ -37,6 +56,7 @@ fn main() {
         .flag_if_supported("-Wno-unused-parameter")
         .compile("pushplan-cpp");
     println!("cargo:rustc-link-lib=ompl");
+    build_fcl_oracle();
     for dir in ["cpp", "include"] {
         println!("cargo:rerun-if-changed={dir}");
     }
@@ -44,17 +64,48 @@ fn main() {
     write_pkg_config();
 }
 
+/// FCL, the independent oracle of the collision tests: linked into test binaries only,
+/// so the library itself does not depend on FCL.
+fn build_fcl_oracle() {
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
+    cxx_build::bridge("tests/fcl_oracle.rs")
+        .file("tests/fcl_oracle.cpp")
+        .include(EIGEN_INCLUDE)
+        .std("c++17")
+        .flag_if_supported("-Wno-unused-parameter")
+        .cargo_metadata(false)
+        .compile("pushplan-fcl-oracle");
+    println!(
+        "cargo:rustc-link-arg-tests={}",
+        out.join("libpushplan-fcl-oracle.a").display()
+    );
+    println!("cargo:rustc-link-arg-tests=-lfcl");
+    println!("cargo:rustc-link-arg-tests=-lccd");
+    for file in [
+        "tests/fcl_oracle.rs",
+        "tests/fcl_oracle.cpp",
+        "tests/fcl_oracle.h",
+    ] {
+        println!("cargo:rerun-if-changed={file}");
+    }
+}
+
 /// Multi-arch library folders other than x86_64.
 fn alternative_exists(path: &Path) -> bool {
     let name = path.file_name().unwrap_or_default();
-    path.starts_with("/usr/lib") && ["/usr/lib/aarch64-linux-gnu", "/usr/lib"].iter().any(|d| Path::new(d).join(name).exists())
+    path.starts_with("/usr/lib")
+        && ["/usr/lib/aarch64-linux-gnu", "/usr/lib"]
+            .iter()
+            .any(|d| Path::new(d).join(name).exists())
 }
 
 /// `target/<profile>/pushplan.pc`, pointing at this checkout's headers and library.
 fn write_pkg_config() {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
     // OUT_DIR is target/<profile>/build/pushplan-<hash>/out.
-    let Some(profile_dir) = out.ancestors().nth(3) else { return };
+    let Some(profile_dir) = out.ancestors().nth(3) else {
+        return;
+    };
     let root = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
     let pc = format!(
         "prefix={root}\nlibdir={}\nincludedir=${{prefix}}/include\n\nName: pushplan\nDescription: Whole-arm rearrangement planning by quasistatic pushing (OMPL)\nVersion: {}\nCflags: -std=c++17 -I${{includedir}} -I{EIGEN_INCLUDE} -I{OMPL_INCLUDE}\nLibs: ${{libdir}}/libpushplan.a -lompl -lpthread -ldl -lm\n",

@@ -59,8 +59,15 @@ impl DistanceMetric {
     /// (no allocation: the planner's nearest-neighbour queries call this a lot).
     pub fn distance_flat(&self, a: &[f64], b: &[f64]) -> f64 {
         let dof = a.len() - 3 * self.object_weights.len();
-        let robot = a[..dof].iter().zip(&b[..dof]).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt();
-        let pose = |s: &[f64], i: usize| Pose2::new(s[dof + 3 * i], s[dof + 3 * i + 1], s[dof + 3 * i + 2]);
+        let robot = a[..dof]
+            .iter()
+            .zip(&b[..dof])
+            .map(|(x, y)| (x - y) * (x - y))
+            .sum::<f64>()
+            .sqrt();
+        let pose = |s: &[f64], i: usize| {
+            Pose2::new(s[dof + 3 * i], s[dof + 3 * i + 1], s[dof + 3 * i + 2])
+        };
         let objects = (0..self.object_weights.len()).map(|i| (pose(a, i), pose(b, i)));
         self.combine(robot, objects)
     }

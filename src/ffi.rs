@@ -175,7 +175,11 @@ fn model_from_yaml(yaml: &str, source: &str, static_clutter: bool) -> Result<Box
 
 impl Model {
     pub fn new(scene: Scene, static_clutter: bool) -> Model {
-        let scene = if static_clutter { scene.with_static_clutter() } else { scene };
+        let scene = if static_clutter {
+            scene.with_static_clutter()
+        } else {
+            scene
+        };
         Model {
             metric: DistanceMetric::from_scene(&scene),
             propagator: Propagator::new(scene),
@@ -195,7 +199,11 @@ impl Model {
     /// The state in a flat array, checking its length.
     fn unpack(&self, flat: &[f64]) -> Result<State, String> {
         if flat.len() != self.state_len() {
-            return Err(format!("a state has {} values, this scene needs {}", flat.len(), self.state_len()));
+            return Err(format!(
+                "a state has {} values, this scene needs {}",
+                flat.len(),
+                self.state_len()
+            ));
         }
         Ok(unpack_state(flat, self.scene().robot.dof()))
     }
@@ -203,7 +211,11 @@ impl Model {
     fn action(&self, control: &[f64]) -> Result<EeAction, String> {
         let dof = self.scene().robot.dof();
         if control.len() != 3 + dof {
-            return Err(format!("a control has {} values, this scene needs {}", control.len(), 3 + dof));
+            return Err(format!(
+                "a control has {} values, this scene needs {}",
+                control.len(),
+                3 + dof
+            ));
         }
         Ok(EeAction {
             velocity: [control[0], control[1], control[2]],
@@ -216,15 +228,26 @@ impl Model {
         let chain = &scene.robot.chain;
         let limits = chain.limits();
         let (goal_object, center, radius, configuration) = match &scene.goal {
-            Goal::ObjectInDisc { object, center, radius } => (*object as i64, *center, *radius, vec![]),
-            Goal::Configuration { q, tolerance } => (-1, nalgebra::Vector2::zeros(), *tolerance, q.as_slice().to_vec()),
+            Goal::ObjectInDisc {
+                object,
+                center,
+                radius,
+            } => (*object as i64, *center, *radius, vec![]),
+            Goal::Configuration { q, tolerance } => (
+                -1,
+                nalgebra::Vector2::zeros(),
+                *tolerance,
+                q.as_slice().to_vec(),
+            ),
         };
         let p = &scene.planner;
         SceneInfo {
             name: scene.name.clone(),
             dof: scene.robot.dof(),
             objects: scene.objects.len(),
-            joint_names: (0..chain.dof()).map(|i| chain.dof_joint(i).name.clone()).collect(),
+            joint_names: (0..chain.dof())
+                .map(|i| chain.dof_joint(i).name.clone())
+                .collect(),
             joint_lower: limits.iter().map(|l| l.0).collect(),
             joint_upper: limits.iter().map(|l| l.1).collect(),
             object_names: scene.objects.iter().map(|o| o.name.clone()).collect(),
@@ -254,7 +277,13 @@ impl Model {
 
     /// Holds `control` for `steps` steps from `state`; writes the state reached (or, if a
     /// step was invalid, the invalid state it tried to reach) and says whether it is valid.
-    pub fn propagate(&mut self, state: &[f64], control: &[f64], steps: usize, result: &mut [f64]) -> Result<bool, String> {
+    pub fn propagate(
+        &mut self,
+        state: &[f64],
+        control: &[f64],
+        steps: usize,
+        result: &mut [f64],
+    ) -> Result<bool, String> {
         guarded("propagate", || {
             let start = self.unpack(state)?;
             let action = self.action(control)?;
@@ -264,7 +293,11 @@ impl Model {
             let run = self.propagator.propagate_steps(&start, &action, steps);
             self.steps_taken += run.steps as u64 + u64::from(run.stopped_by.is_some());
             let valid = run.stopped_by.is_none();
-            let reached = if valid { run.state } else { self.propagator.attempted_state() };
+            let reached = if valid {
+                run.state
+            } else {
+                self.propagator.attempted_state()
+            };
             write_state(&reached, result);
             self.last_result = Some((result.to_vec(), valid));
             Ok(valid)
@@ -274,7 +307,12 @@ impl Model {
     pub fn is_valid(&mut self, state: &[f64]) -> Result<bool, String> {
         guarded("is_valid", || {
             if let Some((last, valid)) = &self.last_result {
-                if last.len() == state.len() && last.iter().zip(state).all(|(a, b)| a.to_bits() == b.to_bits()) {
+                if last.len() == state.len()
+                    && last
+                        .iter()
+                        .zip(state)
+                        .all(|(a, b)| a.to_bits() == b.to_bits())
+                {
                     return Ok(*valid);
                 }
             }
@@ -287,14 +325,20 @@ impl Model {
         guarded("distance", || {
             let n = self.state_len();
             if a.len() != n || b.len() != n {
-                return Err(format!("states of {} and {} values, this scene needs {n}", a.len(), b.len()));
+                return Err(format!(
+                    "states of {} and {} values, this scene needs {n}",
+                    a.len(),
+                    b.len()
+                ));
             }
             Ok(self.metric.distance_flat(a, b))
         })
     }
 
     pub fn goal_distance(&self, state: &[f64]) -> Result<f64, String> {
-        guarded("goal_distance", || Ok(self.scene().goal.distance(&self.unpack(state)?)))
+        guarded("goal_distance", || {
+            Ok(self.scene().goal.distance(&self.unpack(state)?))
+        })
     }
 
     pub fn propagation_steps(&self) -> u64 {
@@ -307,7 +351,11 @@ impl Model {
         guarded("simulate", || {
             let width = 3 + self.scene().robot.dof();
             if controls.len() != width * steps.len() {
-                return Err(format!("{} control values for {} controls of {width}", controls.len(), steps.len()));
+                return Err(format!(
+                    "{} control values for {} controls of {width}",
+                    controls.len(),
+                    steps.len()
+                ));
             }
             let mut state = self.scene().start.clone();
             let mut states = pack_state(&state);
@@ -328,7 +376,10 @@ impl Model {
                 state = run.state;
                 states.extend(pack_state(&state));
                 if let Some(reason) = run.stopped_by {
-                    message = format!("control {i} stops after {} of {n} steps: {reason}", run.steps);
+                    message = format!(
+                        "control {i} stops after {} of {n} steps: {reason}",
+                        run.steps
+                    );
                     break;
                 }
             }
@@ -363,7 +414,10 @@ fn write_state(state: &State, out: &mut [f64]) {
 pub fn unpack_state(flat: &[f64], dof: usize) -> State {
     State {
         q: DVector::from_column_slice(&flat[..dof]),
-        objects: flat[dof..].chunks(3).map(|c| Pose2::new(c[0], c[1], c[2])).collect(),
+        objects: flat[dof..]
+            .chunks(3)
+            .map(|c| Pose2::new(c[0], c[1], c[2]))
+            .collect(),
     }
 }
 

@@ -11,7 +11,11 @@ use std::process::ExitCode;
 const DEFAULT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/herb_fig1_clutter.yaml");
 
 #[derive(Parser)]
-#[command(name = "pushplan", version, about = "Whole-arm rearrangement planning by quasistatic pushing")]
+#[command(
+    name = "pushplan",
+    version,
+    about = "Whole-arm rearrangement planning by quasistatic pushing"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -43,9 +47,7 @@ enum Command {
         quiet: bool,
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is reached.
-    Check {
-        plan: PathBuf,
-    },
+    Check { plan: PathBuf },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -66,7 +68,15 @@ impl PlannerChoice {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Plan { scene, time, seed, k, planner, out, quiet } => {
+        Command::Plan {
+            scene,
+            time,
+            seed,
+            k,
+            planner,
+            out,
+            quiet,
+        } => {
             let scene = scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
             plan(&scene, time, seed, k, planner, &out, quiet)
         }
@@ -102,7 +112,10 @@ fn plan(
         progress: !quiet,
     };
     if !(options.time_limit.is_finite() && options.time_limit > 0.0) {
-        return Err(format!("--time must be positive, got {}", options.time_limit));
+        return Err(format!(
+            "--time must be positive, got {}",
+            options.time_limit
+        ));
     }
     if options.k == 0 {
         return Err("--k must be at least 1".into());
@@ -119,7 +132,11 @@ fn plan(
     }
     let solution = solve(scene_path, &options)?;
     let reference = scene_path.to_string_lossy().into_owned();
-    let start_objects = if planner.name() == "static" { scene.with_static_clutter().start.objects } else { scene.start.objects.clone() };
+    let start_objects = if planner.name() == "static" {
+        scene.with_static_clutter().start.objects
+    } else {
+        scene.start.objects.clone()
+    };
     let file = PlanFile::from_controls(
         &reference,
         scene,
@@ -131,7 +148,8 @@ fn plan(
         &solution.controls,
         &solution.steps,
     )?;
-    std::fs::write(out, file.to_json()).map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    std::fs::write(out, file.to_json())
+        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
 
     let end = file.controls.last().map_or(&file.start, |c| &c.state);
     let moved: Vec<&str> = file
@@ -149,7 +167,8 @@ fn plan(
     } else {
         "not solved"
     };
-    println!("{status} in {:.2} s: tree of {} states, {} propagation steps ({:.0} steps/s)",
+    println!(
+        "{status} in {:.2} s: tree of {} states, {} propagation steps ({:.0} steps/s)",
         solution.planning_time,
         solution.tree_size,
         solution.propagation_steps,
@@ -159,10 +178,18 @@ fn plan(
         "path: {} controls, {:.2} s; objects moved: {}",
         file.controls.len(),
         duration,
-        if moved.is_empty() { "none".to_string() } else { moved.join(", ") }
+        if moved.is_empty() {
+            "none".to_string()
+        } else {
+            moved.join(", ")
+        }
     );
     println!("plan written to {}", out.display());
-    Ok(if solution.exact { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+    Ok(if solution.exact {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
 }
 
 fn check(path: &Path) -> Result<ExitCode, String> {
@@ -179,8 +206,19 @@ fn check(path: &Path) -> Result<ExitCode, String> {
     for problem in &report.problems {
         println!("  {problem}");
     }
-    println!("{}", if report.passed() { "plan OK" } else { "plan FAILED" });
-    Ok(if report.passed() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+    println!(
+        "{}",
+        if report.passed() {
+            "plan OK"
+        } else {
+            "plan FAILED"
+        }
+    );
+    Ok(if report.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
 }
 
 fn yes(b: bool) -> &'static str {

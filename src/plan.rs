@@ -107,10 +107,16 @@ impl CheckReport {
 
 impl PlanFile {
     pub fn read(path: &Path) -> Result<PlanFile, String> {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-        let plan: PlanFile = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        let plan: PlanFile =
+            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         if plan.format != FORMAT {
-            return Err(format!("{}: format is '{}', expected '{FORMAT}'", path.display(), plan.format));
+            return Err(format!(
+                "{}: format is '{}', expected '{FORMAT}'",
+                path.display(),
+                plan.format
+            ));
         }
         Ok(plan)
     }
@@ -147,7 +153,13 @@ impl PlanFile {
         let scene = model.scene();
         let dof = scene.robot.dof();
         let width = dof + 3 * scene.objects.len();
-        let link_names: Vec<&str> = scene.robot.chain.links.iter().map(|l| l.name.as_str()).collect();
+        let link_names: Vec<&str> = scene
+            .robot
+            .chain
+            .links
+            .iter()
+            .map(|l| l.name.as_str())
+            .collect();
         let records: Vec<ControlRecord> = controls
             .chunks(3 + dof)
             .zip(steps)
@@ -157,7 +169,10 @@ impl PlanFile {
                 nullspace: c[3..].to_vec(),
                 steps: n,
                 duration: n as f64 * scene.planner.step,
-                state: StateRecord::from_state(&unpack_state(&sim.states[(i + 1) * width..(i + 2) * width], dof)),
+                state: StateRecord::from_state(&unpack_state(
+                    &sim.states[(i + 1) * width..(i + 2) * width],
+                    dof,
+                )),
                 contacts: sim
                     .contacts
                     .iter()
@@ -185,7 +200,9 @@ impl PlanFile {
             time_limit,
             step: scene.planner.step,
             solved: sim.goal_reached,
-            joints: (0..dof).map(|i| scene.robot.chain.dof_joint(i).name.clone()).collect(),
+            joints: (0..dof)
+                .map(|i| scene.robot.chain.dof_joint(i).name.clone())
+                .collect(),
             objects: scene.objects.iter().map(|o| o.name.clone()).collect(),
             start: StateRecord::from_state(&scene.start),
             controls: records,
@@ -206,7 +223,10 @@ impl PlanFile {
         let mut steps = Vec::new();
         for (i, c) in self.controls.iter().enumerate() {
             if c.nullspace.len() != dof {
-                return Err(format!("control {i}: null-space sample has {} values, the robot {dof} joints", c.nullspace.len()));
+                return Err(format!(
+                    "control {i}: null-space sample has {} values, the robot {dof} joints",
+                    c.nullspace.len()
+                ));
             }
             controls.extend(c.ee_velocity);
             controls.extend(&c.nullspace);
@@ -220,9 +240,16 @@ impl PlanFile {
         let mut states_match = sim.states.len() == width * (self.controls.len() + 1);
         for (i, c) in self.controls.iter().enumerate() {
             let simulated = sim.states.get((i + 1) * width..(i + 2) * width);
-            if simulated.map(|s| s.iter().zip(c.state.flat()).any(|(a, b)| a.to_bits() != b.to_bits())) != Some(false) {
+            if simulated.map(|s| {
+                s.iter()
+                    .zip(c.state.flat())
+                    .any(|(a, b)| a.to_bits() != b.to_bits())
+            }) != Some(false)
+            {
                 states_match = false;
-                problems.push(format!("control {i}: the re-simulated state differs from the recorded one"));
+                problems.push(format!(
+                    "control {i}: the re-simulated state differs from the recorded one"
+                ));
                 break;
             }
         }

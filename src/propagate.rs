@@ -20,8 +20,8 @@ use crate::scene::Scene;
 use crate::state::State;
 use crate::validity::{check_arm_objects, check_objects, check_robot, Invalid};
 use nalgebra::{DVector, Isometry3};
-use std::sync::Arc;
 use parry3d_f64::bounding_volume::Aabb;
+use std::sync::Arc;
 
 /// A link pushing an object during one step, with the force it applies.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -123,7 +123,12 @@ impl Propagator {
     }
 
     /// Holds `action` for `steps` steps from `start`, which must be valid.
-    pub fn propagate_steps(&mut self, start: &State, action: &EeAction, steps: usize) -> Propagation {
+    pub fn propagate_steps(
+        &mut self,
+        start: &State,
+        action: &EeAction,
+        steps: usize,
+    ) -> Propagation {
         let mut state = start.clone();
         let mut pushes = Vec::with_capacity(steps);
         let mut stopped_by = self.prepare(start).err();
@@ -156,7 +161,10 @@ impl Propagator {
         }
         self.prepared = None;
         let scene = &*self.scene;
-        scene.robot.chain.forward_kinematics(&state.q, &mut self.poses);
+        scene
+            .robot
+            .chain
+            .forward_kinematics(&state.q, &mut self.poses);
         ArmBounds::compute(scene, &self.poses, &mut self.bounds);
         object_bounds(scene, &state.objects, &mut self.object_boxes);
         check_arm_objects(
@@ -270,9 +278,14 @@ impl Propagator {
 fn same_bits(a: &State, b: &State) -> bool {
     a.q.len() == b.q.len()
         && a.objects.len() == b.objects.len()
-        && a.q.iter().zip(b.q.iter()).all(|(x, y)| x.to_bits() == y.to_bits())
+        && a.q
+            .iter()
+            .zip(b.q.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits())
         && a.objects.iter().zip(&b.objects).all(|(p, o)| {
-            p.x.to_bits() == o.x.to_bits() && p.y.to_bits() == o.y.to_bits() && p.theta.to_bits() == o.theta.to_bits()
+            p.x.to_bits() == o.x.to_bits()
+                && p.y.to_bits() == o.y.to_bits()
+                && p.theta.to_bits() == o.theta.to_bits()
         })
 }
 

@@ -4,7 +4,10 @@ use std::path::PathBuf;
 use std::process::Command;
 
 fn pushplan(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_pushplan")).args(args).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .args(args)
+        .output()
+        .unwrap();
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),
@@ -22,16 +25,36 @@ fn temp(name: &str) -> PathBuf {
 fn plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes() {
     let (a, b) = (temp("a.json"), temp("b.json"));
     for out in [&a, &b] {
-        let (code, stdout, stderr) = pushplan(&["plan", "scenes/herb_single_object.yaml", "--seed", "2", "--time", "30", "--out", out.to_str().unwrap()]);
+        let (code, stdout, stderr) = pushplan(&[
+            "plan",
+            "scenes/herb_single_object.yaml",
+            "--seed",
+            "2",
+            "--time",
+            "30",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
         assert_eq!(code, 0, "{stdout}{stderr}");
         assert!(stdout.starts_with("solved in"), "{stdout}");
         assert!(stdout.contains("objects moved: green_box"), "{stdout}");
-        assert!(stderr.contains("planning 'herb-single-object' with pcrrt"), "{stderr}");
+        assert!(
+            stderr.contains("planning 'herb-single-object' with pcrrt"),
+            "{stderr}"
+        );
     }
-    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap(), "plan files differ");
+    assert_eq!(
+        std::fs::read(&a).unwrap(),
+        std::fs::read(&b).unwrap(),
+        "plan files differ"
+    );
     let (code, stdout, _) = pushplan(&["check", a.to_str().unwrap()]);
     assert_eq!(code, 0, "{stdout}");
-    assert!(stdout.contains("every state valid: yes; states reproduced: yes; goal reached: yes") && stdout.ends_with("plan OK\n"), "{stdout}");
+    assert!(
+        stdout.contains("every state valid: yes; states reproduced: yes; goal reached: yes")
+            && stdout.ends_with("plan OK\n"),
+        "{stdout}"
+    );
 
     // Edit one number in the file: check notices.
     let text = std::fs::read_to_string(&a).unwrap();
@@ -48,7 +71,17 @@ fn plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes
 #[test]
 fn no_exact_solution_exits_non_zero() {
     let out = temp("static.json");
-    let (code, stdout, _) = pushplan(&["plan", "tests/data/clutter_on_goal.yaml", "--planner", "static", "--time", "1", "--quiet", "--out", out.to_str().unwrap()]);
+    let (code, stdout, _) = pushplan(&[
+        "plan",
+        "tests/data/clutter_on_goal.yaml",
+        "--planner",
+        "static",
+        "--time",
+        "1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(code, 1, "{stdout}");
     assert!(stdout.starts_with("not solved"), "{stdout}");
 }
@@ -56,11 +89,16 @@ fn no_exact_solution_exits_non_zero() {
 #[test]
 fn invalid_scenes_give_clear_errors() {
     let bad = temp("bad.yaml");
-    let text = std::fs::read_to_string("scenes/herb_single_object.yaml").unwrap().replace("mu_c: 0.3", "mu_c: -1");
+    let text = std::fs::read_to_string("scenes/herb_single_object.yaml")
+        .unwrap()
+        .replace("mu_c: 0.3", "mu_c: -1");
     std::fs::write(&bad, text).unwrap();
     let (code, _, stderr) = pushplan(&["plan", bad.to_str().unwrap(), "--quiet"]);
     assert_eq!(code, 2);
-    assert!(stderr.contains("bad.yaml") && stderr.contains("objects[0].mu_c: must be positive"), "{stderr}");
+    assert!(
+        stderr.contains("bad.yaml") && stderr.contains("objects[0].mu_c: must be positive"),
+        "{stderr}"
+    );
     let (code, _, stderr) = pushplan(&["plan", "scenes/none.yaml"]);
     assert_eq!(code, 2);
     assert!(stderr.contains("scenes/none.yaml: cannot read"), "{stderr}");

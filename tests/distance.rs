@@ -85,5 +85,8 @@ fn the_flat_distance_is_the_same_metric() {
     b.objects[0] = Pose2::new(0.7, 0.1, -3.0);
     b.objects[3].theta = 3.1;
     let flat = |s: &State| pushplan::ffi::pack_state(s);
-    assert_eq!(metric.distance_flat(&flat(&a), &flat(&b)), metric.distance(&a, &b));
+    assert_eq!(
+        metric.distance_flat(&flat(&a), &flat(&b)),
+        metric.distance(&a, &b)
+    );
 }

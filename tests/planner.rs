@@ -20,7 +20,18 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
 
 fn plan_file(scene: &str, planner: &str, seed: u64, out: &SolveOutput) -> PlanFile {
     let loaded = Scene::load(scene).unwrap();
-    PlanFile::from_controls(scene, loaded, planner, seed, 3, 0.05, 30.0, &out.controls, &out.steps).unwrap()
+    PlanFile::from_controls(
+        scene,
+        loaded,
+        planner,
+        seed,
+        3,
+        0.05,
+        30.0,
+        &out.controls,
+        &out.steps,
+    )
+    .unwrap()
 }
 
 #[test]
@@ -36,9 +47,16 @@ fn pc_rrt_solves_the_single_object_scene_and_its_plan_checks() {
     // The planner's own states are the simulated ones.
     let width = plan.start.flat().len();
     assert_eq!(out.states.len(), width * (plan.controls.len() + 1));
-    assert_eq!(&out.states[out.states.len() - width..], plan.controls.last().unwrap().state.flat().as_slice());
+    assert_eq!(
+        &out.states[out.states.len() - width..],
+        plan.controls.last().unwrap().state.flat().as_slice()
+    );
     // The goal object was pushed by the arm.
-    assert!(plan.controls.iter().flat_map(|c| &c.contacts).any(|c| c.object == "green_box"));
+    assert!(plan
+        .controls
+        .iter()
+        .flat_map(|c| &c.contacts)
+        .any(|c| c.object == "green_box"));
 }
 
 #[test]
@@ -52,14 +70,23 @@ fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_awa
     let end = plan.controls.last().unwrap().state.objects[1];
     let displaced = ((end[0] - start[0]).powi(2) + (end[1] - start[1]).powi(2)).sqrt();
     assert!(displaced > 0.03, "the clutter moved only {displaced} m");
-    assert!(plan.controls.iter().flat_map(|c| &c.contacts).any(|c| c.object == "clutter"));
+    assert!(plan
+        .controls
+        .iter()
+        .flat_map(|c| &c.contacts)
+        .any(|c| c.object == "clutter"));
 
     // Static RRT treats the clutter as an obstacle: that goal is unreachable for it.
     let stuck = solve(Path::new(scene), &options("static", 5, 1.0)).unwrap();
     assert!(!stuck.exact);
     let static_plan = plan_file(scene, "static", 5, &stuck);
     assert_eq!(static_plan.objects, vec!["goal_box".to_string()]);
-    assert!(!static_plan.check(Path::new("plan.json")).unwrap().goal_reached);
+    assert!(
+        !static_plan
+            .check(Path::new("plan.json"))
+            .unwrap()
+            .goal_reached
+    );
 }
 
 #[test]
@@ -67,7 +94,10 @@ fn static_rrt_solves_when_no_clutter_is_in_the_way() {
     let scene = "scenes/herb_single_object.yaml";
     let out = solve(Path::new(scene), &options("static", 2, 30.0)).unwrap();
     assert!(out.exact);
-    assert!(plan_file(scene, "static", 2, &out).check(Path::new("plan.json")).unwrap().passed());
+    assert!(plan_file(scene, "static", 2, &out)
+        .check(Path::new("plan.json"))
+        .unwrap()
+        .passed());
 }
 
 #[test]
@@ -75,21 +105,39 @@ fn the_same_seed_gives_the_same_plan() {
     let scene = "scenes/herb_single_object.yaml";
     let a = solve(Path::new(scene), &options("pcrrt", 3, 30.0)).unwrap();
     let b = solve(Path::new(scene), &options("pcrrt", 3, 30.0)).unwrap();
-    assert_eq!((a.states.clone(), a.controls.clone(), a.steps.clone()), (b.states, b.controls, b.steps));
+    assert_eq!(
+        (a.states.clone(), a.controls.clone(), a.steps.clone()),
+        (b.states, b.controls, b.steps)
+    );
     assert_eq!(a.tree_size, b.tree_size);
     let c = solve(Path::new(scene), &options("pcrrt", 4, 30.0)).unwrap();
-    assert_ne!(a.controls, c.controls, "a different seed should give a different plan");
+    assert_ne!(
+        a.controls, c.controls,
+        "a different seed should give a different plan"
+    );
 }
 
 #[test]
 fn bad_scenes_and_options_are_errors_not_crashes() {
     let err = solve(Path::new("scenes/missing.yaml"), &options("pcrrt", 1, 1.0)).unwrap_err();
     assert!(err.contains("scenes/missing.yaml"), "{err}");
-    let err = solve(Path::new("tests/data/gripper.urdf"), &options("pcrrt", 1, 1.0)).unwrap_err();
+    let err = solve(
+        Path::new("tests/data/gripper.urdf"),
+        &options("pcrrt", 1, 1.0),
+    )
+    .unwrap_err();
     assert!(err.contains("gripper.urdf"), "{err}");
-    let err = solve(Path::new("scenes/herb_single_object.yaml"), &options("rrtstar", 1, 1.0)).unwrap_err();
+    let err = solve(
+        Path::new("scenes/herb_single_object.yaml"),
+        &options("rrtstar", 1, 1.0),
+    )
+    .unwrap_err();
     assert!(err.contains("unknown planner 'rrtstar'"), "{err}");
-    let err = solve(Path::new("scenes/herb_single_object.yaml"), &options("pcrrt", 1, -1.0)).unwrap_err();
+    let err = solve(
+        Path::new("scenes/herb_single_object.yaml"),
+        &options("pcrrt", 1, -1.0),
+    )
+    .unwrap_err();
     assert!(err.contains("time_limit"), "{err}");
 }
 

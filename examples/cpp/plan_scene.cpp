@@ -1,0 +1,42 @@
+// A C++ application using pushplan: plan a scene and print the plan.
+//
+// Build (after `cargo build --release`), from the repository root:
+//   g++ -o plan_scene examples/cpp/plan_scene.cpp $(pkg-config --cflags --libs target/release/pushplan.pc)
+// Run:
+//   ./plan_scene scenes/herb_single_object.yaml [seed]
+#include <pushplan/pushplan.h>
+
+#include <cstdlib>
+#include <iostream>
+
+int main(int argc, char **argv)
+{
+    const std::string scene = argc > 1 ? argv[1] : "scenes/herb_single_object.yaml";
+    try
+    {
+        pushplan::Planner planner(scene);
+        pushplan::Options options;
+        options.time_limit = 30.0;
+        options.seed = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1;
+        const pushplan::Plan plan = planner.solve(options);
+
+        std::cout << planner.sceneName() << ": " << (plan.solved ? "solved" : "not solved") << " in "
+                  << plan.planning_time << " s, " << plan.controls.size() << " controls, " << plan.duration()
+                  << " s of motion\n";
+        const auto &last = plan.object_poses.back();
+        for (std::size_t i = 0; i < plan.object_names.size(); ++i)
+            std::cout << "  " << plan.object_names[i] << " ends at (" << last[i].x() << ", " << last[i].y()
+                      << ", " << last[i].z() << ")\n";
+        std::size_t pushes = 0;
+        for (const auto &contacts : plan.contacts)
+            pushes += contacts.size();
+        std::cout << "  " << pushes << " link-object pushes over " << plan.joint_trajectory.size() << " states of "
+                  << plan.joint_trajectory.front().size() << " joints\n";
+        return plan.solved ? 0 : 1;
+    }
+    catch (const pushplan::Error &e)
+    {
+        std::cerr << "pushplan error: " << e.what() << "\n";
+        return 2;
+    }
+}

@@ -1,0 +1,89 @@
+//! The C++ API as a C++ application uses it: the example in examples/cpp builds outside
+//! the crate against include/ and libpushplan.a with the documented pkg-config command,
+//! plans a scene, and catches pushplan::Error for a bad one.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+/// target/<profile>/, where cargo put libpushplan.a and build.rs put pushplan.pc.
+fn profile_dir() -> PathBuf {
+    let exe = std::env::current_exe().unwrap(); // target/<profile>/deps/cpp_api-<hash>
+    exe.parent()
+        .and_then(|deps| deps.parent())
+        .unwrap()
+        .to_path_buf()
+}
+
+#[test]
+fn the_cpp_example_builds_plans_and_reports_errors() {
+    let dir = profile_dir();
+    let pc = dir.join("pushplan.pc");
+    assert!(
+        pc.is_file() && dir.join("libpushplan.a").is_file(),
+        "build the library first: {}",
+        dir.display()
+    );
+    let flags = Command::new("pkg-config")
+        .args(["--cflags", "--libs"])
+        .arg(&pc)
+        .output()
+        .expect("pkg-config runs");
+    assert!(
+        flags.status.success(),
+        "{}",
+        String::from_utf8_lossy(&flags.stderr)
+    );
+    let flags = String::from_utf8(flags.stdout).unwrap();
+    let binary = std::env::temp_dir().join(format!("pushplan-plan-scene-{}", std::process::id()));
+    let compile = Command::new("g++")
+        .args(["-o"])
+        .arg(&binary)
+        .arg("examples/cpp/plan_scene.cpp")
+        .args(flags.split_whitespace())
+        .output()
+        .expect("g++ runs");
+    assert!(
+        compile.status.success(),
+        "{}",
+        String::from_utf8_lossy(&compile.stderr)
+    );
+
+    let run = Command::new(&binary)
+        .args(["scenes/herb_single_object.yaml", "1"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(
+        stdout.starts_with("herb-single-object: solved in"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("green_box ends at"), "{stdout}");
+
+    // A bad scene: the C++ exception carries the file and the field.
+    let bad = std::env::temp_dir().join(format!("pushplan-bad-{}.yaml", std::process::id()));
+    let text = std::fs::read_to_string("scenes/herb_single_object.yaml")
+        .unwrap()
+        .replace("mass: 1.0", "mass: -1.0");
+    std::fs::write(
+        &bad,
+        text.replace(
+            "../robots",
+            &format!("{}/robots", env!("CARGO_MANIFEST_DIR")),
+        ),
+    )
+    .unwrap();
+    let run = Command::new(&binary).arg(&bad).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("pushplan error:") && stderr.contains("objects[0].mass: must be positive"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_file(&binary);
+}
