@@ -2,7 +2,9 @@
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
 #include <boost/math/constants/constants.hpp>
+#include <new>
 
 namespace ob = ompl::base;
 
@@ -35,6 +37,58 @@ namespace pushplan::detail
             addSubspace(object, 1.0);
         }
         lock();
+
+        // One block per state: [top | top components | joints | joint values | objects...],
+        // each object [SE2 | its 2 components | xy | xy values | yaw].
+        const auto align = [](std::size_t n) {
+            constexpr std::size_t a = alignof(std::max_align_t);
+            return (n + a - 1) / a * a;
+        };
+        layout_.components = align(sizeof(ob::CompoundState));
+        layout_.joints = layout_.components + align(sizeof(ob::State *) * (1 + info.objects));
+        layout_.joint_values = layout_.joints + align(sizeof(ob::RealVectorStateSpace::StateType));
+        layout_.objects = layout_.joint_values + align(sizeof(double) * info.dof);
+        layout_.object_size = align(sizeof(ob::SE2StateSpace::StateType)) + align(2 * sizeof(ob::State *)) +
+                              align(sizeof(ob::RealVectorStateSpace::StateType)) + align(2 * sizeof(double)) +
+                              align(sizeof(ob::SO2StateSpace::StateType));
+        layout_.size = layout_.objects + layout_.object_size * info.objects;
+    }
+
+    ob::State *PushStateSpace::allocState() const
+    {
+        auto *block = static_cast<char *>(::operator new(layout_.size, std::align_val_t(alignof(std::max_align_t))));
+        auto *top = new (block) ob::CompoundState();
+        top->components = reinterpret_cast<ob::State **>(block + layout_.components);
+        auto *joints = new (block + layout_.joints) ob::RealVectorStateSpace::StateType();
+        joints->values = reinterpret_cast<double *>(block + layout_.joint_values);
+        top->components[0] = joints;
+        const auto align = [](std::size_t n) {
+            constexpr std::size_t a = alignof(std::max_align_t);
+            return (n + a - 1) / a * a;
+        };
+        for (std::size_t i = 0; i + 1 < componentCount_; ++i)
+        {
+            char *at = block + layout_.objects + i * layout_.object_size;
+            auto *se2 = new (at) ob::SE2StateSpace::StateType();
+            at += align(sizeof(ob::SE2StateSpace::StateType));
+            se2->components = reinterpret_cast<ob::State **>(at);
+            at += align(2 * sizeof(ob::State *));
+            auto *xy = new (at) ob::RealVectorStateSpace::StateType();
+            at += align(sizeof(ob::RealVectorStateSpace::StateType));
+            xy->values = reinterpret_cast<double *>(at);
+            at += align(2 * sizeof(double));
+            auto *yaw = new (at) ob::SO2StateSpace::StateType();
+            se2->components[0] = xy;
+            se2->components[1] = yaw;
+            top->components[1 + i] = se2;
+        }
+        return top;
+    }
+
+    // The parts hold no resources of their own: releasing the block ends them all.
+    void PushStateSpace::freeState(ob::State *state) const
+    {
+        ::operator delete(static_cast<void *>(state), std::align_val_t(alignof(std::max_align_t)));
     }
 
     double PushStateSpace::distance(const ob::State *a, const ob::State *b) const

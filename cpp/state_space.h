@@ -12,15 +12,26 @@ namespace pushplan::detail
 {
     /// Joints (RealVector, joint-limit bounds) x one SE2 per movable object (table
     /// bounds). Its distance is the model's weighted metric.
+    ///
+    /// A state and all its components are allocated as one block: nearest-neighbour
+    /// queries read thousands of states, and a compound of SE2 states is otherwise about
+    /// twenty scattered heap objects (measured: half of planning time in cache misses).
     class PushStateSpace : public ompl::base::CompoundStateSpace
     {
     public:
         explicit PushStateSpace(ModelHandlePtr model);
         double distance(const ompl::base::State *a, const ompl::base::State *b) const override;
+        ompl::base::State *allocState() const override;
+        void freeState(ompl::base::State *state) const override;
         const ModelHandlePtr &model() const { return model_; }
 
     private:
         ModelHandlePtr model_;
+        /// Byte offsets within a state's block.
+        struct Layout
+        {
+            std::size_t components, joints, joint_values, objects, object_size, size;
+        } layout_;
     };
 
     /// Samples the robot and every object uniformly (joint limits, table extent, any

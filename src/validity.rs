@@ -7,7 +7,7 @@
 //! centre leaves the table (it would fall). Arm-object *contact* is allowed: that is how
 //! the robot pushes.
 
-use crate::collision::query::{intersects, signed_distance};
+use crate::collision::query::{intersects, overlaps_beyond};
 use crate::contact::{find_arm_contacts, object_bounds, ArmBounds, ArmContact};
 use crate::math::Pose2;
 use crate::robot::ProjectionFailure;
@@ -266,14 +266,14 @@ pub fn check_objects(
             if (pose.translation() - other_pose.translation()).norm() >= reach {
                 continue;
             }
-            let d = signed_distance(
+            let other_iso = other_pose.to_isometry(top);
+            if overlaps_beyond(
                 &object.geometry,
                 &iso,
                 &other.geometry,
-                &other_pose.to_isometry(top),
-                0.0,
-            );
-            if d.is_some_and(|d| d < -tolerance) {
+                &other_iso,
+                tolerance,
+            ) {
                 return Err(Invalid::ObjectsOverlap {
                     object_a: object.name.clone(),
                     object_b: other.name.clone(),
@@ -281,14 +281,13 @@ pub fn check_objects(
             }
         }
         for obstacle in &scene.obstacles {
-            let d = signed_distance(
+            if overlaps_beyond(
                 &object.geometry,
                 &iso,
                 &obstacle.geometry,
                 &obstacle.pose,
-                0.0,
-            );
-            if d.is_some_and(|d| d < -tolerance) {
+                tolerance,
+            ) {
                 return Err(Invalid::ObjectHitsObstacle {
                     object: object.name.clone(),
                     obstacle: obstacle.name.clone(),

@@ -59,6 +59,25 @@ pub fn signed_distance(
     }
 }
 
+/// Do the shapes overlap by more than `depth` (m)? Decided exactly: parry's raw answer is
+/// used where it is clearly on one side (its error is below 1e-3 m), the refined signed
+/// distance near the threshold.
+pub fn overlaps_beyond(
+    a: &Geometry,
+    pose_a: &Isometry3<f64>,
+    b: &Geometry,
+    pose_b: &Isometry3<f64>,
+    depth: f64,
+) -> bool {
+    const RAW_ERROR: f64 = 1e-3;
+    let (world_a, world_b) = (a.world_pose(pose_a), b.world_pose(pose_b));
+    match query::contact(&world_a, a.shape.as_ref(), &world_b, b.shape.as_ref(), 0.0) {
+        Ok(None) => false,
+        Ok(Some(c)) if (c.dist + depth).abs() > RAW_ERROR => c.dist < -depth,
+        _ => signed_distance(a, pose_a, b, pose_b, 0.0).is_some_and(|d| d < -depth),
+    }
+}
+
 /// Maximises the support gap over unit directions by pattern search from `normal`.
 fn refine_gap(
     a: &dyn SupportMap,
