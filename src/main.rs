@@ -42,6 +42,10 @@ enum Command {
         /// Where to write the plan.
         #[arg(long, default_value = "plan.json")]
         out: PathBuf,
+        /// Add every propagation step to the tree (OMPL RRT's intermediate_states; off by
+        /// default, see BENCHMARKS.md).
+        #[arg(long)]
+        intermediate_states: bool,
         /// No progress output.
         #[arg(long)]
         quiet: bool,
@@ -75,10 +79,19 @@ fn main() -> ExitCode {
             k,
             planner,
             out,
+            intermediate_states,
             quiet,
         } => {
             let scene = scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
-            plan(&scene, time, seed, k, planner, &out, quiet)
+            let options = RunOptions {
+                time,
+                seed,
+                k,
+                planner,
+                intermediate_states,
+                quiet,
+            };
+            plan(&scene, &options, &out)
         }
         Command::Check { plan } => check(&plan),
     };
@@ -91,24 +104,27 @@ fn main() -> ExitCode {
     }
 }
 
-fn plan(
-    scene_path: &Path,
+/// The `plan` command's options.
+struct RunOptions {
     time: Option<f64>,
     seed: Option<u64>,
     k: Option<u32>,
     planner: PlannerChoice,
-    out: &Path,
+    intermediate_states: bool,
     quiet: bool,
-) -> Result<ExitCode, String> {
+}
+
+fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, String> {
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
     let p = scene.planner.clone();
+    let (planner, quiet) = (run.planner, run.quiet);
     let options = SolveOptions {
-        time_limit: time.unwrap_or(p.time_limit),
-        seed: seed.unwrap_or(p.seed),
-        k: k.unwrap_or(p.k),
+        time_limit: run.time.unwrap_or(p.time_limit),
+        seed: run.seed.unwrap_or(p.seed),
+        k: run.k.unwrap_or(p.k),
         goal_bias: p.goal_bias,
         planner: planner.name().into(),
-        intermediate_states: false,
+        intermediate_states: run.intermediate_states,
         progress: !quiet,
     };
     if !(options.time_limit.is_finite() && options.time_limit > 0.0) {

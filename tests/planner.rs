@@ -150,3 +150,35 @@ fn a_tampered_plan_fails_its_check() {
     let report = plan.check(Path::new("plan.json")).unwrap();
     assert!(!report.states_match && !report.passed(), "{report:?}");
 }
+
+#[test]
+fn a_robot_configuration_goal_is_planned_for_too() {
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml")
+        .unwrap()
+        .replace(
+            "goal: {object: box, center: [0.85, 0.1], radius: 0.1}",
+            "goal: {configuration: [0.8, 0.3, 1.0], tolerance: 0.05}",
+        );
+    let path =
+        std::env::temp_dir().join(format!("pushplan-config-goal-{}.yaml", std::process::id()));
+    std::fs::write(&path, text.replace("../robots", "robots")).unwrap();
+    let out = solve(&path, &options("pcrrt", 1, 30.0)).unwrap();
+    assert!(out.exact);
+    let scene = Scene::load(&path).unwrap();
+    let plan = PlanFile::from_controls(
+        path.to_str().unwrap(),
+        scene,
+        "pcrrt",
+        1,
+        3,
+        0.05,
+        30.0,
+        &out.controls,
+        &out.steps,
+    )
+    .unwrap();
+    let end = &plan.controls.last().unwrap().state.q;
+    let error = ((end[0] - 0.8).powi(2) + (end[1] - 0.3).powi(2) + (end[2] - 1.0).powi(2)).sqrt();
+    assert!(error <= 0.05, "ends {error} from the goal configuration");
+    assert!(plan.check(&path).unwrap().passed());
+}
