@@ -78,6 +78,22 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
     );
     assert!(stdout.contains("green_box ends at"), "{stdout}");
 
+    // A scene given as text (Planner::fromYaml): relative paths resolve against the
+    // working directory of the named source.
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
+    let mut child = Command::new(&binary)
+        .arg("-")
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    use std::io::Write;
+    child.stdin.take().unwrap().write_all(text.as_bytes()).unwrap();
+    let run = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(run.status.code(), Some(0), "{stdout}");
+    assert!(stdout.starts_with("planar-hand-single-object: solved"), "{stdout}");
+
     // A bad scene: the C++ exception carries the file and the field.
     let bad = std::env::temp_dir().join(format!("pushplan-bad-{}.yaml", std::process::id()));
     let text = std::fs::read_to_string("scenes/herb_single_object.yaml")

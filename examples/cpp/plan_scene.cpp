@@ -4,17 +4,23 @@
 //   g++ -o plan_scene examples/cpp/plan_scene.cpp $(pkg-config --cflags --libs target/release/pushplan.pc)
 // Run:
 //   ./plan_scene scenes/herb_single_object.yaml [seed]
+//   ./plan_scene - < scene.yaml       (a scene given as text, e.g. built by the program)
 #include <pushplan/pushplan.h>
 
 #include <cstdlib>
 #include <iostream>
+#include <iterator>
+#include <string>
 
 int main(int argc, char **argv)
 {
     const std::string scene = argc > 1 ? argv[1] : "scenes/herb_single_object.yaml";
     try
     {
-        pushplan::Planner planner(scene);
+        pushplan::Planner planner =
+            scene == "-" ? pushplan::Planner::fromYaml(std::string(std::istreambuf_iterator<char>(std::cin), {}),
+                                                       "stdin.yaml") :
+                           pushplan::Planner(scene);
         pushplan::Options options;
         options.time_limit = 30.0;
         options.seed = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1;
