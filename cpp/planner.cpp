@@ -218,13 +218,36 @@ namespace pushplan
         }
 
         // Every plan is checked: re-simulating its controls reproduces its states.
-        const bridge::Simulation sim = model->model().simulate(
-            rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-            rust::Slice<const std::size_t>(steps.data(), steps.size()));
+        const auto simulate = [&] {
+            return model->model().simulate(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+                                           rust::Slice<const std::size_t>(steps.data(), steps.size()));
+        };
+        bridge::Simulation sim = simulate();
         const bool reproduced = sim.valid && sim.states.size() == path_states.size() &&
                                 std::equal(path_states.begin(), path_states.end(), sim.states.begin());
         if (!reproduced || (plan.solved && !sim.goal_reached))
             throw Error("internal error: re-simulating the plan does not reproduce it (" + std::string(sim.message) + ")");
+
+        // Shortcutting (Sec. IV), which also measures the path.
+        const double budget = plan.solved ? options.shortcut : 0.0;
+        checked("shortcut", budget, std::isfinite(budget) && budget >= 0.0);
+        const bridge::Shortcut shortened =
+            model->model().shortcut(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+                                    rust::Slice<const std::size_t>(steps.data(), steps.size()), budget, seed);
+        const auto metrics = [](const bridge::Metrics &m) {
+            return PathMetrics{m.joint_length, m.ee_length, m.object_displacement, m.objects_moved,
+                               m.links_in_contact, m.duration};
+        };
+        plan.before_shortcut = metrics(shortened.before);
+        plan.after_shortcut = metrics(shortened.after);
+        if (shortened.accepted > 0)
+        {
+            flat_controls.assign(shortened.controls.begin(), shortened.controls.end());
+            steps.assign(shortened.steps.begin(), shortened.steps.end());
+            sim = simulate();
+            if (!sim.valid || !sim.goal_reached)
+                throw Error("internal error: the shortcut plan does not re-simulate (" + std::string(sim.message) + ")");
+        }
 
         const std::size_t width = model->stateSize();
         for (std::size_t s = 0; s * width < sim.states.size(); ++s)

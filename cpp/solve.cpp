@@ -16,6 +16,7 @@ namespace pushplan::bridge
         o.goal_bias = options.goal_bias;
         o.intermediate_states = options.intermediate_states;
         o.progress = options.progress;
+        o.shortcut = 0.0;  // the CLI runs the same shortcutting itself, to report before and after
         const std::string planner(options.planner);
         if (planner == "pcrrt")
             o.planner = PlannerType::PcRrt;

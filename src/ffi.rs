@@ -8,6 +8,7 @@
 
 use crate::distance::DistanceMetric;
 use crate::math::Pose2;
+use crate::path::PathControl;
 use crate::propagate::Propagator;
 use crate::robot::EeAction;
 use crate::scene::{Goal, Scene};
@@ -79,6 +80,28 @@ pub mod bridge {
         pub message: String,
     }
 
+    /// Metrics of a path (see `path::PathMetrics`).
+    #[derive(Debug, Clone, Copy, Default)]
+    pub struct Metrics {
+        pub joint_length: f64,
+        pub ee_length: f64,
+        pub object_displacement: f64,
+        pub objects_moved: usize,
+        pub links_in_contact: usize,
+        pub duration: f64,
+    }
+
+    /// A shortcut path.
+    #[derive(Debug, Clone)]
+    pub struct Shortcut {
+        pub controls: Vec<f64>,
+        pub steps: Vec<usize>,
+        pub before: Metrics,
+        pub after: Metrics,
+        pub attempts: usize,
+        pub accepted: usize,
+    }
+
     /// Options of one planning run (the CLI's).
     #[derive(Debug, Clone)]
     pub struct SolveOptions {
@@ -122,6 +145,13 @@ pub mod bridge {
         fn distance(self: &Model, a: &[f64], b: &[f64]) -> Result<f64>;
         fn goal_distance(self: &Model, state: &[f64]) -> Result<f64>;
         fn simulate(self: &mut Model, controls: &[f64], steps: &[usize]) -> Result<Simulation>;
+        fn shortcut(
+            self: &mut Model,
+            controls: &[f64],
+            steps: &[usize],
+            seconds: f64,
+            seed: u64,
+        ) -> Result<Shortcut>;
         fn propagation_steps(self: &Model) -> u64;
     }
 
@@ -132,7 +162,9 @@ pub mod bridge {
     }
 }
 
-pub use bridge::{PlanContact, SceneInfo, Simulation, SolveOptions, SolveOutput};
+pub use bridge::{
+    Metrics, PlanContact, SceneInfo, Shortcut, Simulation, SolveOptions, SolveOutput,
+};
 
 /// The model as the OMPL side holds it: a scene, its propagator and metric.
 pub struct Model {
@@ -349,22 +381,12 @@ impl Model {
     /// held for its step count.
     pub fn simulate(&mut self, controls: &[f64], steps: &[usize]) -> Result<Simulation, String> {
         guarded("simulate", || {
-            let width = 3 + self.scene().robot.dof();
-            if controls.len() != width * steps.len() {
-                return Err(format!(
-                    "{} control values for {} controls of {width}",
-                    controls.len(),
-                    steps.len()
-                ));
-            }
-            let mut state = self.scene().start.clone();
-            let mut states = pack_state(&state);
+            let controls = self.path_controls(controls, steps)?;
+            let start = self.scene().start.clone();
+            let path = crate::path::simulate(&mut self.propagator, &start, &controls, false);
             let mut contacts = Vec::new();
-            let mut message = String::new();
-            for (i, (control, &n)) in controls.chunks(width).zip(steps).enumerate() {
-                let action = self.action(control)?;
-                let run = self.propagator.propagate_steps(&state, &action, n);
-                for (step, pushes) in run.pushes.iter().enumerate() {
+            for (i, control) in path.pushes.iter().enumerate() {
+                for (step, pushes) in control.iter().enumerate() {
                     contacts.extend(pushes.iter().map(|p| PlanContact {
                         control: i,
                         step,
@@ -373,25 +395,76 @@ impl Model {
                         force: p.force,
                     }));
                 }
-                state = run.state;
-                states.extend(pack_state(&state));
-                if let Some(reason) = run.stopped_by {
-                    message = format!(
-                        "control {i} stops after {} of {n} steps: {reason}",
-                        run.steps
-                    );
-                    break;
-                }
             }
-            let goal_reached = self.scene().goal.is_satisfied(&state);
+            let message = match &path.stopped_by {
+                Some((i, reason)) => format!(
+                    "control {i} stops after {} of {} steps: {reason}",
+                    path.pushes[*i].len(),
+                    steps[*i]
+                ),
+                None => String::new(),
+            };
             Ok(Simulation {
-                states,
+                states: path.states.iter().flat_map(pack_state).collect(),
                 contacts,
-                valid: message.is_empty(),
-                goal_reached,
+                valid: path.valid(),
+                goal_reached: self.scene().goal.is_satisfied(path.final_state()),
                 message,
             })
         })
+    }
+
+    /// Shortcuts a plan from the scene's start (Sec. IV) with a budget of about `seconds`
+    /// of work; with 0 it only measures the plan.
+    pub fn shortcut(
+        &mut self,
+        controls: &[f64],
+        steps: &[usize],
+        seconds: f64,
+        seed: u64,
+    ) -> Result<Shortcut, String> {
+        guarded("shortcut", || {
+            if !(seconds.is_finite() && seconds >= 0.0) {
+                return Err(format!(
+                    "the shortcut budget must be zero or positive, got {seconds}"
+                ));
+            }
+            let controls = self.path_controls(controls, steps)?;
+            let start = self.scene().start.clone();
+            let settings = crate::shortcut::ShortcutSettings::from_seconds(seconds, seed);
+            let outcome =
+                crate::shortcut::shortcut(&mut self.propagator, &start, &controls, &settings);
+            let metrics = |m: &crate::path::PathMetrics| Metrics {
+                joint_length: m.joint_length,
+                ee_length: m.ee_length,
+                object_displacement: m.object_displacement,
+                objects_moved: m.objects_moved,
+                links_in_contact: m.links_in_contact,
+                duration: m.duration,
+            };
+            Ok(Shortcut {
+                controls: outcome
+                    .controls
+                    .iter()
+                    .flat_map(|c| {
+                        c.action
+                            .velocity
+                            .into_iter()
+                            .chain(c.action.nullspace.iter().copied())
+                    })
+                    .collect(),
+                steps: outcome.controls.iter().map(|c| c.steps).collect(),
+                before: metrics(&outcome.before),
+                after: metrics(&outcome.after),
+                attempts: outcome.attempts,
+                accepted: outcome.accepted,
+            })
+        })
+    }
+
+    /// Controls in the flat layout, one after another, with their step counts.
+    fn path_controls(&self, controls: &[f64], steps: &[usize]) -> Result<Vec<PathControl>, String> {
+        PathControl::from_flat(controls, steps, self.scene().robot.dof())
     }
 }
 

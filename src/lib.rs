@@ -18,12 +18,15 @@ pub mod distance;
 pub mod error;
 pub mod ffi;
 pub mod math;
+pub mod path;
 pub mod physics;
 pub mod plan;
 pub mod propagate;
 pub mod robot;
 pub mod scene;
+pub mod shortcut;
 pub mod state;
+pub mod trajectory;
 pub mod validity;
 
 pub use distance::DistanceMetric;

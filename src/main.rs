@@ -2,7 +2,10 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use pushplan::ffi::{solve, SolveOptions};
-use pushplan::plan::PlanFile;
+use pushplan::path::PathControl;
+use pushplan::plan::{PlanFile, PlanSettings};
+use pushplan::shortcut::{shortcut, ShortcutSettings};
+use pushplan::Propagator;
 use pushplan::Scene;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -42,6 +45,9 @@ enum Command {
         /// Where to write the plan.
         #[arg(long, default_value = "plan.json")]
         out: PathBuf,
+        /// Shortcutting budget in seconds of work (0 turns it off).
+        #[arg(long, default_value_t = 3.0)]
+        shortcut: f64,
         /// Add every propagation step to the tree (OMPL RRT's intermediate_states; off by
         /// default, see BENCHMARKS.md).
         #[arg(long)]
@@ -79,6 +85,7 @@ fn main() -> ExitCode {
             k,
             planner,
             out,
+            shortcut,
             intermediate_states,
             quiet,
         } => {
@@ -88,6 +95,7 @@ fn main() -> ExitCode {
                 seed,
                 k,
                 planner,
+                shortcut,
                 intermediate_states,
                 quiet,
             };
@@ -110,6 +118,7 @@ struct RunOptions {
     seed: Option<u64>,
     k: Option<u32>,
     planner: PlannerChoice,
+    shortcut: f64,
     intermediate_states: bool,
     quiet: bool,
 }
@@ -146,36 +155,52 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
             options.time_limit
         );
     }
+    if !(run.shortcut.is_finite() && run.shortcut >= 0.0) {
+        return Err(format!(
+            "--shortcut must be zero or positive, got {}",
+            run.shortcut
+        ));
+    }
     let solution = solve(scene_path, &options)?;
-    let reference = scene_path.to_string_lossy().into_owned();
-    let start_objects = if planner.name() == "static" {
-        scene.with_static_clutter().start.objects
+    let variant = if planner.name() == "static" {
+        scene.with_static_clutter()
     } else {
-        scene.start.objects.clone()
+        scene.clone()
     };
-    let file = PlanFile::from_controls(
-        &reference,
-        scene,
-        planner.name(),
-        options.seed,
-        options.k,
-        options.goal_bias,
-        options.time_limit,
-        &solution.controls,
-        &solution.steps,
-    )?;
+    let mut controls =
+        PathControl::from_flat(&solution.controls, &solution.steps, variant.robot.dof())?;
+    let mut before = None;
+    if solution.exact && run.shortcut > 0.0 {
+        let settings = ShortcutSettings::from_seconds(run.shortcut, options.seed);
+        let start = variant.start.clone();
+        let outcome = shortcut(
+            &mut Propagator::new(variant.clone()),
+            &start,
+            &controls,
+            &settings,
+        );
+        if !quiet {
+            eprintln!(
+                "shortcutting: {} of {} attempts accepted",
+                outcome.accepted, outcome.attempts
+            );
+        }
+        controls = outcome.controls;
+        before = Some(outcome.before);
+    }
+    let settings = PlanSettings {
+        planner: planner.name().into(),
+        seed: options.seed,
+        k: options.k,
+        goal_bias: options.goal_bias,
+        time_limit: options.time_limit,
+        shortcut: run.shortcut,
+    };
+    let reference = scene_path.to_string_lossy().into_owned();
+    let file = PlanFile::build(&reference, scene, &settings, &controls, before)?;
     std::fs::write(out, file.to_json())
         .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
 
-    let end = file.controls.last().map_or(&file.start, |c| &c.state);
-    let moved: Vec<&str> = file
-        .objects
-        .iter()
-        .zip(start_objects.iter().zip(&end.objects))
-        .filter(|(_, (a, b))| ((a.x - b[0]).powi(2) + (a.y - b[1]).powi(2)).sqrt() > 1e-3)
-        .map(|(name, _)| name.as_str())
-        .collect();
-    let duration: f64 = file.controls.iter().map(|c| c.duration).sum();
     let status = if solution.exact {
         "solved"
     } else if solution.approximate {
@@ -190,15 +215,36 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
         solution.propagation_steps,
         solution.propagation_steps as f64 / solution.planning_time.max(1e-9)
     );
+    let moved: Vec<&str> = file
+        .objects
+        .iter()
+        .zip(
+            file.start.objects.iter().zip(
+                &file
+                    .controls
+                    .last()
+                    .map_or(&file.start, |c| &c.state)
+                    .objects,
+            ),
+        )
+        .filter(|(_, (a, b))| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt() > 1e-3)
+        .map(|(name, _)| name.as_str())
+        .collect();
+    let (b, a) = (&file.metrics.before_shortcut, &file.metrics.after_shortcut);
     println!(
         "path: {} controls, {:.2} s; objects moved: {}",
         file.controls.len(),
-        duration,
+        a.duration,
         if moved.is_empty() {
             "none".to_string()
         } else {
             moved.join(", ")
         }
+    );
+    println!(
+        "manipulator path: {:.2} rad / {:.2} m of end-effector travel (before shortcutting {:.2} rad / {:.2} m); \
+         object displacement {:.3} m (before {:.3} m); {} links made contact",
+        a.joint_length, a.ee_length, b.joint_length, b.ee_length, a.object_displacement, b.object_displacement, a.links_in_contact
     );
     println!("plan written to {}", out.display());
     Ok(if solution.exact {

@@ -5,13 +5,32 @@
 //! count, the state it reaches and the pushes during its steps. Nothing in it depends on
 //! the machine or the clock, so the same scene, parameters and seed give the same bytes.
 
-use crate::ffi::{pack_state, unpack_state, Model};
+use crate::ffi::{pack_state, Model};
+use crate::path::{simulate, PathControl, PathMetrics};
+use crate::propagate::Propagator;
 use crate::scene::Scene;
 use crate::state::State;
+use crate::trajectory::{time_parameterise, Trajectory};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 pub const FORMAT: &str = "pushplan-plan/1";
+
+/// Samples per second of the executable trajectory in plan files.
+pub const TRAJECTORY_RATE: f64 = 50.0;
+
+/// How a plan was made.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanSettings {
+    /// "pcrrt" or "static".
+    pub planner: String,
+    pub seed: u64,
+    pub k: u32,
+    pub goal_bias: f64,
+    pub time_limit: f64,
+    /// Shortcutting budget (s of work; 0 = none).
+    pub shortcut: f64,
+}
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -27,14 +46,28 @@ pub struct PlanFile {
     pub k: u32,
     pub goal_bias: f64,
     pub time_limit: f64,
+    /// Shortcutting budget (s of work; 0 = none).
+    pub shortcut: f64,
     /// Propagation step (s).
     pub step: f64,
     /// True when the plan reaches the goal.
     pub solved: bool,
+    /// The path before and after shortcutting.
+    pub metrics: Metrics,
     pub joints: Vec<String>,
     pub objects: Vec<String>,
     pub start: StateRecord,
     pub controls: Vec<ControlRecord>,
+    /// The executable trajectory: joint values within the URDF's velocity limits and the
+    /// predicted object poses, at `TRAJECTORY_RATE` Hz.
+    pub trajectory: Trajectory,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Metrics {
+    pub before_shortcut: PathMetrics,
+    pub after_shortcut: PathMetrics,
 }
 
 /// Joint values and object poses `[x, y, yaw]`.
@@ -134,25 +167,27 @@ impl PlanFile {
         plan_path.parent().unwrap_or(Path::new(".")).join(&recorded)
     }
 
-    /// Builds a plan file from a scene, the planner's controls (flat) and step counts, by
-    /// simulating them (which also gives the per-step contacts).
-    #[allow(clippy::too_many_arguments)]
-    pub fn from_controls(
+    /// Builds a plan file by simulating `controls` in `scene` (its Static RRT variant for
+    /// that planner): states, per-step contacts, metrics and the executable trajectory.
+    /// `before` are the metrics before shortcutting (default: the same as after).
+    pub fn build(
         scene_ref: &str,
         scene: Scene,
-        planner: &str,
-        seed: u64,
-        k: u32,
-        goal_bias: f64,
-        time_limit: f64,
-        controls: &[f64],
-        steps: &[usize],
+        settings: &PlanSettings,
+        controls: &[PathControl],
+        before: Option<PathMetrics>,
     ) -> Result<PlanFile, String> {
-        let mut model = Model::new(scene, planner == "static");
-        let sim = model.simulate(controls, steps)?;
-        let scene = model.scene();
-        let dof = scene.robot.dof();
-        let width = dof + 3 * scene.objects.len();
+        let scene = if settings.planner == "static" {
+            scene.with_static_clutter()
+        } else {
+            scene
+        };
+        let mut propagator = Propagator::new(scene);
+        let scene = propagator.shared_scene();
+        let path = simulate(&mut propagator, &scene.start, controls, true);
+        if let Some((i, reason)) = &path.stopped_by {
+            return Err(format!("the plan does not simulate: control {i}: {reason}"));
+        }
         let link_names: Vec<&str> = scene
             .robot
             .chain
@@ -160,25 +195,21 @@ impl PlanFile {
             .iter()
             .map(|l| l.name.as_str())
             .collect();
-        let records: Vec<ControlRecord> = controls
-            .chunks(3 + dof)
-            .zip(steps)
+        let records = controls
+            .iter()
             .enumerate()
-            .map(|(i, (c, &n))| ControlRecord {
-                ee_velocity: [c[0], c[1], c[2]],
-                nullspace: c[3..].to_vec(),
-                steps: n,
-                duration: n as f64 * scene.planner.step,
-                state: StateRecord::from_state(&unpack_state(
-                    &sim.states[(i + 1) * width..(i + 2) * width],
-                    dof,
-                )),
-                contacts: sim
-                    .contacts
+            .map(|(i, c)| ControlRecord {
+                ee_velocity: c.action.velocity,
+                nullspace: c.action.nullspace.as_slice().to_vec(),
+                steps: c.steps,
+                duration: c.steps as f64 * scene.planner.step,
+                state: StateRecord::from_state(&path.states[i + 1]),
+                contacts: path.pushes[i]
                     .iter()
-                    .filter(|p| p.control == i)
-                    .map(|p| ContactRecord {
-                        step: p.step,
+                    .enumerate()
+                    .flat_map(|(step, pushes)| pushes.iter().map(move |p| (step, p)))
+                    .map(|(step, p)| ContactRecord {
+                        step,
                         link: link_names[p.link].to_string(),
                         object: scene.objects[p.object].name.clone(),
                         force: p.force,
@@ -186,27 +217,50 @@ impl PlanFile {
                     .collect(),
             })
             .collect();
-        if !sim.valid {
-            return Err(format!("the plan does not simulate: {}", sim.message));
-        }
+        let dof = scene.robot.dof();
         Ok(PlanFile {
             format: FORMAT.into(),
             scene: scene_ref.into(),
             scene_name: scene.name.clone(),
-            planner: planner.into(),
-            seed,
-            k,
-            goal_bias,
-            time_limit,
+            planner: settings.planner.clone(),
+            seed: settings.seed,
+            k: settings.k,
+            goal_bias: settings.goal_bias,
+            time_limit: settings.time_limit,
+            shortcut: settings.shortcut,
             step: scene.planner.step,
-            solved: sim.goal_reached,
+            solved: scene.goal.is_satisfied(path.final_state()),
+            metrics: Metrics {
+                before_shortcut: before.unwrap_or(path.metrics),
+                after_shortcut: path.metrics,
+            },
             joints: (0..dof)
                 .map(|i| scene.robot.chain.dof_joint(i).name.clone())
                 .collect(),
             objects: scene.objects.iter().map(|o| o.name.clone()).collect(),
             start: StateRecord::from_state(&scene.start),
             controls: records,
+            trajectory: time_parameterise(
+                &scene.robot,
+                &path.step_states,
+                scene.planner.step,
+                TRAJECTORY_RATE,
+            ),
         })
+    }
+
+    /// The controls of the plan.
+    pub fn path_controls(&self) -> Vec<PathControl> {
+        self.controls
+            .iter()
+            .map(|c| PathControl {
+                action: crate::robot::EeAction {
+                    velocity: c.ee_velocity,
+                    nullspace: nalgebra::DVector::from_column_slice(&c.nullspace),
+                },
+                steps: c.steps,
+            })
+            .collect()
     }
 
     /// Re-simulates the plan with the model from the scene's start, independently of the

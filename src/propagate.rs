@@ -106,6 +106,11 @@ impl Propagator {
         &self.scene
     }
 
+    /// The scene, shared.
+    pub fn shared_scene(&self) -> Arc<Scene> {
+        Arc::clone(&self.scene)
+    }
+
     /// The state the last failed step tried to reach (invalid; for callers that must
     /// report a result state anyway, like OMPL's propagator).
     pub fn attempted_state(&self) -> State {

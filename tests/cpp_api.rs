@@ -88,11 +88,19 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
         .spawn()
         .unwrap();
     use std::io::Write;
-    child.stdin.take().unwrap().write_all(text.as_bytes()).unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(text.as_bytes())
+        .unwrap();
     let run = child.wait_with_output().unwrap();
     let stdout = String::from_utf8_lossy(&run.stdout);
     assert_eq!(run.status.code(), Some(0), "{stdout}");
-    assert!(stdout.starts_with("planar-hand-single-object: solved"), "{stdout}");
+    assert!(
+        stdout.starts_with("planar-hand-single-object: solved"),
+        "{stdout}"
+    );
 
     // A bad scene: the C++ exception carries the file and the field.
     let bad = std::env::temp_dir().join(format!("pushplan-bad-{}.yaml", std::process::id()));

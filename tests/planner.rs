@@ -2,7 +2,8 @@
 //! plan it returns re-simulates to the same states and reaches the goal.
 
 use pushplan::ffi::{solve, SolveOptions, SolveOutput};
-use pushplan::plan::PlanFile;
+use pushplan::path::PathControl;
+use pushplan::plan::{PlanFile, PlanSettings};
 use pushplan::Scene;
 use std::path::Path;
 
@@ -18,20 +19,22 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
     }
 }
 
+fn settings(planner: &str, seed: u64) -> PlanSettings {
+    PlanSettings {
+        planner: planner.into(),
+        seed,
+        k: 3,
+        goal_bias: 0.05,
+        time_limit: 30.0,
+        shortcut: 0.0,
+    }
+}
+
 fn plan_file(scene: &str, planner: &str, seed: u64, out: &SolveOutput) -> PlanFile {
     let loaded = Scene::load(scene).unwrap();
-    PlanFile::from_controls(
-        scene,
-        loaded,
-        planner,
-        seed,
-        3,
-        0.05,
-        30.0,
-        &out.controls,
-        &out.steps,
-    )
-    .unwrap()
+    let dof = loaded.robot.dof();
+    let controls = PathControl::from_flat(&out.controls, &out.steps, dof).unwrap();
+    PlanFile::build(scene, loaded, &settings(planner, seed), &controls, None).unwrap()
 }
 
 #[test]
@@ -165,16 +168,13 @@ fn a_robot_configuration_goal_is_planned_for_too() {
     let out = solve(&path, &options("pcrrt", 1, 30.0)).unwrap();
     assert!(out.exact);
     let scene = Scene::load(&path).unwrap();
-    let plan = PlanFile::from_controls(
+    let controls = PathControl::from_flat(&out.controls, &out.steps, 3).unwrap();
+    let plan = PlanFile::build(
         path.to_str().unwrap(),
         scene,
-        "pcrrt",
-        1,
-        3,
-        0.05,
-        30.0,
-        &out.controls,
-        &out.steps,
+        &settings("pcrrt", 1),
+        &controls,
+        None,
     )
     .unwrap();
     let end = &plan.controls.last().unwrap().state.q;

@@ -33,6 +33,9 @@ int main(int argc, char **argv)
         for (std::size_t i = 0; i < plan.object_names.size(); ++i)
             std::cout << "  " << plan.object_names[i] << " ends at (" << last[i].x() << ", " << last[i].y()
                       << ", " << last[i].z() << ")\n";
+        std::cout << "  manipulator path " << plan.after_shortcut.joint_length << " rad (found: "
+                  << plan.before_shortcut.joint_length << " rad), " << plan.after_shortcut.links_in_contact
+                  << " links made contact\n";
         std::size_t pushes = 0;
         for (const auto &contacts : plan.contacts)
             pushes += contacts.size();

@@ -49,6 +49,9 @@ namespace pushplan
         std::optional<unsigned> k;            ///< control samples per extension
         std::optional<double> goal_bias;      ///< probability of sampling the goal
         PlannerType planner = PlannerType::PcRrt;
+        /// Shortcutting budget after an exact solution, in seconds of work (counted in
+        /// propagation steps, so the result is deterministic); 0 turns it off.
+        double shortcut = 3.0;
         /// Add every propagation step to the tree (OMPL RRT's intermediate_states).
         bool intermediate_states = false;
         /// Print progress to stderr once a second.
@@ -62,6 +65,17 @@ namespace pushplan
         std::string link;
         std::string object;
         double force;        ///< normal force (N)
+    };
+
+    /// How long and how disruptive a path is.
+    struct PathMetrics
+    {
+        double joint_length = 0.0;         ///< joint-space path length (rad)
+        double ee_length = 0.0;            ///< end-effector travel (m)
+        double object_displacement = 0.0;  ///< total travel of all object centres (m)
+        std::size_t objects_moved = 0;
+        std::size_t links_in_contact = 0;  ///< links that pushed an object
+        double duration = 0.0;             ///< s
     };
 
     /// The end-effector action of one control.
@@ -89,6 +103,9 @@ namespace pushplan
         std::vector<Control> controls;
         /// Per control, the pushes during its steps.
         std::vector<std::vector<Contact>> contacts;
+        /// The path as found and after shortcutting (equal when not shortcut).
+        PathMetrics before_shortcut;
+        PathMetrics after_shortcut;
         /// Total duration of the controls (s).
         double duration() const;
     };
