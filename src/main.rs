@@ -45,6 +45,9 @@ enum Command {
         /// Where to write the plan.
         #[arg(long, default_value = "plan.json")]
         out: PathBuf,
+        /// Also render the plan's pictures into this folder.
+        #[arg(long)]
+        render: Option<PathBuf>,
         /// Shortcutting budget in seconds of work (0 turns it off).
         #[arg(long, default_value_t = 3.0)]
         shortcut: f64,
@@ -58,6 +61,16 @@ enum Command {
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is reached.
     Check { plan: PathBuf },
+    /// Draw a plan: snapshots.svg, timeline.svg and animation.html.
+    Render {
+        plan: PathBuf,
+        /// Output folder.
+        #[arg(long, default_value = "render")]
+        out: PathBuf,
+        /// Snapshot times in seconds, comma-separated (default: four control boundaries).
+        #[arg(long, value_delimiter = ',')]
+        times: Vec<f64>,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -85,6 +98,7 @@ fn main() -> ExitCode {
             k,
             planner,
             out,
+            render,
             shortcut,
             intermediate_states,
             quiet,
@@ -99,9 +113,13 @@ fn main() -> ExitCode {
                 intermediate_states,
                 quiet,
             };
-            plan(&scene, &options, &out)
+            plan(&scene, &options, &out).and_then(|code| match render {
+                Some(dir) => draw(&out, &dir, &[]).map(|_| code),
+                None => Ok(code),
+            })
         }
         Command::Check { plan } => check(&plan),
+        Command::Render { plan, out, times } => draw(&plan, &out, &times),
     };
     match result {
         Ok(code) => code,
@@ -281,6 +299,15 @@ fn check(path: &Path) -> Result<ExitCode, String> {
     } else {
         ExitCode::FAILURE
     })
+}
+
+fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, String> {
+    let plan = PlanFile::read(plan_path)?;
+    let files = pushplan::render::render(&plan, plan_path, dir, times)?;
+    for file in [&files.snapshots, &files.timeline, &files.animation] {
+        println!("wrote {}", file.display());
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn yes(b: bool) -> &'static str {

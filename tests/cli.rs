@@ -108,3 +108,55 @@ fn invalid_scenes_give_clear_errors() {
     let (code, _, stderr) = pushplan(&["plan", "--time", "-3", "--quiet"]);
     assert_eq!(code, 2, "{stderr}");
 }
+
+#[test]
+fn plan_with_render_writes_the_plan_and_its_pictures() {
+    let out = temp("rendered.json");
+    let dir = temp("pictures");
+    let (code, stdout, stderr) = pushplan(&[
+        "plan",
+        "scenes/herb_single_object.yaml",
+        "--seed",
+        "1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+        "--render",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(
+        stdout.contains("manipulator path:") && stdout.contains("before shortcutting"),
+        "{stdout}"
+    );
+    for file in ["snapshots.svg", "timeline.svg", "animation.html"] {
+        assert!(dir.join(file).is_file(), "{file} missing");
+        assert!(
+            stdout.contains(&format!("wrote {}", dir.join(file).display())),
+            "{stdout}"
+        );
+    }
+    // And render on its own, at chosen times.
+    let again = temp("again");
+    let (code, stdout, _) = pushplan(&[
+        "render",
+        out.to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+        "--times",
+        "0,0.5",
+    ]);
+    assert_eq!(code, 0, "{stdout}");
+    let svg = std::fs::read_to_string(again.join("snapshots.svg")).unwrap();
+    assert_eq!(svg.matches("class=\"snapshot\"").count(), 2);
+    let (code, _, stderr) = pushplan(&[
+        "render",
+        out.to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+        "--times",
+        "99",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("outside the plan"), "{stderr}");
+}

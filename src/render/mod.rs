@@ -1,0 +1,186 @@
+//! Pictures of a plan (Fig. 2 of the whole-arm paper): top-down snapshots, a contact
+//! timeline, and a self-contained HTML animation.
+//!
+//! The renderer re-simulates the plan from its file, recording every step, so it draws
+//! exactly what the model predicts. Times are plan time: step index x the propagation step.
+
+mod html;
+pub mod outline;
+mod svg;
+
+use crate::path::simulate;
+use crate::plan::PlanFile;
+use crate::propagate::Propagator;
+use crate::scene::{Goal, Scene};
+use crate::state::State;
+use nalgebra::Vector2;
+use outline::{footprint_outline, shape_outline};
+use std::path::{Path, PathBuf};
+
+/// A plan, simulated step by step, ready to draw.
+pub struct Film {
+    pub scene: Scene,
+    /// Every step's state, from the start.
+    pub states: Vec<State>,
+    /// Per step (from state k to k+1), the (link, object) pairs pushing.
+    pub pushes: Vec<Vec<(usize, usize)>>,
+    /// Step indices where each control starts, and the last step.
+    pub control_starts: Vec<usize>,
+    pub dt: f64,
+}
+
+/// One drawn moment.
+pub struct Frame {
+    pub time: f64,
+    /// Outline and "in contact" flag of each solid link.
+    pub links: Vec<(Vec<Vector2<f64>>, bool)>,
+    /// Outline and pose of each object.
+    pub objects: Vec<Vec<Vector2<f64>>>,
+}
+
+impl Film {
+    /// Simulates the plan in the file (its scene resolved as `check` does).
+    pub fn of(plan: &PlanFile, plan_path: &Path) -> Result<Film, String> {
+        let scene = Scene::load(plan.scene_path(plan_path)).map_err(|e| e.to_string())?;
+        let scene = if plan.planner == "static" {
+            scene.with_static_clutter()
+        } else {
+            scene
+        };
+        let mut propagator = Propagator::new(scene.clone());
+        let path = simulate(&mut propagator, &scene.start, &plan.path_controls(), true);
+        if let Some((i, reason)) = path.stopped_by {
+            return Err(format!("the plan does not simulate: control {i}: {reason}"));
+        }
+        let mut control_starts = vec![0];
+        for c in &plan.controls {
+            control_starts.push(control_starts.last().unwrap() + c.steps);
+        }
+        Ok(Film {
+            dt: scene.planner.step,
+            pushes: path
+                .pushes
+                .iter()
+                .flatten()
+                .map(|s| s.iter().map(|p| (p.link, p.object)).collect())
+                .collect(),
+            states: path.step_states,
+            control_starts,
+            scene,
+        })
+    }
+
+    pub fn duration(&self) -> f64 {
+        (self.states.len() - 1) as f64 * self.dt
+    }
+
+    /// The step nearest to time `t` (s).
+    pub fn step_at(&self, t: f64) -> usize {
+        ((t / self.dt).round().max(0.0) as usize).min(self.states.len() - 1)
+    }
+
+    /// The scene drawn at step `k`; links pushing during the step into `k` are highlighted.
+    pub fn frame(&self, k: usize) -> Frame {
+        let state = &self.states[k];
+        let robot = &self.scene.robot;
+        let poses = robot.link_poses(&state.q);
+        let touching = |link: usize| {
+            let around = [k.checked_sub(1), Some(k)];
+            around.iter().flatten().any(|&s| {
+                self.pushes
+                    .get(s)
+                    .is_some_and(|p| p.iter().any(|&(l, _)| l == link))
+            })
+        };
+        Frame {
+            time: k as f64 * self.dt,
+            links: robot
+                .solid_links()
+                .flat_map(|l| {
+                    let hot = touching(l);
+                    let pose = &poses[l];
+                    robot.chain.links[l]
+                        .geometry
+                        .iter()
+                        .map(|g| (shape_outline(g, pose), hot))
+                        .collect::<Vec<_>>()
+                })
+                .collect(),
+            objects: self
+                .scene
+                .objects
+                .iter()
+                .zip(&state.objects)
+                .map(|(o, p)| footprint_outline(&o.footprint, p))
+                .collect(),
+        }
+    }
+
+    /// The goal disc, if the goal is an object goal.
+    pub fn goal_disc(&self) -> Option<(Vector2<f64>, f64)> {
+        match &self.scene.goal {
+            Goal::ObjectInDisc { center, radius, .. } => Some((*center, *radius)),
+            Goal::Configuration { .. } => None,
+        }
+    }
+
+    /// Default snapshot times: four control boundaries spread over the plan, first and last included.
+    pub fn default_times(&self) -> Vec<f64> {
+        let n = self.control_starts.len() - 1;
+        let picks: Vec<usize> = if n < 3 {
+            (0..=n).collect()
+        } else {
+            (0..4).map(|i| (i * n + 1) / 3).map(|i| i.min(n)).collect()
+        };
+        let mut times: Vec<f64> = picks
+            .iter()
+            .map(|&i| self.control_starts[i] as f64 * self.dt)
+            .collect();
+        times.dedup();
+        times
+    }
+}
+
+/// Files written by [`render`].
+pub struct Rendered {
+    pub snapshots: PathBuf,
+    pub timeline: PathBuf,
+    pub animation: PathBuf,
+}
+
+/// Writes `snapshots.svg`, `timeline.svg` and `animation.html` for the plan into `dir`.
+/// `times` are the snapshot times (s); empty for the default.
+pub fn render(
+    plan: &PlanFile,
+    plan_path: &Path,
+    dir: &Path,
+    times: &[f64],
+) -> Result<Rendered, String> {
+    let film = Film::of(plan, plan_path)?;
+    let times = if times.is_empty() {
+        film.default_times()
+    } else {
+        times.to_vec()
+    };
+    if let Some(t) = times
+        .iter()
+        .find(|t| !(t.is_finite() && **t >= 0.0 && **t <= film.duration() + 1e-9))
+    {
+        return Err(format!(
+            "snapshot time {t} is outside the plan (0 to {:.2} s)",
+            film.duration()
+        ));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let write = |name: &str, text: String| {
+        let path = dir.join(name);
+        std::fs::write(&path, text)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        Ok::<PathBuf, String>(path)
+    };
+    Ok(Rendered {
+        snapshots: write("snapshots.svg", svg::snapshots(&film, &times))?,
+        timeline: write("timeline.svg", svg::timeline(&film))?,
+        animation: write("animation.html", html::animation(&film))?,
+    })
+}

@@ -1,0 +1,151 @@
+//! Shortcutting (Sec. IV), path metrics and the executable trajectory.
+
+use pushplan::ffi::{solve, SolveOptions};
+use pushplan::path::{simulate, PathControl};
+use pushplan::plan::{PlanFile, PlanSettings};
+use pushplan::shortcut::{shortcut, ShortcutSettings};
+use pushplan::{Propagator, Scene};
+use std::path::Path;
+
+const SCENE: &str = "scenes/herb_fig1_clutter.yaml";
+
+/// The PC RRT plan of the default scene for seed 2 (found in well under a second).
+fn found_plan() -> (Scene, Vec<PathControl>) {
+    let options = SolveOptions {
+        time_limit: 30.0,
+        seed: 2,
+        k: 3,
+        goal_bias: 0.05,
+        planner: "pcrrt".into(),
+        intermediate_states: false,
+        progress: false,
+    };
+    let out = solve(Path::new(SCENE), &options).unwrap();
+    assert!(out.exact);
+    let scene = Scene::load(SCENE).unwrap();
+    let controls = PathControl::from_flat(&out.controls, &out.steps, scene.robot.dof()).unwrap();
+    (scene, controls)
+}
+
+#[test]
+fn shortcutting_shortens_the_manipulator_path_and_keeps_the_plan_valid() {
+    let (scene, controls) = found_plan();
+    let settings = ShortcutSettings::from_seconds(1.0, 2);
+    let mut propagator = Propagator::new(&scene);
+    let outcome = shortcut(&mut propagator, &scene.start, &controls, &settings);
+    assert!(outcome.accepted > 0 && outcome.attempts >= outcome.accepted);
+    assert!(
+        outcome.after.joint_length < outcome.before.joint_length,
+        "{:?} -> {:?}",
+        outcome.before,
+        outcome.after
+    );
+
+    // The shortcut plan simulates validly to the goal, and its measured length is the one reported.
+    let path = simulate(&mut propagator, &scene.start, &outcome.controls, false);
+    assert!(path.valid() && scene.goal.is_satisfied(path.final_state()));
+    assert_eq!(path.metrics, outcome.after);
+
+    // Deterministic under the seed (the budget counts work, not wall-clock time).
+    let again = shortcut(
+        &mut Propagator::new(&scene),
+        &scene.start,
+        &controls,
+        &settings,
+    );
+    assert_eq!(again, outcome);
+
+    // The plan file records both metrics and passes its check.
+    let plan_settings = PlanSettings {
+        planner: "pcrrt".into(),
+        seed: 2,
+        k: 3,
+        goal_bias: 0.05,
+        time_limit: 30.0,
+        shortcut: 1.0,
+    };
+    let plan = PlanFile::build(
+        SCENE,
+        scene.clone(),
+        &plan_settings,
+        &outcome.controls,
+        Some(outcome.before),
+    )
+    .unwrap();
+    assert_eq!(plan.metrics.before_shortcut, outcome.before);
+    assert_eq!(plan.metrics.after_shortcut, outcome.after);
+    assert!(plan.check(Path::new("plan.json")).unwrap().passed());
+}
+
+#[test]
+fn a_zero_budget_changes_nothing() {
+    let (scene, controls) = found_plan();
+    let outcome = shortcut(
+        &mut Propagator::new(&scene),
+        &scene.start,
+        &controls,
+        &ShortcutSettings::from_seconds(0.0, 1),
+    );
+    assert_eq!(outcome.controls, controls);
+    assert_eq!((outcome.attempts, outcome.before), (0, outcome.after));
+}
+
+#[test]
+fn the_trajectory_respects_joint_velocity_limits_and_follows_the_plan() {
+    let (scene, controls) = found_plan();
+    let settings = PlanSettings {
+        planner: "pcrrt".into(),
+        seed: 2,
+        k: 3,
+        goal_bias: 0.05,
+        time_limit: 30.0,
+        shortcut: 0.0,
+    };
+    let plan = PlanFile::build(SCENE, scene.clone(), &settings, &controls, None).unwrap();
+    let t = &plan.trajectory;
+    assert_eq!(t.rate, 50.0);
+    assert!(t.times.len() > 10 && t.times.len() == t.q.len() && t.q.len() == t.objects.len());
+    // Fixed rate, except the last sample, which is the end.
+    for w in t.times[..t.times.len() - 1].windows(2) {
+        assert!((w[1] - w[0] - 0.02).abs() < 1e-9);
+    }
+    // No joint faster than its URDF limit.
+    let limits: Vec<f64> = (0..scene.robot.dof())
+        .map(|i| scene.robot.chain.dof_joint(i).max_velocity)
+        .collect();
+    let mut fastest = 0.0f64;
+    for k in 1..t.q.len() {
+        let dt = t.times[k] - t.times[k - 1];
+        for (i, limit) in limits.iter().enumerate() {
+            let ratio = (t.q[k][i] - t.q[k - 1][i]).abs() / dt / limit;
+            fastest = fastest.max(ratio);
+        }
+    }
+    assert!(
+        fastest <= 1.0 + 1e-9,
+        "a joint reaches {fastest} times its limit"
+    );
+    assert!(
+        fastest > 0.5,
+        "the time scaling should use the limits ({fastest})"
+    );
+    // It takes at least as long as the plan, and starts and ends at the plan's states.
+    assert!(*t.times.last().unwrap() >= plan.metrics.after_shortcut.duration - 1e-9);
+    assert_eq!(t.q[0], plan.start.q);
+    assert_eq!(t.objects[0], plan.start.objects);
+    let end = &plan.controls.last().unwrap().state;
+    assert!(t
+        .q
+        .last()
+        .unwrap()
+        .iter()
+        .zip(&end.q)
+        .all(|(a, b)| (a - b).abs() < 1e-12));
+    assert!(t
+        .objects
+        .last()
+        .unwrap()
+        .iter()
+        .zip(&end.objects)
+        .all(|(a, b)| (0..3).all(|i| (a[i] - b[i]).abs() < 1e-12)));
+}
