@@ -22,6 +22,7 @@ pub mod path;
 pub mod physics;
 pub mod plan;
 pub mod propagate;
+pub mod random;
 pub mod render;
 pub mod robot;
 pub mod scene;

@@ -61,6 +61,11 @@ enum Command {
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is reached.
     Check { plan: PathBuf },
+    /// Scene sets.
+    Scenes {
+        #[command(subcommand)]
+        action: ScenesCommand,
+    },
     /// Draw a plan: snapshots.svg, timeline.svg and animation.html.
     Render {
         plan: PathBuf,
@@ -70,6 +75,24 @@ enum Command {
         /// Snapshot times in seconds, comma-separated (default: four control boundaries).
         #[arg(long, value_delimiter = ',')]
         times: Vec<f64>,
+    },
+}
+
+#[derive(Subcommand)]
+enum ScenesCommand {
+    /// Generate the paper's benchmark dataset: HERB's table, the same goal object and goal
+    /// disc in every scene, 1..7 movable objects, valid start states.
+    Generate {
+        #[arg(long, default_value_t = 35)]
+        count: usize,
+        /// Range of object counts, e.g. 1..7 (spread evenly over the scenes).
+        #[arg(long, default_value = "1..7")]
+        objects: String,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output folder.
+        #[arg(long)]
+        out: PathBuf,
     },
 }
 
@@ -120,6 +143,15 @@ fn main() -> ExitCode {
         }
         Command::Check { plan } => check(&plan),
         Command::Render { plan, out, times } => draw(&plan, &out, &times),
+        Command::Scenes {
+            action:
+                ScenesCommand::Generate {
+                    count,
+                    objects,
+                    seed,
+                    out,
+                },
+        } => generate_scenes(count, &objects, seed, &out),
     };
     match result {
         Ok(code) => code,
@@ -307,6 +339,16 @@ fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, String>
     for file in [&files.snapshots, &files.timeline, &files.animation] {
         println!("wrote {}", file.display());
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn generate_scenes(count: usize, objects: &str, seed: u64, out: &Path) -> Result<ExitCode, String> {
+    let range = objects
+        .split_once("..")
+        .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)))
+        .ok_or_else(|| format!("--objects must look like 1..7, got '{objects}'"))?;
+    let files = pushplan::scene::generate::generate(count, range, seed, out)?;
+    println!("wrote {} scenes to {}", files.len(), out.display());
     Ok(ExitCode::SUCCESS)
 }
 

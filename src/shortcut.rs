@@ -13,6 +13,7 @@
 use crate::math::wrap_angle;
 use crate::path::{simulate, PathControl, PathMetrics, SimulatedPath};
 use crate::propagate::Propagator;
+use crate::random::SplitMix64;
 use crate::robot::EeAction;
 use crate::state::State;
 use nalgebra::DVector;
@@ -69,7 +70,7 @@ pub fn shortcut(
         outcome.controls = current;
         return outcome;
     }
-    let mut rng = SplitMix64(settings.seed ^ 0x5EED_5407_C0DE);
+    let mut rng = SplitMix64::new(settings.seed ^ 0x5EED_5407_C0DE);
     let mut work = path.steps() as u64;
     while work < settings.budget_steps && current.len() >= 2 {
         outcome.attempts += 1;
@@ -139,22 +140,4 @@ fn connecting_control(
         },
         steps,
     })
-}
-
-/// A small deterministic generator (SplitMix64), so shortcutting depends on its seed only.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, n).
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
 }

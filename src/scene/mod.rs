@@ -4,6 +4,7 @@
 //! World frame: z up, the table top horizontal at `table.top`.
 
 pub mod file;
+pub mod generate;
 mod load;
 
 use crate::collision::Geometry;

@@ -1,0 +1,88 @@
+//! The benchmark scene generator (the paper's dataset design).
+
+use pushplan::scene::generate::{generate, GOAL_CENTER, GOAL_RADIUS};
+use pushplan::scene::Goal;
+use pushplan::Scene;
+
+fn temp(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("pushplan-generate-{name}-{}", std::process::id()))
+}
+
+#[test]
+fn generated_scenes_follow_the_dataset_design() {
+    let dir = temp("seven");
+    let files = generate(7, (1, 7), 3, &dir).unwrap();
+    let mut counts = Vec::new();
+    let mut goal_starts = Vec::new();
+    for file in &files {
+        // Loading validates everything, the start state included.
+        let scene = Scene::load(file).unwrap();
+        counts.push(scene.objects.len());
+        let Goal::ObjectInDisc {
+            object,
+            center,
+            radius,
+        } = scene.goal
+        else {
+            panic!("object goal expected")
+        };
+        assert_eq!(
+            (object, center.x, center.y, radius),
+            (0, GOAL_CENTER[0], GOAL_CENTER[1], GOAL_RADIUS)
+        );
+        let goal = &scene.objects[0];
+        assert_eq!(goal.name, "goal_box");
+        assert!((goal.height - 0.215).abs() < 1e-12);
+        let start = scene.start.objects[0];
+        assert!(
+            (start.translation() - center).norm() > GOAL_RADIUS,
+            "the goal object starts outside the goal"
+        );
+        goal_starts.push(start);
+    }
+    assert_eq!(counts, vec![1, 2, 3, 4, 5, 6, 7]);
+    assert!(
+        goal_starts.windows(2).all(|w| w[0] != w[1]),
+        "random goal-object start poses"
+    );
+
+    // Deterministic under the seed; another seed gives other scenes.
+    let again = generate(7, (1, 7), 3, &temp("again")).unwrap();
+    let other = generate(7, (1, 7), 4, &temp("other")).unwrap();
+    let text = |p: &std::path::PathBuf| {
+        std::fs::read_to_string(p)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.contains("urdf:"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert!(files.iter().zip(&again).all(|(a, b)| text(a) == text(b)));
+    assert!(files.iter().zip(&other).any(|(a, b)| text(a) != text(b)));
+}
+
+#[test]
+fn the_committed_benchmark_set_is_what_the_command_generates() {
+    let files = generate(35, (1, 7), 1, &temp("committed")).unwrap();
+    let text = |p: &std::path::Path| {
+        std::fs::read_to_string(p)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.contains("urdf:"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    for (i, file) in files.iter().enumerate() {
+        let committed = std::path::PathBuf::from(format!("scenes/benchmark/scene_{i:02}.yaml"));
+        assert_eq!(text(file), text(&committed), "{} differs: regenerate with `pushplan scenes generate --count 35 --objects 1..7 --seed 1 --out scenes/benchmark`", committed.display());
+        assert!(Scene::load(&committed).is_ok());
+    }
+}
+
+#[test]
+fn bad_ranges_are_errors() {
+    assert!(generate(3, (0, 2), 1, &temp("bad"))
+        .unwrap_err()
+        .contains("range"));
+    assert!(generate(3, (4, 2), 1, &temp("bad")).is_err());
+}
