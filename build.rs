@@ -33,20 +33,15 @@ fn main() {
         std::process::exit(1);
     }
 
-    let sources = [
-        "model_handle",
-        "state_space",
-        "control",
-        "propagator",
-        "validity",
-        "goal",
-        "planner",
-        "solve",
-    ];
+    // Every C++ source in cpp/, in a stable order.
+    let mut sources: Vec<PathBuf> = std::fs::read_dir("cpp")
+        .expect("cpp/ exists")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "cpp"))
+        .collect();
+    sources.sort();
     let mut build = cxx_build::bridge("src/ffi.rs");
-    for s in sources {
-        build.file(format!("cpp/{s}.cpp"));
-    }
+    build.files(&sources);
     build
         .include("include")
         .include(OMPL_INCLUDE)

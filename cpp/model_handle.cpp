@@ -72,6 +72,13 @@ namespace pushplan::detail
         return model_->goal_distance(slice(a_));
     }
 
+    std::array<double, 4> ModelHandle::project(const ob::State *state) const
+    {
+        read(state, a_);
+        const rust::Vec<double> p = model_->projection(slice(a_));
+        return {p[0], p[1], p[2], p[3]};
+    }
+
     bool ModelHandle::propagate(const ob::State *state, const oc::Control *control, std::size_t steps,
                                 ob::State *result) const
     {

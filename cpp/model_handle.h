@@ -5,6 +5,7 @@
 
 #include <ompl/base/State.h>
 #include <ompl/control/Control.h>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -34,6 +35,9 @@ namespace pushplan::detail
         /// Holds `control` for `steps` steps; writes the state reached; true if valid.
         bool propagate(const ompl::base::State *state, const ompl::control::Control *control,
                        std::size_t steps, ompl::base::State *result) const;
+
+        /// End-effector xy and goal-object xy (m): the benchmark planners' projection.
+        std::array<double, 4> project(const ompl::base::State *state) const;
 
         bridge::Model &model() const { return *model_; }
 

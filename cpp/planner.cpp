@@ -3,17 +3,11 @@
 
 #include "pushplan/pushplan.h"
 
-#include "control.h"
-#include "goal.h"
 #include "model_handle.h"
-#include "propagator.h"
-#include "state_space.h"
-#include "validity.h"
+#include "problem.h"
 
 #include <ompl/base/PlannerData.h>
-#include <ompl/control/SimpleDirectedControlSampler.h>
 #include <ompl/control/SimpleSetup.h>
-#include <ompl/control/planners/rrt/RRT.h>
 #include <ompl/util/Console.h>
 
 #include <chrono>
@@ -27,26 +21,6 @@ namespace pushplan
 {
     namespace detail
     {
-        /// oc::RRT whose own random numbers (goal bias) come from the plan's seed.
-        class SeededRRT : public oc::RRT
-        {
-        public:
-            SeededRRT(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed, const std::string &name) : oc::RRT(si)
-            {
-                rng_.setLocalSeed(seed);
-                setName(name);
-            }
-        };
-
-        /// Independent seeds for the random sources of one plan.
-        std::uint_fast32_t subSeed(std::uint64_t seed, std::uint64_t stream)
-        {
-            std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (stream + 1);
-            z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-            z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-            return static_cast<std::uint_fast32_t>((z ^ (z >> 31)) & 0xFFFFFFFFULL);
-        }
-
         template <typename T>
         T checked(const char *name, T value, bool ok)
         {
@@ -122,42 +96,11 @@ namespace pushplan
         checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
 
         ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-
-        // Spaces: X = C_R x SE(2)^M; actions (vx, vy, omega_z, null-space sample).
-        auto space = std::make_shared<detail::PushStateSpace>(model);
-        auto sampler_count = std::make_shared<std::uint64_t>(0);
-        space->setStateSamplerAllocator([seed, sampler_count](const ob::StateSpace *s) {
-            return std::make_shared<detail::PushStateSampler>(s->as<detail::PushStateSpace>(),
-                                                              detail::subSeed(seed, 10 + (*sampler_count)++));
-        });
-        auto controls = detail::makeControlSpace(space, info);
-        auto control_count = std::make_shared<std::uint64_t>(0);
-        controls->setControlSamplerAllocator([seed, control_count](const oc::ControlSpace *c) {
-            return std::make_shared<detail::EeControlSampler>(c, detail::subSeed(seed, 1000 + (*control_count)++));
-        });
-
-        oc::SimpleSetup setup(controls);
+        const detail::Problem problem = detail::makeProblem(model, seed, k);
+        oc::SimpleSetup &setup = *problem.setup;
         const oc::SpaceInformationPtr &si = setup.getSpaceInformation();
-        setup.setStateValidityChecker(std::make_shared<detail::PushValidityChecker>(si, model));
-        setup.setStatePropagator(std::make_shared<detail::PushStatePropagator>(si, model));
-        si->setPropagationStepSize(info.step);
-        const auto min_steps = static_cast<unsigned>(std::max(1.0, std::round(info.min_duration / info.step)));
-        const auto max_steps = std::max(min_steps, static_cast<unsigned>(std::round(info.max_duration / info.step)));
-        si->setMinMaxControlDuration(min_steps, max_steps);
-        // Alg. 1 lines 5-8: the best of k sampled actions, by the model's distance.
-        si->setDirectedControlSamplerAllocator([k](const oc::SpaceInformation *s) {
-            return std::make_shared<oc::SimpleDirectedControlSampler>(s, k);
-        });
-
-        ob::ScopedState<> start(space);
-        model->write(std::vector<double>(info.start.begin(), info.start.end()), start.get());
-        setup.setStartState(start);
-        setup.setGoal(std::make_shared<detail::PushGoal>(si, model, detail::subSeed(seed, 2)));
-
-        auto rrt = std::make_shared<detail::SeededRRT>(si, detail::subSeed(seed, 3),
-                                                       static_clutter ? "StaticRRT" : "PCRRT");
-        rrt->setGoalBias(goal_bias);
-        rrt->setIntermediateStates(options.intermediate_states);
+        const ob::PlannerPtr rrt = detail::makePlanner(static_clutter ? "static" : "pcrrt", problem, seed, goal_bias,
+                                                       options.intermediate_states);
         setup.setPlanner(rrt);
         setup.setup();
 

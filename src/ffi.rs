@@ -129,6 +129,20 @@ pub mod bridge {
         pub steps: Vec<usize>,
     }
 
+    /// Options of a benchmark of one scene.
+    #[derive(Debug, Clone)]
+    pub struct BenchOptions {
+        /// Planner names: pcrrt, kpiece, est, pdst, sst.
+        pub planners: Vec<String>,
+        pub runs: u32,
+        pub time_limit: f64,
+        pub seed: u64,
+        /// Shortcutting budget (s of work) measured after each solved run.
+        pub shortcut: f64,
+        /// Where the OMPL log goes.
+        pub log: String,
+    }
+
     extern "Rust" {
         type Model;
         fn load_model(path: &str, static_clutter: bool) -> Result<Box<Model>>;
@@ -153,17 +167,21 @@ pub mod bridge {
             seed: u64,
         ) -> Result<Shortcut>;
         fn propagation_steps(self: &Model) -> u64;
+        fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
     }
 
     unsafe extern "C++" {
         include!("pushplan/cpp/solve.h");
         /// Plans the scene file with OMPL (the CLI's entry point).
         fn solve(scene_path: &str, options: &SolveOptions) -> Result<SolveOutput>;
+        include!("pushplan/cpp/benchmark.h");
+        /// Benchmarks a scene with ompl::tools::Benchmark and writes the log.
+        fn benchmark_scene(scene_path: &str, options: &BenchOptions) -> Result<()>;
     }
 }
 
 pub use bridge::{
-    Metrics, PlanContact, SceneInfo, Shortcut, Simulation, SolveOptions, SolveOutput,
+    BenchOptions, Metrics, PlanContact, SceneInfo, Shortcut, Simulation, SolveOptions, SolveOutput,
 };
 
 /// The model as the OMPL side holds it: a scene, its propagator and metric.
@@ -373,6 +391,21 @@ impl Model {
         })
     }
 
+    /// End-effector xy and goal-object xy (m); the goal object's xy is (0, 0) for a
+    /// configuration goal.
+    pub fn projection(&self, state: &[f64]) -> Result<Vec<f64>, String> {
+        guarded("projection", || {
+            let state = self.unpack(state)?;
+            let robot = &self.scene().robot;
+            let tool = robot.tool_pose(&robot.link_poses(&state.q)).translation;
+            let goal = match self.scene().goal {
+                Goal::ObjectInDisc { object, .. } => state.objects[object].translation(),
+                Goal::Configuration { .. } => nalgebra::Vector2::zeros(),
+            };
+            Ok(vec![tool.x, tool.y, goal.x, goal.y])
+        })
+    }
+
     pub fn propagation_steps(&self) -> u64 {
         self.steps_taken
     }
@@ -497,4 +530,10 @@ pub fn unpack_state(flat: &[f64], dof: usize) -> State {
 /// Plans a scene file with OMPL (the C++ side), as the CLI does.
 pub fn solve(scene_path: &Path, options: &SolveOptions) -> Result<SolveOutput, String> {
     bridge::solve(&scene_path.to_string_lossy(), options).map_err(|e| e.what().to_string())
+}
+
+/// Benchmarks one scene with OMPL's tooling, writing `options.log`.
+pub fn benchmark_scene(scene_path: &Path, options: &BenchOptions) -> Result<(), String> {
+    bridge::benchmark_scene(&scene_path.to_string_lossy(), options)
+        .map_err(|e| e.what().to_string())
 }

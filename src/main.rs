@@ -1,7 +1,7 @@
 //! The `pushplan` command: plan a scene with OMPL, check a plan by re-simulating it.
 
 use clap::{Parser, Subcommand, ValueEnum};
-use pushplan::ffi::{solve, SolveOptions};
+use pushplan::ffi::{benchmark_scene, solve, BenchOptions, SolveOptions};
 use pushplan::path::PathControl;
 use pushplan::plan::{PlanFile, PlanSettings};
 use pushplan::shortcut::{shortcut, ShortcutSettings};
@@ -61,6 +61,55 @@ enum Command {
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is reached.
     Check { plan: PathBuf },
+    /// Benchmark planners on scenes with OMPL's benchmark tooling: one OMPL log per scene
+    /// (scenes run in parallel processes), merged into DIR/results.db by
+    /// ompl_benchmark_statistics (Planner Arena's format).
+    Bench {
+        /// Scene files.
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// Planners: pcrrt, kpiece, est, pdst, sst.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "pcrrt,kpiece,est,pdst,sst"
+        )]
+        planners: Vec<String>,
+        /// Runs per planner and scene.
+        #[arg(long, default_value_t = 10)]
+        runs: u32,
+        /// Time limit per run (s).
+        #[arg(long, default_value_t = 30.0)]
+        time: f64,
+        /// Output folder (logs and results.db).
+        #[arg(long)]
+        out: PathBuf,
+        /// Scenes benchmarked at once (default: the number of cores).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Shortcutting budget measured after each solved run (s of work).
+        #[arg(long, default_value_t = 3.0)]
+        shortcut: f64,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
+    /// One scene of `bench`, in its own process (used by `bench`).
+    #[command(hide = true)]
+    BenchScene {
+        scene: PathBuf,
+        #[arg(long, value_delimiter = ',')]
+        planners: Vec<String>,
+        #[arg(long)]
+        runs: u32,
+        #[arg(long)]
+        time: f64,
+        #[arg(long)]
+        shortcut: f64,
+        #[arg(long)]
+        seed: u64,
+        #[arg(long)]
+        log: PathBuf,
+    },
     /// Scene sets.
     Scenes {
         #[command(subcommand)]
@@ -152,6 +201,44 @@ fn main() -> ExitCode {
                     out,
                 },
         } => generate_scenes(count, &objects, seed, &out),
+        Command::Bench {
+            scenes,
+            planners,
+            runs,
+            time,
+            out,
+            jobs,
+            shortcut,
+            seed,
+        } => {
+            let settings = BenchSettings {
+                planners,
+                runs,
+                time,
+                shortcut,
+                seed,
+            };
+            bench(&scenes, &settings, &out, jobs)
+        }
+        Command::BenchScene {
+            scene,
+            planners,
+            runs,
+            time,
+            shortcut,
+            seed,
+            log,
+        } => {
+            let options = BenchOptions {
+                planners,
+                runs,
+                time_limit: time,
+                seed,
+                shortcut,
+                log: log.to_string_lossy().into_owned(),
+            };
+            benchmark_scene(&scene, &options).map(|_| ExitCode::SUCCESS)
+        }
     };
     match result {
         Ok(code) => code,
@@ -340,6 +427,148 @@ fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, String>
         println!("wrote {}", file.display());
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// What every scene of a benchmark runs.
+struct BenchSettings {
+    planners: Vec<String>,
+    runs: u32,
+    time: f64,
+    shortcut: f64,
+    seed: u64,
+}
+
+/// Runs one `bench-scene` process per scene, `jobs` at a time, then merges the logs.
+fn bench(
+    scenes: &[PathBuf],
+    settings: &BenchSettings,
+    out: &Path,
+    jobs: Option<usize>,
+) -> Result<ExitCode, String> {
+    const KNOWN: [&str; 5] = ["pcrrt", "kpiece", "est", "pdst", "sst"];
+    if let Some(p) = settings
+        .planners
+        .iter()
+        .find(|p| !KNOWN.contains(&p.as_str()))
+    {
+        return Err(format!(
+            "unknown planner '{p}' (known: {})",
+            KNOWN.join(", ")
+        ));
+    }
+    if !(settings.time.is_finite() && settings.time > 0.0) || settings.runs == 0 {
+        return Err("--time must be positive and --runs at least 1".into());
+    }
+    for scene in scenes {
+        Scene::load(scene).map_err(|e| e.to_string())?; // bad scenes fail before anything runs
+    }
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let jobs = jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .max(1);
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let logs: Vec<PathBuf> = scenes
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            out.join(format!(
+                "{i:03}_{}.log",
+                s.file_stem().unwrap_or_default().to_string_lossy()
+            ))
+        })
+        .collect();
+    eprintln!(
+        "benchmarking {} scenes x {} planners x {} runs, up to {} s each, {jobs} at a time",
+        scenes.len(),
+        settings.planners.len(),
+        settings.runs,
+        settings.time
+    );
+    let started = std::time::Instant::now();
+    let mut pending: Vec<usize> = (0..scenes.len()).rev().collect();
+    let mut running: Vec<(usize, std::process::Child, std::time::Instant)> = Vec::new();
+    let (mut done, mut failed) = (0, Vec::new());
+    while !pending.is_empty() || !running.is_empty() {
+        while running.len() < jobs {
+            let Some(i) = pending.pop() else { break };
+            let child = std::process::Command::new(&exe)
+                .arg("bench-scene")
+                .arg(&scenes[i])
+                .args(["--planners", &settings.planners.join(",")])
+                .args([
+                    "--runs",
+                    &settings.runs.to_string(),
+                    "--time",
+                    &settings.time.to_string(),
+                ])
+                .args([
+                    "--shortcut",
+                    &settings.shortcut.to_string(),
+                    "--seed",
+                    &settings.seed.to_string(),
+                ])
+                .arg("--log")
+                .arg(&logs[i])
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .map_err(|e| format!("cannot start a benchmark process: {e}"))?;
+            running.push((i, child, std::time::Instant::now()));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        let mut k = 0;
+        while k < running.len() {
+            if let Some(status) = running[k].1.try_wait().map_err(|e| e.to_string())? {
+                let (i, child, since) = running.remove(k);
+                done += 1;
+                let stderr = child
+                    .wait_with_output()
+                    .map(|o| String::from_utf8_lossy(&o.stderr).into_owned())
+                    .unwrap_or_default();
+                let verdict = if status.success() {
+                    "done".to_string()
+                } else {
+                    format!("FAILED: {}", stderr.trim())
+                };
+                eprintln!(
+                    "[{done}/{}] {} {verdict} ({:.0} s, {:.0} s in all)",
+                    scenes.len(),
+                    scenes[i].display(),
+                    since.elapsed().as_secs_f64(),
+                    started.elapsed().as_secs_f64()
+                );
+                if !status.success() {
+                    failed.push(i);
+                }
+            } else {
+                k += 1;
+            }
+        }
+    }
+    let merged: Vec<&PathBuf> = logs
+        .iter()
+        .enumerate()
+        .filter(|(i, l)| !failed.contains(i) && l.is_file())
+        .map(|(_, l)| l)
+        .collect();
+    let db = out.join("results.db");
+    let _ = std::fs::remove_file(&db);
+    let status = std::process::Command::new("ompl_benchmark_statistics")
+        .args(&merged)
+        .arg("-d")
+        .arg(&db)
+        .stdout(std::process::Stdio::null())
+        .status()
+        .map_err(|e| format!("cannot run ompl_benchmark_statistics ({e}): install ompl-demos (bash .ci/install-packages)"))?;
+    if !status.success() {
+        return Err("ompl_benchmark_statistics failed".into());
+    }
+    println!("{} logs merged into {}", merged.len(), db.display());
+    Ok(if failed.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
 }
 
 fn generate_scenes(count: usize, objects: &str, seed: u64, out: &Path) -> Result<ExitCode, String> {

@@ -1,0 +1,89 @@
+// ompl::tools::Benchmark on one scene: the planners side by side on the same problem,
+// with pushplan's own run properties (objects moved, object displacement, manipulator
+// path length before and after shortcutting, propagation steps per second).
+
+#include "benchmark.h"
+
+#include "problem.h"
+#include "pushplan/pushplan.h"
+#include "pushplan/src/ffi.rs.h"
+
+#include <ompl/control/PathControl.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/Console.h>
+
+#include <cmath>
+#include <string>
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+
+namespace pushplan::bridge
+{
+    void benchmark_scene(rust::Str scene_path, const BenchOptions &options)
+    {
+        // One scene per process: seed OMPL's global generator before any other exists.
+        ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
+        ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+        rust::Box<Model> loaded = [&] {
+            try
+            {
+                return load_model(scene_path, false);
+            }
+            catch (const rust::Error &e)
+            {
+                throw Error(e.what());
+            }
+        }();
+        auto model = std::make_shared<detail::ModelHandle>(std::move(loaded));
+        const SceneInfo &info = model->info();
+        const detail::Problem problem = detail::makeProblem(model, options.seed, info.k);
+
+        ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
+        benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
+        benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.k));
+        for (const auto &name : options.planners)
+            benchmark.addPlanner(detail::makePlanner(std::string(name), problem, options.seed, info.goal_bias, false));
+
+        std::uint64_t run = 0, steps_before = 0;
+        benchmark.setPreRunEvent([&](const ob::PlannerPtr &planner) {
+            if (auto rrt = std::dynamic_pointer_cast<detail::SeededRRT>(planner))
+                rrt->reseed(detail::subSeed(options.seed, 100 + run));
+            ++run;
+            steps_before = model->model().propagation_steps();
+        });
+        benchmark.setPostRunEvent([&](const ob::PlannerPtr &, ompl::tools::Benchmark::RunProperties &props) {
+            const double propagated = static_cast<double>(model->model().propagation_steps() - steps_before);
+            const double time = std::stod(props["time REAL"]);
+            props["propagation steps per second REAL"] = std::to_string(propagated / std::max(time, 1e-9));
+            const auto &pdef = problem.setup->getProblemDefinition();
+            if (!pdef->hasExactSolution())
+                return;
+            const auto *path = pdef->getSolutionPath()->as<oc::PathControl>();
+            std::vector<double> controls, control;
+            std::vector<std::size_t> steps;
+            for (std::size_t i = 0; i < path->getControlCount(); ++i)
+            {
+                model->readControl(path->getControl(i), control);
+                controls.insert(controls.end(), control.begin(), control.end());
+                steps.push_back(static_cast<std::size_t>(std::round(path->getControlDuration(i) / info.step)));
+            }
+            const Shortcut s = model->model().shortcut(rust::Slice<const double>(controls.data(), controls.size()),
+                                                       rust::Slice<const std::size_t>(steps.data(), steps.size()),
+                                                       options.shortcut, options.seed + run);
+            props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
+            props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);
+            props["object displacement REAL"] = std::to_string(s.before.object_displacement);
+            props["object displacement shortcut REAL"] = std::to_string(s.after.object_displacement);
+            props["manipulator path length REAL"] = std::to_string(s.before.joint_length);
+            props["manipulator path length shortcut REAL"] = std::to_string(s.after.joint_length);
+            props["end effector path length REAL"] = std::to_string(s.before.ee_length);
+            props["end effector path length shortcut REAL"] = std::to_string(s.after.ee_length);
+        });
+
+        ompl::tools::Benchmark::Request request(options.time_limit, 8192.0, options.runs, 0.5, false, false, false);
+        benchmark.benchmark(request);
+        if (!benchmark.saveResultsToFile(std::string(options.log).c_str()))
+            throw Error("cannot write " + std::string(options.log));
+    }
+}  // namespace pushplan::bridge

@@ -1,0 +1,116 @@
+#include "problem.h"
+
+#include "control.h"
+#include "goal.h"
+#include "propagator.h"
+#include "validity.h"
+
+#include "pushplan/pushplan.h"
+
+#include <ompl/control/SimpleDirectedControlSampler.h>
+#include <ompl/control/planners/est/EST.h>
+#include <ompl/control/planners/kpiece/KPIECE1.h>
+#include <ompl/control/planners/pdst/PDST.h>
+#include <ompl/control/planners/sst/SST.h>
+
+#include <cmath>
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+
+namespace pushplan::detail
+{
+    std::uint_fast32_t subSeed(std::uint64_t seed, std::uint64_t stream)
+    {
+        std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (stream + 1);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+        return static_cast<std::uint_fast32_t>((z ^ (z >> 31)) & 0xFFFFFFFFULL);
+    }
+
+    SeededRRT::SeededRRT(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed, const std::string &name)
+      : oc::RRT(si)
+    {
+        rng_.setLocalSeed(seed);
+        setName(name);
+    }
+
+    PushProjection::PushProjection(const ob::StateSpace *space, ModelHandlePtr model)
+      : ob::ProjectionEvaluator(space), model_(std::move(model))
+    {
+    }
+
+    unsigned int PushProjection::getDimension() const
+    {
+        return 4;
+    }
+
+    void PushProjection::defaultCellSizes()
+    {
+        cellSizes_.assign(4, 0.05);
+    }
+
+    void PushProjection::project(const ob::State *state, Eigen::Ref<Eigen::VectorXd> projection) const
+    {
+        const std::array<double, 4> p = model_->project(state);
+        for (int i = 0; i < 4; ++i)
+            projection[i] = p[i];
+    }
+
+    Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k)
+    {
+        const bridge::SceneInfo &info = model->info();
+        // Spaces: X = C_R x SE(2)^M; actions (vx, vy, omega_z, null-space sample).
+        auto space = std::make_shared<PushStateSpace>(model);
+        auto sampler_count = std::make_shared<std::uint64_t>(0);
+        space->setStateSamplerAllocator([seed, sampler_count](const ob::StateSpace *s) {
+            return std::make_shared<PushStateSampler>(s->as<PushStateSpace>(), subSeed(seed, 10 + (*sampler_count)++));
+        });
+        space->registerDefaultProjection(std::make_shared<PushProjection>(space.get(), model));
+        auto controls = makeControlSpace(space, info);
+        auto control_count = std::make_shared<std::uint64_t>(0);
+        controls->setControlSamplerAllocator([seed, control_count](const oc::ControlSpace *c) {
+            return std::make_shared<EeControlSampler>(c, subSeed(seed, 1000 + (*control_count)++));
+        });
+
+        auto setup = std::make_shared<oc::SimpleSetup>(controls);
+        const oc::SpaceInformationPtr &si = setup->getSpaceInformation();
+        setup->setStateValidityChecker(std::make_shared<PushValidityChecker>(si, model));
+        setup->setStatePropagator(std::make_shared<PushStatePropagator>(si, model));
+        si->setPropagationStepSize(info.step);
+        const auto min_steps = static_cast<unsigned>(std::max(1.0, std::round(info.min_duration / info.step)));
+        const auto max_steps = std::max(min_steps, static_cast<unsigned>(std::round(info.max_duration / info.step)));
+        si->setMinMaxControlDuration(min_steps, max_steps);
+        // Alg. 1 lines 5-8: the best of k sampled actions, by the model's distance.
+        si->setDirectedControlSamplerAllocator(
+            [k](const oc::SpaceInformation *s) { return std::make_shared<oc::SimpleDirectedControlSampler>(s, k); });
+
+        ob::ScopedState<> start(space);
+        model->write(std::vector<double>(info.start.begin(), info.start.end()), start.get());
+        setup->setStartState(start);
+        setup->setGoal(std::make_shared<PushGoal>(si, model, subSeed(seed, 2)));
+        return Problem{std::move(model), std::move(space), std::move(setup)};
+    }
+
+    ob::PlannerPtr makePlanner(const std::string &name, const Problem &problem, std::uint64_t seed, double goal_bias,
+                               bool intermediate_states)
+    {
+        const oc::SpaceInformationPtr &si = problem.setup->getSpaceInformation();
+        if (name == "pcrrt" || name == "static")
+        {
+            auto rrt = std::make_shared<SeededRRT>(si, subSeed(seed, 3), name == "static" ? "StaticRRT" : "PCRRT");
+            rrt->setGoalBias(goal_bias);
+            rrt->setIntermediateStates(intermediate_states);
+            return rrt;
+        }
+        if (name == "kpiece")
+            return std::make_shared<oc::KPIECE1>(si);
+        if (name == "est")
+            return std::make_shared<oc::EST>(si);
+        if (name == "pdst")
+            return std::make_shared<oc::PDST>(si);
+        if (name == "sst")
+            return std::make_shared<oc::SST>(si);
+        throw Error("unknown planner '" + name + "' (pcrrt, static, kpiece, est, pdst, sst)");
+    }
+}  // namespace pushplan::detail

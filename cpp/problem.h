@@ -1,0 +1,57 @@
+// The OMPL problem of Alg. 1 for one scene, shared by the planner API and the benchmark.
+#pragma once
+
+#include "model_handle.h"
+#include "state_space.h"
+
+#include <ompl/base/ProjectionEvaluator.h>
+#include <ompl/control/SimpleSetup.h>
+#include <ompl/control/planners/rrt/RRT.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace pushplan::detail
+{
+    /// Independent 32-bit seeds for the random sources of one plan.
+    std::uint_fast32_t subSeed(std::uint64_t seed, std::uint64_t stream);
+
+    /// oc::RRT whose own random numbers (goal bias) come from a given seed.
+    class SeededRRT : public ompl::control::RRT
+    {
+    public:
+        SeededRRT(const ompl::control::SpaceInformationPtr &si, std::uint_fast32_t seed, const std::string &name);
+        void reseed(std::uint_fast32_t seed) { rng_.setLocalSeed(seed); }
+    };
+
+    /// Projection for OMPL's projection-based planners (KPIECE1, EST, PDST): the
+    /// end-effector's xy and the goal object's xy (m), cells of 5 cm.
+    class PushProjection : public ompl::base::ProjectionEvaluator
+    {
+    public:
+        PushProjection(const ompl::base::StateSpace *space, ModelHandlePtr model);
+        unsigned int getDimension() const override;
+        void defaultCellSizes() override;
+        void project(const ompl::base::State *state, Eigen::Ref<Eigen::VectorXd> projection) const override;
+
+    private:
+        ModelHandlePtr model_;
+    };
+
+    /// Spaces, samplers, propagator, validity checker, start and goal of one scene.
+    struct Problem
+    {
+        ModelHandlePtr model;
+        std::shared_ptr<PushStateSpace> space;
+        std::shared_ptr<ompl::control::SimpleSetup> setup;
+    };
+
+    /// Sets up the problem: k is the number of control samples per extension (Alg. 1).
+    Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k);
+
+    /// A planner by name: pcrrt, static (the same RRT, on a static-clutter model), kpiece,
+    /// est, pdst, sst. Throws pushplan::Error for other names.
+    ompl::base::PlannerPtr makePlanner(const std::string &name, const Problem &problem, std::uint64_t seed,
+                                       double goal_bias, bool intermediate_states);
+}  // namespace pushplan::detail

@@ -1,0 +1,97 @@
+//! The benchmark pipeline in one command: OMPL's benchmark tooling on a few generated
+//! scenes, logs merged by ompl_benchmark_statistics into a Planner Arena database with
+//! the expected planners, runs and pushplan's own columns.
+
+use std::process::Command;
+
+#[test]
+fn bench_runs_planners_on_scenes_and_merges_a_database() {
+    let out = std::env::temp_dir().join(format!("pushplan-bench-{}", std::process::id()));
+    let scenes = [
+        "scenes/benchmark/scene_00.yaml",
+        "scenes/benchmark/scene_10.yaml",
+        "scenes/benchmark/scene_20.yaml",
+    ];
+    let run = Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .arg("bench")
+        .args(scenes)
+        .args([
+            "--planners",
+            "pcrrt,kpiece",
+            "--runs",
+            "2",
+            "--time",
+            "2",
+            "--shortcut",
+            "0.5",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(stderr.contains("[3/3]"), "progress is shown: {stderr}");
+    let db = out.join("results.db");
+    assert!(db.is_file());
+
+    // Read the database as Planner Arena would (ompl_benchmark_statistics is Python, so
+    // Python's sqlite3 is there wherever the pipeline runs).
+    let query = r#"
+import sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+print(c.execute("select count(*) from experiments").fetchone()[0])
+print(",".join(sorted(r[0] for r in c.execute("select distinct name from plannerConfigs"))))
+print(c.execute("select count(*) from runs").fetchone()[0])
+cols = {r[1] for r in c.execute("pragma table_info(runs)")}
+need = ["objects_moved", "object_displacement", "manipulator_path_length", "manipulator_path_length_shortcut", "propagation_steps_per_second"]
+print(",".join(n for n in need if n not in cols) or "all columns")
+print(c.execute("select count(*) from runs where solved = 1 and manipulator_path_length_shortcut <= manipulator_path_length + 1e-9").fetchone()[0],
+      c.execute("select count(*) from runs where solved = 1").fetchone()[0])
+"#;
+    let answer = Command::new("python3")
+        .args(["-c", query])
+        .arg(&db)
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&answer.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines.len(),
+        5,
+        "{text}{}",
+        String::from_utf8_lossy(&answer.stderr)
+    );
+    assert_eq!(lines[0], "3", "one experiment per scene");
+    assert_eq!(lines[1], "control_KPIECE1,control_PCRRT");
+    assert_eq!(lines[2], "12", "3 scenes x 2 planners x 2 runs");
+    assert_eq!(lines[3], "all columns");
+    let (shorter, solved) = lines[4].split_once(' ').unwrap();
+    assert_eq!(shorter, solved, "shortcutting never lengthens a path");
+    assert!(solved.parse::<u32>().unwrap() > 0);
+}
+
+#[test]
+fn bench_rejects_unknown_planners_and_bad_scenes() {
+    let out = std::env::temp_dir().join(format!("pushplan-bench-bad-{}", std::process::id()));
+    let run = Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .args([
+            "bench",
+            "scenes/benchmark/scene_00.yaml",
+            "--planners",
+            "pcrrt,rrtstar",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("unknown planner 'rrtstar'"));
+    let run = Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .args(["bench", "scenes/none.yaml", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("scenes/none.yaml"));
+}
