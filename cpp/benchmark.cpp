@@ -49,6 +49,8 @@ namespace pushplan::bridge
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &planner) {
             if (auto rrt = std::dynamic_pointer_cast<detail::SeededRRT>(planner))
                 rrt->reseed(detail::subSeed(options.seed, 100 + run));
+            // Static RRT shares the problem: the model treats the clutter as obstacles.
+            model->model().set_static_clutter(planner->getName() == "StaticRRT");
             ++run;
             steps_before = model->model().propagation_steps();
         });

@@ -40,6 +40,7 @@ namespace pushplan::detail
             {
                 std::copy(info.goal_configuration.begin(), info.goal_configuration.end(), buffer_.begin());
             }
+            model_->pinClutter(buffer_);
             model_->write(buffer_, state);
             if (model_->isValid(state))
                 return;

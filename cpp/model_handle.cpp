@@ -72,6 +72,16 @@ namespace pushplan::detail
         return model_->goal_distance(slice(a_));
     }
 
+    void ModelHandle::pinClutter(std::vector<double> &flat) const
+    {
+        if (!model_->static_clutter())
+            return;
+        for (std::size_t i = 0; i < info_.objects; ++i)
+            if (static_cast<std::int64_t>(i) != info_.goal_object)
+                for (std::size_t k = 0; k < 3; ++k)
+                    flat[info_.dof + 3 * i + k] = info_.start[info_.dof + 3 * i + k];
+    }
+
     std::array<double, 4> ModelHandle::project(const ob::State *state) const
     {
         read(state, a_);

@@ -36,6 +36,10 @@ namespace pushplan::detail
         bool propagate(const ompl::base::State *state, const ompl::control::Control *control,
                        std::size_t steps, ompl::base::State *result) const;
 
+        /// In the Static RRT mode, puts every object except the goal object back at its
+        /// start pose (a sample of that problem); otherwise leaves `flat` as it is.
+        void pinClutter(std::vector<double> &flat) const;
+
         /// End-effector xy and goal-object xy (m): the benchmark planners' projection.
         std::array<double, 4> project(const ompl::base::State *state) const;
 

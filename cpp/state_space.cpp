@@ -121,6 +121,7 @@ namespace pushplan::detail
         for (int attempt = 0; attempt < kRejectionTries; ++attempt)
         {
             sampleRaw(model_->info(), rng_, buffer_);
+            model_->pinClutter(buffer_);
             model_->write(buffer_, state);
             if (model_->isValid(state))
                 return;

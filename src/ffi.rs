@@ -13,6 +13,7 @@ use crate::propagate::Propagator;
 use crate::robot::EeAction;
 use crate::scene::{Goal, Scene};
 use crate::state::State;
+use crate::static_clutter::StaticClutter;
 use crate::validity::check_state;
 use nalgebra::DVector;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -132,7 +133,7 @@ pub mod bridge {
     /// Options of a benchmark of one scene.
     #[derive(Debug, Clone)]
     pub struct BenchOptions {
-        /// Planner names: pcrrt, kpiece, est, pdst, sst.
+        /// Planner names: pcrrt, static, kpiece, est, pdst, sst.
         pub planners: Vec<String>,
         pub runs: u32,
         pub time_limit: f64,
@@ -167,6 +168,8 @@ pub mod bridge {
             seed: u64,
         ) -> Result<Shortcut>;
         fn propagation_steps(self: &Model) -> u64;
+        fn set_static_clutter(self: &mut Model, on: bool);
+        fn static_clutter(self: &Model) -> bool;
         fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
     }
 
@@ -187,6 +190,9 @@ pub use bridge::{
 /// The model as the OMPL side holds it: a scene, its propagator and metric.
 pub struct Model {
     propagator: Propagator,
+    /// The Static RRT baseline's view of the same problem, used while `static_mode`.
+    static_view: StaticClutter,
+    static_mode: bool,
     metric: DistanceMetric,
     /// The last state `propagate` produced and whether it was valid: OMPL asks
     /// `isValid` of exactly that state next, and the propagation already knows.
@@ -232,6 +238,8 @@ impl Model {
         };
         Model {
             metric: DistanceMetric::from_scene(&scene),
+            static_view: StaticClutter::new(&scene),
+            static_mode: false,
             propagator: Propagator::new(scene),
             last_result: None,
             steps_taken: 0,
@@ -340,14 +348,29 @@ impl Model {
             if result.len() != state.len() {
                 return Err("the result state has the wrong length".into());
             }
-            let run = self.propagator.propagate_steps(&start, &action, steps);
-            self.steps_taken += run.steps as u64 + u64::from(run.stopped_by.is_some());
-            let valid = run.stopped_by.is_none();
-            let reached = if valid {
-                run.state
+            let (valid, taken, reached) = if self.static_mode {
+                let view = &mut self.static_view;
+                let run = view
+                    .propagator
+                    .propagate_steps(&view.reduce(&start), &action, steps);
+                let valid = run.stopped_by.is_none();
+                let reached = if valid {
+                    run.state
+                } else {
+                    view.propagator.attempted_state()
+                };
+                (valid, run.steps, view.expand(&reached))
             } else {
-                self.propagator.attempted_state()
+                let run = self.propagator.propagate_steps(&start, &action, steps);
+                let valid = run.stopped_by.is_none();
+                let reached = if valid {
+                    run.state
+                } else {
+                    self.propagator.attempted_state()
+                };
+                (valid, run.steps, reached)
             };
+            self.steps_taken += taken as u64 + u64::from(!valid);
             write_state(&reached, result);
             self.last_result = Some((result.to_vec(), valid));
             Ok(valid)
@@ -367,6 +390,11 @@ impl Model {
                 }
             }
             let state = self.unpack(state)?;
+            if self.static_mode {
+                let view = &self.static_view;
+                return Ok(view.clutter_in_place(&state)
+                    && check_state(view.propagator.scene(), &view.reduce(&state)).is_ok());
+            }
             Ok(check_state(self.scene(), &state).is_ok())
         })
     }
@@ -406,6 +434,17 @@ impl Model {
         })
     }
 
+    /// Switches to (or from) the Static RRT baseline: clutter objects become static
+    /// obstacles at their start poses.
+    pub fn set_static_clutter(&mut self, on: bool) {
+        self.static_mode = on;
+        self.last_result = None;
+    }
+
+    pub fn static_clutter(&self) -> bool {
+        self.static_mode
+    }
+
     pub fn propagation_steps(&self) -> u64 {
         self.steps_taken
     }
@@ -416,7 +455,20 @@ impl Model {
         guarded("simulate", || {
             let controls = self.path_controls(controls, steps)?;
             let start = self.scene().start.clone();
-            let path = crate::path::simulate(&mut self.propagator, &start, &controls, false);
+            let (propagator, start) = if self.static_mode {
+                let reduced = self.static_view.reduce(&start);
+                (&mut self.static_view.propagator, reduced)
+            } else {
+                (&mut self.propagator, start)
+            };
+            let path = crate::path::simulate(propagator, &start, &controls, false);
+            let object_index = |i: usize| {
+                if self.static_mode {
+                    self.static_view.full_object(i)
+                } else {
+                    i
+                }
+            };
             let mut contacts = Vec::new();
             for (i, control) in path.pushes.iter().enumerate() {
                 for (step, pushes) in control.iter().enumerate() {
@@ -424,11 +476,18 @@ impl Model {
                         control: i,
                         step,
                         link: p.link,
-                        object: p.object,
+                        object: object_index(p.object),
                         force: p.force,
                     }));
                 }
             }
+            let full = |s: &State| {
+                if self.static_mode {
+                    self.static_view.expand(s)
+                } else {
+                    s.clone()
+                }
+            };
             let message = match &path.stopped_by {
                 Some((i, reason)) => format!(
                     "control {i} stops after {} of {} steps: {reason}",
@@ -438,7 +497,11 @@ impl Model {
                 None => String::new(),
             };
             Ok(Simulation {
-                states: path.states.iter().flat_map(pack_state).collect(),
+                states: path
+                    .states
+                    .iter()
+                    .flat_map(|s| pack_state(&full(s)))
+                    .collect(),
                 contacts,
                 valid: path.valid(),
                 goal_reached: self.scene().goal.is_satisfied(path.final_state()),

@@ -28,6 +28,7 @@ pub mod robot;
 pub mod scene;
 pub mod shortcut;
 pub mod state;
+pub mod static_clutter;
 pub mod trajectory;
 pub mod validity;
 

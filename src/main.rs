@@ -445,7 +445,7 @@ fn bench(
     out: &Path,
     jobs: Option<usize>,
 ) -> Result<ExitCode, String> {
-    const KNOWN: [&str; 5] = ["pcrrt", "kpiece", "est", "pdst", "sst"];
+    const KNOWN: [&str; 6] = ["pcrrt", "static", "kpiece", "est", "pdst", "sst"];
     if let Some(p) = settings
         .planners
         .iter()

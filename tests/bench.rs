@@ -17,7 +17,7 @@ fn bench_runs_planners_on_scenes_and_merges_a_database() {
         .args(scenes)
         .args([
             "--planners",
-            "pcrrt,kpiece",
+            "pcrrt,static,kpiece",
             "--runs",
             "2",
             "--time",
@@ -63,8 +63,8 @@ print(c.execute("select count(*) from runs where solved = 1 and manipulator_path
         String::from_utf8_lossy(&answer.stderr)
     );
     assert_eq!(lines[0], "3", "one experiment per scene");
-    assert_eq!(lines[1], "control_KPIECE1,control_PCRRT");
-    assert_eq!(lines[2], "12", "3 scenes x 2 planners x 2 runs");
+    assert_eq!(lines[1], "control_KPIECE1,control_PCRRT,control_StaticRRT");
+    assert_eq!(lines[2], "18", "3 scenes x 3 planners x 2 runs");
     assert_eq!(lines[3], "all columns");
     let (shorter, solved) = lines[4].split_once(' ').unwrap();
     assert_eq!(shorter, solved, "shortcutting never lengthens a path");

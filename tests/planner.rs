@@ -182,3 +182,35 @@ fn a_robot_configuration_goal_is_planned_for_too() {
     assert!(error <= 0.05, "ends {error} from the goal configuration");
     assert!(plan.check(&path).unwrap().passed());
 }
+
+#[test]
+fn the_static_mode_of_the_full_problem_is_the_static_clutter_scene() {
+    use pushplan::ffi::{pack_state, Model};
+    let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
+    let mut reduced = Model::new(scene.clone(), true);
+    let mut full = Model::new(scene.clone(), false);
+    full.set_static_clutter(true);
+    // Push forward into the clutter: in the static problem the first contact is invalid.
+    let control = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let start_full = pack_state(&scene.start);
+    let start_reduced = pack_state(&reduced.scene().start);
+    let (mut a, mut b) = (vec![0.0; start_reduced.len()], vec![0.0; start_full.len()]);
+    for steps in [1, 20, 80, 200] {
+        let valid_a = reduced
+            .propagate(&start_reduced, &control, steps, &mut a)
+            .unwrap();
+        let valid_b = full
+            .propagate(&start_full, &control, steps, &mut b)
+            .unwrap();
+        assert_eq!(valid_a, valid_b, "{steps} steps");
+        assert_eq!(a[..7], b[..7], "same arm motion");
+        assert_eq!(a[7..10], b[7..10], "same goal object");
+        assert_eq!(b[10..], start_full[10..], "the clutter does not move");
+    }
+    // Clutter out of place is invalid in the static problem, fine in the pushing one.
+    let mut moved = start_full.clone();
+    moved[10] += 0.01;
+    assert!(!full.is_valid(&moved).unwrap());
+    full.set_static_clutter(false);
+    assert!(full.is_valid(&moved).unwrap());
+}
