@@ -12,6 +12,7 @@
 //!
 //! Units are SI throughout (m, rad, s, kg, N); the world frame has z up.
 
+pub mod benchmark;
 pub mod collision;
 pub mod contact;
 pub mod distance;

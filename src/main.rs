@@ -93,6 +93,8 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+    /// Draw the benchmark plots from the OMPL logs in DIR (written by `bench`) into DIR/plots.
+    Plots { dir: PathBuf },
     /// One scene of `bench`, in its own process (used by `bench`).
     #[command(hide = true)]
     BenchScene {
@@ -220,6 +222,7 @@ fn main() -> ExitCode {
             };
             bench(&scenes, &settings, &out, jobs)
         }
+        Command::Plots { dir } => plots(&dir),
         Command::BenchScene {
             scene,
             planners,
@@ -564,11 +567,32 @@ fn bench(
         return Err("ompl_benchmark_statistics failed".into());
     }
     println!("{} logs merged into {}", merged.len(), db.display());
+    plots(out)?;
     Ok(if failed.is_empty() {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
     })
+}
+
+fn plots(dir: &Path) -> Result<ExitCode, String> {
+    let mut logs: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "log"))
+        .collect();
+    logs.sort();
+    if logs.is_empty() {
+        return Err(format!("{}: no OMPL benchmark logs (*.log)", dir.display()));
+    }
+    let logs = logs
+        .iter()
+        .map(|p| pushplan::benchmark::read_log(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    for file in pushplan::benchmark::plots::write_plots(&logs, &dir.join("plots"))? {
+        println!("wrote {}", file.display());
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn generate_scenes(count: usize, objects: &str, seed: u64, out: &Path) -> Result<ExitCode, String> {

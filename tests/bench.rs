@@ -34,6 +34,23 @@ fn bench_runs_planners_on_scenes_and_merges_a_database() {
     assert!(stderr.contains("[3/3]"), "progress is shown: {stderr}");
     let db = out.join("results.db");
     assert!(db.is_file());
+    // The plots, one curve or bar per planner.
+    let plots = out.join("plots");
+    let curves = std::fs::read_to_string(plots.join("success_vs_time.svg")).unwrap();
+    for planner in ["PCRRT", "StaticRRT", "KPIECE1"] {
+        assert!(
+            curves.contains(&format!("data-planner=\"{planner}\"")),
+            "{planner} missing from success_vs_time.svg"
+        );
+    }
+    for plot in [
+        "plan_time.svg",
+        "shortcut_path_length.svg",
+        "shortcut_object_displacement.svg",
+        "success_vs_objects.svg",
+    ] {
+        assert!(plots.join(plot).is_file(), "{plot} missing");
+    }
 
     // Read the database as Planner Arena would (ompl_benchmark_statistics is Python, so
     // Python's sqlite3 is there wherever the pipeline runs).
