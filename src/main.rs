@@ -68,11 +68,11 @@ enum Command {
         /// Scene files.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
-        /// Planners: pcrrt, kpiece, est, pdst, sst.
+        /// Planners: pcrrt, static, kpiece, est, pdst, sst.
         #[arg(
             long,
             value_delimiter = ',',
-            default_value = "pcrrt,kpiece,est,pdst,sst"
+            default_value = "pcrrt,static,kpiece,est,pdst,sst"
         )]
         planners: Vec<String>,
         /// Runs per planner and scene.

@@ -131,6 +131,27 @@ fn legend(s: &mut String, names: &[String]) {
     }
 }
 
+/// A planner's curve through data points (x in [0, x_max], y in [0, y_max]).
+fn curve(s: &mut String, name: &str, k: usize, points: &[(f64, f64)], x_max: f64, y_max: f64) {
+    let px: Vec<String> = points
+        .iter()
+        .map(|(x, y)| {
+            format!(
+                "{:.1},{:.1}",
+                LEFT + x / x_max * PLOT_W,
+                TOP + PLOT_H - y / y_max * PLOT_H
+            )
+        })
+        .collect();
+    let _ = writeln!(
+        s,
+        r##"<polyline class="planner" data-planner="{}" points="{}" fill="none" stroke="{}" stroke-width="2"/>"##,
+        short(name),
+        px.join(" "),
+        COLOURS[k % COLOURS.len()]
+    );
+}
+
 /// Round tick values (steps of 1, 2 or 5 times a power of ten) from 0 to `max`.
 fn ticks(max: f64, count: usize) -> Vec<f64> {
     let raw = max / count.max(1) as f64;
@@ -149,10 +170,18 @@ fn ticks(max: f64, count: usize) -> Vec<f64> {
 /// Fig. 7: the share of runs solved within each time budget.
 pub fn success_vs_time(logs: &[BenchmarkLog]) -> String {
     let names = planner_names(logs);
+    // The time limit, or a solved run's time if a planner overran it (SST does, slightly).
+    let solved_times: Vec<f64> = names
+        .iter()
+        .flat_map(|n| runs(logs, n))
+        .filter(|r| r.1)
+        .map(|r| r.0)
+        .collect();
     let t_max = logs
         .iter()
         .map(|l| l.time_limit)
         .filter(|t| t.is_finite())
+        .chain(solved_times)
         .fold(1.0, f64::max);
     let mut s = frame(
         "Success rate within a time budget",
@@ -173,23 +202,7 @@ pub fn success_vs_time(logs: &[BenchmarkLog]) -> String {
             points.push((*t, 100.0 * (i + 1) as f64 / all.len().max(1) as f64));
         }
         points.push((t_max, points.last().unwrap().1));
-        let path: Vec<String> = points
-            .iter()
-            .map(|(t, p)| {
-                format!(
-                    "{:.1},{:.1}",
-                    LEFT + t / t_max * PLOT_W,
-                    TOP + PLOT_H - p / 100.0 * PLOT_H
-                )
-            })
-            .collect();
-        let _ = writeln!(
-            s,
-            r##"<polyline class="planner" data-planner="{}" points="{}" fill="none" stroke="{}" stroke-width="2"/>"##,
-            short(name),
-            path.join(" "),
-            COLOURS[k % COLOURS.len()]
-        );
+        curve(&mut s, name, k, &points, t_max, 100.0);
     }
     legend(&mut s, &names);
     s + "</svg>\n"
@@ -338,27 +351,18 @@ pub fn success_vs_objects(logs: &[BenchmarkLog]) -> String {
     );
     for (k, name) in names.iter().enumerate() {
         let all = runs(logs, name);
-        let points: Vec<String> = (1..=most)
+        let points: Vec<(f64, f64)> = (1..=most)
             .filter_map(|n| {
                 let of_n: Vec<_> = all.iter().filter(|r| r.2 == Some(n)).collect();
                 (!of_n.is_empty()).then(|| {
-                    let rate =
-                        100.0 * of_n.iter().filter(|r| r.1).count() as f64 / of_n.len() as f64;
-                    format!(
-                        "{:.1},{:.1}",
-                        LEFT + n as f64 / most as f64 * PLOT_W,
-                        TOP + PLOT_H - rate / 100.0 * PLOT_H
+                    (
+                        n as f64,
+                        100.0 * of_n.iter().filter(|r| r.1).count() as f64 / of_n.len() as f64,
                     )
                 })
             })
             .collect();
-        let _ = writeln!(
-            s,
-            r##"<polyline class="planner" data-planner="{}" points="{}" fill="none" stroke="{}" stroke-width="2"/>"##,
-            short(name),
-            points.join(" "),
-            COLOURS[k % COLOURS.len()]
-        );
+        curve(&mut s, name, k, &points, most as f64, 100.0);
     }
     legend(&mut s, &names);
     s + "</svg>\n"

@@ -34,7 +34,7 @@ pub struct Frame {
     pub time: f64,
     /// Outline and "in contact" flag of each solid link.
     pub links: Vec<(Vec<Vector2<f64>>, bool)>,
-    /// Outline and pose of each object.
+    /// Outline of each object.
     pub objects: Vec<Vec<Vector2<f64>>>,
 }
 
