@@ -104,7 +104,6 @@ pub fn find_arm_contacts(
 /// material point at the contact, divided by `dt`. Points closer than 1 mm with the same
 /// normal (the stacked corners of a face contact, seen from above) are merged.
 /// `links` receives the link of each planar contact.
-#[allow(clippy::too_many_arguments)]
 pub fn planar_contacts(
     contacts: &[ArmContact],
     pose: &Pose2,
