@@ -15,6 +15,10 @@ fn shipped_scenes_are_planning_problems() {
     for file in files {
         // Loading checks every field and the start state's validity.
         let scene = Scene::load(&file).unwrap_or_else(|e| panic!("{e}"));
-        assert!(!scene.goal.is_satisfied(&scene.start), "{}: the goal holds at the start", file.display());
+        assert!(
+            !scene.goal.is_satisfied(&scene.start),
+            "{}: the goal holds at the start",
+            file.display()
+        );
     }
 }
