@@ -1,29 +1,18 @@
 //! Pictures of a real plan: snapshot positions match the plan's object poses, the
 //! timeline shows the plan's contacts, and the HTML animation draws in a browser.
 
-use pushplan::ffi::{solve, SolveOptions};
-use pushplan::path::PathControl;
 use pushplan::plan::{PlanFile, PlanSettings};
 use pushplan::render::render;
+
+mod common;
 use pushplan::Scene;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 const SCENE: &str = "scenes/herb_fig1_clutter.yaml";
 
 /// The default scene's plan for seed 2, written to a temporary folder.
 fn plan() -> (PlanFile, PathBuf) {
-    let options = SolveOptions {
-        time_limit: 30.0,
-        seed: 2,
-        k: 3,
-        goal_bias: 0.05,
-        planner: "pcrrt".into(),
-        intermediate_states: false,
-        progress: false,
-    };
-    let out = solve(Path::new(SCENE), &options).unwrap();
-    let scene = Scene::load(SCENE).unwrap();
-    let controls = PathControl::from_flat(&out.controls, &out.steps, scene.robot.dof()).unwrap();
+    let (scene, controls) = common::default_scene_plan(2);
     let settings = PlanSettings {
         planner: "pcrrt".into(),
         seed: 2,

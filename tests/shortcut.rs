@@ -1,6 +1,5 @@
 //! Shortcutting (Sec. IV), path metrics and the executable trajectory.
 
-use pushplan::ffi::{solve, SolveOptions};
 use pushplan::path::{simulate, PathControl};
 use pushplan::plan::{PlanFile, PlanSettings};
 use pushplan::shortcut::{shortcut, ShortcutSettings};
@@ -9,22 +8,11 @@ use std::path::Path;
 
 const SCENE: &str = "scenes/herb_fig1_clutter.yaml";
 
-/// The PC RRT plan of the default scene for seed 2 (found in well under a second).
+mod common;
+
+/// The PC RRT plan of the default scene for seed 2.
 fn found_plan() -> (Scene, Vec<PathControl>) {
-    let options = SolveOptions {
-        time_limit: 30.0,
-        seed: 2,
-        k: 3,
-        goal_bias: 0.05,
-        planner: "pcrrt".into(),
-        intermediate_states: false,
-        progress: false,
-    };
-    let out = solve(Path::new(SCENE), &options).unwrap();
-    assert!(out.exact);
-    let scene = Scene::load(SCENE).unwrap();
-    let controls = PathControl::from_flat(&out.controls, &out.steps, scene.robot.dof()).unwrap();
-    (scene, controls)
+    common::default_scene_plan(2)
 }
 
 #[test]

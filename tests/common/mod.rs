@@ -46,3 +46,25 @@ pub fn parked_goal() -> String {
         [0.5, -0.6, 0.0],
     )
 }
+
+/// The PC RRT plan of the default (Fig. 1) scene for `seed`, as controls (seed 2 solves in
+/// well under a second).
+pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>) {
+    let options = pushplan::ffi::SolveOptions {
+        time_limit: 30.0,
+        seed,
+        k: 3,
+        goal_bias: 0.05,
+        planner: "pcrrt".into(),
+        intermediate_states: false,
+        progress: false,
+    };
+    let scene_file = "scenes/herb_fig1_clutter.yaml";
+    let out = pushplan::ffi::solve(Path::new(scene_file), &options).unwrap();
+    assert!(out.exact, "seed {seed} should solve the default scene");
+    let scene = Scene::load(scene_file).unwrap();
+    let controls =
+        pushplan::path::PathControl::from_flat(&out.controls, &out.steps, scene.robot.dof())
+            .unwrap();
+    (scene, controls)
+}
