@@ -231,11 +231,7 @@ fn model_from_yaml(yaml: &str, source: &str, static_clutter: bool) -> Result<Box
 
 impl Model {
     pub fn new(scene: Scene, static_clutter: bool) -> Model {
-        let scene = if static_clutter {
-            scene.with_static_clutter()
-        } else {
-            scene
-        };
+        let scene = scene.planned_by(if static_clutter { "static" } else { "pcrrt" });
         Model {
             metric: DistanceMetric::from_scene(&scene),
             static_view: StaticClutter::new(&scene),

@@ -302,11 +302,7 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
         ));
     }
     let solution = solve(scene_path, &options)?;
-    let variant = if planner.name() == "static" {
-        scene.with_static_clutter()
-    } else {
-        scene.clone()
-    };
+    let variant = scene.clone().planned_by(planner.name());
     let mut controls =
         PathControl::from_flat(&solution.controls, &solution.steps, variant.robot.dof())?;
     let mut before = None;

@@ -177,11 +177,7 @@ impl PlanFile {
         controls: &[PathControl],
         before: Option<PathMetrics>,
     ) -> Result<PlanFile, String> {
-        let scene = if settings.planner == "static" {
-            scene.with_static_clutter()
-        } else {
-            scene
-        };
+        let scene = scene.planned_by(&settings.planner);
         let mut propagator = Propagator::new(scene);
         let scene = propagator.shared_scene();
         let path = simulate(&mut propagator, &scene.start, controls, true);

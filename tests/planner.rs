@@ -1,6 +1,8 @@
 //! The OMPL planner through the bridge: it solves, pushes clutter when it must, and every
 //! plan it returns re-simulates to the same states and reaches the goal.
 
+mod common;
+
 use pushplan::ffi::{solve, SolveOptions, SolveOutput};
 use pushplan::path::PathControl;
 use pushplan::plan::{PlanFile, PlanSettings};
@@ -20,14 +22,7 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
 }
 
 fn settings(planner: &str, seed: u64) -> PlanSettings {
-    PlanSettings {
-        planner: planner.into(),
-        seed,
-        k: 3,
-        goal_bias: 0.05,
-        time_limit: 30.0,
-        shortcut: 0.0,
-    }
+    common::plan_settings(planner, seed, 0.0)
 }
 
 fn plan_file(scene: &str, planner: &str, seed: u64, out: &SolveOutput) -> PlanFile {

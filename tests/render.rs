@@ -1,7 +1,7 @@
 //! Pictures of a real plan: snapshot positions match the plan's object poses, the
 //! timeline shows the plan's contacts, and the HTML animation draws in a browser.
 
-use pushplan::plan::{PlanFile, PlanSettings};
+use pushplan::plan::PlanFile;
 use pushplan::render::render;
 
 mod common;
@@ -13,14 +13,7 @@ const SCENE: &str = "scenes/herb_fig1_clutter.yaml";
 /// The default scene's plan for seed 2, written to a temporary folder.
 fn plan() -> (PlanFile, PathBuf) {
     let (scene, controls) = common::default_scene_plan(2);
-    let settings = PlanSettings {
-        planner: "pcrrt".into(),
-        seed: 2,
-        k: 3,
-        goal_bias: 0.05,
-        time_limit: 30.0,
-        shortcut: 0.0,
-    };
+    let settings = common::plan_settings("pcrrt", 2, 0.0);
     let plan = PlanFile::build(SCENE, scene, &settings, &controls, None).unwrap();
     let dir = std::env::temp_dir().join(format!("pushplan-render-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -1,7 +1,7 @@
 //! Shortcutting (Sec. IV), path metrics and the executable trajectory.
 
 use pushplan::path::{simulate, PathControl};
-use pushplan::plan::{PlanFile, PlanSettings};
+use pushplan::plan::PlanFile;
 use pushplan::shortcut::{shortcut, ShortcutSettings};
 use pushplan::{Propagator, Scene};
 use std::path::Path;
@@ -44,14 +44,7 @@ fn shortcutting_shortens_the_manipulator_path_and_keeps_the_plan_valid() {
     assert_eq!(again, outcome);
 
     // The plan file records both metrics and passes its check.
-    let plan_settings = PlanSettings {
-        planner: "pcrrt".into(),
-        seed: 2,
-        k: 3,
-        goal_bias: 0.05,
-        time_limit: 30.0,
-        shortcut: 1.0,
-    };
+    let plan_settings = common::plan_settings("pcrrt", 2, 1.0);
     let plan = PlanFile::build(
         SCENE,
         scene.clone(),
@@ -81,14 +74,7 @@ fn a_zero_budget_changes_nothing() {
 #[test]
 fn the_trajectory_respects_joint_velocity_limits_and_follows_the_plan() {
     let (scene, controls) = found_plan();
-    let settings = PlanSettings {
-        planner: "pcrrt".into(),
-        seed: 2,
-        k: 3,
-        goal_bias: 0.05,
-        time_limit: 30.0,
-        shortcut: 0.0,
-    };
+    let settings = common::plan_settings("pcrrt", 2, 0.0);
     let plan = PlanFile::build(SCENE, scene.clone(), &settings, &controls, None).unwrap();
     let t = &plan.trajectory;
     assert_eq!(t.rate, 50.0);

@@ -41,12 +41,9 @@ pub struct Frame {
 impl Film {
     /// Simulates the plan in the file (its scene resolved as `check` does).
     pub fn of(plan: &PlanFile, plan_path: &Path) -> Result<Film, String> {
-        let scene = Scene::load(plan.scene_path(plan_path)).map_err(|e| e.to_string())?;
-        let scene = if plan.planner == "static" {
-            scene.with_static_clutter()
-        } else {
-            scene
-        };
+        let scene = Scene::load(plan.scene_path(plan_path))
+            .map_err(|e| e.to_string())?
+            .planned_by(&plan.planner);
         let mut propagator = Propagator::new(scene.clone());
         let path = simulate(&mut propagator, &scene.start, &plan.path_controls(), true);
         if let Some((i, reason)) = path.stopped_by {

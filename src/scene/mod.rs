@@ -120,6 +120,16 @@ impl Goal {
 }
 
 impl Scene {
+    /// The scene a planner searches: `static` (Static RRT) holds the clutter as static
+    /// obstacles ([`Scene::with_static_clutter`]); the others push it.
+    pub fn planned_by(self, planner: &str) -> Scene {
+        if planner == "static" {
+            self.with_static_clutter()
+        } else {
+            self
+        }
+    }
+
     /// The scene of the Static RRT baseline: every movable object except the goal object
     /// becomes a static obstacle where it starts.
     pub fn with_static_clutter(&self) -> Scene {

@@ -68,3 +68,15 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>
             .unwrap();
     (scene, controls)
 }
+
+/// How a test's plan was made: k = 3, goal bias 0.05, 30 s, and the given shortcut budget.
+pub fn plan_settings(planner: &str, seed: u64, shortcut: f64) -> pushplan::plan::PlanSettings {
+    pushplan::plan::PlanSettings {
+        planner: planner.into(),
+        seed,
+        k: 3,
+        goal_bias: 0.05,
+        time_limit: 30.0,
+        shortcut,
+    }
+}
