@@ -84,6 +84,18 @@ fn no_exact_solution_exits_non_zero() {
     ]);
     assert_eq!(code, 1, "{stdout}");
     assert!(stdout.starts_with("not solved"), "{stdout}");
+    // A search that runs past a second reports progress on stderr.
+    let (_, _, stderr) = pushplan(&[
+        "plan",
+        "tests/data/clutter_on_goal.yaml",
+        "--planner",
+        "static",
+        "--time",
+        "1.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(stderr.contains("searching:   1.0 s"), "{stderr}");
 }
 
 #[test]

@@ -77,6 +77,19 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
         "{stdout}"
     );
     assert!(stdout.contains("green_box ends at"), "{stdout}");
+    // Shortcutting through the C++ API (on by default): the path never gets longer.
+    let line = stdout
+        .lines()
+        .find(|l| l.contains("manipulator path"))
+        .expect("metrics printed");
+    let numbers: Vec<f64> = line
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    assert!(
+        numbers.len() >= 2 && numbers[0] <= numbers[1] + 1e-9,
+        "after vs found: {line}"
+    );
 
     // A scene given as text (Planner::fromYaml): relative paths resolve against the
     // working directory of the named source.
