@@ -15,6 +15,7 @@
 pub mod benchmark;
 pub mod collision;
 pub mod contact;
+pub mod darrt;
 pub mod distance;
 pub mod error;
 pub mod ffi;

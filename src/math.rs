@@ -51,6 +51,30 @@ impl Pose2 {
         self.vector_to_local(p - self.translation())
     }
 
+    /// The composition `self * other`: `other` is a pose in this pose's frame; the result
+    /// is that pose in the world.
+    pub fn compose(&self, other: &Pose2) -> Pose2 {
+        let t = self.translation() + self.rotation() * other.translation();
+        Pose2::new(t.x, t.y, wrap_angle(self.theta + other.theta))
+    }
+
+    /// The inverse transform: `p.compose(&p.inverse())` is the identity.
+    pub fn inverse(&self) -> Pose2 {
+        let t = -(self.rotation().transpose() * self.translation());
+        Pose2::new(t.x, t.y, wrap_angle(-self.theta))
+    }
+
+    /// The pose a fraction `s` (0..1) of the way along the straight line to `to`
+    /// (translation linear, yaw the short way round).
+    pub fn lerp(&self, to: &Pose2, s: f64) -> Pose2 {
+        let turn = wrap_angle(to.theta - self.theta);
+        Pose2::new(
+            self.x + s * (to.x - self.x),
+            self.y + s * (to.y - self.y),
+            wrap_angle(self.theta + s * turn),
+        )
+    }
+
     /// The pose reached by holding the body twist `twist` for `dt` seconds
     /// (exact exponential map of SE(2)).
     pub fn integrate(&self, twist: &Twist2, dt: f64) -> Pose2 {
@@ -121,6 +145,22 @@ mod tests {
         assert!((wrap_angle(-PI) - PI).abs() < 1e-12);
         assert!((wrap_angle(0.5) - 0.5).abs() < 1e-15);
         assert!((wrap_angle(-7.0) - (-7.0 + 2.0 * PI)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn composing_with_the_inverse_is_the_identity() {
+        let p = Pose2::new(0.3, -0.2, 2.5);
+        let q = Pose2::new(-0.1, 0.4, -1.0);
+        let id = p.compose(&p.inverse());
+        assert!(id.x.abs() < 1e-15 && id.y.abs() < 1e-15 && id.theta.abs() < 1e-15);
+        // Composition agrees with the 3D isometries.
+        let iso = p.to_isometry(0.0) * q.to_isometry(0.0);
+        let c = p.compose(&q);
+        assert!((iso.translation.x - c.x).abs() < 1e-15 && (iso.translation.y - c.y).abs() < 1e-15);
+        assert!((iso.rotation.angle() - c.theta.abs()).abs() < 1e-12);
+        // Halfway from yaw 3 to yaw -3 goes through pi, not 0.
+        let half = Pose2::new(0.0, 0.0, 3.0).lerp(&Pose2::new(1.0, 0.0, -3.0), 0.5);
+        assert!((half.x - 0.5).abs() < 1e-15 && (half.theta.abs() - PI).abs() < 1e-12);
     }
 
     #[test]

@@ -8,6 +8,7 @@
 use crate::math::wrap_angle;
 use crate::robot::Robot;
 use crate::state::State;
+use nalgebra::DVector;
 use serde::{Deserialize, Serialize};
 
 /// Joint values and object poses sampled at `rate` Hz (the last sample is the end).
@@ -24,17 +25,20 @@ pub struct Trajectory {
     pub objects: Vec<Vec<[f64; 3]>>,
 }
 
+/// The shortest time (s) in which the straight joint motion `from -> to` keeps every joint
+/// within its URDF velocity limit.
+pub fn joint_motion_time(robot: &Robot, from: &DVector<f64>, to: &DVector<f64>) -> f64 {
+    (0..robot.dof())
+        .map(|i| (to[i] - from[i]).abs() / robot.chain.dof_joint(i).max_velocity)
+        .fold(0.0, f64::max)
+}
+
 /// Times each step `k -> k+1` so that every joint moves at most at its velocity limit
 /// (and no faster than the plan's `dt`), then samples at `rate` Hz by linear interpolation.
 pub fn time_parameterise(robot: &Robot, steps: &[State], dt: f64, rate: f64) -> Trajectory {
-    let limits: Vec<f64> = (0..robot.dof())
-        .map(|i| robot.chain.dof_joint(i).max_velocity)
-        .collect();
     let mut knots = vec![0.0];
     for w in steps.windows(2) {
-        let slowest = (0..limits.len())
-            .map(|i| (w[1].q[i] - w[0].q[i]).abs() / limits[i])
-            .fold(dt, f64::max);
+        let slowest = joint_motion_time(robot, &w[0].q, &w[1].q).max(dt);
         knots.push(knots.last().unwrap() + slowest);
     }
     let end = *knots.last().unwrap();

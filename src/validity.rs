@@ -212,6 +212,11 @@ pub fn check_arm_objects(
         scene.physics.contact_margin,
         contacts,
     );
+    check_arm_contacts(scene, contacts)
+}
+
+/// Rejects penetration beyond the tolerance and pressing on top among `contacts`.
+pub fn check_arm_contacts(scene: &Scene, contacts: &[ArmContact]) -> Result<(), Invalid> {
     let names = |c: &ArmContact| {
         (
             scene.robot.chain.links[c.link].name.clone(),

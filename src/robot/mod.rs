@@ -7,12 +7,14 @@
 //! code are the same for both.
 
 pub mod chain;
+pub mod ik;
 pub mod mesh;
 pub mod planar_hand;
 pub mod projection;
 pub mod urdf;
 
 pub use chain::{Joint, JointKind, KinematicChain, Link};
+pub use ik::IkSettings;
 pub use projection::{EeAction, ProjectionFailure, ProjectionSettings, PushingPlane};
 
 use nalgebra::{DVector, Isometry3};

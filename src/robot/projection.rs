@@ -15,7 +15,8 @@
 //! singularity), a few Newton corrections follow, as in CBiRRT's projection.
 
 use super::Robot;
-use nalgebra::{DVector, Isometry3, Matrix6, UnitQuaternion, Vector3, Vector6};
+use crate::math::Pose2;
+use nalgebra::{DVector, Isometry3, Matrix6, Translation3, UnitQuaternion, Vector3, Vector6};
 
 /// The manifold the tool is held on: a horizontal plane and a fixed tilt.
 #[derive(Clone, Debug)]
@@ -44,6 +45,27 @@ impl PushingPlane {
         (
             self.height - tool.translation.z,
             up.z.clamp(-1.0, 1.0).acos(),
+        )
+    }
+
+    /// The world pose of a tool on the plane at planar position (x, y) (m) and yaw
+    /// `pose.theta` (rad) about the vertical.
+    pub fn tool_pose_at(&self, pose: &Pose2) -> Isometry3<f64> {
+        Isometry3::from_parts(
+            Translation3::new(pose.x, pose.y, self.height),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), pose.theta) * self.orientation,
+        )
+    }
+
+    /// The planar pose (x, y, yaw) of a tool pose on the plane: the inverse of
+    /// [`tool_pose_at`](Self::tool_pose_at) (the tilt is ignored).
+    pub fn planar_pose(&self, tool: &Isometry3<f64>) -> Pose2 {
+        let turn = tool.rotation * self.orientation.inverse();
+        let x_axis = turn * Vector3::x();
+        Pose2::new(
+            tool.translation.x,
+            tool.translation.y,
+            x_axis.y.atan2(x_axis.x),
         )
     }
 
@@ -143,7 +165,7 @@ const NEWTON_ITERATIONS: usize = 5;
 impl Robot {
     /// Joint velocity that realises the task twist `task` (6 rows) plus the null-space
     /// part of `z` (empty for none), at the configuration with link poses `poses`.
-    fn joint_velocity(
+    pub(super) fn joint_velocity(
         &self,
         poses: &[Isometry3<f64>],
         task: &Vector6<f64>,

@@ -1,0 +1,214 @@
+//! The DARRT baseline's primitives and the check of its paths: the hand cages an object
+//! by touching it, the caged object follows the tool rigidly along a straight line,
+//! blocked lines fail, and a path that breaks a primitive's rules is refused.
+
+mod common;
+
+use common::{herb_scene, object};
+use pushplan::collision::query::signed_distance;
+use pushplan::darrt::{self, cage::CAGE_CLEARANCE, Cage, PrimitiveFailure};
+use pushplan::math::Pose2;
+use pushplan::validity::Invalid;
+use pushplan::{Scene, State};
+
+const BOX: &str = "{type: box, size: [0.102, 0.102, 0.215]}";
+
+fn single_object() -> Scene {
+    Scene::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/herb_single_object.yaml"
+    ))
+    .unwrap()
+}
+
+/// The world pose of object `i` relative to the tool, computed from the 3D poses.
+fn object_in_tool(scene: &Scene, state: &State, i: usize) -> nalgebra::Isometry3<f64> {
+    let robot = &scene.robot;
+    let tool = robot.tool_pose(&robot.link_poses(&state.q));
+    tool.inverse() * state.objects[i].to_isometry(scene.table.top)
+}
+
+#[test]
+fn the_hand_cages_an_object_by_touching_it() {
+    let scene = single_object();
+    let target = Pose2::new(0.85, -0.25, 0.0);
+    let caged = darrt::approach(&scene, &scene.start, 0, &target).expect("a cage");
+    assert_eq!(
+        caged.objects, scene.start.objects,
+        "approaching moves no object"
+    );
+    let robot = &scene.robot;
+    let poses = robot.link_poses(&caged.q);
+    // The tool is on its plane.
+    let (height, tilt) = robot.plane.error(&robot.tool_pose(&poses));
+    assert!(height.abs() < 1e-4 && tilt < 1e-4);
+    // The hand touches the object with the cage's clearance.
+    let object_pose = caged.objects[0].to_isometry(scene.table.top);
+    let gap = robot.chain.links[robot.ee_link]
+        .geometry
+        .iter()
+        .map(|g| {
+            signed_distance(
+                g,
+                &poses[robot.ee_link],
+                &scene.objects[0].geometry,
+                &object_pose,
+                1.0,
+            )
+            .unwrap()
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!((gap - CAGE_CLEARANCE).abs() < 2e-4, "gap {gap}");
+    // The hand is behind the object as seen along the push.
+    let push = (target.translation() - caged.objects[0].translation()).normalize();
+    let hand = poses[robot.ee_link].translation.vector.xy();
+    assert!((caged.objects[0].translation() - hand).dot(&push) > 0.0);
+}
+
+#[test]
+fn a_carried_object_follows_the_tool_rigidly_to_the_end_of_the_line() {
+    let scene = single_object();
+    let target = Pose2::new(0.85, -0.25, 0.3);
+    let caged = darrt::approach(&scene, &scene.start, 0, &target).unwrap();
+    let cage = Cage::of_state(&scene, &caged, 0);
+    let states = darrt::carry(&scene, &caged, &cage, &target).expect("a clear line");
+    let last = states.last().unwrap();
+    assert_eq!(last.objects[0], target);
+    // Distance 0.269 m and turn 0.3 rad: 27 steps of at most 1 cm.
+    assert_eq!(states.len(), 27);
+    let grip = object_in_tool(&scene, &caged, 0);
+    for s in &states {
+        let now = object_in_tool(&scene, s, 0);
+        assert!((now.translation.vector - grip.translation.vector).norm() < 1e-4);
+        assert!(now.rotation.angle_to(&grip.rotation) < 1e-4);
+        // Straight line: every pose lies on the segment from start to target.
+        let p = s.objects[0].translation();
+        let (a, b) = (scene.start.objects[0].translation(), target.translation());
+        let off_line = ((p - a).perp(&(b - a)) / (b - a).norm()).abs();
+        assert!(off_line < 1e-12);
+    }
+}
+
+#[test]
+fn a_carry_into_another_object_fails_and_so_does_a_target_on_it() {
+    let objects = object("goal", BOX, [0.6, -0.2, 0.0])
+        + &object(
+            "can",
+            "{type: cylinder, radius: 0.04, height: 0.2}",
+            [0.6, -0.45, 0.0],
+        );
+    let scene = herb_scene(common::HAND_NEAR, &objects, "").unwrap();
+    // The can sits on the line from the goal box to (0.6, -0.7).
+    let beyond = Pose2::new(0.6, -0.7, 0.0);
+    let caged = darrt::approach(&scene, &scene.start, 0, &beyond).expect("a cage");
+    let cage = Cage::of_state(&scene, &caged, 0);
+    match darrt::carry(&scene, &caged, &cage, &beyond) {
+        Err(PrimitiveFailure::Invalid(Invalid::ObjectsOverlap { object_a, object_b })) => {
+            assert_eq!((object_a.as_str(), object_b.as_str()), ("goal", "can"))
+        }
+        other => panic!("expected an overlap, got {other:?}"),
+    }
+    let on_can = Pose2::new(0.62, -0.45, 0.0);
+    assert!(matches!(
+        darrt::approach(&scene, &scene.start, 0, &on_can),
+        Err(PrimitiveFailure::Invalid(Invalid::ObjectsOverlap { .. }))
+    ));
+    let off_table = Pose2::new(1.2, -0.45, 0.0);
+    assert!(matches!(
+        darrt::approach(&scene, &scene.start, 0, &off_table),
+        Err(PrimitiveFailure::Invalid(Invalid::ObjectOffTable { .. }))
+    ));
+}
+
+/// start -> (Transit to the cage, if the straight line is clear) -> carry into the goal.
+fn transit_and_push(scene: &Scene) -> Vec<State> {
+    let target = Pose2::new(0.85, -0.25, 0.0);
+    let caged = darrt::approach(scene, &scene.start, 0, &target).unwrap();
+    // Bring the hand to 10 cm behind the cage, then straight in: two straight lines.
+    let robot = &scene.robot;
+    let tool = robot
+        .plane
+        .planar_pose(&robot.tool_pose(&robot.link_poses(&caged.q)));
+    let behind = tool.compose(&Pose2::new(-0.1, 0.0, 0.0));
+    let start_tool = robot
+        .plane
+        .planar_pose(&robot.tool_pose(&robot.link_poses(&scene.start.q)));
+    // Glide on the plane from the start to behind the cage (short straight lines between
+    // inverse-kinematics waypoints), then move in.
+    let mut path = vec![scene.start.clone()];
+    for k in 1..=20 {
+        let at = start_tool.lerp(&behind, k as f64 / 20.0);
+        let q = robot
+            .reach_tool_pose(
+                &robot.plane.tool_pose_at(&at),
+                &path.last().unwrap().q,
+                &Default::default(),
+            )
+            .unwrap();
+        path.push(State {
+            q,
+            objects: scene.start.objects.clone(),
+        });
+    }
+    path.push(caged.clone());
+    for w in path.windows(2) {
+        darrt::check_transit(scene, &w[0], &w[1].q).expect("the straight line is clear");
+    }
+    let cage = Cage::of_state(scene, &caged, 0);
+    path.extend(darrt::carry(scene, &caged, &cage, &target).unwrap());
+    path
+}
+
+#[test]
+fn a_path_of_primitives_checks_and_reaches_the_goal() {
+    let scene = single_object();
+    let path = transit_and_push(&scene);
+    let checked = darrt::check_path(&scene, &path).expect("valid");
+    assert!(checked.goal_reached);
+    assert_eq!(checked.durations.len(), path.len() - 1);
+    let m = checked.metrics;
+    assert_eq!(m.objects_moved, 1);
+    let straight =
+        (Pose2::new(0.85, -0.25, 0.0).translation() - scene.start.objects[0].translation()).norm();
+    assert!(
+        (m.object_displacement - straight).abs() < 1e-9,
+        "{}",
+        m.object_displacement
+    );
+    // Joint length is the sum of the steps' joint distances, computed here.
+    let joints: f64 = path.windows(2).map(|w| (&w[1].q - &w[0].q).norm()).sum();
+    assert!((m.joint_length - joints).abs() < 1e-12);
+}
+
+#[test]
+fn paths_that_break_a_primitive_are_refused() {
+    let scene = single_object();
+    let path = transit_and_push(&scene);
+
+    // The object moves while the hand stays away: not a carry.
+    let mut teleport = path.clone();
+    for s in &mut teleport[1..] {
+        s.objects[0].x += 0.005;
+    }
+    let err = darrt::check_path(&scene, &teleport).unwrap_err();
+    assert!(
+        err.contains("step 0 -> 1") && err.contains("slips"),
+        "{err}"
+    );
+
+    // A carry step longer than the primitive's resolution.
+    let mut skipping = path.clone();
+    skipping.remove(path.len() - 5);
+    let err = darrt::check_path(&scene, &skipping).unwrap_err();
+    assert!(err.contains("more than one carry step"), "{err}");
+
+    // A path that does not start at the start.
+    let err = darrt::check_path(&scene, &path[1..]).unwrap_err();
+    assert!(err.contains("start"), "{err}");
+
+    // A transit through the table.
+    let mut through = vec![scene.start.clone(), scene.start.clone()];
+    through[1].q[1] += 0.9;
+    let err = darrt::check_path(&scene, &through).unwrap_err();
+    assert!(err.contains("transit") && err.contains("table"), "{err}");
+}
