@@ -4,6 +4,7 @@
 
 #include "benchmark.h"
 
+#include "darrt.h"
 #include "problem.h"
 #include "pushplan/pushplan.h"
 #include "pushplan/src/ffi.rs.h"
@@ -49,18 +50,37 @@ namespace pushplan::bridge
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &planner) {
             if (auto rrt = std::dynamic_pointer_cast<detail::SeededRRT>(planner))
                 rrt->reseed(detail::subSeed(options.seed, 100 + run));
+            if (auto darrt = std::dynamic_pointer_cast<detail::Darrt>(planner))
+                darrt->reseed(detail::subSeed(options.seed, 100 + run));
             // Static RRT shares the problem: the model treats the clutter as obstacles.
             model->model().set_static_clutter(planner->getName() == "StaticRRT");
             ++run;
             steps_before = model->model().propagation_steps();
         });
         benchmark.setPostRunEvent([&](const ob::PlannerPtr &, ompl::tools::Benchmark::RunProperties &props) {
+            // Only the planners that propagate controls through the model have a rate.
             const double propagated = static_cast<double>(model->model().propagation_steps() - steps_before);
             const double time = std::stod(props["time REAL"]);
-            props["propagation steps per second REAL"] = std::to_string(propagated / std::max(time, 1e-9));
+            if (propagated > 0)
+                props["propagation steps per second REAL"] = std::to_string(propagated / std::max(time, 1e-9));
             const auto &pdef = problem.setup->getProblemDefinition();
             if (!pdef->hasExactSolution())
                 return;
+            const auto measured = [&](const Metrics &m, const std::string &suffix) {
+                props["object displacement" + suffix + " REAL"] = std::to_string(m.object_displacement);
+                props["manipulator path length" + suffix + " REAL"] = std::to_string(m.joint_length);
+                props["end effector path length" + suffix + " REAL"] = std::to_string(m.ee_length);
+            };
+            // DARRT's paths are primitives, checked when found; shortcutting by
+            // re-propagation does not apply to them.
+            if (const auto *primitives = dynamic_cast<const detail::PrimitivePath *>(pdef->getSolutionPath().get()))
+            {
+                const Metrics &m = primitives->report().metrics;
+                props["objects moved INTEGER"] = std::to_string(m.objects_moved);
+                props["links in contact INTEGER"] = std::to_string(m.links_in_contact);
+                measured(m, "");
+                return;
+            }
             const auto *path = pdef->getSolutionPath()->as<oc::PathControl>();
             std::vector<double> controls, control;
             std::vector<std::size_t> steps;
@@ -75,12 +95,8 @@ namespace pushplan::bridge
                                                        options.shortcut, options.seed + run);
             props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
             props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);
-            props["object displacement REAL"] = std::to_string(s.before.object_displacement);
-            props["object displacement shortcut REAL"] = std::to_string(s.after.object_displacement);
-            props["manipulator path length REAL"] = std::to_string(s.before.joint_length);
-            props["manipulator path length shortcut REAL"] = std::to_string(s.after.joint_length);
-            props["end effector path length REAL"] = std::to_string(s.before.ee_length);
-            props["end effector path length shortcut REAL"] = std::to_string(s.after.ee_length);
+            measured(s.before, "");
+            measured(s.after, " shortcut");
         });
 
         ompl::tools::Benchmark::Request request(options.time_limit, 8192.0, options.runs, 0.5, false, false, false);

@@ -1,6 +1,7 @@
 #include "problem.h"
 
 #include "control.h"
+#include "darrt.h"
 #include "goal.h"
 #include "propagator.h"
 #include "validity.h"
@@ -103,6 +104,12 @@ namespace pushplan::detail
             rrt->setIntermediateStates(intermediate_states);
             return rrt;
         }
+        if (name == "darrt")
+        {
+            auto darrt = std::make_shared<Darrt>(si, problem.model, subSeed(seed, 3));
+            darrt->setGoalBias(goal_bias);
+            return darrt;
+        }
         if (name == "kpiece")
             return std::make_shared<oc::KPIECE1>(si);
         if (name == "est")
@@ -111,6 +118,6 @@ namespace pushplan::detail
             return std::make_shared<oc::PDST>(si);
         if (name == "sst")
             return std::make_shared<oc::SST>(si);
-        throw Error("unknown planner '" + name + "' (pcrrt, static, kpiece, est, pdst, sst)");
+        throw Error("unknown planner '" + name + "' (pcrrt, static, darrt, kpiece, est, pdst, sst)");
     }
 }  // namespace pushplan::detail

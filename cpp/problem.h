@@ -51,7 +51,7 @@ namespace pushplan::detail
     Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k);
 
     /// A planner by name: pcrrt, static (the same RRT, on a static-clutter model), kpiece,
-    /// est, pdst, sst. Throws pushplan::Error for other names.
+    /// darrt (the primitive baseline), est, pdst, sst. Throws pushplan::Error for other names.
     ompl::base::PlannerPtr makePlanner(const std::string &name, const Problem &problem, std::uint64_t seed,
                                        double goal_bias, bool intermediate_states);
 }  // namespace pushplan::detail

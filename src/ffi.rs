@@ -6,6 +6,7 @@
 //! - state: `[q_0 .. q_{n-1}, x_1, y_1, theta_1, .., x_M, y_M, theta_M]`;
 //! - control: `[vx, vy, omega_z, z_0 .. z_{n-1}]` (end-effector velocity, null-space sample).
 
+use crate::darrt;
 use crate::distance::DistanceMetric;
 use crate::math::Pose2;
 use crate::path::PathControl;
@@ -103,6 +104,18 @@ pub mod bridge {
         pub accepted: usize,
     }
 
+    /// A DARRT path checked by the model (see `darrt::check_path`).
+    #[derive(Debug, Clone)]
+    pub struct PrimitiveCheck {
+        pub valid: bool,
+        pub goal_reached: bool,
+        /// Why the path is invalid, empty if it is valid.
+        pub message: String,
+        pub metrics: Metrics,
+        /// Time of each step at the joints' velocity limits (s).
+        pub durations: Vec<f64>,
+    }
+
     /// Options of one planning run (the CLI's).
     #[derive(Debug, Clone)]
     pub struct SolveOptions {
@@ -133,7 +146,7 @@ pub mod bridge {
     /// Options of a benchmark of one scene.
     #[derive(Debug, Clone)]
     pub struct BenchOptions {
-        /// Planner names: pcrrt, static, kpiece, est, pdst, sst.
+        /// Planner names: pcrrt, static, darrt, kpiece, est, pdst, sst.
         pub planners: Vec<String>,
         pub runs: u32,
         pub time_limit: f64,
@@ -171,6 +184,21 @@ pub mod bridge {
         fn set_static_clutter(self: &mut Model, on: bool);
         fn static_clutter(self: &Model) -> bool;
         fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
+        fn darrt_transit(self: &Model, from: &[f64], to: &[f64]) -> Result<bool>;
+        fn darrt_approach(
+            self: &Model,
+            state: &[f64],
+            object: usize,
+            target: &[f64],
+            result: &mut [f64],
+        ) -> Result<bool>;
+        fn darrt_carry(
+            self: &Model,
+            state: &[f64],
+            object: usize,
+            target: &[f64],
+        ) -> Result<Vec<f64>>;
+        fn darrt_check(self: &Model, states: &[f64]) -> Result<PrimitiveCheck>;
     }
 
     unsafe extern "C++" {
@@ -184,7 +212,8 @@ pub mod bridge {
 }
 
 pub use bridge::{
-    BenchOptions, Metrics, PlanContact, SceneInfo, Shortcut, Simulation, SolveOptions, SolveOutput,
+    BenchOptions, Metrics, PlanContact, PrimitiveCheck, SceneInfo, Shortcut, Simulation,
+    SolveOptions, SolveOutput,
 };
 
 /// The model as the OMPL side holds it: a scene, its propagator and metric.
@@ -526,14 +555,6 @@ impl Model {
             let settings = crate::shortcut::ShortcutSettings::from_seconds(seconds, seed);
             let outcome =
                 crate::shortcut::shortcut(&mut self.propagator, &start, &controls, &settings);
-            let metrics = |m: &crate::path::PathMetrics| Metrics {
-                joint_length: m.joint_length,
-                ee_length: m.ee_length,
-                object_displacement: m.object_displacement,
-                objects_moved: m.objects_moved,
-                links_in_contact: m.links_in_contact,
-                duration: m.duration,
-            };
             Ok(Shortcut {
                 controls: outcome
                     .controls
@@ -546,17 +567,137 @@ impl Model {
                     })
                     .collect(),
                 steps: outcome.controls.iter().map(|c| c.steps).collect(),
-                before: metrics(&outcome.before),
-                after: metrics(&outcome.after),
+                before: Metrics::from(&outcome.before),
+                after: Metrics::from(&outcome.after),
                 attempts: outcome.attempts,
                 accepted: outcome.accepted,
             })
         })
     }
 
+    /// DARRT's Transit: is the straight joint-space line from `from` to `to` (same object
+    /// poses) valid?
+    pub fn darrt_transit(&self, from: &[f64], to: &[f64]) -> Result<bool, String> {
+        guarded("darrt_transit", || {
+            let (from, to) = (self.unpack(from)?, self.unpack(to)?);
+            if from.objects != to.objects {
+                return Err("a transit moves no object: the object poses differ".into());
+            }
+            Ok(darrt::check_transit(self.scene(), &from, &to.q).is_ok())
+        })
+    }
+
+    /// DARRT's Push, first part: writes the state with the hand caging `object` (ready
+    /// to carry it to `target`, `[x, y, yaw]`) and returns true, or false if none is found.
+    pub fn darrt_approach(
+        &self,
+        state: &[f64],
+        object: usize,
+        target: &[f64],
+        result: &mut [f64],
+    ) -> Result<bool, String> {
+        guarded("darrt_approach", || {
+            let state = self.unpack(state)?;
+            let (object, target) = self.object_target(object, target)?;
+            if result.len() != self.state_len() {
+                return Err("the result state has the wrong length".into());
+            }
+            match darrt::approach(self.scene(), &state, object, &target) {
+                Ok(caged) => {
+                    write_state(&caged, result);
+                    Ok(true)
+                }
+                Err(_) => Ok(false),
+            }
+        })
+    }
+
+    /// DARRT's Push, second part: carries the object caged in `state` to `target`
+    /// (`[x, y, yaw]`). Returns the states of the carry (flat, one after another), or none
+    /// if the line is blocked.
+    pub fn darrt_carry(
+        &self,
+        state: &[f64],
+        object: usize,
+        target: &[f64],
+    ) -> Result<Vec<f64>, String> {
+        guarded("darrt_carry", || {
+            let state = self.unpack(state)?;
+            let (object, target) = self.object_target(object, target)?;
+            let cage = darrt::Cage::of_state(self.scene(), &state, object);
+            Ok(darrt::carry(self.scene(), &state, &cage, &target)
+                .map(|states| states.iter().flat_map(pack_state).collect())
+                .unwrap_or_default())
+        })
+    }
+
+    /// Checks a DARRT path (flat states one after another) and measures it.
+    pub fn darrt_check(&self, states: &[f64]) -> Result<PrimitiveCheck, String> {
+        guarded("darrt_check", || {
+            let n = self.state_len();
+            if states.len() % n != 0 {
+                return Err(format!(
+                    "{} values are not whole states of {n}",
+                    states.len()
+                ));
+            }
+            let states: Vec<State> = states
+                .chunks(n)
+                .map(|s| unpack_state(s, self.scene().robot.dof()))
+                .collect();
+            Ok(match darrt::check_path(self.scene(), &states) {
+                Ok(path) => PrimitiveCheck {
+                    valid: true,
+                    goal_reached: path.goal_reached,
+                    message: String::new(),
+                    metrics: Metrics::from(&path.metrics),
+                    durations: path.durations,
+                },
+                Err(message) => PrimitiveCheck {
+                    valid: false,
+                    goal_reached: false,
+                    message,
+                    metrics: Metrics::default(),
+                    durations: vec![],
+                },
+            })
+        })
+    }
+
+    /// An object index and a target pose `[x, y, yaw]`, checked.
+    fn object_target(&self, object: usize, target: &[f64]) -> Result<(usize, Pose2), String> {
+        if object >= self.scene().objects.len() {
+            return Err(format!(
+                "object {object} does not exist ({} objects)",
+                self.scene().objects.len()
+            ));
+        }
+        match target {
+            [x, y, yaw] if target.iter().all(|v| v.is_finite()) => {
+                Ok((object, Pose2::new(*x, *y, *yaw)))
+            }
+            _ => Err(format!(
+                "a target pose is [x, y, yaw], finite; got {target:?}"
+            )),
+        }
+    }
+
     /// Controls in the flat layout, one after another, with their step counts.
     fn path_controls(&self, controls: &[f64], steps: &[usize]) -> Result<Vec<PathControl>, String> {
         PathControl::from_flat(controls, steps, self.scene().robot.dof())
+    }
+}
+
+impl From<&crate::path::PathMetrics> for Metrics {
+    fn from(m: &crate::path::PathMetrics) -> Self {
+        Metrics {
+            joint_length: m.joint_length,
+            ee_length: m.ee_length,
+            object_displacement: m.object_displacement,
+            objects_moved: m.objects_moved,
+            links_in_contact: m.links_in_contact,
+            duration: m.duration,
+        }
     }
 }
 

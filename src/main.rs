@@ -68,7 +68,7 @@ enum Command {
         /// Scene files.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
-        /// Planners: pcrrt, static, kpiece, est, pdst, sst.
+        /// Planners: pcrrt, static, darrt, kpiece, est, pdst, sst.
         #[arg(
             long,
             value_delimiter = ',',
@@ -444,7 +444,7 @@ fn bench(
     out: &Path,
     jobs: Option<usize>,
 ) -> Result<ExitCode, String> {
-    const KNOWN: [&str; 6] = ["pcrrt", "static", "kpiece", "est", "pdst", "sst"];
+    const KNOWN: [&str; 7] = ["pcrrt", "static", "darrt", "kpiece", "est", "pdst", "sst"];
     if let Some(p) = settings
         .planners
         .iter()

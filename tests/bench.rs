@@ -17,7 +17,7 @@ fn bench_runs_planners_on_scenes_and_merges_a_database() {
         .args(scenes)
         .args([
             "--planners",
-            "pcrrt,static,kpiece",
+            "pcrrt,static,darrt,kpiece",
             "--runs",
             "2",
             "--time",
@@ -37,7 +37,7 @@ fn bench_runs_planners_on_scenes_and_merges_a_database() {
     // The plots, one curve or bar per planner.
     let plots = out.join("plots");
     let curves = std::fs::read_to_string(plots.join("success_vs_time.svg")).unwrap();
-    for planner in ["PCRRT", "StaticRRT", "KPIECE1"] {
+    for planner in ["PCRRT", "StaticRRT", "DARRT", "KPIECE1"] {
         assert!(
             curves.contains(&format!("data-planner=\"{planner}\"")),
             "{planner} missing from success_vs_time.svg"
@@ -64,7 +64,11 @@ cols = {r[1] for r in c.execute("pragma table_info(runs)")}
 need = ["objects_moved", "object_displacement", "manipulator_path_length", "manipulator_path_length_shortcut", "propagation_steps_per_second"]
 print(",".join(n for n in need if n not in cols) or "all columns")
 print(c.execute("select count(*) from runs where solved = 1 and manipulator_path_length_shortcut <= manipulator_path_length + 1e-9").fetchone()[0],
-      c.execute("select count(*) from runs where solved = 1").fetchone()[0])
+      c.execute("select count(*) from runs where solved = 1 and manipulator_path_length_shortcut is not null").fetchone()[0])
+darrt = "(select id from plannerConfigs where name = 'control_DARRT')"
+print(*c.execute(f"""select count(*), sum(correct_solution), sum(objects_moved >= 1), sum(manipulator_path_length > 0),
+    sum(manipulator_path_length_shortcut is null), sum(propagation_steps_per_second is null)
+    from runs where plannerid in {darrt} and solved = 1""").fetchone())
 "#;
     let answer = Command::new("python3")
         .args(["-c", query])
@@ -75,17 +79,26 @@ print(c.execute("select count(*) from runs where solved = 1 and manipulator_path
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines.len(),
-        5,
+        6,
         "{text}{}",
         String::from_utf8_lossy(&answer.stderr)
     );
     assert_eq!(lines[0], "3", "one experiment per scene");
-    assert_eq!(lines[1], "control_KPIECE1,control_PCRRT,control_StaticRRT");
-    assert_eq!(lines[2], "18", "3 scenes x 3 planners x 2 runs");
+    assert_eq!(
+        lines[1],
+        "control_DARRT,control_KPIECE1,control_PCRRT,control_StaticRRT"
+    );
+    assert_eq!(lines[2], "24", "3 scenes x 4 planners x 2 runs");
     assert_eq!(lines[3], "all columns");
     let (shorter, solved) = lines[4].split_once(' ').unwrap();
     assert_eq!(shorter, solved, "shortcutting never lengthens a path");
     assert!(solved.parse::<u32>().unwrap() > 0);
+    // DARRT solves the one-object scene (a single Push); each of its solutions passed the
+    // primitive check, moved the goal object and has its measures, but neither a
+    // shortcut (its paths are primitives, not controls) nor a propagation rate.
+    let darrt: Vec<u32> = lines[5].split(' ').map(|v| v.parse().unwrap()).collect();
+    assert!(darrt[0] >= 2, "DARRT solved {} runs", darrt[0]);
+    assert!(darrt.iter().all(|&v| v == darrt[0]), "{darrt:?}");
 }
 
 #[test]

@@ -265,7 +265,8 @@ pub fn plan_time(logs: &[BenchmarkLog]) -> String {
 }
 
 /// Fig. 8: the mean of a path measure over solved runs, before (dark) and after (light)
-/// shortcutting, per planner.
+/// shortcutting, per planner. A planner whose paths are not shortcut (DARRT's primitive
+/// paths) has the dark bar only.
 pub fn shortcutting(
     logs: &[BenchmarkLog],
     before: &str,
@@ -280,17 +281,18 @@ pub fn shortcutting(
             .filter(|r| r.1)
             .filter_map(|r| r.3.column(column)[r.4])
             .collect();
-        if values.is_empty() {
-            0.0
-        } else {
-            values.iter().sum::<f64>() / values.len() as f64
-        }
+        (!values.is_empty()).then(|| values.iter().sum::<f64>() / values.len() as f64)
     };
-    let bars: Vec<[f64; 2]> = names
+    let bars: Vec<[Option<f64>; 2]> = names
         .iter()
         .map(|n| [mean(n, before), mean(n, after)])
         .collect();
-    let y_max = bars.iter().flatten().fold(1e-9f64, |a, b| a.max(*b)) * 1.15;
+    let y_max = bars
+        .iter()
+        .flatten()
+        .flatten()
+        .fold(1e-9f64, |a, b| a.max(*b))
+        * 1.15;
     let mut s = frame(
         title,
         "",
@@ -304,6 +306,7 @@ pub fn shortcutting(
         let x0 = LEFT + k as f64 / names.len() as f64 * PLOT_W + 10.0;
         let width = (PLOT_W / names.len() as f64 - 20.0) / 2.0;
         for (j, value) in b.iter().enumerate() {
+            let Some(value) = value else { continue };
             let h = value / y_max * PLOT_H;
             let (series, opacity) = if j == 0 {
                 ("before", 0.9)

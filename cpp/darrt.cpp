@@ -1,0 +1,408 @@
+#include "darrt.h"
+
+#include "problem.h"
+#include "pushplan/pushplan.h"
+
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/StateValidityChecker.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+namespace og = ompl::geometric;
+
+namespace pushplan::detail
+{
+    namespace
+    {
+        rust::Slice<const double> view(const double *data, std::size_t size)
+        {
+            return rust::Slice<const double>(data, size);
+        }
+
+        /// The full state `context` with its joints replaced by an arm-space state's.
+        void withJoints(const ob::State *arm, std::size_t dof, FlatState &context)
+        {
+            const double *q = arm->as<ob::RealVectorStateSpace::StateType>()->values;
+            std::copy(q, q + dof, context.begin());
+        }
+
+        /// Arm-space states are valid when the full state (objects where they are) is.
+        class ArmValidity : public ob::StateValidityChecker
+        {
+        public:
+            ArmValidity(const ob::SpaceInformationPtr &si, ModelHandlePtr model, std::shared_ptr<FlatState> context)
+              : ob::StateValidityChecker(si), model_(std::move(model)), context_(std::move(context))
+            {
+            }
+            bool isValid(const ob::State *state) const override
+            {
+                withJoints(state, model_->info().dof, *context_);
+                return model_->model().is_valid(slice(*context_));
+            }
+
+        private:
+            ModelHandlePtr model_;
+            std::shared_ptr<FlatState> context_;
+        };
+
+        /// Arm-space motions are Transit lines, checked by the model at its resolution.
+        class TransitMotions : public ob::MotionValidator
+        {
+        public:
+            TransitMotions(const ob::SpaceInformationPtr &si, ModelHandlePtr model, std::shared_ptr<FlatState> context)
+              : ob::MotionValidator(si), model_(std::move(model)), context_(std::move(context))
+            {
+            }
+            bool checkMotion(const ob::State *s1, const ob::State *s2) const override
+            {
+                const std::size_t dof = model_->info().dof;
+                from_ = *context_;
+                to_ = *context_;
+                withJoints(s1, dof, from_);
+                withJoints(s2, dof, to_);
+                const bool valid = model_->model().darrt_transit(slice(from_), slice(to_));
+                (valid ? valid_ : invalid_)++;
+                return valid;
+            }
+            // RRT-Connect asks only the two-state form; the last valid state is not
+            // located, so the answer is the (conservative) start of the motion.
+            bool checkMotion(const ob::State *s1, const ob::State *s2,
+                             std::pair<ob::State *, double> &last_valid) const override
+            {
+                if (checkMotion(s1, s2))
+                    return true;
+                if (last_valid.first != nullptr)
+                    si_->copyState(last_valid.first, s1);
+                last_valid.second = 0.0;
+                return false;
+            }
+
+        private:
+            ModelHandlePtr model_;
+            std::shared_ptr<FlatState> context_;
+            mutable FlatState from_, to_;
+        };
+
+        /// Uniform joint samples from a given seed (OMPL's default draws from the global
+        /// seed sequence).
+        class SeededJointSampler : public ob::RealVectorStateSampler
+        {
+        public:
+            SeededJointSampler(const ob::StateSpace *space, std::uint_fast32_t seed)
+              : ob::RealVectorStateSampler(space)
+            {
+                rng_.setLocalSeed(seed);
+            }
+        };
+
+        class SeededRRTConnect : public og::RRTConnect
+        {
+        public:
+            SeededRRTConnect(const ob::SpaceInformationPtr &si, std::uint_fast32_t seed) : og::RRTConnect(si)
+            {
+                rng_.setLocalSeed(seed);
+            }
+        };
+    }  // namespace
+
+    PrimitivePath::PrimitivePath(const oc::SpaceInformationPtr &si, ModelHandlePtr model,
+                                 const std::vector<double> &states, bridge::PrimitiveCheck report)
+      : oc::PathControl(si), model_(std::move(model)), flat_(states), report_(std::move(report))
+    {
+        const std::size_t n = model_->stateSize();
+        ob::State *state = si->allocState();
+        oc::Control *control = si->allocControl();
+        si->nullControl(control);
+        FlatState buffer(n);
+        for (std::size_t at = 0; at < flat_.size(); at += n)
+        {
+            std::copy(flat_.begin() + at, flat_.begin() + at + n, buffer.begin());
+            model_->write(buffer, state);
+            // One propagation step per placeholder control: OMPL's interpolation then
+            // keeps the primitive states instead of propagating the placeholders.
+            if (at == 0)
+                append(state);
+            else
+                append(state, control, si->getPropagationStepSize());
+        }
+        si->freeControl(control);
+        si->freeState(state);
+    }
+
+    double PrimitivePath::length() const
+    {
+        return std::accumulate(report_.durations.begin(), report_.durations.end(), 0.0);
+    }
+
+    bool PrimitivePath::check() const
+    {
+        return model_->model().darrt_check(slice(flat_)).valid;
+    }
+
+    ArmTransit::ArmTransit(ModelHandlePtr model, double time_cap)
+      : model_(std::move(model)), context_(std::make_shared<FlatState>(model_->stateSize())), time_cap_(time_cap)
+    {
+        const bridge::SceneInfo &info = model_->info();
+        auto space = std::make_shared<ob::RealVectorStateSpace>(info.dof);
+        ob::RealVectorBounds bounds(info.dof);
+        for (std::size_t i = 0; i < info.dof; ++i)
+        {
+            bounds.setLow(i, info.joint_lower[i]);
+            bounds.setHigh(i, info.joint_upper[i]);
+        }
+        space->setBounds(bounds);
+        std::uint_fast32_t *counter = &sampler_seed_;
+        space->setStateSamplerAllocator([counter](const ob::StateSpace *s) {
+            return std::make_shared<SeededJointSampler>(s, (*counter)++);
+        });
+        si_ = std::make_shared<ob::SpaceInformation>(space);
+        si_->setStateValidityChecker(std::make_shared<ArmValidity>(si_, model_, context_));
+        si_->setMotionValidator(std::make_shared<TransitMotions>(si_, model_, context_));
+        si_->setup();
+    }
+
+    bool ArmTransit::plan(const FlatState &from, const FlatState &to, const ob::PlannerTerminationCondition &ptc,
+                          std::uint_fast32_t seed, std::vector<FlatState> &motion)
+    {
+        const std::size_t dof = model_->info().dof;
+        *context_ = from;
+        sampler_seed_ = subSeed(seed, 1);
+        ob::ScopedState<> start(si_), goal(si_);
+        for (std::size_t i = 0; i < dof; ++i)
+        {
+            start[i] = from[i];
+            goal[i] = to[i];
+        }
+        auto pdef = std::make_shared<ob::ProblemDefinition>(si_);
+        pdef->setStartAndGoalStates(start, goal);
+        auto planner = std::make_shared<SeededRRTConnect>(si_, subSeed(seed, 0));
+        planner->setProblemDefinition(pdef);
+        planner->setup();
+        const ob::PlannerStatus status =
+            planner->solve(ob::plannerOrTerminationCondition(ptc, ob::timedPlannerTerminationCondition(time_cap_)));
+        if (status != ob::PlannerStatus::EXACT_SOLUTION)
+            return false;
+        const auto &path = *pdef->getSolutionPath()->as<og::PathGeometric>();
+        for (std::size_t k = 1; k < path.getStateCount(); ++k)
+        {
+            FlatState waypoint = from;
+            withJoints(path.getState(k), dof, waypoint);
+            motion.push_back(std::move(waypoint));
+        }
+        // The goal tree is rooted at the goal itself, so the path ends exactly there.
+        return !motion.empty() && motion.back() == to;
+    }
+
+    Darrt::Darrt(const oc::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed)
+      : ob::Planner(si, "DARRT"), model_(std::move(model)), transit_(model_, 15.0)
+    {
+        rng_.setLocalSeed(seed);
+        goal_bias_ = model_->info().goal_bias;
+        specs_.approximateSolutions = false;
+        specs_.directed = true;
+        declareParam<double>("goal_bias", this, &Darrt::setGoalBias, &Darrt::getGoalBias, "0.:.05:1.");
+        declareParam<double>("transit_time", this, &Darrt::setTransitTime, &Darrt::getTransitTime, "0.:1.:60.");
+    }
+
+    Darrt::~Darrt()
+    {
+        clear();
+    }
+
+    void Darrt::reseed(std::uint_fast32_t seed)
+    {
+        rng_.setLocalSeed(seed);
+    }
+
+    void Darrt::clear()
+    {
+        ob::Planner::clear();
+        for (Node &node : nodes_)
+            si_->freeState(node.ompl_state);
+        nodes_.clear();
+    }
+
+    int Darrt::addNode(int parent, std::vector<FlatState> motion)
+    {
+        Node node;
+        node.state = motion.back();
+        node.ompl_state = si_->allocState();
+        model_->write(node.state, node.ompl_state);
+        node.parent = parent;
+        node.motion = std::move(motion);
+        nodes_.push_back(std::move(node));
+        return static_cast<int>(nodes_.size()) - 1;
+    }
+
+    bool Darrt::moveArm(int from, const FlatState &to, const ob::PlannerTerminationCondition &ptc,
+                        std::vector<FlatState> &motion)
+    {
+        const FlatState &start = nodes_[from].state;
+        if (model_->model().darrt_transit(slice(start), slice(to)))
+        {
+            motion.push_back(to);
+            return true;
+        }
+        return transit_.plan(start, to, ptc, subSeed(rng_.uniformInt(0, std::numeric_limits<int>::max()), transit_calls_++),
+                             motion);
+    }
+
+    int Darrt::extendArm(const ob::PlannerTerminationCondition &ptc)
+    {
+        const bridge::SceneInfo &info = model_->info();
+        FlatState q(info.dof);
+        for (std::size_t i = 0; i < info.dof; ++i)
+            q[i] = rng_.uniformReal(info.joint_lower[i], info.joint_upper[i]);
+        int nearest = 0;
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t n = 0; n < nodes_.size(); ++n)
+        {
+            double d = 0.0;
+            for (std::size_t i = 0; i < info.dof; ++i)
+                d += std::pow(nodes_[n].state[i] - q[i], 2);
+            if (d < best)
+                best = d, nearest = static_cast<int>(n);
+        }
+        FlatState target = nodes_[nearest].state;
+        std::copy(q.begin(), q.end(), target.begin());
+        if (!model_->model().is_valid(slice(target)))
+            return -1;
+        std::vector<FlatState> motion;
+        if (!moveArm(nearest, target, ptc, motion))
+            return -1;
+        return addNode(nearest, std::move(motion));
+    }
+
+    int Darrt::extendObject(int object, const ob::PlannerTerminationCondition &ptc)
+    {
+        const bridge::SceneInfo &info = model_->info();
+        std::array<double, 3> target{};
+        if (object == info.goal_object && rng_.uniform01() < goal_bias_)
+        {
+            // Uniform in the goal disc: radius ~ R sqrt(u).
+            const double r = info.goal_radius * std::sqrt(rng_.uniform01());
+            const double a = rng_.uniformReal(-M_PI, M_PI);
+            target = {info.goal_center_x + r * std::cos(a), info.goal_center_y + r * std::sin(a), 0.0};
+        }
+        else
+            target = {rng_.uniformReal(info.table_min_x, info.table_max_x),
+                      rng_.uniformReal(info.table_min_y, info.table_max_y), 0.0};
+        target[2] = rng_.uniformReal(-M_PI, M_PI);
+
+        // The node whose copy of the object is nearest (centre distance). Many nodes share
+        // an object pose (every arm motion keeps it); ties are broken uniformly, so that
+        // the arm configurations the tree has reached serve as starts of a Push.
+        const std::size_t at = info.dof + 3 * static_cast<std::size_t>(object);
+        int nearest = 0, ties = 0;
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t n = 0; n < nodes_.size(); ++n)
+        {
+            const double d = std::hypot(nodes_[n].state[at] - target[0], nodes_[n].state[at + 1] - target[1]);
+            if (d < best)
+                best = d, nearest = static_cast<int>(n), ties = 1;
+            else if (d == best && rng_.uniformInt(0, ties++) == 0)
+                nearest = static_cast<int>(n);
+        }
+        const rust::Slice<const double> goal_pose = view(target.data(), 3);
+        FlatState caged(model_->stateSize());
+        if (!model_->model().darrt_approach(slice(nodes_[nearest].state), object, goal_pose,
+                                            rust::Slice<double>(caged.data(), caged.size())))
+            return -1;
+        std::vector<FlatState> motion;
+        if (caged != nodes_[nearest].state && !moveArm(nearest, caged, ptc, motion))
+            return -1;
+        const rust::Vec<double> carried = model_->model().darrt_carry(slice(caged), object, goal_pose);
+        if (carried.empty())
+            return -1;
+        const std::size_t n = model_->stateSize();
+        for (std::size_t k = 0; k < carried.size(); k += n)
+            motion.emplace_back(carried.begin() + k, carried.begin() + k + n);
+        return addNode(nearest, std::move(motion));
+    }
+
+    ob::PlannerStatus Darrt::solve(const ob::PlannerTerminationCondition &ptc)
+    {
+        checkValidity();
+        const bridge::SceneInfo &info = model_->info();
+        if (nodes_.empty())
+        {
+            const ob::State *start = pis_.nextStart();
+            if (start == nullptr)
+                return ob::PlannerStatus::INVALID_START;
+            FlatState flat;
+            model_->read(start, flat);
+            addNode(-1, {flat});
+            if (model_->goalDistance(start) <= 0.0)
+                return report(0);
+        }
+        // The kinds of sample: the arm, the goal object, another object (if any).
+        std::vector<int> others;
+        for (int i = 0; i < static_cast<int>(info.objects); ++i)
+            if (i != info.goal_object)
+                others.push_back(i);
+        const int kinds = 1 + (info.goal_object >= 0 ? 1 : 0) + (others.empty() ? 0 : 1);
+        while (!ptc)
+        {
+            int kind = rng_.uniformInt(0, kinds - 1);
+            if (kind == 1 && info.goal_object < 0)
+                kind = 2;
+            int added = -1;
+            if (kind == 0)
+                added = extendArm(ptc);
+            else if (kind == 1)
+                added = extendObject(static_cast<int>(info.goal_object), ptc);
+            else
+                added = extendObject(others[rng_.uniformInt(0, static_cast<int>(others.size()) - 1)], ptc);
+            if (added >= 0 && model_->goalDistance(nodes_[added].ompl_state) <= 0.0)
+                return report(added);
+        }
+        return ob::PlannerStatus::TIMEOUT;
+    }
+
+    ob::PlannerStatus Darrt::report(int goal_node)
+    {
+        std::vector<int> chain;
+        for (int n = goal_node; n >= 0; n = nodes_[n].parent)
+            chain.push_back(n);
+        std::vector<double> states(nodes_[0].state);
+        for (auto it = chain.rbegin() + 1; it != chain.rend(); ++it)
+            for (const FlatState &s : nodes_[*it].motion)
+                states.insert(states.end(), s.begin(), s.end());
+        bridge::PrimitiveCheck check = model_->model().darrt_check(slice(states));
+        if (!check.valid || !check.goal_reached)
+        {
+            // A primitive the model accepted fails its own check: a bug, never a plan.
+            OMPL_ERROR("%s: the path fails its check: %s", getName().c_str(),
+                       check.valid ? "the goal is not reached" : std::string(check.message).c_str());
+            return ob::PlannerStatus::CRASH;
+        }
+        auto path = std::make_shared<PrimitivePath>(std::static_pointer_cast<oc::SpaceInformation>(si_), model_,
+                                                    states, std::move(check));
+        pdef_->addSolutionPath(path, false, 0.0, getName());
+        return ob::PlannerStatus::EXACT_SOLUTION;
+    }
+
+    void Darrt::getPlannerData(ob::PlannerData &data) const
+    {
+        ob::Planner::getPlannerData(data);
+        for (const Node &node : nodes_)
+        {
+            if (node.parent < 0)
+                data.addStartVertex(ob::PlannerDataVertex(node.ompl_state));
+            else
+                data.addEdge(ob::PlannerDataVertex(nodes_[node.parent].ompl_state),
+                             ob::PlannerDataVertex(node.ompl_state));
+        }
+    }
+}  // namespace pushplan::detail

@@ -1,0 +1,114 @@
+// The DARRT baseline (the whole-arm paper, Sec. V-A): an RRT over the same state space
+// whose extensions are motion primitives instead of physics-propagated controls.
+#pragma once
+
+#include "model_handle.h"
+
+#include <ompl/base/Planner.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/control/PathControl.h>
+#include <ompl/control/SpaceInformation.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace pushplan::detail
+{
+    /// A flat state (the bridge's layout: joints, then x, y, yaw per object).
+    using FlatState = std::vector<double>;
+
+    /// A DARRT solution: states joined by Transit motions and Push steps, checked by the
+    /// model. Its controls are placeholders (zero, one propagation step each) because a
+    /// caged object follows the hand by assumption, not by the pushing model: `check()`
+    /// checks the primitives, and `length()` is the time at the joints' velocity limits.
+    class PrimitivePath : public ompl::control::PathControl
+    {
+    public:
+        /// `states` (flat, one after another) must have been checked: `report.valid`.
+        PrimitivePath(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model,
+                      const std::vector<double> &states, bridge::PrimitiveCheck report);
+        double length() const override;
+        bool check() const override;
+        const bridge::PrimitiveCheck &report() const { return report_; }
+
+    private:
+        ModelHandlePtr model_;
+        std::vector<double> flat_;
+        bridge::PrimitiveCheck report_;
+    };
+
+    /// RRTTransit: OMPL's geometric RRT-Connect in the arm's joint space, every movable
+    /// object an obstacle where it is, motions checked as Transit lines by the model.
+    class ArmTransit
+    {
+    public:
+        ArmTransit(ModelHandlePtr model, double time_cap);
+        /// Plans from `from` to the configuration of `to` (same objects); appends the
+        /// waypoints after `from` (the last is `to`) to `motion`. Stops at `ptc` or the
+        /// time cap.
+        bool plan(const FlatState &from, const FlatState &to, const ompl::base::PlannerTerminationCondition &ptc,
+                  std::uint_fast32_t seed, std::vector<FlatState> &motion);
+        void setTimeCap(double seconds) { time_cap_ = seconds; }
+        double timeCap() const { return time_cap_; }
+
+    private:
+        ModelHandlePtr model_;
+        ompl::base::SpaceInformationPtr si_;
+        /// The full state whose joints the arm space's states replace (objects fixed).
+        std::shared_ptr<FlatState> context_;
+        double time_cap_;
+        std::uint_fast32_t sampler_seed_ = 0;
+    };
+
+    /// DARRT with three primitives (Transit, RRTTransit, Push). Each iteration samples,
+    /// with equal probability, a new arm configuration, a new pose of the goal object or
+    /// a new pose of one other object, extends the nearest tree node towards it with the
+    /// primitives, and stops when a node satisfies the goal.
+    class Darrt : public ompl::base::Planner
+    {
+    public:
+        Darrt(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed);
+        ~Darrt() override;
+
+        ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
+        void clear() override;
+        void getPlannerData(ompl::base::PlannerData &data) const override;
+
+        void reseed(std::uint_fast32_t seed);
+        /// Probability that a goal-object sample is drawn from the goal disc.
+        void setGoalBias(double bias) { goal_bias_ = bias; }
+        double getGoalBias() const { return goal_bias_; }
+        /// RRTTransit's time cap (s); the paper's is 15 s.
+        void setTransitTime(double seconds) { transit_.setTimeCap(seconds); }
+        double getTransitTime() const { return transit_.timeCap(); }
+
+    private:
+        struct Node
+        {
+            FlatState state;
+            ompl::base::State *ompl_state;
+            int parent;
+            /// The states after the parent's, ending with this node's.
+            std::vector<FlatState> motion;
+        };
+
+        int addNode(int parent, std::vector<FlatState> motion);
+        /// A new arm configuration: Transit, else RRTTransit. Returns the new node or -1.
+        int extendArm(const ompl::base::PlannerTerminationCondition &ptc);
+        /// A new pose of `object`: move the hand to it (Transit, else RRTTransit), Push it.
+        int extendObject(int object, const ompl::base::PlannerTerminationCondition &ptc);
+        /// Reaches `to` from node `from` by Transit or else RRTTransit.
+        bool moveArm(int from, const FlatState &to, const ompl::base::PlannerTerminationCondition &ptc,
+                     std::vector<FlatState> &motion);
+        ompl::base::PlannerStatus report(int goal_node);
+
+        ModelHandlePtr model_;
+        ArmTransit transit_;
+        ompl::RNG rng_;
+        double goal_bias_;
+        std::vector<Node> nodes_;
+        std::uint64_t transit_calls_ = 0;
+    };
+}  // namespace pushplan::detail
