@@ -16,7 +16,6 @@ namespace pushplan::detail
     // The state space is the compound [joints (RealVector), object 1 (SE2), ...].
     void ModelHandle::read(const ob::State *state, std::vector<double> &out) const
     {
-        // Hot: every distance in a nearest-neighbour query reads two states.
         out.resize(stateSize());
         const auto *compound = state->as<ob::CompoundState>();
         const double *q = compound->as<ob::RealVectorStateSpace::StateType>(0)->values;
@@ -57,13 +56,6 @@ namespace pushplan::detail
     {
         read(state, a_);
         return model_->is_valid(slice(a_));
-    }
-
-    double ModelHandle::distance(const ob::State *a, const ob::State *b) const
-    {
-        read(a, a_);
-        read(b, b_);
-        return model_->distance(slice(a_), slice(b_));
     }
 
     double ModelHandle::goalDistance(const ob::State *state) const

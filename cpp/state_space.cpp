@@ -38,20 +38,29 @@ namespace pushplan::detail
         }
         lock();
 
-        // One block per state: [top | top components | joints | joint values | objects...],
-        // each object [SE2 | its 2 components | xy | xy values | yaw].
+        // One block per state:
+        //   [top | top components | joints | per object: SE2, its 2 components, xy header |
+        //    joint values | x, y of every object | SO2 (yaw) of every object].
         const auto align = [](std::size_t n) {
             constexpr std::size_t a = alignof(std::max_align_t);
             return (n + a - 1) / a * a;
         };
         layout_.components = align(sizeof(ob::CompoundState));
         layout_.joints = layout_.components + align(sizeof(ob::State *) * (1 + info.objects));
-        layout_.joint_values = layout_.joints + align(sizeof(ob::RealVectorStateSpace::StateType));
-        layout_.objects = layout_.joint_values + align(sizeof(double) * info.dof);
-        layout_.object_size = align(sizeof(ob::SE2StateSpace::StateType)) + align(2 * sizeof(ob::State *)) +
-                              align(sizeof(ob::RealVectorStateSpace::StateType)) + align(2 * sizeof(double)) +
-                              align(sizeof(ob::SO2StateSpace::StateType));
-        layout_.size = layout_.objects + layout_.object_size * info.objects;
+        layout_.objects = layout_.joints + align(sizeof(ob::RealVectorStateSpace::StateType));
+        layout_.object_headers = align(sizeof(ob::SE2StateSpace::StateType)) + align(2 * sizeof(ob::State *)) +
+                                 align(sizeof(ob::RealVectorStateSpace::StateType));
+        layout_.joint_values = layout_.objects + layout_.object_headers * info.objects;
+        layout_.xy_values = layout_.joint_values + sizeof(double) * info.dof;
+        layout_.yaws = align(layout_.xy_values + 2 * sizeof(double) * info.objects);
+        layout_.size = layout_.yaws + sizeof(ob::SO2StateSpace::StateType) * info.objects;
+        // Where an SO2 state keeps its value (after its vtable pointer), measured once.
+        alignas(ob::SO2StateSpace::StateType) char probe[sizeof(ob::SO2StateSpace::StateType)];
+        auto *yaw = new (probe) ob::SO2StateSpace::StateType();
+        layout_.yaw_value = static_cast<std::size_t>(reinterpret_cast<char *>(&yaw->value) - probe);
+        yaw->~StateType();
+        a_.resize(model_->stateSize());
+        b_.resize(model_->stateSize());
     }
 
     ob::State *PushStateSpace::allocState() const
@@ -68,21 +77,37 @@ namespace pushplan::detail
         };
         for (std::size_t i = 0; i + 1 < componentCount_; ++i)
         {
-            char *at = block + layout_.objects + i * layout_.object_size;
+            char *at = block + layout_.objects + i * layout_.object_headers;
             auto *se2 = new (at) ob::SE2StateSpace::StateType();
             at += align(sizeof(ob::SE2StateSpace::StateType));
             se2->components = reinterpret_cast<ob::State **>(at);
             at += align(2 * sizeof(ob::State *));
             auto *xy = new (at) ob::RealVectorStateSpace::StateType();
-            at += align(sizeof(ob::RealVectorStateSpace::StateType));
-            xy->values = reinterpret_cast<double *>(at);
-            at += align(2 * sizeof(double));
-            auto *yaw = new (at) ob::SO2StateSpace::StateType();
+            xy->values = reinterpret_cast<double *>(block + layout_.xy_values) + 2 * i;
+            auto *yaw = new (block + layout_.yaws + i * sizeof(ob::SO2StateSpace::StateType))
+                ob::SO2StateSpace::StateType();
             se2->components[0] = xy;
             se2->components[1] = yaw;
             top->components[1 + i] = se2;
         }
         return top;
+    }
+
+    void PushStateSpace::flatten(const ob::State *state, double *out) const
+    {
+        const char *block = reinterpret_cast<const char *>(state);
+        const std::size_t dof = model_->info().dof, objects = componentCount_ - 1;
+        const auto *q = reinterpret_cast<const double *>(block + layout_.joint_values);
+        const auto *xy = reinterpret_cast<const double *>(block + layout_.xy_values);
+        std::copy(q, q + dof, out);
+        out += dof;
+        for (std::size_t i = 0; i < objects; ++i, out += 3)
+        {
+            out[0] = xy[2 * i];
+            out[1] = xy[2 * i + 1];
+            out[2] = *reinterpret_cast<const double *>(block + layout_.yaws + i * sizeof(ob::SO2StateSpace::StateType) +
+                                                       layout_.yaw_value);
+        }
     }
 
     // The parts hold no resources of their own: releasing the block ends them all.
@@ -93,7 +118,10 @@ namespace pushplan::detail
 
     double PushStateSpace::distance(const ob::State *a, const ob::State *b) const
     {
-        return model_->distance(a, b);
+        // Hot: every distance in a nearest-neighbour query reads two states.
+        flatten(a, a_.data());
+        flatten(b, b_.data());
+        return model_->model().distance(slice(a_), slice(b_));
     }
 
     PushStateSampler::PushStateSampler(const PushStateSpace *space, std::uint_fast32_t seed)

@@ -9,7 +9,13 @@ use std::f64::consts::PI;
 
 /// Wraps an angle to `(-pi, pi]`.
 pub fn wrap_angle(theta: f64) -> f64 {
-    let mut a = theta % (2.0 * PI);
+    // fmod is slow (the metric wraps every object's yaw difference) and changes nothing
+    // within a turn, so it runs only beyond one.
+    let mut a = if theta.abs() < 2.0 * PI {
+        theta
+    } else {
+        theta % (2.0 * PI)
+    };
     if a <= -PI {
         a += 2.0 * PI;
     } else if a > PI {
