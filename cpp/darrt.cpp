@@ -245,17 +245,11 @@ namespace pushplan::detail
         return static_cast<int>(nodes_.size()) - 1;
     }
 
-    bool Darrt::moveArm(int from, const FlatState &to, const ob::PlannerTerminationCondition &ptc,
-                        std::vector<FlatState> &motion)
+    bool Darrt::rrtTransit(int from, const FlatState &to, const ob::PlannerTerminationCondition &ptc,
+                           std::vector<FlatState> &motion)
     {
-        const FlatState &start = nodes_[from].state;
-        if (model_->model().darrt_transit(slice(start), slice(to)))
-        {
-            motion.push_back(to);
-            return true;
-        }
-        return transit_.plan(start, to, ptc, subSeed(rng_.uniformInt(0, std::numeric_limits<int>::max()), transit_calls_++),
-                             motion);
+        const auto seed = static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()));
+        return transit_.plan(nodes_[from].state, to, ptc, subSeed(seed, transit_calls_++), motion);
     }
 
     int Darrt::extendArm(const ob::PlannerTerminationCondition &ptc)
@@ -278,8 +272,11 @@ namespace pushplan::detail
         std::copy(q.begin(), q.end(), target.begin());
         if (!model_->model().is_valid(slice(target)))
             return -1;
+        // Transit if the straight line is free, else RRTTransit.
         std::vector<FlatState> motion;
-        if (!moveArm(nearest, target, ptc, motion))
+        if (model_->model().darrt_transit(slice(nodes_[nearest].state), slice(target)))
+            motion.push_back(target);
+        else if (!rrtTransit(nearest, target, ptc, motion))
             return -1;
         return addNode(nearest, std::move(motion));
     }
@@ -319,8 +316,10 @@ namespace pushplan::detail
         if (!model_->model().darrt_approach(slice(nodes_[nearest].state), object, goal_pose,
                                             rust::Slice<double>(caged.data(), caged.size())))
             return -1;
+        // The paper: "the RRTTransit primitive is first applied to move the manipulator to
+        // the object".
         std::vector<FlatState> motion;
-        if (caged != nodes_[nearest].state && !moveArm(nearest, caged, ptc, motion))
+        if (caged != nodes_[nearest].state && !rrtTransit(nearest, caged, ptc, motion))
             return -1;
         const rust::Vec<double> carried = model_->model().darrt_carry(slice(caged), object, goal_pose);
         if (carried.empty())

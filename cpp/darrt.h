@@ -97,11 +97,11 @@ namespace pushplan::detail
         int addNode(int parent, std::vector<FlatState> motion);
         /// A new arm configuration: Transit, else RRTTransit. Returns the new node or -1.
         int extendArm(const ompl::base::PlannerTerminationCondition &ptc);
-        /// A new pose of `object`: move the hand to it (Transit, else RRTTransit), Push it.
+        /// A new pose of `object`: RRTTransit to the hand's place at it, then Push.
         int extendObject(int object, const ompl::base::PlannerTerminationCondition &ptc);
-        /// Reaches `to` from node `from` by Transit or else RRTTransit.
-        bool moveArm(int from, const FlatState &to, const ompl::base::PlannerTerminationCondition &ptc,
-                     std::vector<FlatState> &motion);
+        /// RRTTransit from node `from` to `to` (same objects); appends the waypoints.
+        bool rrtTransit(int from, const FlatState &to, const ompl::base::PlannerTerminationCondition &ptc,
+                        std::vector<FlatState> &motion);
         ompl::base::PlannerStatus report(int goal_node);
 
         ModelHandlePtr model_;
