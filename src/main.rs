@@ -490,6 +490,10 @@ fn bench(
     while !pending.is_empty() || !running.is_empty() {
         while running.len() < jobs {
             let Some(i) = pending.pop() else { break };
+            // The child's messages go to a file next to its log: a pipe nobody reads
+            // until the child ends would block a child that writes much.
+            let messages = std::fs::File::create(logs[i].with_extension("err"))
+                .map_err(|e| format!("{}: {e}", logs[i].with_extension("err").display()))?;
             let child = std::process::Command::new(&exe)
                 .arg("bench-scene")
                 .arg(&scenes[i])
@@ -509,7 +513,7 @@ fn bench(
                 .arg("--log")
                 .arg(&logs[i])
                 .stdout(std::process::Stdio::null())
-                .stderr(std::process::Stdio::piped())
+                .stderr(messages)
                 .spawn()
                 .map_err(|e| format!("cannot start a benchmark process: {e}"))?;
             running.push((i, child, std::time::Instant::now()));
@@ -518,12 +522,10 @@ fn bench(
         let mut k = 0;
         while k < running.len() {
             if let Some(status) = running[k].1.try_wait().map_err(|e| e.to_string())? {
-                let (i, child, since) = running.remove(k);
+                let (i, _, since) = running.remove(k);
                 done += 1;
-                let stderr = child
-                    .wait_with_output()
-                    .map(|o| String::from_utf8_lossy(&o.stderr).into_owned())
-                    .unwrap_or_default();
+                let stderr =
+                    std::fs::read_to_string(logs[i].with_extension("err")).unwrap_or_default();
                 let verdict = if status.success() {
                     "done".to_string()
                 } else {
