@@ -311,9 +311,9 @@ namespace pushplan::detail
             else if (d == best && rng_.uniformInt(0, ties++) == 0)
                 nearest = static_cast<int>(n);
         }
-        const rust::Slice<const double> goal_pose = view(target.data(), 3);
+        const rust::Slice<const double> target_pose = view(target.data(), 3);
         FlatState caged(model_->stateSize());
-        if (!model_->model().darrt_approach(slice(nodes_[nearest].state), object, goal_pose,
+        if (!model_->model().darrt_approach(slice(nodes_[nearest].state), object, target_pose,
                                             rust::Slice<double>(caged.data(), caged.size())))
             return -1;
         // The paper: "the RRTTransit primitive is first applied to move the manipulator to
@@ -321,7 +321,7 @@ namespace pushplan::detail
         std::vector<FlatState> motion;
         if (caged != nodes_[nearest].state && !rrtTransit(nearest, caged, ptc, motion))
             return -1;
-        const rust::Vec<double> carried = model_->model().darrt_carry(slice(caged), object, goal_pose);
+        const rust::Vec<double> carried = model_->model().darrt_carry(slice(caged), object, target_pose);
         if (carried.empty())
             return -1;
         const std::size_t n = model_->stateSize();
