@@ -8,16 +8,16 @@ use std::f64::consts::PI;
 fn the_metric_weights_robot_objects_and_the_goal_object() {
     let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
     let metric = DistanceMetric::from_scene(&scene);
-    // green_box (index 0) is the goal object: weight 5; the others 1.
-    assert_eq!(metric.object_weights, vec![5.0, 1.0, 1.0, 1.0]);
+    // green_box (index 0) is the goal object: weight 20 (the default); the others 1.
+    assert_eq!(metric.object_weights, vec![20.0, 1.0, 1.0, 1.0]);
     let a = scene.start.clone();
     let mut b = a.clone();
     b.q[2] += 0.3;
     b.q[4] -= 0.4; // |dq| = 0.5
     b.objects[0].x += 0.03;
-    b.objects[0].y += 0.04; // 0.05 m, weight 5
+    b.objects[0].y += 0.04; // 0.05 m, weight 20
     b.objects[2].theta += 0.2; // 0.2 rad = 0.02 m, weight 1
-    let expected = 1.0 * 0.5 + 5.0 * 0.05 + 1.0 * 0.02;
+    let expected = 1.0 * 0.5 + 20.0 * 0.05 + 1.0 * 0.02;
     assert!((metric.distance(&a, &b) - expected).abs() < 1e-12);
     assert!((metric.distance(&b, &a) - expected).abs() < 1e-12);
     assert_eq!(metric.distance(&a, &a), 0.0);

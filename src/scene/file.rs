@@ -215,7 +215,7 @@ impl Default for PlannerSpec {
             max_nullspace_speed: 0.5,
             robot_weight: 1.0,
             object_weight: 1.0,
-            goal_object_weight: 5.0,
+            goal_object_weight: 20.0,
             rotation_length: 0.1,
         }
     }
