@@ -379,8 +379,17 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
     );
     println!(
         "manipulator path: {:.2} rad / {:.2} m of end-effector travel (before shortcutting {:.2} rad / {:.2} m); \
-         object displacement {:.3} m (before {:.3} m); {} links made contact",
-        a.joint_length, a.ee_length, b.joint_length, b.ee_length, a.object_displacement, b.object_displacement, a.links_in_contact
+         object displacement {:.3} m (before {:.3} m); {} made contact",
+        a.joint_length,
+        a.ee_length,
+        b.joint_length,
+        b.ee_length,
+        a.object_displacement,
+        b.object_displacement,
+        match a.links_in_contact {
+            1 => "1 link".to_string(),
+            n => format!("{n} links"),
+        }
     );
     println!("plan written to {}", out.display());
     Ok(if solution.exact {
