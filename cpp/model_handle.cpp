@@ -58,6 +58,14 @@ namespace pushplan::detail
         return model_->is_valid(slice(a_));
     }
 
+    double ModelHandle::distance(const ob::State *a, const ob::State *b) const
+    {
+        // Hot: every distance in a nearest-neighbour query reads two states.
+        read(a, a_);
+        read(b, b_);
+        return model_->distance(slice(a_), slice(b_));
+    }
+
     double ModelHandle::goalDistance(const ob::State *state) const
     {
         read(state, a_);

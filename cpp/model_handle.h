@@ -30,6 +30,7 @@ namespace pushplan::detail
         void readControl(const ompl::control::Control *control, std::vector<double> &out) const;
 
         bool isValid(const ompl::base::State *state) const;
+        double distance(const ompl::base::State *a, const ompl::base::State *b) const;
         double goalDistance(const ompl::base::State *state) const;
         /// Holds `control` for `steps` steps; writes the state reached; true if valid.
         bool propagate(const ompl::base::State *state, const ompl::control::Control *control,

@@ -54,13 +54,6 @@ namespace pushplan::detail
         layout_.xy_values = layout_.joint_values + sizeof(double) * info.dof;
         layout_.yaws = align(layout_.xy_values + 2 * sizeof(double) * info.objects);
         layout_.size = layout_.yaws + sizeof(ob::SO2StateSpace::StateType) * info.objects;
-        // Where an SO2 state keeps its value (after its vtable pointer), measured once.
-        alignas(ob::SO2StateSpace::StateType) char probe[sizeof(ob::SO2StateSpace::StateType)];
-        auto *yaw = new (probe) ob::SO2StateSpace::StateType();
-        layout_.yaw_value = static_cast<std::size_t>(reinterpret_cast<char *>(&yaw->value) - probe);
-        yaw->~StateType();
-        a_.resize(model_->stateSize());
-        b_.resize(model_->stateSize());
     }
 
     ob::State *PushStateSpace::allocState() const
@@ -93,23 +86,6 @@ namespace pushplan::detail
         return top;
     }
 
-    void PushStateSpace::flatten(const ob::State *state, double *out) const
-    {
-        const char *block = reinterpret_cast<const char *>(state);
-        const std::size_t dof = model_->info().dof, objects = componentCount_ - 1;
-        const auto *q = reinterpret_cast<const double *>(block + layout_.joint_values);
-        const auto *xy = reinterpret_cast<const double *>(block + layout_.xy_values);
-        std::copy(q, q + dof, out);
-        out += dof;
-        for (std::size_t i = 0; i < objects; ++i, out += 3)
-        {
-            out[0] = xy[2 * i];
-            out[1] = xy[2 * i + 1];
-            out[2] = *reinterpret_cast<const double *>(block + layout_.yaws + i * sizeof(ob::SO2StateSpace::StateType) +
-                                                       layout_.yaw_value);
-        }
-    }
-
     // The parts hold no resources of their own: releasing the block ends them all.
     void PushStateSpace::freeState(ob::State *state) const
     {
@@ -118,10 +94,7 @@ namespace pushplan::detail
 
     double PushStateSpace::distance(const ob::State *a, const ob::State *b) const
     {
-        // Hot: every distance in a nearest-neighbour query reads two states.
-        flatten(a, a_.data());
-        flatten(b, b_.data());
-        return model_->model().distance(slice(a_), slice(b_));
+        return model_->distance(a, b);
     }
 
     PushStateSampler::PushStateSampler(const PushStateSpace *space, std::uint_fast32_t seed)

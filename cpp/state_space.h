@@ -18,7 +18,7 @@ namespace pushplan::detail
     /// twenty scattered heap objects (measured: half of planning time in cache misses).
     /// Within the block the numbers come last and together — joint values, every
     /// object's x and y, every object's yaw (inside its SO2 state) — so a distance reads
-    /// a few consecutive cache lines at fixed offsets instead of chasing pointers.
+    /// few cache lines.
     class PushStateSpace : public ompl::base::CompoundStateSpace
     {
     public:
@@ -28,18 +28,13 @@ namespace pushplan::detail
         void freeState(ompl::base::State *state) const override;
         const ModelHandlePtr &model() const { return model_; }
 
-        /// The flat state (bridge layout) of a state this space allocated, read at the
-        /// block's fixed offsets.
-        void flatten(const ompl::base::State *state, double *out) const;
-
     private:
         ModelHandlePtr model_;
         /// Byte offsets within a state's block: headers first, then the numbers.
         struct Layout
         {
-            std::size_t components, joints, objects, object_headers, joint_values, xy_values, yaws, yaw_value, size;
+            std::size_t components, joints, objects, object_headers, joint_values, xy_values, yaws, size;
         } layout_;
-        mutable std::vector<double> a_, b_;
     };
 
     /// Samples the robot and every object uniformly (joint limits, table extent, any
