@@ -5,7 +5,7 @@
 use crate::collision::geometry::union_aabb;
 use crate::collision::query::{contact_points, ContactPoint};
 use crate::math::Pose2;
-use crate::physics::PlanarContact;
+use crate::physics::{ContactElevation, PlanarContact};
 use crate::scene::Scene;
 use nalgebra::{Isometry3, Vector2};
 use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
@@ -102,19 +102,18 @@ pub fn find_arm_contacts(
 /// The normal is the horizontal part of the 3D normal (renormalised, pointing into the
 /// object); the pusher velocity is the horizontal displacement over the step of the link's
 /// material point at the contact, divided by `dt`. Points closer than 1 mm with the same
-/// normal (the stacked corners of a face contact, seen from above) are merged.
-/// `links` receives the link of each planar contact.
+/// normal (the stacked corners of a face contact, seen from above) are merged,
+/// keeping the lowest height (the tipping check's point of application).
 pub fn planar_contacts(
     contacts: &[ArmContact],
     pose: &Pose2,
+    table_top: f64,
     poses: &[Isometry3<f64>],
     poses_new: &[Isometry3<f64>],
     dt: f64,
-    out: &mut Vec<PlanarContact>,
-    links: &mut Vec<usize>,
+    out: &mut ObjectContacts,
 ) {
     out.clear();
-    links.clear();
     for c in contacts {
         let n = c.point.normal_a;
         let horizontal = Vector2::new(-n.x, -n.y);
@@ -123,6 +122,7 @@ pub fn planar_contacts(
             continue; // vertical: outside the planar model (the validity check rejects it)
         }
         let p = c.point.point_b;
+        // p_W moved with the link: X_WL(q_new) X_WL(q)^-1 p_W.
         let moved = poses_new[c.link] * (poses[c.link].inverse() * p);
         let v = (moved - p) / dt;
         let contact = PlanarContact {
@@ -131,20 +131,44 @@ pub fn planar_contacts(
             pusher_velocity: pose.vector_to_local(v.xy()),
             gap: c.point.distance,
         };
-        let duplicate = out.iter_mut().zip(links.iter_mut()).find(|(o, _)| {
+        let elevation = ContactElevation {
+            height: c.point.point_a.z - table_top,
+            lift: -n.z / length,
+        };
+        let duplicate = out.planar.iter().position(|o| {
             (o.point - contact.point).norm() < 1e-3 && o.normal.dot(&contact.normal) > 0.99
         });
         match duplicate {
-            Some((o, l)) => {
-                if contact.gap < o.gap {
-                    *o = contact;
-                    *l = c.link;
+            Some(i) => {
+                let lowest = out.elevations[i].height.min(elevation.height);
+                if contact.gap < out.planar[i].gap {
+                    out.planar[i] = contact;
+                    out.links[i] = c.link;
+                    out.elevations[i].lift = elevation.lift;
                 }
+                out.elevations[i].height = lowest;
             }
             None => {
-                out.push(contact);
-                links.push(c.link);
+                out.planar.push(contact);
+                out.links.push(c.link);
+                out.elevations.push(elevation);
             }
         }
+    }
+}
+
+/// One object's planar contacts, with the link and the 3D elevation of each.
+#[derive(Clone, Debug, Default)]
+pub struct ObjectContacts {
+    pub planar: Vec<PlanarContact>,
+    pub links: Vec<usize>,
+    pub elevations: Vec<ContactElevation>,
+}
+
+impl ObjectContacts {
+    fn clear(&mut self) {
+        self.planar.clear();
+        self.links.clear();
+        self.elevations.clear();
     }
 }

@@ -315,7 +315,8 @@ impl Model {
                 object,
                 center,
                 radius,
-            } => (*object as i64, *center, *radius, vec![]),
+                margin,
+            } => (*object as i64, *center, radius - margin, vec![]),
             Goal::Configuration { q, tolerance } => (
                 -1,
                 nalgebra::Vector2::zeros(),

@@ -1,9 +1,11 @@
 //! The `pushplan` command: plan a scene with OMPL, check a plan by re-simulating it.
 
 use clap::{Parser, Subcommand, ValueEnum};
+use pushplan::execute::{ExecuteSettings, ExecutionReport};
 use pushplan::ffi::{benchmark_scene, solve, BenchOptions, SolveOptions};
 use pushplan::path::PathControl;
 use pushplan::plan::{PlanFile, PlanSettings};
+use pushplan::robustness::{robustness, Noise};
 use pushplan::shortcut::{shortcut, ShortcutSettings};
 use pushplan::Propagator;
 use pushplan::Scene;
@@ -59,8 +61,36 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
-    /// Re-simulate a plan file and report whether every state is valid and the goal is reached.
-    Check { plan: PathBuf },
+    /// Re-simulate a plan file and report whether every state is valid and the goal is
+    /// reached; with --noise, also how often perturbed re-simulations still reach it.
+    Check {
+        plan: PathBuf,
+        /// Re-simulate the plan this many times with perturbed object start poses and
+        /// parameters (±5 mm, ±0.05 rad; mass, mu_g, mu_c, c x U(0.8, 1.2)).
+        #[arg(long, default_value_t = 0)]
+        noise: usize,
+        /// Seed of the perturbations.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
+    /// Play a plan's trajectory open loop in a 3D rigid-body engine (rapier): the arm's
+    /// links follow the trajectory, the objects slide, turn and tip freely. Reports how
+    /// often the goal is reached, each object's final error and the first divergence.
+    Execute {
+        plan: PathBuf,
+        /// Trials; the first is unperturbed, the others perturbed as `check --noise`.
+        #[arg(long, default_value_t = 10)]
+        trials: usize,
+        /// Pace relative to the plan's trajectory (0.25: four times slower).
+        #[arg(long, default_value_t = 1.0)]
+        speed: f64,
+        /// Seed of the perturbations.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Also write the report as JSON.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: one OMPL log per scene
     /// (scenes run in parallel processes), merged into DIR/results.db by
     /// ompl_benchmark_statistics (Planner Arena's format).
@@ -192,7 +222,14 @@ fn main() -> ExitCode {
                 None => Ok(code),
             })
         }
-        Command::Check { plan } => check(&plan),
+        Command::Check { plan, noise, seed } => check(&plan, noise, seed),
+        Command::Execute {
+            plan,
+            trials,
+            speed,
+            seed,
+            json,
+        } => execute(&plan, trials, speed, seed, json.as_deref()),
         Command::Render { plan, out, times } => draw(&plan, &out, &times),
         Command::Scenes {
             action:
@@ -399,9 +436,40 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
     })
 }
 
-fn check(path: &Path) -> Result<ExitCode, String> {
+fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
     let plan = PlanFile::read(path)?;
     let report = plan.check(path)?;
+    if noise > 0 {
+        let scene = Scene::load(plan.scene_path(path))
+            .map_err(|e| e.to_string())?
+            .planned_by(&plan.planner);
+        let r = robustness(
+            &scene,
+            &plan.path_controls(),
+            &Noise::default(),
+            noise,
+            seed,
+        );
+        println!(
+            "perturbed re-simulations: {} of {noise} reach the goal ({:.0} %); goal object's final centre {:.1} mm from the planned one on average (largest {:.1} mm), spread x {:.1} mm, y {:.1} mm, yaw {:.3} rad",
+            r.trials.iter().filter(|t| t.reached).count(),
+            100.0 * r.success_rate,
+            1e3 * r.mean_deviation,
+            1e3 * r.max_deviation,
+            1e3 * r.std_xy_yaw[0],
+            1e3 * r.std_xy_yaw[1],
+            r.std_xy_yaw[2],
+        );
+        for (i, t) in r.trials.iter().enumerate().filter(|(_, t)| !t.reached) {
+            match &t.failure {
+                Some(why) => println!("  trial {i}: {why}"),
+                None => println!(
+                    "  trial {i}: the goal object ends {:.1} mm outside the disc",
+                    1e3 * t.goal_distance
+                ),
+            }
+        }
+    }
     println!(
         "{}: {} controls; every state valid: {}; states reproduced: {}; goal reached: {}",
         path.display(),
@@ -617,5 +685,87 @@ fn yes(b: bool) -> &'static str {
         "yes"
     } else {
         "no"
+    }
+}
+
+fn execute(
+    path: &Path,
+    trials: usize,
+    speed: f64,
+    seed: u64,
+    json: Option<&Path>,
+) -> Result<ExitCode, String> {
+    if !(speed.is_finite() && speed > 0.0) {
+        return Err(format!("--speed: must be positive and finite, got {speed}"));
+    }
+    if trials == 0 {
+        return Err("--trials: must be at least 1".into());
+    }
+    let plan = PlanFile::read(path)?;
+    let scene = Scene::load(plan.scene_path(path)).map_err(|e| e.to_string())?;
+    let settings = ExecuteSettings {
+        trials,
+        speed,
+        seed,
+        ..ExecuteSettings::default()
+    };
+    let report = pushplan::execute::execute(&scene, &plan, &settings)?;
+    print_execution(path, &scene, &report);
+    if let Some(json) = json {
+        let text = serde_json::to_string_pretty(&report).expect("reports serialise") + "\n";
+        std::fs::write(json, text).map_err(|e| format!("{}: {e}", json.display()))?;
+    }
+    Ok(if report.success_rate > 0.0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {
+    let n = report.trials.len();
+    println!(
+        "{}: executed {n} times in 3D (rapier) at {}x speed: {} reach the goal ({:.0} %); {} tip an object; {} bring two objects into contact",
+        path.display(),
+        report.speed,
+        report.trials.iter().filter(|t| t.reached).count(),
+        100.0 * report.success_rate,
+        report.tipped_trials,
+        report.object_contact_trials,
+    );
+    for (i, t) in report.trials.iter().enumerate() {
+        let errors: Vec<String> = scene
+            .objects
+            .iter()
+            .zip(&t.final_errors)
+            .map(|(o, e)| format!("{} {:.0} mm", o.name, 1e3 * e))
+            .collect();
+        let divergence = match &t.first_divergence {
+            None => "none".to_string(),
+            Some(pushplan::execute::Divergence::Tipped { object, time }) => {
+                format!("{object} tips at {time:.2} s")
+            }
+            Some(pushplan::execute::Divergence::ObjectContact {
+                object_a,
+                object_b,
+                time,
+            }) => format!("{object_a} touches {object_b} at {time:.2} s"),
+            Some(pushplan::execute::Divergence::Drift {
+                object,
+                time,
+                error,
+            }) => format!(
+                "{object} {:.0} mm off its predicted path at {time:.2} s",
+                1e3 * error
+            ),
+        };
+        println!(
+            "  trial {i}{}: {}, goal object {:.0} mm {} the disc's edge; final errors: {}; first divergence: {divergence}",
+            if i == 0 && n > 1 { " (nominal)" } else { "" },
+            if t.reached { "reached" } else { "missed" },
+            1e3 * t.goal_distance.abs(),
+            if t.goal_distance <= 0.0 { "inside" } else { "outside" },
+            errors.join(", "),
+        );
     }
 }

@@ -238,8 +238,14 @@ impl PlanFile {
             controls: records,
             trajectory: time_parameterise(
                 &scene.robot,
+                &scene
+                    .objects
+                    .iter()
+                    .map(|o| o.bounding_radius)
+                    .collect::<Vec<_>>(),
                 &path.step_states,
                 scene.planner.step,
+                &scene.trajectory,
                 TRAJECTORY_RATE,
             ),
         })

@@ -12,9 +12,10 @@
 //! per call) skips preparing it again. Results depend only on the start state and the
 //! action: propagation is deterministic bit for bit.
 
-use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact};
+use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact, ObjectContacts};
 use crate::math::Pose2;
-use crate::physics::{object_motion, PlanarContact};
+use crate::physics::tipping::{largest_tipping_moment, pusher_forces, support_balance};
+use crate::physics::{object_motion, PusherForce};
 use crate::robot::EeAction;
 use crate::scene::Scene;
 use crate::state::State;
@@ -60,8 +61,8 @@ pub struct Propagator {
     object_boxes_new: Vec<Aabb>,
     contacts: Vec<ArmContact>,
     contacts_new: Vec<ArmContact>,
-    planar: Vec<PlanarContact>,
-    planar_links: Vec<usize>,
+    object_contacts: ObjectContacts,
+    forces: Vec<PusherForce>,
     q_new: DVector<f64>,
     objects_new: Vec<Pose2>,
     moved: Vec<bool>,
@@ -90,8 +91,8 @@ impl Propagator {
             object_boxes_new: Vec::new(),
             contacts: Vec::new(),
             contacts_new: Vec::new(),
-            planar: Vec::new(),
-            planar_links: Vec::new(),
+            object_contacts: ObjectContacts::default(),
+            forces: Vec::new(),
             q_new: DVector::zeros(dof),
             objects_new: Vec::new(),
             moved: vec![false; objects],
@@ -218,27 +219,40 @@ impl Propagator {
             planar_contacts(
                 &self.contacts[start..end],
                 &pose,
+                scene.table.top,
                 &self.poses,
                 &self.poses_new,
                 dt,
-                &mut self.planar,
-                &mut self.planar_links,
+                &mut self.object_contacts,
             );
+            let contacts = &self.object_contacts;
             let body = &scene.objects[object];
-            let motion =
-                object_motion(&self.planar, &body.limit_surface, body.mu_c, dt).map_err(|_| {
-                    Invalid::Jammed {
-                        object: body.name.clone(),
-                    }
+            let motion = object_motion(&contacts.planar, &body.limit_surface, body.mu_c, dt)
+                .map_err(|_| Invalid::Jammed {
+                    object: body.name.clone(),
                 })?;
             if !motion.twist.is_zero() {
+                pusher_forces(
+                    &contacts.planar,
+                    &contacts.elevations,
+                    &motion,
+                    &mut self.forces,
+                );
+                let balance = support_balance(body.mass, body.footprint.centroid(), &self.forces);
+                if !balance.stays_flat(&body.footprint, scene.physics.tipping_margin) {
+                    let pusher = largest_tipping_moment(&self.forces).unwrap_or(0);
+                    return Err(Invalid::Tips {
+                        object: body.name.clone(),
+                        link: scene.robot.chain.links[contacts.links[pusher]].name.clone(),
+                    });
+                }
                 let moved = pose.integrate(&motion.twist, dt);
                 self.objects_new[object] = moved;
                 self.object_boxes_new[object] =
                     body.geometry.aabb(&moved.to_isometry(scene.table.top));
                 self.moved[object] = true;
             }
-            for (&link, &force) in self.planar_links.iter().zip(&motion.normal_forces) {
+            for (&link, &force) in contacts.links.iter().zip(&motion.normal_forces) {
                 if force > 0.0 {
                     match pushes
                         .iter_mut()

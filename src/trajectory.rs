@@ -1,5 +1,6 @@
 //! Executable trajectories: the plan's steps time-parameterised so that no joint exceeds
-//! its URDF velocity limit, sampled at a fixed rate, with the object poses the model
+//! its URDF velocity limit or the scene's acceleration limit and no pushed object moves
+//! faster than the scene allows, sampled at a fixed rate, with the object poses the model
 //! predicts along it.
 //!
 //! Quasistatic pushing does not depend on speed, so stretching a step in time does not
@@ -7,6 +8,7 @@
 
 use crate::math::wrap_angle;
 use crate::robot::Robot;
+use crate::scene::TrajectoryParams;
 use crate::state::State;
 use nalgebra::DVector;
 use serde::{Deserialize, Serialize};
@@ -33,13 +35,29 @@ pub fn joint_motion_time(robot: &Robot, from: &DVector<f64>, to: &DVector<f64>) 
         .fold(0.0, f64::max)
 }
 
-/// Times each step `k -> k+1` so that every joint moves at most at its velocity limit
-/// (and no faster than the plan's `dt`), then samples at `rate` Hz by linear interpolation.
-pub fn time_parameterise(robot: &Robot, steps: &[State], dt: f64, rate: f64) -> Trajectory {
+/// Times the plan's steps and samples them at `rate` Hz by linear interpolation.
+///
+/// The algorithm is iterative time stretching (the idea of MoveIt's iterative parabolic
+/// time parameterisation): the path is the sequence of step states; segment `k` first
+/// takes the least time that keeps every joint within its URDF velocity limit, every
+/// object point within `max_object_speed`, and no faster than the plan's `dt`. Then
+/// each waypoint's joint acceleration, `(v_k - v_{k-1}) / ((dt_{k-1} + dt_k) / 2)` with
+/// the segments' joint velocities `v` (at rest before the start and after the end), is
+/// brought within `max_joint_acceleration` by stretching both neighbouring segments by
+/// `sqrt(|a| / a_max)`, sweeping until no waypoint exceeds it. Stretching only slows
+/// the motion, so velocity limits stay met.
+pub fn time_parameterise(
+    robot: &Robot,
+    object_radii: &[f64],
+    steps: &[State],
+    dt: f64,
+    limits: &TrajectoryParams,
+    rate: f64,
+) -> Trajectory {
+    let durations = segment_durations(robot, object_radii, steps, dt, limits);
     let mut knots = vec![0.0];
-    for w in steps.windows(2) {
-        let slowest = joint_motion_time(robot, &w[0].q, &w[1].q).max(dt);
-        knots.push(knots.last().unwrap() + slowest);
+    for d in &durations {
+        knots.push(knots.last().unwrap() + d);
     }
     let end = *knots.last().unwrap();
     let mut trajectory = Trajectory {
@@ -87,4 +105,74 @@ pub fn time_parameterise(robot: &Robot, steps: &[State], dt: f64, rate: f64) -> 
         );
     }
     trajectory
+}
+
+/// Segment durations (s) within the velocity, object-speed and acceleration limits.
+fn segment_durations(
+    robot: &Robot,
+    object_radii: &[f64],
+    steps: &[State],
+    dt: f64,
+    limits: &TrajectoryParams,
+) -> Vec<f64> {
+    let dof = robot.dof();
+    let deltas: Vec<DVector<f64>> = steps.windows(2).map(|w| &w[1].q - &w[0].q).collect();
+    let mut durations: Vec<f64> = steps
+        .windows(2)
+        .map(|w| {
+            let object_travel = w[0]
+                .objects
+                .iter()
+                .zip(&w[1].objects)
+                .zip(object_radii)
+                .map(|((a, b), r)| {
+                    (b.translation() - a.translation()).norm()
+                        + r * wrap_angle(b.theta - a.theta).abs()
+                })
+                .fold(0.0, f64::max);
+            joint_motion_time(robot, &w[0].q, &w[1].q)
+                .max(object_travel / limits.max_object_speed)
+                .max(dt)
+        })
+        .collect();
+    let n = durations.len();
+    let a_max = limits.max_joint_acceleration;
+    // Waypoint k joins segment k-1 and segment k; segments -1 and n are rest.
+    let velocity = |durations: &[f64], k: isize, j: usize| -> f64 {
+        if k < 0 || k as usize >= n {
+            0.0
+        } else {
+            deltas[k as usize][j] / durations[k as usize]
+        }
+    };
+    for _sweep in 0..100_000 {
+        let mut worst: f64 = 1.0;
+        for k in 0..=n {
+            let before = k.checked_sub(1).map_or(0.0, |i| durations[i]);
+            let after = durations.get(k).copied().unwrap_or(0.0);
+            let span = 0.5 * (before + after);
+            let ratio = (0..dof)
+                .map(|j| {
+                    let dv = velocity(&durations, k as isize, j)
+                        - velocity(&durations, k as isize - 1, j);
+                    dv.abs() / span / a_max
+                })
+                .fold(0.0, f64::max);
+            if ratio > 1.0 {
+                // Slightly more than sqrt(ratio): rounding must not leave it a hair over.
+                let stretch = ratio.sqrt() * (1.0 + 1e-9);
+                if k > 0 {
+                    durations[k - 1] *= stretch;
+                }
+                if k < n {
+                    durations[k] *= stretch;
+                }
+            }
+            worst = worst.max(ratio);
+        }
+        if worst <= 1.0 + 1e-6 {
+            break;
+        }
+    }
+    durations
 }

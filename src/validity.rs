@@ -7,7 +7,8 @@
 //! centre leaves the table (it would fall). Arm-object *contact* is allowed: that is how
 //! the robot pushes.
 
-use crate::collision::query::{intersects, overlaps_beyond};
+use crate::collision::query::{intersects, overlaps_beyond, signed_distance};
+use crate::collision::Geometry;
 use crate::contact::{find_arm_contacts, object_bounds, ArmBounds, ArmContact};
 use crate::math::Pose2;
 use crate::robot::ProjectionFailure;
@@ -49,6 +50,13 @@ pub enum Invalid {
         object_a: String,
         object_b: String,
     },
+    /// A moving object came closer to another object or an obstacle than the clearance
+    /// (`physics.object_clearance`, or the pair's distance at the start when smaller).
+    TooClose {
+        object: String,
+        other: String,
+        distance: f64,
+    },
     ObjectHitsObstacle {
         object: String,
         obstacle: String,
@@ -58,6 +66,12 @@ pub enum Invalid {
     },
     Jammed {
         object: String,
+    },
+    /// The pushers' forces would tip the object over (its support pressure would leave
+    /// the footprint); `link` pushes with the largest tipping moment.
+    Tips {
+        object: String,
+        link: String,
     },
 }
 
@@ -92,11 +106,23 @@ impl fmt::Display for Invalid {
             Invalid::ObjectsOverlap { object_a, object_b } => {
                 write!(f, "objects '{object_a}' and '{object_b}' overlap")
             }
+            Invalid::TooClose {
+                object,
+                other,
+                distance,
+            } => write!(
+                f,
+                "object '{object}' passes {:.1} mm from '{other}', closer than the clearance",
+                distance * 1e3
+            ),
             Invalid::ObjectHitsObstacle { object, obstacle } => {
                 write!(f, "object '{object}' overlaps obstacle '{obstacle}'")
             }
             Invalid::ObjectOffTable { object } => write!(f, "object '{object}' is off the table"),
             Invalid::Jammed { object } => write!(f, "object '{object}' is jammed between pushers"),
+            Invalid::Tips { object, link } => {
+                write!(f, "link '{link}' would tip object '{object}' over")
+            }
         }
     }
 }
@@ -242,15 +268,15 @@ pub fn check_arm_contacts(scene: &Scene, contacts: &[ArmContact]) -> Result<(), 
     Ok(())
 }
 
-/// Objects on the table, apart from each other and from obstacles. Only pairs with at
-/// least one object for which `moved` is true are checked.
+/// Objects on the table, apart from each other and from obstacles, and no closer to them
+/// than the clearance. Only pairs with at least one object for which `moved` is true are
+/// checked.
 pub fn check_objects(
     scene: &Scene,
     objects: &[Pose2],
     moved: impl Fn(usize) -> bool,
 ) -> Result<(), Invalid> {
     let top = scene.table.top;
-    let tolerance = scene.physics.overlap_tolerance;
     for (i, pose) in objects.iter().enumerate() {
         if !moved(i) {
             continue;
@@ -267,38 +293,163 @@ pub fn check_objects(
                 continue; // itself, or a pair already checked
             }
             let other = &scene.objects[j];
-            let reach = object.bounding_radius + other.bounding_radius;
+            let clearance = scene.clearances.between_objects(i, j);
+            let reach = object.bounding_radius + other.bounding_radius + clearance.max(0.0);
             if (pose.translation() - other_pose.translation()).norm() >= reach {
                 continue;
             }
             let other_iso = other_pose.to_isometry(top);
-            if overlaps_beyond(
+            match separation(
+                scene,
                 &object.geometry,
                 &iso,
                 &other.geometry,
                 &other_iso,
-                tolerance,
+                clearance,
             ) {
-                return Err(Invalid::ObjectsOverlap {
-                    object_a: object.name.clone(),
-                    object_b: other.name.clone(),
-                });
+                Separation::Overlap => {
+                    return Err(Invalid::ObjectsOverlap {
+                        object_a: object.name.clone(),
+                        object_b: other.name.clone(),
+                    })
+                }
+                Separation::TooClose(distance) => {
+                    return Err(Invalid::TooClose {
+                        object: object.name.clone(),
+                        other: other.name.clone(),
+                        distance,
+                    })
+                }
+                Separation::Clear => {}
             }
         }
-        for obstacle in &scene.obstacles {
-            if overlaps_beyond(
+        for (k, obstacle) in scene.obstacles.iter().enumerate() {
+            let clearance = scene.clearances.to_obstacle(i, k);
+            match separation(
+                scene,
                 &object.geometry,
                 &iso,
                 &obstacle.geometry,
                 &obstacle.pose,
-                tolerance,
+                clearance,
             ) {
-                return Err(Invalid::ObjectHitsObstacle {
-                    object: object.name.clone(),
-                    obstacle: obstacle.name.clone(),
-                });
+                Separation::Overlap => {
+                    return Err(Invalid::ObjectHitsObstacle {
+                        object: object.name.clone(),
+                        obstacle: obstacle.name.clone(),
+                    })
+                }
+                Separation::TooClose(distance) => {
+                    return Err(Invalid::TooClose {
+                        object: object.name.clone(),
+                        other: obstacle.name.clone(),
+                        distance,
+                    })
+                }
+                Separation::Clear => {}
             }
         }
     }
     Ok(())
+}
+
+/// How two solids stand to each other, measured against a clearance.
+enum Separation {
+    /// Overlapping beyond `physics.overlap_tolerance`.
+    Overlap,
+    /// Closer than the clearance (m apart, negative when overlapping within tolerance).
+    TooClose(f64),
+    Clear,
+}
+
+/// Numerical slack on the clearance (m): a pair held at its start distance may wobble by
+/// rounding.
+const CLEARANCE_SLACK: f64 = 1e-7;
+
+fn separation(
+    scene: &Scene,
+    a: &Geometry,
+    pose_a: &Isometry3<f64>,
+    b: &Geometry,
+    pose_b: &Isometry3<f64>,
+    clearance: f64,
+) -> Separation {
+    let tolerance = scene.physics.overlap_tolerance;
+    if clearance <= -tolerance {
+        return if overlaps_beyond(a, pose_a, b, pose_b, tolerance) {
+            Separation::Overlap
+        } else {
+            Separation::Clear
+        };
+    }
+    match signed_distance(a, pose_a, b, pose_b, clearance.max(0.0)) {
+        Some(d) if d < -tolerance => Separation::Overlap,
+        Some(d) if d < clearance - CLEARANCE_SLACK => Separation::TooClose(d),
+        _ => Separation::Clear,
+    }
+}
+
+/// The least distance each object keeps from every other object and obstacle (m):
+/// `physics.object_clearance`, or the pair's distance in the start state when that is
+/// smaller (objects that start close together may stay so, but not come closer).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Clearances {
+    objects: usize,
+    /// Row-major, objects x objects.
+    between_objects: Vec<f64>,
+    /// Row-major, objects x obstacles.
+    to_obstacles: Vec<f64>,
+}
+
+impl Clearances {
+    /// The clearances of `scene` from its start state.
+    pub fn at_start(scene: &Scene) -> Clearances {
+        let clearance = scene.physics.object_clearance;
+        let top = scene.table.top;
+        let poses: Vec<Isometry3<f64>> = scene
+            .start
+            .objects
+            .iter()
+            .map(|p| p.to_isometry(top))
+            .collect();
+        let gap = |a: &Geometry, pa: &Isometry3<f64>, b: &Geometry, pb: &Isometry3<f64>| {
+            signed_distance(a, pa, b, pb, clearance).map_or(clearance, |d| d.min(clearance))
+        };
+        let objects = &scene.objects;
+        let between_objects = (0..objects.len())
+            .flat_map(|i| (0..objects.len()).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                if i == j {
+                    0.0
+                } else {
+                    gap(
+                        &objects[i].geometry,
+                        &poses[i],
+                        &objects[j].geometry,
+                        &poses[j],
+                    )
+                }
+            })
+            .collect();
+        let to_obstacles = (0..objects.len())
+            .flat_map(|i| scene.obstacles.iter().map(move |o| (i, o)))
+            .map(|(i, o)| gap(&objects[i].geometry, &poses[i], &o.geometry, &o.pose))
+            .collect();
+        Clearances {
+            objects: objects.len(),
+            between_objects,
+            to_obstacles,
+        }
+    }
+
+    /// Between objects `i` and `j` (m).
+    pub fn between_objects(&self, i: usize, j: usize) -> f64 {
+        self.between_objects[i * self.objects + j]
+    }
+
+    /// Between object `i` and obstacle `k` (m).
+    pub fn to_obstacle(&self, i: usize, k: usize) -> f64 {
+        let obstacles = self.to_obstacles.len() / self.objects.max(1);
+        self.to_obstacles[i * obstacles + k]
+    }
 }

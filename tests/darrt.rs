@@ -103,10 +103,16 @@ fn a_carry_into_another_object_fails_and_so_does_a_target_on_it() {
     let caged = darrt::approach(&scene, &scene.start, 0, &beyond).expect("a cage");
     let cage = Cage::of_state(&scene, &caged, 0);
     match darrt::carry(&scene, &caged, &cage, &beyond) {
-        Err(PrimitiveFailure::Invalid(Invalid::ObjectsOverlap { object_a, object_b })) => {
-            assert_eq!((object_a.as_str(), object_b.as_str()), ("goal", "can"))
+        // Stopped by the clearance (physics.object_clearance, 1 cm) before they touch.
+        Err(PrimitiveFailure::Invalid(Invalid::TooClose {
+            object,
+            other,
+            distance,
+        })) => {
+            assert_eq!((object.as_str(), other.as_str()), ("goal", "can"));
+            assert!((0.0..0.01).contains(&distance), "{distance}");
         }
-        other => panic!("expected an overlap, got {other:?}"),
+        other => panic!("expected the clearance to stop it, got {other:?}"),
     }
     let on_can = Pose2::new(0.62, -0.45, 0.0);
     assert!(matches!(

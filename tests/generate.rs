@@ -32,6 +32,7 @@ fn generated_scenes_follow_the_dataset_design() {
             object,
             center,
             radius,
+            ..
         } = scene.goal
         else {
             panic!("object goal expected")

@@ -72,7 +72,7 @@ fn a_zero_budget_changes_nothing() {
 }
 
 #[test]
-fn the_trajectory_respects_joint_velocity_limits_and_follows_the_plan() {
+fn the_trajectory_respects_velocity_acceleration_and_object_speed_limits_and_follows_the_plan() {
     let (scene, controls) = found_plan();
     let settings = common::plan_settings("pcrrt", 2, 0.0);
     let plan = PlanFile::build(SCENE, scene.clone(), &settings, &controls, None).unwrap();
@@ -100,8 +100,38 @@ fn the_trajectory_respects_joint_velocity_limits_and_follows_the_plan() {
         "a joint reaches {fastest} times its limit"
     );
     assert!(
-        fastest > 0.5,
+        fastest > 0.3,
         "the time scaling should use the limits ({fastest})"
+    );
+    // Joint accelerations by second differences at 50 Hz (at rest before and after), and
+    // the objects' speeds, within the scene's trajectory limits (5 % for resampling).
+    let a_max = scene.trajectory.max_joint_acceleration;
+    let rest = |k: isize| -> usize { k.clamp(0, t.q.len() as isize - 1) as usize };
+    let mut hardest = 0.0f64;
+    for k in 0..t.q.len() as isize {
+        let (a, b, c) = (rest(k - 1), rest(k), rest(k + 1));
+        for i in 0..limits.len() {
+            let acceleration = (t.q[c][i] - 2.0 * t.q[b][i] + t.q[a][i]) / (0.02 * 0.02);
+            hardest = hardest.max(acceleration.abs() / a_max);
+        }
+    }
+    assert!(
+        hardest <= 1.05,
+        "a joint accelerates at {hardest} times the limit"
+    );
+    assert!(
+        hardest > 0.3,
+        "the time scaling should use the acceleration limit ({hardest})"
+    );
+    let mut fastest_object = 0.0f64;
+    for k in 1..t.objects.len() - 1 {
+        for (a, b) in t.objects[k - 1].iter().zip(&t.objects[k]) {
+            fastest_object = fastest_object.max((b[0] - a[0]).hypot(b[1] - a[1]) / 0.02);
+        }
+    }
+    assert!(
+        fastest_object <= scene.trajectory.max_object_speed * (1.0 + 1e-9),
+        "an object moves at {fastest_object} m/s"
     );
     // It takes at least as long as the plan, and starts and ends at the plan's states.
     assert!(*t.times.last().unwrap() >= plan.metrics.after_shortcut.duration - 1e-9);

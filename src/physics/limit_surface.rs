@@ -46,6 +46,16 @@ impl Footprint {
         }
     }
 
+    /// Is the point `p` (object frame, m) inside the footprint or on its edge?
+    pub fn contains(&self, p: Vector2<f64>) -> bool {
+        match self {
+            Footprint::Circle { radius } => p.norm() <= *radius,
+            Footprint::Polygon { vertices } => {
+                polygon_edges(vertices).all(|(a, b)| cross(b - a, p - a) >= 0.0)
+            }
+        }
+    }
+
     /// Characteristic length `c = (1/A) ∫ |r| dA` (m) about the origin, for uniform pressure.
     ///
     /// For a polygon, each edge contributes the triangle it spans with the origin: with

@@ -1,6 +1,7 @@
 //! Quasistatic planar pushing (`shared/docs/physics.md`): the ellipsoidal limit surface,
-//! Coulomb friction at every pusher contact, and the per-object complementarity problem
-//! that decides whether each contact separates, sticks or slides.
+//! Coulomb friction at every pusher contact, the per-object complementarity problem
+//! that decides whether each contact separates, sticks or slides, and whether the table
+//! keeps a pushed object flat (tipping).
 //!
 //! Everything here is planar and in the object frame: points in metres, velocities in
 //! m/s, angular velocity in rad/s. The 3D-to-planar reduction of arm contacts lives in
@@ -9,6 +10,8 @@
 pub mod lcp;
 pub mod limit_surface;
 pub mod pushing;
+pub mod tipping;
 
 pub use limit_surface::{Footprint, LimitSurface};
 pub use pushing::{object_motion, Jammed, ObjectMotion, PlanarContact};
+pub use tipping::{ContactElevation, PusherForce, SupportBalance};

@@ -60,6 +60,15 @@ pub struct ObjectMotion {
     pub twist: Twist2,
     /// Normal force at each contact (N), scaled so the total wrench lies on the limit surface.
     pub normal_forces: Vec<f64>,
+    /// Friction force at each contact along its tangent `t` (N), on the same scale.
+    pub friction_forces: Vec<f64>,
+}
+
+impl ObjectMotion {
+    /// The force contact `i` applies to the object, object frame (N).
+    pub fn force(&self, contacts: &[PlanarContact], i: usize) -> Vector2<f64> {
+        contacts[i].normal * self.normal_forces[i] + contacts[i].tangent() * self.friction_forces[i]
+    }
 }
 
 /// Solves the object's twist under the given pusher contacts for a step of `dt` seconds.
@@ -79,6 +88,7 @@ pub fn object_motion(
         return Ok(ObjectMotion {
             twist: Twist2::ZERO,
             normal_forces: vec![0.0; m],
+            friction_forces: vec![0.0; m],
         });
     }
 
@@ -140,5 +150,6 @@ pub fn object_motion(
             omega: v.z,
         },
         normal_forces: (0..m).map(|i| z[i] * scale).collect(),
+        friction_forces: (0..m).map(|i| (z[m + i] - z[2 * m + i]) * scale).collect(),
     })
 }

@@ -20,6 +20,8 @@ pub struct SceneFile {
     pub planner: PlannerSpec,
     #[serde(default)]
     pub physics: PhysicsSpec,
+    #[serde(default)]
+    pub trajectory: TrajectorySpec,
 }
 
 #[derive(Debug, Deserialize)]
@@ -163,6 +165,8 @@ pub struct GoalSpec {
     pub center: Option<[f64; 2]>,
     /// Goal disc radius (m).
     pub radius: Option<f64>,
+    /// How far inside the disc's edge the goal object's centre must end (m).
+    pub margin: Option<f64>,
     /// A robot goal configuration instead.
     pub configuration: Option<Vec<f64>>,
     /// Distance in configuration space counted as reached (rad).
@@ -238,6 +242,11 @@ pub struct PhysicsSpec {
     /// Tolerated distance of the tool from its plane (m) and tilt (rad).
     pub plane_tolerance: f64,
     pub tilt_tolerance: f64,
+    /// Reserve against tipping, a fraction in [0, 1): the support's centre of pressure
+    /// must stay inside the footprint shrunk by this fraction about its centroid.
+    pub tipping_margin: f64,
+    /// Smallest distance between a moving object and any other object or obstacle (m).
+    pub object_clearance: f64,
 }
 
 impl Default for PhysicsSpec {
@@ -250,6 +259,28 @@ impl Default for PhysicsSpec {
             max_joint_step: 0.05,
             plane_tolerance: 1e-3,
             tilt_tolerance: 0.01,
+            tipping_margin: 0.2,
+            object_clearance: 0.01,
+        }
+    }
+}
+
+/// Limits of the executable trajectory in plan files; every field has a default.
+#[derive(Debug, Deserialize, Clone, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct TrajectorySpec {
+    /// Largest joint acceleration (rad/s^2, m/s^2 for prismatic joints).
+    pub max_joint_acceleration: f64,
+    /// Fastest any point of a pushed object may move (m/s): the quasistatic model holds
+    /// for slow pushes (an object let go at `v` slides on by `v^2 / (2 mu_g g)`).
+    pub max_object_speed: f64,
+}
+
+impl Default for TrajectorySpec {
+    fn default() -> Self {
+        Self {
+            max_joint_acceleration: 2.0,
+            max_object_speed: 0.1,
         }
     }
 }

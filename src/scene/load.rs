@@ -5,7 +5,7 @@ use super::file::{
     GoalSpec, ObjectSpec, PhysicsSpec, PlannerSpec, PressureSpec, RobotSpec, SceneFile, ShapeSpec,
     TableSpec,
 };
-use super::{Goal, MovableObject, Obstacle, Scene, Table};
+use super::{Goal, MovableObject, Obstacle, Scene, Table, DEFAULT_GOAL_MARGIN};
 use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
 use crate::math::{isometry_from_xyz_rpy, Pose2};
@@ -17,6 +17,7 @@ use crate::robot::projection::ProjectionSettings;
 use crate::robot::urdf::{check_dimensions, load_urdf};
 use crate::robot::{PushingPlane, Robot, RobotKind};
 use crate::state::State;
+use crate::validity::Clearances;
 use nalgebra::{DVector, Isometry3, Point3, UnitQuaternion, Vector2, Vector3};
 use std::path::{Path, PathBuf};
 
@@ -121,6 +122,18 @@ impl Loader<'_> {
         }
         let planner = self.planner(&spec.planner)?;
         let physics = self.physics(&spec.physics)?;
+        for (field, value) in [
+            (
+                "trajectory.max_joint_acceleration",
+                spec.trajectory.max_joint_acceleration,
+            ),
+            (
+                "trajectory.max_object_speed",
+                spec.trajectory.max_object_speed,
+            ),
+        ] {
+            self.positive(field, value)?;
+        }
         let settings = ProjectionSettings {
             max_joint_step: physics.max_joint_step,
             height_tolerance: physics.plane_tolerance,
@@ -134,7 +147,7 @@ impl Loader<'_> {
                 .file_stem()
                 .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
         });
-        let scene = Scene {
+        let mut scene = Scene {
             name,
             source: self.file.to_path_buf(),
             robot,
@@ -144,8 +157,11 @@ impl Loader<'_> {
             goal,
             planner,
             physics,
+            trajectory: spec.trajectory.clone(),
             start: State { q, objects: poses },
+            clearances: Clearances::default(),
         };
+        scene.clearances = Clearances::at_start(&scene);
         if let Err(reason) = crate::validity::check_state(&scene, &scene.start) {
             return Err(Error::InvalidStart {
                 file: self.file.to_path_buf(),
@@ -512,6 +528,13 @@ impl Loader<'_> {
                     self.invalid("goal.radius", "missing (the goal disc's radius)")
                 })?;
                 self.positive("goal.radius", radius)?;
+                let margin = g.margin.unwrap_or(DEFAULT_GOAL_MARGIN);
+                if !(margin.is_finite() && (0.0..radius).contains(&margin)) {
+                    return Err(self.invalid(
+                        "goal.margin",
+                        format!("must be zero or positive and less than goal.radius ({radius}), got {margin}"),
+                    ));
+                }
                 let center = Vector2::new(center[0], center[1]);
                 if !table.contains(center) {
                     return Err(self.invalid(
@@ -523,13 +546,14 @@ impl Loader<'_> {
                     object,
                     center,
                     radius,
+                    margin,
                 })
             }
             (None, Some(q)) => {
-                if g.center.is_some() || g.radius.is_some() {
+                if g.center.is_some() || g.radius.is_some() || g.margin.is_some() {
                     return Err(self.invalid(
                         "goal",
-                        "give either object/center/radius or configuration, not both",
+                        "give either object/center/radius/margin or configuration, not both",
                     ));
                 }
                 self.finite("goal.configuration", q)?;
@@ -612,6 +636,18 @@ impl Loader<'_> {
             ("physics.tilt_tolerance", p.tilt_tolerance),
         ] {
             self.positive(field, value)?;
+        }
+        if !(p.tipping_margin.is_finite() && (0.0..1.0).contains(&p.tipping_margin)) {
+            return Err(self.invalid(
+                "physics.tipping_margin",
+                format!("must be in [0, 1), got {}", p.tipping_margin),
+            ));
+        }
+        if !(p.object_clearance.is_finite() && p.object_clearance >= 0.0) {
+            return Err(self.invalid(
+                "physics.object_clearance",
+                format!("must be zero or positive, got {}", p.object_clearance),
+            ));
         }
         if p.penetration_tolerance >= p.contact_margin {
             return Err(self.invalid(

@@ -12,10 +12,17 @@ use crate::math::Pose2;
 use crate::physics::{Footprint, LimitSurface};
 use crate::robot::Robot;
 use crate::state::State;
+use crate::validity::Clearances;
 use nalgebra::{DVector, Isometry3, Vector2};
 use std::path::PathBuf;
 
-pub use file::{PhysicsSpec as PhysicsParams, PlannerSpec as PlannerParams};
+pub use file::{
+    PhysicsSpec as PhysicsParams, PlannerSpec as PlannerParams, TrajectorySpec as TrajectoryParams,
+};
+
+/// Default `goal.margin` (m): how far inside the goal disc's edge the goal object's
+/// centre must end. Open-loop execution drifts by centimetres (BENCHMARKS.md, execution).
+pub const DEFAULT_GOAL_MARGIN: f64 = 0.03;
 
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -29,8 +36,11 @@ pub struct Scene {
     pub goal: Goal,
     pub planner: PlannerParams,
     pub physics: PhysicsParams,
+    pub trajectory: TrajectoryParams,
     /// The start state (robot start projected onto its pushing plane).
     pub start: State,
+    /// The distance each object keeps from the others and the obstacles (from `start`).
+    pub clearances: Clearances,
 }
 
 /// The support surface: a slab whose top is at `top`, spanning `x` x `y`.
@@ -89,11 +99,15 @@ impl MovableObject {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Goal {
-    /// The goal object's centre inside a disc on the table.
+    /// The goal object's centre inside a disc on the table, at least `margin` inside its
+    /// edge (so that small execution errors still end inside the disc).
     ObjectInDisc {
         object: usize,
         center: Vector2<f64>,
+        /// Radius of the disc (m).
         radius: f64,
+        /// How far inside the edge the centre must be (m), in [0, radius).
+        margin: f64,
     },
     /// The robot within `tolerance` (Euclidean, joint space) of a configuration.
     Configuration { q: DVector<f64>, tolerance: f64 },
@@ -106,15 +120,28 @@ impl Goal {
     }
 
     /// How far the state is from the goal region (m for object goals, rad for
-    /// configuration goals); zero or negative inside.
+    /// configuration goals); zero or negative inside. For an object goal the region is
+    /// the disc shrunk by the margin.
     pub fn distance(&self, state: &State) -> f64 {
         match self {
             Goal::ObjectInDisc {
                 object,
                 center,
                 radius,
-            } => (state.objects[*object].translation() - center).norm() - radius,
+                margin,
+            } => (state.objects[*object].translation() - center).norm() - (radius - margin),
             Goal::Configuration { q, tolerance } => (&state.q - q).norm() - tolerance,
+        }
+    }
+}
+
+impl Goal {
+    /// How far the state is from the task's own region (m or rad): for an object goal the
+    /// whole disc, without the planning margin; zero or negative inside.
+    pub fn task_distance(&self, state: &State) -> f64 {
+        match self {
+            Goal::ObjectInDisc { margin, .. } => self.distance(state) - margin,
+            Goal::Configuration { .. } => self.distance(state),
         }
     }
 }
@@ -156,6 +183,7 @@ impl Scene {
         if let Goal::ObjectInDisc { object, .. } = &mut scene.goal {
             *object = 0;
         }
+        scene.clearances = Clearances::at_start(&scene);
         scene
     }
 }

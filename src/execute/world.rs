@@ -1,0 +1,213 @@
+//! The 3D rigid-body world of an execution: rapier, with the arm's links as kinematic
+//! bodies, the objects as free dynamic bodies (mass, support friction `mu_g` against the
+//! table, contact friction `mu_c` against the arm) and the table and obstacles fixed.
+//!
+//! Frames: world `W` with z up. An object's body frame is its planar frame lifted onto
+//! the table top (`Pose2::to_isometry`), so its planar pose is read straight back.
+
+use crate::math::Pose2;
+use crate::scene::Scene;
+use nalgebra::{Isometry3, Vector3};
+use rapier3d_f64::prelude::*;
+
+/// Simulation step (s): 1 kHz keeps a link from moving more than a millimetre per step.
+pub const STEP: f64 = 0.001;
+
+/// What a collider is, stored in its `user_data`.
+const STATIC: u128 = 0;
+const ARM: u128 = 1;
+/// Object `i` is `OBJECT + i`.
+const OBJECT: u128 = 2;
+
+/// Per-pair friction: rapier combines one coefficient per collider, but an object has
+/// two (against the table and against the arm), so the solver contacts are set here.
+struct Friction {
+    mu_g: Vec<f64>,
+    mu_c: Vec<f64>,
+}
+
+impl PhysicsHooks for Friction {
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        let role = |h: ColliderHandle| context.colliders[h].user_data;
+        let (a, b) = (role(context.collider1), role(context.collider2));
+        let object = |r: u128| (r >= OBJECT).then(|| (r - OBJECT) as usize);
+        let friction = match (object(a), object(b)) {
+            // Two objects: the mean of their contact frictions.
+            (Some(i), Some(j)) => 0.5 * (self.mu_c[i] + self.mu_c[j]),
+            (Some(i), None) | (None, Some(i)) => {
+                if a == ARM || b == ARM {
+                    self.mu_c[i]
+                } else {
+                    self.mu_g[i]
+                }
+            }
+            (None, None) => return,
+        };
+        for contact in context.solver_contacts.iter_mut() {
+            contact.friction = friction;
+            contact.restitution = 0.0;
+        }
+    }
+}
+
+/// The rapier world of one execution.
+pub struct World {
+    pipeline: PhysicsPipeline,
+    params: IntegrationParameters,
+    islands: IslandManager,
+    broad_phase: BroadPhaseBvh,
+    narrow_phase: NarrowPhase,
+    bodies: RigidBodySet,
+    colliders: ColliderSet,
+    impulse_joints: ImpulseJointSet,
+    multibody_joints: MultibodyJointSet,
+    ccd: CCDSolver,
+    friction: Friction,
+    /// (link index, body) of every solid link.
+    links: Vec<(usize, RigidBodyHandle)>,
+    /// Object bodies and their colliders, in scene order.
+    objects: Vec<(RigidBodyHandle, ColliderHandle)>,
+}
+
+impl World {
+    /// The scene's table, obstacles and objects (at `objects`, the start poses), and the
+    /// arm's links at `link_poses` (`X_WL`, one per chain link).
+    pub fn new(scene: &Scene, objects: &[Pose2], link_poses: &[Isometry3<f64>]) -> World {
+        let mut bodies = RigidBodySet::new();
+        let mut colliders = ColliderSet::new();
+        let fixed = bodies.insert(RigidBodyBuilder::fixed());
+        let table = ColliderBuilder::new(scene.table.geometry.shape.clone())
+            .position(scene.table.geometry.local)
+            .user_data(STATIC);
+        colliders.insert_with_parent(table, fixed, &mut bodies);
+        for obstacle in &scene.obstacles {
+            let collider = ColliderBuilder::new(obstacle.geometry.shape.clone())
+                .position(obstacle.geometry.world_pose(&obstacle.pose))
+                .user_data(STATIC);
+            colliders.insert_with_parent(collider, fixed, &mut bodies);
+        }
+        let mut links = Vec::new();
+        for link in scene.robot.solid_links() {
+            let body =
+                bodies.insert(RigidBodyBuilder::kinematic_position_based().pose(link_poses[link]));
+            for g in &scene.robot.chain.links[link].geometry {
+                let collider = ColliderBuilder::new(g.shape.clone())
+                    .position(g.local)
+                    .user_data(ARM);
+                colliders.insert_with_parent(collider, body, &mut bodies);
+            }
+            links.push((link, body));
+        }
+        let mut object_bodies = Vec::new();
+        for (i, (object, pose)) in scene.objects.iter().zip(objects).enumerate() {
+            let body = bodies.insert(
+                RigidBodyBuilder::dynamic()
+                    .pose(pose.to_isometry(scene.table.top))
+                    .can_sleep(false),
+            );
+            let collider = ColliderBuilder::new(object.geometry.shape.clone())
+                .position(object.geometry.local)
+                .mass(object.mass)
+                .user_data(OBJECT + i as u128)
+                .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+            let handle = colliders.insert_with_parent(collider, body, &mut bodies);
+            object_bodies.push((body, handle));
+        }
+        let params = IntegrationParameters {
+            dt: STEP,
+            num_solver_iterations: 8,
+            ..IntegrationParameters::default()
+        };
+        World {
+            pipeline: PhysicsPipeline::new(),
+            params,
+            islands: IslandManager::new(),
+            broad_phase: BroadPhaseBvh::new(),
+            narrow_phase: NarrowPhase::new(),
+            bodies,
+            colliders,
+            impulse_joints: ImpulseJointSet::new(),
+            multibody_joints: MultibodyJointSet::new(),
+            ccd: CCDSolver::new(),
+            friction: Friction {
+                mu_g: scene.objects.iter().map(|o| o.mu_g).collect(),
+                mu_c: scene.objects.iter().map(|o| o.mu_c).collect(),
+            },
+            links,
+            objects: object_bodies,
+        }
+    }
+
+    /// Where the arm's links are at the end of the next step (`X_WL` per chain link).
+    pub fn move_arm(&mut self, link_poses: &[Isometry3<f64>]) {
+        for (link, body) in &self.links {
+            self.bodies[*body].set_next_kinematic_position(link_poses[*link]);
+        }
+    }
+
+    /// Advances the world by [`STEP`] seconds.
+    pub fn step(&mut self) {
+        self.pipeline.step(
+            &Vector3::new(0.0, 0.0, -crate::physics::limit_surface::GRAVITY),
+            &self.params,
+            &mut self.islands,
+            &mut self.broad_phase,
+            &mut self.narrow_phase,
+            &mut self.bodies,
+            &mut self.colliders,
+            &mut self.impulse_joints,
+            &mut self.multibody_joints,
+            &mut self.ccd,
+            &self.friction,
+            &(),
+        );
+    }
+
+    /// Object `i`'s body pose `X_WO`.
+    pub fn object_pose(&self, i: usize) -> Isometry3<f64> {
+        *self.bodies[self.objects[i].0].position()
+    }
+
+    /// Object `i`'s planar pose (x, y and yaw of its body frame).
+    pub fn object_pose2(&self, i: usize) -> Pose2 {
+        let pose = self.object_pose(i);
+        let x_axis = pose.rotation * Vector3::x();
+        Pose2::new(
+            pose.translation.x,
+            pose.translation.y,
+            x_axis.y.atan2(x_axis.x),
+        )
+    }
+
+    /// Object `i`'s tilt: the angle between its body z axis and the world's (rad).
+    pub fn object_tilt(&self, i: usize) -> f64 {
+        let up = self.object_pose(i).rotation * Vector3::z();
+        up.z.clamp(-1.0, 1.0).acos()
+    }
+
+    /// Sets object `i`'s linear velocity (m/s, world frame).
+    pub fn set_object_velocity(&mut self, i: usize, v: Vector3<f64>) {
+        self.bodies[self.objects[i].0].set_linvel(v, true);
+    }
+
+    /// Object `i`'s linear velocity (m/s, world frame).
+    pub fn object_velocity(&self, i: usize) -> Vector3<f64> {
+        *self.bodies[self.objects[i].0].linvel()
+    }
+
+    /// A pair of objects in contact, if any.
+    pub fn touching_objects(&self) -> Option<(usize, usize)> {
+        for (i, (_, a)) in self.objects.iter().enumerate() {
+            for (j, (_, b)) in self.objects.iter().enumerate().skip(i + 1) {
+                if self
+                    .narrow_phase
+                    .contact_pair(*a, *b)
+                    .is_some_and(|p| p.has_any_active_contact)
+                {
+                    return Some((i, j));
+                }
+            }
+        }
+        None
+    }
+}

@@ -1,0 +1,107 @@
+//! The 3D execution engine's setup, checked against closed forms: a box pushed flat-on
+//! below `b / mu_g` slides upright and tips above it; a sliding object stops after
+//! `v^2 / (2 mu_g g)`.
+
+use nalgebra::{DVector, Vector3};
+use pushplan::execute::world::{World, STEP};
+use pushplan::execute::TIPPED_TILT;
+use pushplan::Scene;
+use std::path::Path;
+
+/// A 1 cm tall planar hand at `height` in front of a 0.1 m box (0.3 m tall) on a table
+/// with support friction `mu_g`.
+fn scene(height: f64, mu_g: f64) -> Scene {
+    scene_with(height, mu_g, "{type: box, size: [0.1, 0.1, 0.3]}")
+}
+
+fn scene_with(height: f64, mu_g: f64, shape: &str) -> Scene {
+    let yaml = format!(
+        "robot:
+  type: planar_hand
+  shape: {{type: box, size: [0.04, 0.12, 0.01]}}
+  start: [0.4, 0.0, 0.0]
+  height: {height}
+table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}
+objects:
+  - {{name: box, shape: {shape}, pose: [0.4705, 0.0, 0.0], mass: 1.0, mu_g: {mu_g}, mu_c: 0.3}}
+goal: {{object: box, center: [0.9, 0.3], radius: 0.1}}
+"
+    );
+    Scene::from_yaml(&yaml, Path::new("scenes/execute-test.yaml")).unwrap()
+}
+
+/// Pushes along +x: the hand speeds up to 0.1 m/s over 0.5 s, then holds that speed for
+/// 1.5 s. Returns the box's largest tilt (rad) and its final x (m).
+fn push(scene: &Scene) -> (f64, f64) {
+    let mut poses = Vec::new();
+    let hand = |x: f64| DVector::from_vec(vec![x, 0.0, 0.0]);
+    scene.robot.chain.forward_kinematics(&hand(0.4), &mut poses);
+    let mut world = World::new(scene, &scene.start.objects, &poses);
+    let (ramp, speed) = (0.5, 0.1);
+    let mut tilt: f64 = 0.0;
+    for n in 1..=(2.0 / STEP) as usize {
+        let t = n as f64 * STEP;
+        let x = if t < ramp {
+            0.4 + 0.5 * speed / ramp * t * t
+        } else {
+            0.4 + 0.5 * speed * ramp + speed * (t - ramp)
+        };
+        scene.robot.chain.forward_kinematics(&hand(x), &mut poses);
+        world.move_arm(&poses);
+        world.step();
+        tilt = tilt.max(world.object_tilt(0));
+    }
+    (tilt, world.object_pose2(0).x)
+}
+
+#[test]
+fn a_box_pushed_flat_on_below_the_tipping_height_slides_and_above_it_tips() {
+    // b / mu_g = 0.05 / 0.4 = 0.125 m.
+    let h_max = 0.05 / 0.4;
+    let (tilt, x) = push(&scene(0.8 * h_max, 0.4));
+    assert!(tilt < 0.02, "slides upright below h_max: tilt {tilt}");
+    // The hand travels 0.175 m and starts 0.5 mm from the box.
+    assert!(
+        (x - (0.4705 + 0.175 - 0.0005)).abs() < 0.01,
+        "pushed along: x = {x}"
+    );
+    let (tilt, _) = push(&scene(1.25 * h_max, 0.4));
+    assert!(tilt > TIPPED_TILT, "tips above h_max: tilt {tilt}");
+    // The same height on a slipperier table (h_max = 0.167 m) slides.
+    let (tilt, _) = push(&scene(1.25 * h_max, 0.3));
+    assert!(tilt < 0.02, "slides on a slipperier table: tilt {tilt}");
+}
+
+#[test]
+fn a_sliding_object_stops_after_v_squared_over_two_mu_g_g() {
+    // Low objects: a tall box braking on the table pitches forward (mu_g h_com > b) and
+    // rocks on its edge, which this closed form leaves out.
+    let low_box = "{type: box, size: [0.1, 0.1, 0.05]}";
+    let puck = "{type: cylinder, radius: 0.05, height: 0.1}";
+    for (v, mu_g, shape) in [(0.5, 0.4, low_box), (0.3, 0.2, low_box), (0.4, 0.3, puck)] {
+        let scene = scene_with(0.05, mu_g, shape);
+        let mut poses = Vec::new();
+        // The hand far behind, out of the way.
+        scene
+            .robot
+            .chain
+            .forward_kinematics(&DVector::from_vec(vec![0.3, 0.4, 0.0]), &mut poses);
+        let mut world = World::new(&scene, &scene.start.objects, &poses);
+        // Let the box settle on the table, then launch it.
+        for _ in 0..100 {
+            world.step();
+        }
+        let x0 = world.object_pose2(0).x;
+        world.set_object_velocity(0, Vector3::new(v, 0.0, 0.0));
+        for _ in 0..(2.0 / STEP) as usize {
+            world.step();
+        }
+        let travelled = world.object_pose2(0).x - x0;
+        let expected = v * v / (2.0 * mu_g * 9.81);
+        assert!(
+            (travelled - expected).abs() < 0.02 * expected,
+            "{shape}, v {v}, mu_g {mu_g}: {travelled} m, expected {expected} m"
+        );
+        assert!(world.object_velocity(0).norm() < 1e-3);
+    }
+}
