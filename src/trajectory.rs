@@ -41,10 +41,12 @@ pub fn joint_motion_time(robot: &Robot, from: &DVector<f64>, to: &DVector<f64>) 
 /// time parameterisation): the path is the sequence of step states; segment `k` first
 /// takes the least time that keeps every joint within its URDF velocity limit, every
 /// object point within `max_object_speed`, and no faster than the plan's `dt`. Then
-/// each waypoint's joint acceleration, `(v_k - v_{k-1}) / ((dt_{k-1} + dt_k) / 2)` with
-/// the segments' joint velocities `v` (at rest before the start and after the end), is
-/// brought within `max_joint_acceleration` by stretching both neighbouring segments by
-/// `sqrt(|a| / a_max)`, sweeping until no waypoint exceeds it. Stretching only slows
+/// each waypoint's joint acceleration, `(v_k - v_{k-1}) / min(dt_{k-1}, dt_k, 1 / rate)`
+/// with the segments' joint velocities `v` (at rest before the start and after the end),
+/// is brought within `max_joint_acceleration` by stretching both neighbouring segments,
+/// sweeping until no waypoint exceeds it. (MoveIt divides by the mean of the two
+/// segments; the shorter one, capped at the sample period, keeps the second differences
+/// of the samples within the limit too.) Stretching only slows
 /// the motion, so velocity limits stay met.
 pub fn time_parameterise(
     robot: &Robot,
@@ -54,7 +56,7 @@ pub fn time_parameterise(
     limits: &TrajectoryParams,
     rate: f64,
 ) -> Trajectory {
-    let durations = segment_durations(robot, object_radii, steps, dt, limits);
+    let durations = segment_durations(robot, object_radii, steps, dt, limits, 1.0 / rate);
     let mut knots = vec![0.0];
     for d in &durations {
         knots.push(knots.last().unwrap() + d);
@@ -114,6 +116,7 @@ fn segment_durations(
     steps: &[State],
     dt: f64,
     limits: &TrajectoryParams,
+    sample_period: f64,
 ) -> Vec<f64> {
     let dof = robot.dof();
     let deltas: Vec<DVector<f64>> = steps.windows(2).map(|w| &w[1].q - &w[0].q).collect();
@@ -148,9 +151,17 @@ fn segment_durations(
     for _sweep in 0..100_000 {
         let mut worst: f64 = 1.0;
         for k in 0..=n {
-            let before = k.checked_sub(1).map_or(0.0, |i| durations[i]);
-            let after = durations.get(k).copied().unwrap_or(0.0);
-            let span = 0.5 * (before + after);
+            let before = k.checked_sub(1).map(|i| durations[i]);
+            let after = durations.get(k).copied();
+            let shortest = match (before, after) {
+                (Some(b), Some(a)) => b.min(a),
+                (b, a) => b.or(a).unwrap_or(sample_period),
+            };
+            // The jump in velocity at a waypoint is spread over the shorter neighbouring
+            // segment, and over no more than one sample period: sampled at `rate`, the
+            // second differences then stay within the limit.
+            let capped = shortest >= sample_period;
+            let span = shortest.min(sample_period);
             let ratio = (0..dof)
                 .map(|j| {
                     let dv = velocity(&durations, k as isize, j)
@@ -159,8 +170,9 @@ fn segment_durations(
                 })
                 .fold(0.0, f64::max);
             if ratio > 1.0 {
-                // Slightly more than sqrt(ratio): rounding must not leave it a hair over.
-                let stretch = ratio.sqrt() * (1.0 + 1e-9);
+                // Stretching both neighbours by f slows them by f and, unless the span is
+                // capped, lengthens it by f. A hair more: rounding must not leave it over.
+                let stretch = if capped { ratio } else { ratio.sqrt() } * (1.0 + 1e-9);
                 if k > 0 {
                     durations[k - 1] *= stretch;
                 }

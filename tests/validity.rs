@@ -166,9 +166,17 @@ fn arm_object_contact_is_allowed_but_penetration_is_not() {
 fn overlapping_objects_are_invalid_touching_ones_are_not() {
     let scene = herb();
     let goal = scene.start.objects[0];
-    // The box (0.1 wide) beside the goal box (0.102 wide): centres 0.101 apart touch.
+    // The box (0.1 wide) beside the goal box (0.102 wide): centres 0.101 apart touch,
+    // which is closer than the clearance (1 cm) unless it is zero.
     let touching = with_object(&scene, 1, Pose2::new(goal.x + 0.101, goal.y, 0.0));
-    assert_eq!(check_state(&scene, &touching), Ok(()));
+    assert!(matches!(
+        check_state(&scene, &touching),
+        Err(Invalid::TooClose { distance, .. }) if distance.abs() < 1e-9
+    ));
+    let mut no_clearance = scene.clone();
+    no_clearance.physics.object_clearance = 0.0;
+    no_clearance.clearances = pushplan::validity::Clearances::at_start(&no_clearance);
+    assert_eq!(check_state(&no_clearance, &touching), Ok(()));
     let overlapping = with_object(&scene, 1, Pose2::new(goal.x + 0.09, goal.y, 0.0));
     assert!(matches!(
         check_state(&scene, &overlapping),
