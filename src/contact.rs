@@ -133,7 +133,7 @@ pub fn planar_contacts(
         };
         let elevation = ContactElevation {
             height: c.point.point_a.z - table_top,
-            lift: -n.z / length,
+            slope: n.z / length,
         };
         let duplicate = out.planar.iter().position(|o| {
             (o.point - contact.point).norm() < 1e-3 && o.normal.dot(&contact.normal) > 0.99
@@ -144,7 +144,7 @@ pub fn planar_contacts(
                 if contact.gap < out.planar[i].gap {
                     out.planar[i] = contact;
                     out.links[i] = c.link;
-                    out.elevations[i].lift = elevation.lift;
+                    out.elevations[i].slope = elevation.slope;
                 }
                 out.elevations[i].height = lowest;
             }

@@ -42,8 +42,8 @@ fn push(
     };
     let motion = object_motion(&[contact], &surface, mu_c, 0.01).unwrap();
     let mut forces = Vec::new();
-    let elevation = ContactElevation { height, lift: 0.0 };
-    pusher_forces(&[contact], &[elevation], &motion, &mut forces);
+    let elevation = ContactElevation { height, slope: 0.0 };
+    pusher_forces(&[contact], &[elevation], &motion, mu_c, &mut forces);
     let balance = support_balance(MASS, footprint.centroid(), &forces);
     (
         motion.normal_forces[0],
@@ -106,36 +106,44 @@ fn friction_at_a_sliding_contact_raises_the_tipping_height() {
 }
 
 #[test]
-fn pressing_down_keeps_an_object_flat_and_lifting_tips_it() {
-    // A downward push (lift < 0) pulls the centre of pressure toward its point; a
-    // contact that lifts the whole weight leaves no support (N <= 0).
-    let b = 0.051;
+fn pressing_down_steeper_than_the_friction_angle_keeps_an_object_flat_and_lifting_tips_it() {
+    // A downward push pulls the centre of pressure toward its point, but friction in the
+    // contact may cancel the part within the friction angle; a contact that lifts the
+    // whole weight leaves no support (N <= 0).
+    let (b, mu_c) = (0.051, 0.3);
     let contact = flat_on([-b, 0.0], [0.1, 0.0]);
     let surface = LimitSurface {
         c: square_c(b),
         f_max: MU_G * MASS * GRAVITY,
     };
-    let motion = object_motion(&[contact], &surface, 0.3, 0.01).unwrap();
-    let balance = |lift: f64, height: f64| {
+    let motion = object_motion(&[contact], &surface, mu_c, 0.01).unwrap();
+    let balance = |slope: f64, height: f64| {
         let mut forces = Vec::new();
         pusher_forces(
             &[contact],
-            &[ContactElevation { height, lift }],
+            &[ContactElevation { height, slope }],
             &motion,
+            mu_c,
             &mut forces,
         );
         support_balance(MASS, Vector2::zeros(), &forces)
     };
     let h = 1.2 * b / MU_G;
     assert!(!balance(0.0, h).stays_flat(&square(b), 0.0));
-    // N = m g (1 + mu_g), N x_P = m g mu_g h - fz x_C with fz = -mu_g m g, x_C = -b.
-    let pressed = balance(-1.0, h);
-    let n = MASS * GRAVITY * (1.0 + MU_G);
+    // Pressing down at 11 degrees, within the friction angle (16.7 degrees): no help.
+    assert_eq!(balance(0.2, h), balance(0.0, h));
+    // At alpha = atan(2) (63 degrees) the force may lean up by the friction angle:
+    // fz = -fn tan(alpha - atan(mu_c)), N = m g + fn tan(...), N x_P = fn h - fz x_C.
+    let lean = (2f64.atan() - mu_c.atan()).tan();
+    let fn_ = MU_G * MASS * GRAVITY;
+    let pressed = balance(2.0, h);
+    let n = MASS * GRAVITY + fn_ * lean;
     assert!((pressed.normal - n).abs() < 1e-9);
-    let x = (MASS * GRAVITY * MU_G * h - MU_G * MASS * GRAVITY * b) / n;
+    let x = (fn_ * h - fn_ * lean * b) / n;
     assert!((pressed.p_OP.x - x).abs() < 1e-12);
     assert!(pressed.stays_flat(&square(b), 0.0));
-    assert!(!balance(1.0 / MU_G + 0.01, 0.0).stays_flat(&square(b), 0.0));
+    // Pushing up at a slope that lifts more than the weight.
+    assert!(!balance(-(1.0 / MU_G + 0.01), 0.0).stays_flat(&square(b), 0.0));
     assert_eq!(
         support_balance(MASS, Vector2::zeros(), &[]).p_OP,
         Vector2::zeros()

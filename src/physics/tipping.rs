@@ -29,9 +29,24 @@ pub struct ContactElevation {
     /// Height above the table top of the contact's lowest point (m). A pushed face
     /// about to tip turns away from the pusher at the top, so the force settles there.
     pub height: f64,
-    /// Vertical force on the object per newton of horizontal normal force: `-n_z / |n_xy|`
-    /// for the 3D contact normal `n` out of the object (negative: the pusher presses down).
-    pub lift: f64,
+    /// Downward slope of the contact normal force, `tan(alpha) = n_z / |n_xy|` for the 3D
+    /// normal `n` out of the object (positive: the pusher presses down, as on a rim).
+    pub slope: f64,
+}
+
+impl ContactElevation {
+    /// Vertical force on the object per newton of horizontal normal force (negative:
+    /// down). Friction in the 3D contact, which the planar model leaves open, may point
+    /// up the slope as far as the friction cone allows, so a pusher pressing down at
+    /// `alpha` is only counted on for `tan(alpha - atan(mu_c))`, and not at all within the
+    /// friction angle. A contact pushing up lifts by its own slope.
+    pub fn lift(&self, mu_c: f64) -> f64 {
+        if self.slope >= 0.0 {
+            ((mu_c - self.slope) / (1.0 + mu_c * self.slope)).min(0.0)
+        } else {
+            -self.slope
+        }
+    }
 }
 
 /// A pusher force on the object, object frame `O`.
@@ -86,12 +101,13 @@ impl SupportBalance {
     }
 }
 
-/// The pusher forces of a solved push, object frame: each planar contact's force at its
-/// point and elevation.
+/// The pusher forces of a solved push with contact friction `mu_c`, object frame: each
+/// planar contact's force at its point and elevation.
 pub fn pusher_forces(
     contacts: &[PlanarContact],
     elevations: &[ContactElevation],
     motion: &ObjectMotion,
+    mu_c: f64,
     out: &mut Vec<PusherForce>,
 ) {
     out.clear();
@@ -104,7 +120,7 @@ pub fn pusher_forces(
                 let f = motion.force(contacts, i);
                 PusherForce {
                     p_OC: Vector3::new(c.point.x, c.point.y, e.height),
-                    f: Vector3::new(f.x, f.y, e.lift * motion.normal_forces[i]),
+                    f: Vector3::new(f.x, f.y, e.lift(mu_c) * motion.normal_forces[i]),
                 }
             }),
     );
