@@ -244,6 +244,13 @@ impl PlanFile {
                     .map(|o| o.bounding_radius)
                     .collect::<Vec<_>>(),
                 &path.step_states,
+                &controls
+                    .iter()
+                    .scan(0, |step, c| {
+                        *step += c.steps;
+                        Some(*step)
+                    })
+                    .collect::<Vec<_>>(),
                 scene.planner.step,
                 &scene.trajectory,
                 TRAJECTORY_RATE,

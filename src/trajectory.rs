@@ -2,9 +2,6 @@
 //! its URDF velocity limit or the scene's acceleration limit and no pushed object moves
 //! faster than the scene allows, sampled at a fixed rate, with the object poses the model
 //! predicts along it.
-//!
-//! Quasistatic pushing does not depend on speed, so stretching a step in time does not
-//! change where the objects go.
 
 use crate::math::wrap_angle;
 use crate::robot::Robot;
@@ -35,33 +32,37 @@ pub fn joint_motion_time(robot: &Robot, from: &DVector<f64>, to: &DVector<f64>) 
         .fold(0.0, f64::max)
 }
 
-/// Times the plan's steps and samples them at `rate` Hz by linear interpolation.
+/// Share of the acceleration limit spent on speeding up and slowing down along the path;
+/// the rest is kept for the path's curvature (`q'' s'^2`).
+const ALONG_PATH: f64 = 0.8;
+
+/// Times the plan's steps and samples them at `rate` Hz.
 ///
-/// The algorithm is iterative time stretching (the idea of MoveIt's iterative parabolic
-/// time parameterisation): the path is the sequence of step states; segment `k` first
-/// takes the least time that keeps every joint within its URDF velocity limit, every
-/// object point within `max_object_speed`, and no faster than the plan's `dt`. Then
-/// each waypoint's joint acceleration, `(v_k - v_{k-1}) / min(dt_{k-1}, dt_k, 1 / rate)`
-/// with the segments' joint velocities `v` (at rest before the start and after the end),
-/// is brought within `max_joint_acceleration` by stretching both neighbouring segments,
-/// sweeping until no waypoint exceeds it. (MoveIt divides by the mean of the two
-/// segments; the shorter one, capped at the sample period, keeps the second differences
-/// of the samples within the limit too.) Stretching only slows
-/// the motion, so velocity limits stay met.
+/// The path is the sequence of step states, parameterised by the step index `s`; within
+/// a control it is smooth, and at the controls' boundaries (`stops`, step indices) it has
+/// kinks, where the arm comes to rest. A forward-backward pass over the squared path
+/// speed `x = s'^2` (the phase-plane method of time-optimal path parameterisation)
+/// finds the fastest profile that
+/// - keeps every joint within its URDF velocity limit, every object point within
+///   `max_object_speed`, and is no faster than the plan's own step `dt`;
+/// - keeps every joint's acceleration `q' s'' + q'' s'^2` within
+///   `max_joint_acceleration`: 80 % of it for `s''`, the rest for the curvature term;
+/// - starts and ends at rest, and stops at every entry of `stops`.
+///
+/// Each step then takes `2 / (s'_k + s'_{k+1})` seconds with `s''` constant, and samples
+/// interpolate along the path. Quasistatic pushing does not depend on speed, so the
+/// predicted object poses along the path stay those of the plan.
 pub fn time_parameterise(
     robot: &Robot,
     object_radii: &[f64],
     steps: &[State],
+    stops: &[usize],
     dt: f64,
     limits: &TrajectoryParams,
     rate: f64,
 ) -> Trajectory {
-    let durations = segment_durations(robot, object_radii, steps, dt, limits, 1.0 / rate);
-    let mut knots = vec![0.0];
-    for d in &durations {
-        knots.push(knots.last().unwrap() + d);
-    }
-    let end = *knots.last().unwrap();
+    let profile = PathProfile::new(robot, object_radii, steps, stops, dt, limits);
+    let end = *profile.knots.last().unwrap();
     let mut trajectory = Trajectory {
         rate,
         times: vec![],
@@ -69,22 +70,22 @@ pub fn time_parameterise(
         objects: vec![],
     };
     let count = (end * rate).floor() as usize;
+    let mut times: Vec<f64> = (0..=count).map(|m| m as f64 / rate).collect();
+    if end - times.last().unwrap() > 1e-12 {
+        times.push(end);
+    }
     let mut segment = 0;
-    for m in 0..=count + 1 {
-        let t = if m <= count { m as f64 / rate } else { end };
-        if m == count + 1 && (t - trajectory.times.last().copied().unwrap_or(-1.0)).abs() < 1e-12 {
-            break;
-        }
+    for t in times {
+        let knots = &profile.knots;
         while segment + 1 < knots.len() - 1 && knots[segment + 1] < t {
             segment += 1;
         }
-        let (a, b) = (&steps[segment], &steps[(segment + 1).min(steps.len() - 1)]);
-        let span = knots.get(segment + 1).map_or(0.0, |k| k - knots[segment]);
-        let s = if span > 0.0 {
-            ((t - knots[segment]) / span).clamp(0.0, 1.0)
+        let s = if knots.len() > 1 {
+            profile.progress(segment, t)
         } else {
             0.0
         };
+        let (a, b) = (&steps[segment], &steps[(segment + 1).min(steps.len() - 1)]);
         trajectory.times.push(t);
         trajectory.q.push(
             a.q.iter()
@@ -109,82 +110,122 @@ pub fn time_parameterise(
     trajectory
 }
 
-/// Segment durations (s) within the velocity, object-speed and acceleration limits.
-fn segment_durations(
-    robot: &Robot,
-    object_radii: &[f64],
-    steps: &[State],
-    dt: f64,
-    limits: &TrajectoryParams,
-    sample_period: f64,
-) -> Vec<f64> {
-    let dof = robot.dof();
-    let deltas: Vec<DVector<f64>> = steps.windows(2).map(|w| &w[1].q - &w[0].q).collect();
-    let mut durations: Vec<f64> = steps
-        .windows(2)
-        .map(|w| {
-            let object_travel = w[0]
+/// The timed path: the path speed at each step state and when each is reached.
+struct PathProfile {
+    /// `s'` at each step state (steps per second).
+    speed: Vec<f64>,
+    /// Time at each step state (s).
+    knots: Vec<f64>,
+}
+
+impl PathProfile {
+    fn new(
+        robot: &Robot,
+        object_radii: &[f64],
+        steps: &[State],
+        stops: &[usize],
+        dt: f64,
+        limits: &TrajectoryParams,
+    ) -> PathProfile {
+        let n = steps.len();
+        if n < 2 {
+            return PathProfile {
+                speed: vec![0.0; n],
+                knots: vec![0.0; n],
+            };
+        }
+        let dof = robot.dof();
+        let a_max = limits.max_joint_acceleration;
+        let v_max: Vec<f64> = (0..dof)
+            .map(|j| robot.chain.dof_joint(j).max_velocity)
+            .collect();
+        // q' on each segment k (per step).
+        let dq: Vec<DVector<f64>> = steps.windows(2).map(|w| &w[1].q - &w[0].q).collect();
+        // Squared-speed limits at each state: velocities on the neighbouring segments,
+        // object speed, the plan's own pace, and the curvature's share of acceleration.
+        let mut x_max = vec![(1.0 / dt).powi(2); n];
+        for (k, d) in dq.iter().enumerate() {
+            let object_travel = steps[k]
                 .objects
                 .iter()
-                .zip(&w[1].objects)
+                .zip(&steps[k + 1].objects)
                 .zip(object_radii)
                 .map(|((a, b), r)| {
                     (b.translation() - a.translation()).norm()
                         + r * wrap_angle(b.theta - a.theta).abs()
                 })
                 .fold(0.0, f64::max);
-            joint_motion_time(robot, &w[0].q, &w[1].q)
-                .max(object_travel / limits.max_object_speed)
-                .max(dt)
-        })
-        .collect();
-    let n = durations.len();
-    let a_max = limits.max_joint_acceleration;
-    // Waypoint k joins segment k-1 and segment k; segments -1 and n are rest.
-    let velocity = |durations: &[f64], k: isize, j: usize| -> f64 {
-        if k < 0 || k as usize >= n {
-            0.0
-        } else {
-            deltas[k as usize][j] / durations[k as usize]
-        }
-    };
-    for _sweep in 0..100_000 {
-        let mut worst: f64 = 1.0;
-        for k in 0..=n {
-            let before = k.checked_sub(1).map(|i| durations[i]);
-            let after = durations.get(k).copied();
-            let shortest = match (before, after) {
-                (Some(b), Some(a)) => b.min(a),
-                (b, a) => b.or(a).unwrap_or(sample_period),
-            };
-            // The jump in velocity at a waypoint is spread over the shorter neighbouring
-            // segment, and over no more than one sample period: sampled at `rate`, the
-            // second differences then stay within the limit.
-            let capped = shortest >= sample_period;
-            let span = shortest.min(sample_period);
-            let ratio = (0..dof)
-                .map(|j| {
-                    let dv = velocity(&durations, k as isize, j)
-                        - velocity(&durations, k as isize - 1, j);
-                    dv.abs() / span / a_max
-                })
-                .fold(0.0, f64::max);
-            if ratio > 1.0 {
-                // Stretching both neighbours by f slows them by f and, unless the span is
-                // capped, lengthens it by f. A hair more: rounding must not leave it over.
-                let stretch = if capped { ratio } else { ratio.sqrt() } * (1.0 + 1e-9);
-                if k > 0 {
-                    durations[k - 1] *= stretch;
-                }
-                if k < n {
-                    durations[k] *= stretch;
-                }
+            let mut limit = (limits.max_object_speed / object_travel).powi(2);
+            for j in 0..dof {
+                limit = limit.min((v_max[j] / d[j].abs()).powi(2));
             }
-            worst = worst.max(ratio);
+            for i in [k, k + 1] {
+                x_max[i] = x_max[i].min(limit);
+            }
         }
-        if worst <= 1.0 + 1e-6 {
-            break;
+        for k in 1..n - 1 {
+            for j in 0..dof {
+                let curvature = (dq[k][j] - dq[k - 1][j]).abs();
+                x_max[k] = x_max[k].min((1.0 - ALONG_PATH) * a_max / curvature);
+            }
+        }
+        x_max[0] = 0.0;
+        x_max[n - 1] = 0.0;
+        for &k in stops {
+            if k < n {
+                x_max[k] = 0.0;
+            }
+        }
+        // Largest s'' on each segment.
+        let u_max: Vec<f64> = dq
+            .iter()
+            .map(|d| {
+                (0..dof)
+                    .map(|j| ALONG_PATH * a_max / d[j].abs())
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect();
+        // Forward (speeding up) and backward (slowing down) passes: x_{k+1} <= x_k + 2 u.
+        let mut x = x_max.clone();
+        for k in 0..n - 1 {
+            x[k + 1] = x[k + 1].min(x[k] + 2.0 * u_max[k]);
+        }
+        for k in (0..n - 1).rev() {
+            x[k] = x[k].min(x[k + 1] + 2.0 * u_max[k]);
+        }
+        let speed: Vec<f64> = x.iter().map(|x| x.max(0.0).sqrt()).collect();
+        let mut knots = vec![0.0];
+        for k in 0..n - 1 {
+            let duration = if speed[k] + speed[k + 1] > 0.0 {
+                2.0 / (speed[k] + speed[k + 1])
+            } else {
+                // At rest at both ends (a one-step control): speed up for half the step,
+                // slow down for the other half.
+                2.0 / u_max[k].sqrt()
+            };
+            knots.push(knots[k] + duration.min(f64::MAX));
+        }
+        PathProfile { speed, knots }
+    }
+
+    /// How far along segment `k` (0..1) the path is at time `t`.
+    fn progress(&self, k: usize, t: f64) -> f64 {
+        let (t0, t1) = (self.knots[k], self.knots[k + 1]);
+        let tau = (t - t0).clamp(0.0, t1 - t0);
+        let (v0, v1) = (self.speed[k], self.speed[k + 1]);
+        if v0 + v1 > 0.0 {
+            // Constant s'' = (v1^2 - v0^2) / 2 over the unit step.
+            let u = (v1 * v1 - v0 * v0) / 2.0;
+            (v0 * tau + 0.5 * u * tau * tau).clamp(0.0, 1.0)
+        } else {
+            // Rest to rest within the step: s'' = +u for the first half, -u after.
+            let half = 0.5 * (t1 - t0);
+            let u = 1.0 / (half * half);
+            if tau <= half {
+                0.5 * u * tau * tau
+            } else {
+                1.0 - 0.5 * u * (t1 - t0 - tau).powi(2)
+            }
         }
     }
-    durations
 }
