@@ -164,10 +164,8 @@ impl PathProfile {
             }
         }
         for k in 1..n - 1 {
-            for j in 0..dof {
-                let curvature = (dq[k][j] - dq[k - 1][j]).abs();
-                x_max[k] = x_max[k].min((1.0 - ALONG_PATH) * a_max / curvature);
-            }
+            let curvature = (&dq[k] - &dq[k - 1]).amax();
+            x_max[k] = x_max[k].min((1.0 - ALONG_PATH) * a_max / curvature);
         }
         x_max[0] = 0.0;
         x_max[n - 1] = 0.0;
