@@ -129,36 +129,79 @@ namespace pushplan
             throw Error(std::string("planning failed: ") + e.what());
         }
 
+        // The path: controls with their step counts, and the states OMPL reached.
+        std::vector<double> flat_controls, control, state, path_states;
+        std::vector<std::size_t> steps;
+        const auto read_path = [&] {
+            flat_controls.clear();
+            steps.clear();
+            path_states.clear();
+            const oc::PathControl &path = setup.getSolutionPath();
+            for (std::size_t i = 0; i < path.getControlCount(); ++i)
+            {
+                model->readControl(path.getControl(i), control);
+                flat_controls.insert(flat_controls.end(), control.begin(), control.end());
+                steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info.step)));
+            }
+            for (std::size_t i = 0; i < path.getStateCount(); ++i)
+            {
+                model->read(path.getState(i), state);
+                path_states.insert(path_states.end(), state.begin(), state.end());
+            }
+        };
+        const auto robustness = [&] {
+            return model->model().robustness(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+                                             rust::Slice<const std::size_t>(steps.data(), steps.size()),
+                                             options.robust_trials, seed);
+        };
+        checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
+
         Plan plan;
+        bool solved = setup.haveExactSolutionPath();
+        if (setup.haveSolutionPath())
+            read_path();
+        // Robust planning: a solution that too few perturbed re-simulations carry to the
+        // goal is dropped, and the search goes on from the same tree.
+        while (solved && options.robust_trials > 0)
+        {
+            plan.robustness = robustness();
+            if (plan.robustness >= options.robust_rate)
+                break;
+            if (options.progress)
+                std::fprintf(stderr, "  a solution reaches the goal in %.0f %% of %u perturbed re-simulations: searching on\n",
+                             100.0 * plan.robustness, options.robust_trials);
+            if (done())
+            {
+                solved = false;  // the last path is kept, as an approximate solution
+                break;
+            }
+            setup.getProblemDefinition()->clearSolutionPaths();
+            try
+            {
+                setup.solve(done);
+            }
+            catch (const rust::Error &e)
+            {
+                throw Error(std::string("planning failed: ") + e.what());
+            }
+            solved = setup.haveExactSolutionPath();
+            if (setup.haveSolutionPath())
+                read_path();
+        }
+
         plan.planning_time = elapsed();
         plan.propagation_steps = model->model().propagation_steps();
         plan.step = info.step;
         ob::PlannerData data(si);
         rrt->getPlannerData(data);
         plan.tree_size = data.numVertices();
-        plan.solved = setup.haveExactSolutionPath();
+        plan.solved = solved;
         for (const auto &n : info.joint_names)
             plan.joint_names.emplace_back(n);
         for (const auto &n : info.object_names)
             plan.object_names.emplace_back(n);
-        if (!setup.haveSolutionPath())
+        if (flat_controls.empty() && path_states.empty())
             return plan;
-
-        // The path: controls with their step counts, and the states OMPL reached.
-        const oc::PathControl &path = setup.getSolutionPath();
-        std::vector<double> flat_controls, control, state, path_states;
-        std::vector<std::size_t> steps;
-        for (std::size_t i = 0; i < path.getControlCount(); ++i)
-        {
-            model->readControl(path.getControl(i), control);
-            flat_controls.insert(flat_controls.end(), control.begin(), control.end());
-            steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info.step)));
-        }
-        for (std::size_t i = 0; i < path.getStateCount(); ++i)
-        {
-            model->read(path.getState(i), state);
-            path_states.insert(path_states.end(), state.begin(), state.end());
-        }
 
         // Every plan is checked: re-simulating its controls reproduces its states.
         const auto simulate = [&] {
@@ -185,8 +228,20 @@ namespace pushplan
         plan.after_shortcut = metrics(shortened.after);
         if (shortened.accepted > 0)
         {
+            const std::vector<double> found_controls = flat_controls;
+            const std::vector<std::size_t> found_steps = steps;
             flat_controls.assign(shortened.controls.begin(), shortened.controls.end());
             steps.assign(shortened.steps.begin(), shortened.steps.end());
+            // In robust planning a shortcut is kept only while it stays robust.
+            const double shortcut_robustness = options.robust_trials > 0 ? robustness() : 1.0;
+            if (shortcut_robustness < options.robust_rate)
+            {
+                flat_controls = found_controls;
+                steps = found_steps;
+                plan.after_shortcut = plan.before_shortcut;
+            }
+            else if (options.robust_trials > 0)
+                plan.robustness = shortcut_robustness;
             sim = simulate();
             if (!sim.valid || !sim.goal_reached)
                 throw Error("internal error: the shortcut plan does not re-simulate (" + std::string(sim.message) + ")");

@@ -16,6 +16,8 @@ namespace pushplan::bridge
         o.goal_bias = options.goal_bias;
         o.intermediate_states = options.intermediate_states;
         o.progress = options.progress;
+        o.robust_trials = static_cast<unsigned>(options.robust_trials);
+        o.robust_rate = options.robust_rate;
         o.shortcut = 0.0;  // the CLI runs the same shortcutting itself, to report before and after
         const std::string planner(options.planner);
         if (planner == "pcrrt")
@@ -32,6 +34,7 @@ namespace pushplan::bridge
         out.planning_time = plan.planning_time;
         out.tree_size = plan.tree_size;
         out.propagation_steps = plan.propagation_steps;
+        out.robustness = plan.robustness;
         for (std::size_t i = 0; i < plan.joint_trajectory.size(); ++i)
         {
             for (double v : plan.joint_trajectory[i])

@@ -127,6 +127,10 @@ pub mod bridge {
         pub planner: String,
         pub intermediate_states: bool,
         pub progress: bool,
+        /// Perturbed re-simulations a solution must survive (0: no robustness check).
+        pub robust_trials: usize,
+        /// The fraction of them that must reach the goal.
+        pub robust_rate: f64,
     }
 
     /// The outcome of one planning run.
@@ -141,6 +145,8 @@ pub mod bridge {
         pub states: Vec<f64>,
         pub controls: Vec<f64>,
         pub steps: Vec<usize>,
+        /// Fraction of the perturbed re-simulations that reached the goal (-1: not checked).
+        pub robustness: f64,
     }
 
     /// Options of a benchmark of one scene.
@@ -173,6 +179,13 @@ pub mod bridge {
         fn distance(self: &Model, a: &[f64], b: &[f64]) -> Result<f64>;
         fn goal_distance(self: &Model, state: &[f64]) -> Result<f64>;
         fn simulate(self: &mut Model, controls: &[f64], steps: &[usize]) -> Result<Simulation>;
+        fn robustness(
+            self: &Model,
+            controls: &[f64],
+            steps: &[usize],
+            trials: usize,
+            seed: u64,
+        ) -> Result<f64>;
         fn shortcut(
             self: &mut Model,
             controls: &[f64],
@@ -533,6 +546,27 @@ impl Model {
                 goal_reached: self.scene().goal.is_satisfied(path.final_state()),
                 message,
             })
+        })
+    }
+
+    /// Fraction of `trials` perturbed re-simulations of a plan that reach the goal
+    /// ([`crate::robustness`], default noise, drawn from `seed`).
+    pub fn robustness(
+        &self,
+        controls: &[f64],
+        steps: &[usize],
+        trials: usize,
+        seed: u64,
+    ) -> Result<f64, String> {
+        guarded("robustness", || {
+            let controls = self.path_controls(controls, steps)?;
+            let scene = if self.static_mode {
+                self.scene().with_static_clutter()
+            } else {
+                self.scene().clone()
+            };
+            let noise = crate::robustness::Noise::default();
+            Ok(crate::robustness::robustness(&scene, &controls, &noise, trials, seed).success_rate)
         })
     }
 

@@ -4,7 +4,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use pushplan::execute::{ExecuteSettings, ExecutionReport};
 use pushplan::ffi::{benchmark_scene, solve, BenchOptions, SolveOptions};
 use pushplan::path::PathControl;
-use pushplan::plan::{PlanFile, PlanSettings};
+use pushplan::plan::{PlanFile, PlanSettings, RobustnessRecord};
 use pushplan::robustness::{robustness, Noise};
 use pushplan::shortcut::{shortcut, ShortcutSettings};
 use pushplan::Propagator;
@@ -60,6 +60,13 @@ enum Command {
         /// No progress output.
         #[arg(long)]
         quiet: bool,
+        /// Keep a solution only if at least --robust-rate of this many re-simulations from
+        /// perturbed scenes (as `check --noise`) reach the goal; search on otherwise.
+        #[arg(long, default_value_t = 0)]
+        robust: usize,
+        /// The fraction of --robust re-simulations that must reach the goal.
+        #[arg(long, default_value_t = 0.9)]
+        robust_rate: f64,
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is
     /// reached; with --noise, also how often perturbed re-simulations still reach it.
@@ -206,9 +213,13 @@ fn main() -> ExitCode {
             shortcut,
             intermediate_states,
             quiet,
+            robust,
+            robust_rate,
         } => {
             let scene = scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
             let options = RunOptions {
+                robust,
+                robust_rate,
                 time,
                 seed,
                 k,
@@ -291,6 +302,8 @@ fn main() -> ExitCode {
 
 /// The `plan` command's options.
 struct RunOptions {
+    robust: usize,
+    robust_rate: f64,
     time: Option<f64>,
     seed: Option<u64>,
     k: Option<u32>,
@@ -312,7 +325,15 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
         planner: planner.name().into(),
         intermediate_states: run.intermediate_states,
         progress: !quiet,
+        robust_trials: run.robust,
+        robust_rate: run.robust_rate,
     };
+    if !(0.0..=1.0).contains(&run.robust_rate) {
+        return Err(format!(
+            "--robust-rate must be in [0, 1], got {}",
+            run.robust_rate
+        ));
+    }
     if !(options.time_limit.is_finite() && options.time_limit > 0.0) {
         return Err(format!(
             "--time must be positive, got {}",
@@ -358,8 +379,23 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
                 outcome.accepted, outcome.attempts
             );
         }
-        controls = outcome.controls;
-        before = Some(outcome.before);
+        // In robust planning a shortcut is kept only while it stays robust.
+        let robust = run.robust == 0
+            || robustness(
+                &variant,
+                &outcome.controls,
+                &Noise::default(),
+                run.robust,
+                options.seed,
+            )
+            .success_rate
+                >= run.robust_rate;
+        if robust {
+            controls = outcome.controls;
+            before = Some(outcome.before);
+        } else if !quiet {
+            eprintln!("shortcutting: the shortcut path is less robust; the path as found is kept");
+        }
     }
     let settings = PlanSettings {
         planner: planner.name().into(),
@@ -370,7 +406,21 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
         shortcut: run.shortcut,
     };
     let reference = scene_path.to_string_lossy().into_owned();
-    let file = PlanFile::build(&reference, scene, &settings, &controls, before)?;
+    let mut file = PlanFile::build(&reference, scene, &settings, &controls, before)?;
+    if run.robust > 0 && solution.exact {
+        let report = robustness(
+            &variant,
+            &controls,
+            &Noise::default(),
+            run.robust,
+            options.seed,
+        );
+        file.robustness = Some(RobustnessRecord {
+            trials: run.robust,
+            required_rate: run.robust_rate,
+            success_rate: report.success_rate,
+        });
+    }
     std::fs::write(out, file.to_json())
         .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
 
@@ -388,6 +438,14 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
         solution.propagation_steps,
         solution.propagation_steps as f64 / solution.planning_time.max(1e-9)
     );
+    if let Some(r) = &file.robustness {
+        println!(
+            "robust: {:.0} % of {} perturbed re-simulations reach the goal (at least {:.0} % required)",
+            100.0 * r.success_rate,
+            r.trials,
+            100.0 * r.required_rate
+        );
+    }
     let moved: Vec<&str> = file
         .objects
         .iter()

@@ -61,6 +61,19 @@ pub struct PlanFile {
     /// The executable trajectory: joint values within the URDF's velocity limits and the
     /// predicted object poses, at `TRAJECTORY_RATE` Hz.
     pub trajectory: Trajectory,
+    /// Robust planning's check of the plan (only when it was asked for).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robustness: Option<RobustnessRecord>,
+}
+
+/// How robust planning found the plan: the fraction of `trials` re-simulations from
+/// perturbed scenes that reached the goal, and the fraction required.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobustnessRecord {
+    pub trials: usize,
+    pub required_rate: f64,
+    pub success_rate: f64,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -255,6 +268,7 @@ impl PlanFile {
                 &scene.trajectory,
                 TRAJECTORY_RATE,
             ),
+            robustness: None,
         })
     }
 

@@ -18,6 +18,8 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
         planner: planner.into(),
         intermediate_states: false,
         progress: false,
+        robust_trials: 0,
+        robust_rate: 0.9,
     }
 }
 

@@ -56,6 +56,11 @@ namespace pushplan
         bool intermediate_states = false;
         /// Print progress to stderr once a second.
         bool progress = false;
+        /// Keep a solution only if at least `robust_rate` of this many re-simulations from
+        /// perturbed scenes (object start poses +-5 mm / +-0.05 rad; mass, frictions and
+        /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on. 0: no check.
+        unsigned robust_trials = 0;
+        double robust_rate = 0.9;
     };
 
     /// A link pushing an object during one propagation step.
@@ -106,6 +111,9 @@ namespace pushplan
         /// The path as found and after shortcutting (equal when not shortcut).
         PathMetrics before_shortcut;
         PathMetrics after_shortcut;
+        /// Fraction of the perturbed re-simulations that reached the goal (-1: not checked,
+        /// Options::robust_trials was 0).
+        double robustness = -1.0;
         /// Total duration of the controls (s).
         double duration() const;
     };

@@ -3,15 +3,74 @@
 //! table, contact friction `mu_c` against the arm) and the table and obstacles fixed.
 //!
 //! Frames: world `W` with z up. An object's body frame is its planar frame lifted onto
-//! the table top (`Pose2::to_isometry`), so its planar pose is read straight back.
+//! the table top (`Pose2::to_isometry`), so its planar pose is read straight back. The
+//! prism stands on small feet spread over its footprint ([`support_points`]).
 
 use crate::math::Pose2;
+use crate::physics::Footprint;
 use crate::scene::Scene;
-use nalgebra::{Isometry3, Vector3};
+use nalgebra::{Isometry3, Vector2, Vector3};
 use rapier3d_f64::prelude::*;
 
 /// Simulation step (s): 1 kHz keeps a link from moving more than a millimetre per step.
 pub const STEP: f64 = 0.001;
+
+/// Radius of an object's feet (m): the prism stands this much above the table on them.
+pub const FOOT_RADIUS: f64 = 5e-4;
+/// Feet along each axis of the footprint's bounding box.
+const FEET_PER_SIDE: usize = 7;
+
+/// Where an object stands on the table: a grid of points over its footprint, edges
+/// included (object frame, m). A solid prism on a plane gets contact points at its
+/// corners only, which resists turning as if all the weight sat there; evenly spread
+/// feet carry the uniform pressure the planar model assumes, so the support's friction
+/// is the same physical assumption in both, computed independently.
+pub fn support_points(footprint: &Footprint) -> Vec<Vector2<f64>> {
+    let n = FEET_PER_SIDE;
+    let grid = |half_x: f64, half_y: f64| {
+        (0..n).flat_map(move |a| {
+            (0..n).map(move |b| {
+                let f = |k: usize| 2.0 * k as f64 / (n - 1) as f64 - 1.0;
+                Vector2::new(half_x * f(a), half_y * f(b))
+            })
+        })
+    };
+    match footprint {
+        Footprint::Circle { radius } => {
+            // The grid inside the disc, and the rim.
+            let mut points: Vec<Vector2<f64>> = grid(*radius, *radius)
+                .filter(|p| p.norm() < *radius * 0.999)
+                .collect();
+            let rim = 4 * n;
+            points.extend((0..rim).map(|k| {
+                let angle = std::f64::consts::TAU * k as f64 / rim as f64;
+                Vector2::new(angle.cos(), angle.sin()) * *radius
+            }));
+            points
+        }
+        Footprint::Polygon { vertices } => {
+            let (lo, hi) = vertices.iter().fold(
+                (
+                    Vector2::repeat(f64::INFINITY),
+                    Vector2::repeat(f64::NEG_INFINITY),
+                ),
+                |(lo, hi), v| (lo.inf(v), hi.sup(v)),
+            );
+            let centre = (lo + hi) / 2.0;
+            let half = (hi - lo) / 2.0;
+            let mut points: Vec<Vector2<f64>> = grid(half.x, half.y)
+                .map(|p| p + centre)
+                .filter(|p| footprint.contains(*p))
+                .collect();
+            for v in vertices {
+                if !points.contains(v) {
+                    points.push(*v);
+                }
+            }
+            points
+        }
+    }
+}
 
 /// What a collider is, stored in its `user_data`.
 const STATIC: u128 = 0;
@@ -105,12 +164,22 @@ impl World {
                     .pose(pose.to_isometry(scene.table.top))
                     .can_sleep(false),
             );
+            // The prism, raised by the feet's height, carries the mass.
+            let raised = Isometry3::translation(0.0, 0.0, FOOT_RADIUS) * object.geometry.local;
             let collider = ColliderBuilder::new(object.geometry.shape.clone())
-                .position(object.geometry.local)
+                .position(raised)
                 .mass(object.mass)
                 .user_data(OBJECT + i as u128)
                 .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
             let handle = colliders.insert_with_parent(collider, body, &mut bodies);
+            for p in support_points(&object.footprint) {
+                let foot = ColliderBuilder::ball(FOOT_RADIUS)
+                    .translation(Vector3::new(p.x, p.y, FOOT_RADIUS))
+                    .density(0.0)
+                    .user_data(OBJECT + i as u128)
+                    .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+                colliders.insert_with_parent(foot, body, &mut bodies);
+            }
             object_bodies.push((body, handle));
         }
         let params = IntegrationParameters {

@@ -58,6 +58,8 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>
         planner: "pcrrt".into(),
         intermediate_states: false,
         progress: false,
+        robust_trials: 0,
+        robust_rate: 0.9,
     };
     let scene_file = "scenes/herb_fig1_clutter.yaml";
     let out = pushplan::ffi::solve(Path::new(scene_file), &options).unwrap();
