@@ -172,3 +172,49 @@ fn plan_with_render_writes_the_plan_and_its_pictures() {
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("outside the plan"), "{stderr}");
 }
+
+#[test]
+fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
+    let out = temp("robust.json");
+    let out_str = out.to_str().unwrap();
+    let (code, stdout, stderr) = pushplan(&[
+        "plan",
+        "scenes/planar_hand_single_object.yaml",
+        "--robust",
+        "10",
+        "--time",
+        "30",
+        "--quiet",
+        "--out",
+        out_str,
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("robust: "), "{stdout}");
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let robustness = &plan["robustness"];
+    assert_eq!(robustness["trials"], 10);
+    assert!(
+        robustness["success_rate"].as_f64().unwrap() >= 0.9,
+        "{robustness}"
+    );
+    // Fresh perturbations (another seed) mostly reach the goal too.
+    let (code, stdout, _) = pushplan(&["check", out_str, "--noise", "20", "--seed", "5"]);
+    assert_eq!(code, 0, "{stdout}");
+    let reached: usize = stdout
+        .split("perturbed re-simulations: ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(reached >= 16, "{stdout}");
+    // And the 3D engine runs it, reporting every trial.
+    let (code, stdout, stderr) = pushplan(&["execute", out_str, "--trials", "3"]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("executed 3 times in 3D"), "{stdout}");
+    assert_eq!(stdout.matches("  trial ").count(), 3, "{stdout}");
+    // Bad execution parameters are refused with the flag named.
+    let (code, _, stderr) = pushplan(&["execute", out_str, "--speed=0"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("--speed"), "{stderr}");
+}
