@@ -161,7 +161,8 @@ namespace pushplan
         if (setup.haveSolutionPath())
             read_path();
         // Robust planning: a solution that too few perturbed re-simulations carry to the
-        // goal is dropped, and the search goes on from the same tree.
+        // goal is dropped, and the search starts over with a new tree (the old tree's
+        // next solutions would mostly extend the dropped one, past its goal node).
         while (solved && options.robust_trials > 0)
         {
             plan.robustness = robustness();
@@ -176,6 +177,7 @@ namespace pushplan
                 break;
             }
             setup.getProblemDefinition()->clearSolutionPaths();
+            rrt->clear();
             try
             {
                 setup.solve(done);
