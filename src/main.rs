@@ -97,6 +97,10 @@ enum Command {
         /// Also write the report as JSON.
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Write DIR/execution.html: the plan animated with the nominal execution's
+        /// objects drawn over it.
+        #[arg(long)]
+        render: Option<PathBuf>,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: one OMPL log per scene
     /// (scenes run in parallel processes), merged into DIR/results.db by
@@ -240,7 +244,15 @@ fn main() -> ExitCode {
             speed,
             seed,
             json,
-        } => execute(&plan, trials, speed, seed, json.as_deref()),
+            render,
+        } => execute(
+            &plan,
+            trials,
+            speed,
+            seed,
+            json.as_deref(),
+            render.as_deref(),
+        ),
         Command::Render { plan, out, times } => draw(&plan, &out, &times),
         Command::Scenes {
             action:
@@ -752,6 +764,7 @@ fn execute(
     speed: f64,
     seed: u64,
     json: Option<&Path>,
+    render: Option<&Path>,
 ) -> Result<ExitCode, String> {
     if !(speed.is_finite() && speed > 0.0) {
         return Err(format!("--speed: must be positive and finite, got {speed}"));
@@ -765,10 +778,15 @@ fn execute(
         trials,
         speed,
         seed,
+        record: render.is_some(),
         ..ExecuteSettings::default()
     };
     let report = pushplan::execute::execute(&scene, &plan, &settings)?;
     print_execution(path, &scene, &report);
+    if let Some(dir) = render {
+        let page = pushplan::render::render_execution(&plan, path, &report.trials[0].frames, dir)?;
+        println!("animation written to {}", page.display());
+    }
     if let Some(json) = json {
         let text = serde_json::to_string_pretty(&report).expect("reports serialise") + "\n";
         std::fs::write(json, text).map_err(|e| format!("{}: {e}", json.display()))?;

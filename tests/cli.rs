@@ -209,10 +209,25 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
         .unwrap_or_else(|| panic!("{stdout}"));
     assert!(reached >= 16, "{stdout}");
     // And the 3D engine runs it, reporting every trial.
-    let (code, stdout, stderr) = pushplan(&["execute", out_str, "--trials", "3"]);
+    let pictures = temp("execution");
+    let (code, stdout, stderr) = pushplan(&[
+        "execute",
+        out_str,
+        "--trials",
+        "3",
+        "--render",
+        pictures.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{stdout}{stderr}");
     assert!(stdout.contains("executed 3 times in 3D"), "{stdout}");
     assert_eq!(stdout.matches("  trial ").count(), 3, "{stdout}");
+    // The animation carries the executed poses beside the predicted ones, every frame.
+    let page = std::fs::read_to_string(pictures.join("execution.html")).unwrap();
+    assert!(page.contains("where the 3D execution took them"));
+    assert!(
+        !page.contains("\"executed\":[]"),
+        "every frame has executed outlines"
+    );
     // Bad execution parameters are refused with the flag named.
     let (code, _, stderr) = pushplan(&["execute", out_str, "--speed=0"]);
     assert_eq!(code, 2, "{stderr}");

@@ -137,8 +137,13 @@ pub fn execute(
     })
 }
 
-/// The plan's predicted object poses at each trajectory sample, in scene order (objects
-/// the plan does not move, such as Static RRT's clutter, stay at their start).
+/// The plan's predicted object poses at each trajectory sample, in `scene`'s object
+/// order (objects the plan does not move, such as Static RRT's clutter, stay at their
+/// start).
+pub fn predicted_poses(scene: &Scene, plan: &PlanFile) -> Result<Vec<Vec<Pose2>>, String> {
+    Prediction::of(scene, plan).map(|p| p.poses)
+}
+
 struct Prediction {
     poses: Vec<Vec<Pose2>>,
 }

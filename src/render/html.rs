@@ -30,13 +30,15 @@ pub fn animation(film: &Film) -> String {
             .map(|(o, hot)| format!("[{},{}]", points(&view, o), u8::from(*hot)))
             .collect();
         let objects: Vec<String> = frame.objects.iter().map(|o| points(&view, o)).collect();
+        let executed: Vec<String> = frame.executed.iter().map(|o| points(&view, o)).collect();
         let _ = write!(
             frames,
-            "{}{{\"t\":{:.3},\"links\":[{}],\"objects\":[{}]}}",
+            "{}{{\"t\":{:.3},\"links\":[{}],\"objects\":[{}],\"executed\":[{}]}}",
             if n > 0 { "," } else { "" },
             frame.time,
             links.join(","),
-            objects.join(",")
+            objects.join(","),
+            executed.join(",")
         );
     }
     frames.push(']');
@@ -70,7 +72,7 @@ body {{ font-family: sans-serif; margin: 16px; }}
 #time {{ width: 420px; }}
 </style></head>
 <body>
-<h3>{title}</h3>
+<h3>{title}</h3>{legend}
 <div id="controls"><button id="play">Play</button><input id="time" type="range" min="0" max="{last}" value="0" step="1"><span id="clock">0.00 s</span></div>
 <svg id="view" xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}"></svg>
 <script>
@@ -93,6 +95,7 @@ function draw(n) {{
   add("polygon", {{class: "table", points: table, fill: "#f2ead8", stroke: "#b9a77f"}});
   if (goal) add("circle", {{class: "goal", cx: goal[0], cy: goal[1], r: goal[2], fill: "{goal_colour}", "fill-opacity": 0.15, stroke: "{goal_colour}"}});
   f.objects.forEach((p, i) => add("polygon", {{class: "object", "data-object": names[i], points: p, fill: colours[i], "fill-opacity": 0.85, stroke: "#222"}}));
+  f.executed.forEach((p, i) => add("polygon", {{class: "executed", "data-object": names[i], points: p, fill: "none", stroke: "#111", "stroke-width": 1.5, "stroke-dasharray": "5 3"}}));
   f.links.forEach(([p, hot]) => add("polygon", {{class: hot ? "link contact" : "link", points: p, fill: hot ? "{contact}" : "#9aa3ad", "fill-opacity": 0.75, stroke: "#333"}}));
   document.getElementById("clock").textContent = f.t.toFixed(2) + " s";
   document.getElementById("time").value = n;
@@ -114,6 +117,11 @@ draw(0);
 </body></html>
 "##,
         last = indices.len() - 1,
+        legend = if film.executed.is_empty() {
+            ""
+        } else {
+            "<p>Filled: the objects as the plan predicts them; dashed black outlines: where the 3D execution took them.</p>"
+        },
         w = view.width,
         h = view.height,
         table = view.points(&table),

@@ -27,6 +27,8 @@ pub struct Film {
     /// Step indices where each control starts, and the last step.
     pub control_starts: Vec<usize>,
     pub dt: f64,
+    /// Object poses an execution reached at each state (empty: none drawn).
+    pub executed: Vec<Vec<crate::math::Pose2>>,
 }
 
 /// One drawn moment.
@@ -36,6 +38,8 @@ pub struct Frame {
     pub links: Vec<(Vec<Vector2<f64>>, bool)>,
     /// Outline of each object.
     pub objects: Vec<Vec<Vector2<f64>>>,
+    /// Outline of each object where the execution had it (empty when none).
+    pub executed: Vec<Vec<Vector2<f64>>>,
 }
 
 impl Film {
@@ -63,6 +67,52 @@ impl Film {
                 .collect(),
             states: path.step_states,
             control_starts,
+            scene,
+            executed: Vec::new(),
+        })
+    }
+
+    /// The plan's executable trajectory (frames at its sample times; no contact
+    /// highlights), with the object poses of one execution (`executed`, per sample, scene
+    /// order) drawn over the predicted ones.
+    pub fn of_execution(
+        plan: &PlanFile,
+        plan_path: &Path,
+        executed: &[Vec<[f64; 3]>],
+    ) -> Result<Film, String> {
+        let scene = Scene::load(plan.scene_path(plan_path)).map_err(|e| e.to_string())?;
+        let predicted = crate::execute::predicted_poses(&scene, plan)?;
+        let trajectory = &plan.trajectory;
+        if executed.len() != predicted.len() {
+            return Err(format!(
+                "{} executed frames for {} trajectory samples",
+                executed.len(),
+                predicted.len()
+            ));
+        }
+        let states: Vec<State> = trajectory
+            .q
+            .iter()
+            .zip(predicted)
+            .map(|(q, objects)| State {
+                q: nalgebra::DVector::from_column_slice(q),
+                objects,
+            })
+            .collect();
+        let n = states.len();
+        Ok(Film {
+            dt: 1.0 / trajectory.rate,
+            pushes: vec![Vec::new(); n.saturating_sub(1)],
+            control_starts: vec![0, n - 1],
+            executed: executed
+                .iter()
+                .map(|f| {
+                    f.iter()
+                        .map(|p| crate::math::Pose2::new(p[0], p[1], p[2]))
+                        .collect()
+                })
+                .collect(),
+            states,
             scene,
         })
     }
@@ -110,6 +160,14 @@ impl Film {
                 .zip(&state.objects)
                 .map(|(o, p)| footprint_outline(&o.footprint, p))
                 .collect(),
+            executed: self.executed.get(k).map_or(Vec::new(), |poses| {
+                self.scene
+                    .objects
+                    .iter()
+                    .zip(poses)
+                    .map(|(o, p)| footprint_outline(&o.footprint, p))
+                    .collect()
+            }),
         }
     }
 
@@ -136,6 +194,22 @@ impl Film {
         times.dedup();
         times
     }
+}
+
+/// Writes `execution.html` into `dir`: the plan's trajectory animated with the object
+/// poses of one execution (`executed`, per trajectory sample) drawn over it, dashed.
+pub fn render_execution(
+    plan: &PlanFile,
+    plan_path: &Path,
+    executed: &[Vec<[f64; 3]>],
+    dir: &Path,
+) -> Result<PathBuf, String> {
+    let film = Film::of_execution(plan, plan_path, executed)?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let path = dir.join("execution.html");
+    std::fs::write(&path, html::animation(&film))
+        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    Ok(path)
 }
 
 /// Files written by [`render`].
