@@ -12,7 +12,7 @@ use crate::collision::Geometry;
 use crate::contact::{find_arm_contacts, object_bounds, ArmBounds, ArmContact};
 use crate::math::Pose2;
 use crate::robot::ProjectionFailure;
-use crate::scene::Scene;
+use crate::scene::{MovableObject, Scene};
 use crate::state::State;
 use nalgebra::{DVector, Isometry3};
 use parry3d_f64::bounding_volume::Aabb;
@@ -299,58 +299,54 @@ pub fn check_objects(
                 continue;
             }
             let other_iso = other_pose.to_isometry(top);
-            match separation(
+            keep_apart(
                 scene,
-                &object.geometry,
+                object,
                 &iso,
-                &other.geometry,
-                &other_iso,
+                (&other.name, &other.geometry, &other_iso),
                 clearance,
-            ) {
-                Separation::Overlap => {
-                    return Err(Invalid::ObjectsOverlap {
-                        object_a: object.name.clone(),
-                        object_b: other.name.clone(),
-                    })
-                }
-                Separation::TooClose(distance) => {
-                    return Err(Invalid::TooClose {
-                        object: object.name.clone(),
-                        other: other.name.clone(),
-                        distance,
-                    })
-                }
-                Separation::Clear => {}
-            }
+                || Invalid::ObjectsOverlap {
+                    object_a: object.name.clone(),
+                    object_b: other.name.clone(),
+                },
+            )?;
         }
         for (k, obstacle) in scene.obstacles.iter().enumerate() {
-            let clearance = scene.clearances.to_obstacle(i, k);
-            match separation(
+            keep_apart(
                 scene,
-                &object.geometry,
+                object,
                 &iso,
-                &obstacle.geometry,
-                &obstacle.pose,
-                clearance,
-            ) {
-                Separation::Overlap => {
-                    return Err(Invalid::ObjectHitsObstacle {
-                        object: object.name.clone(),
-                        obstacle: obstacle.name.clone(),
-                    })
-                }
-                Separation::TooClose(distance) => {
-                    return Err(Invalid::TooClose {
-                        object: object.name.clone(),
-                        other: obstacle.name.clone(),
-                        distance,
-                    })
-                }
-                Separation::Clear => {}
-            }
+                (&obstacle.name, &obstacle.geometry, &obstacle.pose),
+                scene.clearances.to_obstacle(i, k),
+                || Invalid::ObjectHitsObstacle {
+                    object: object.name.clone(),
+                    obstacle: obstacle.name.clone(),
+                },
+            )?;
         }
     }
     Ok(())
+}
+
+/// `object` at `iso` must not overlap the other solid (`overlap` says how that is
+/// reported) nor come closer to it than `clearance`.
+fn keep_apart(
+    scene: &Scene,
+    object: &MovableObject,
+    iso: &Isometry3<f64>,
+    (other_name, other, other_pose): (&str, &Geometry, &Isometry3<f64>),
+    clearance: f64,
+    overlap: impl FnOnce() -> Invalid,
+) -> Result<(), Invalid> {
+    match separation(scene, &object.geometry, iso, other, other_pose, clearance) {
+        Separation::Overlap => Err(overlap()),
+        Separation::TooClose(distance) => Err(Invalid::TooClose {
+            object: object.name.clone(),
+            other: other_name.to_string(),
+            distance,
+        }),
+        Separation::Clear => Ok(()),
+    }
 }
 
 /// How two solids stand to each other, measured against a clearance.

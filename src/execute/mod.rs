@@ -113,7 +113,7 @@ pub fn execute(
     plan: &PlanFile,
     settings: &ExecuteSettings,
 ) -> Result<ExecutionReport, String> {
-    let predicted = Prediction::of(scene, plan)?;
+    let predicted = predicted_poses(scene, plan)?;
     let mut rng = SplitMix64::new(settings.seed);
     let mut trials = Vec::with_capacity(settings.trials);
     for trial in 0..settings.trials {
@@ -141,47 +141,36 @@ pub fn execute(
 /// order (objects the plan does not move, such as Static RRT's clutter, stay at their
 /// start).
 pub fn predicted_poses(scene: &Scene, plan: &PlanFile) -> Result<Vec<Vec<Pose2>>, String> {
-    Prediction::of(scene, plan).map(|p| p.poses)
-}
-
-struct Prediction {
-    poses: Vec<Vec<Pose2>>,
-}
-
-impl Prediction {
-    fn of(scene: &Scene, plan: &PlanFile) -> Result<Prediction, String> {
-        let trajectory = &plan.trajectory;
-        if trajectory.q.is_empty() || trajectory.q.len() != trajectory.objects.len() {
-            return Err("the plan has no executable trajectory".into());
-        }
-        let dof = scene.robot.dof();
-        if let Some(bad) = trajectory.q.iter().position(|q| q.len() != dof) {
-            return Err(format!(
-                "trajectory.q[{bad}] has {} values, the robot {dof} joints",
-                trajectory.q[bad].len()
-            ));
-        }
-        let index: Vec<Option<usize>> = scene
-            .objects
-            .iter()
-            .map(|o| plan.objects.iter().position(|n| *n == o.name))
-            .collect();
-        let poses = trajectory
-            .objects
-            .iter()
-            .map(|sample| {
-                index
-                    .iter()
-                    .zip(&scene.start.objects)
-                    .map(|(k, start)| match k.and_then(|k| sample.get(k)) {
-                        Some(p) => Pose2::new(p[0], p[1], p[2]),
-                        None => *start,
-                    })
-                    .collect()
-            })
-            .collect();
-        Ok(Prediction { poses })
+    let trajectory = &plan.trajectory;
+    if trajectory.q.is_empty() || trajectory.q.len() != trajectory.objects.len() {
+        return Err("the plan has no executable trajectory".into());
     }
+    let dof = scene.robot.dof();
+    if let Some(bad) = trajectory.q.iter().position(|q| q.len() != dof) {
+        return Err(format!(
+            "trajectory.q[{bad}] has {} values, the robot {dof} joints",
+            trajectory.q[bad].len()
+        ));
+    }
+    let index: Vec<Option<usize>> = scene
+        .objects
+        .iter()
+        .map(|o| plan.objects.iter().position(|n| *n == o.name))
+        .collect();
+    Ok(trajectory
+        .objects
+        .iter()
+        .map(|sample| {
+            index
+                .iter()
+                .zip(&scene.start.objects)
+                .map(|(k, start)| match k.and_then(|k| sample.get(k)) {
+                    Some(p) => Pose2::new(p[0], p[1], p[2]),
+                    None => *start,
+                })
+                .collect()
+        })
+        .collect())
 }
 
 /// One trial in `world_scene` (perturbed), judged against `scene`'s goal and the plan.
@@ -189,7 +178,7 @@ fn run(
     world_scene: &Scene,
     scene: &Scene,
     plan: &PlanFile,
-    predicted: &Prediction,
+    predicted: &[Vec<Pose2>],
     settings: &ExecuteSettings,
 ) -> ExecutionTrial {
     let robot = &world_scene.robot;
@@ -252,7 +241,7 @@ fn run(
             && trajectory.times[next_sample] <= tau + 1e-12
             && t <= end + STEP
         {
-            let expected = &predicted.poses[next_sample];
+            let expected = &predicted[next_sample];
             if settings.record {
                 frames.push(
                     (0..objects)
@@ -280,7 +269,7 @@ fn run(
         }
     }
 
-    let last = predicted.poses.last().expect("non-empty trajectory");
+    let last = predicted.last().expect("non-empty trajectory");
     let final_poses: Vec<Pose2> = (0..objects).map(|i| world.object_pose2(i)).collect();
     let final_errors = final_poses
         .iter()
