@@ -17,35 +17,70 @@ pub const STEP: f64 = 0.001;
 
 /// Radius of an object's feet (m): the prism stands this much above the table on them.
 pub const FOOT_RADIUS: f64 = 5e-4;
-/// Feet along each axis of the footprint's bounding box.
+/// Feet along each axis of the footprint's bounding box (at the cells' centres).
 const FEET_PER_SIDE: usize = 7;
+/// Feet on a disc's rim.
+const RIM_FEET: usize = 12;
 
-/// Where an object stands on the table: a grid of points over its footprint, edges
-/// included (object frame, m). A solid prism on a plane gets contact points at its
+/// Where an object stands on the table: the centres of a grid of cells over its footprint,
+/// and its corners (a polygon) or twelve points on its rim (a disc), so that it tips
+/// about its edges (object frame, m). Their mean distance from the centroid is within
+/// 12 % of the uniform-pressure characteristic length. A solid prism on a plane gets contact points at its
 /// corners only, which resists turning as if all the weight sat there; evenly spread
 /// feet carry the uniform pressure the planar model assumes, so the support's friction
-/// is the same physical assumption in both, computed independently.
-pub fn support_points(footprint: &Footprint) -> Vec<Vector2<f64>> {
+/// is the same physical assumption in both, computed independently. A scene that gives
+/// the characteristic length `c` (a bowl loaded on its rim) gets the feet drawn in or
+/// out about the centroid so that their mean distance from it is `c` (the footprint's
+/// edge at most).
+pub fn support_points(footprint: &Footprint, c: f64) -> Vec<Vector2<f64>> {
+    let points = uniform_support(footprint);
+    if (c / footprint.characteristic_length() - 1.0).abs() < 1e-6 {
+        return points;
+    }
+    let centroid = footprint.centroid();
+    let mean = points.iter().map(|p| (p - centroid).norm()).sum::<f64>() / points.len() as f64;
+    let scale = c / mean;
+    // Scaled about the centroid; where that leaves the footprint, a ring of radius c (a
+    // disc) or the corners (a polygon).
+    let scaled: Vec<Vector2<f64>> = points
+        .iter()
+        .map(|p| centroid + (p - centroid) * scale)
+        .collect();
+    if scaled.iter().all(|p| footprint.contains(*p)) {
+        scaled
+    } else {
+        match footprint {
+            Footprint::Circle { radius } => ring(c.min(*radius), RIM_FEET),
+            Footprint::Polygon { vertices } => vertices.clone(),
+        }
+    }
+}
+
+fn ring(radius: f64, count: usize) -> Vec<Vector2<f64>> {
+    (0..count)
+        .map(|k| {
+            let angle = std::f64::consts::TAU * k as f64 / count as f64;
+            Vector2::new(angle.cos(), angle.sin()) * radius
+        })
+        .collect()
+}
+
+fn uniform_support(footprint: &Footprint) -> Vec<Vector2<f64>> {
     let n = FEET_PER_SIDE;
     let grid = |half_x: f64, half_y: f64| {
         (0..n).flat_map(move |a| {
             (0..n).map(move |b| {
-                let f = |k: usize| 2.0 * k as f64 / (n - 1) as f64 - 1.0;
+                let f = |k: usize| (2 * k + 1) as f64 / n as f64 - 1.0;
                 Vector2::new(half_x * f(a), half_y * f(b))
             })
         })
     };
     match footprint {
         Footprint::Circle { radius } => {
-            // The grid inside the disc, and the rim.
             let mut points: Vec<Vector2<f64>> = grid(*radius, *radius)
-                .filter(|p| p.norm() < *radius * 0.999)
+                .filter(|p| p.norm() < *radius)
                 .collect();
-            let rim = 4 * n;
-            points.extend((0..rim).map(|k| {
-                let angle = std::f64::consts::TAU * k as f64 / rim as f64;
-                Vector2::new(angle.cos(), angle.sin()) * *radius
-            }));
+            points.extend(ring(*radius, RIM_FEET));
             points
         }
         Footprint::Polygon { vertices } => {
@@ -172,7 +207,7 @@ impl World {
                 .user_data(OBJECT + i as u128)
                 .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
             let handle = colliders.insert_with_parent(collider, body, &mut bodies);
-            for p in support_points(&object.footprint) {
+            for p in support_points(&object.footprint, object.limit_surface.c) {
                 let foot = ColliderBuilder::ball(FOOT_RADIUS)
                     .translation(Vector3::new(p.x, p.y, FOOT_RADIUS))
                     .density(0.0)
