@@ -267,6 +267,22 @@ namespace pushplan
                                             Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
                                             static_cast<double>(steps[i]) * info.step, steps[i]});
         }
+        const bridge::TrajectoryOut trajectory =
+            model->model().trajectory(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+                                      rust::Slice<const std::size_t>(steps.data(), steps.size()));
+        plan.trajectory.rate = trajectory.rate;
+        for (std::size_t k = 0; k < trajectory.times.size(); ++k)
+        {
+            plan.trajectory.times.push_back(trajectory.times[k]);
+            plan.trajectory.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(trajectory.q.data() + k * info.dof, info.dof));
+            std::vector<Eigen::Vector3d> poses;
+            for (std::size_t o = 0; o < info.objects; ++o)
+            {
+                const double *p = trajectory.objects.data() + (k * info.objects + o) * 3;
+                poses.emplace_back(p[0], p[1], p[2]);
+            }
+            plan.trajectory.objects.push_back(std::move(poses));
+        }
         plan.contacts.resize(steps.size());
         for (const auto &c : sim.contacts)
             plan.contacts[c.control].push_back(

@@ -82,6 +82,17 @@ pub mod bridge {
         pub message: String,
     }
 
+    /// The executable trajectory of a plan (see `trajectory::Trajectory`), flat: per
+    /// sample the joint values (`q`) and the object poses x, y, yaw (`objects`, every
+    /// object of the scene).
+    #[derive(Debug, Clone)]
+    pub struct TrajectoryOut {
+        pub rate: f64,
+        pub times: Vec<f64>,
+        pub q: Vec<f64>,
+        pub objects: Vec<f64>,
+    }
+
     /// Metrics of a path (see `path::PathMetrics`).
     #[derive(Debug, Clone, Copy, Default)]
     pub struct Metrics {
@@ -179,6 +190,8 @@ pub mod bridge {
         fn distance(self: &Model, a: &[f64], b: &[f64]) -> Result<f64>;
         fn goal_distance(self: &Model, state: &[f64]) -> Result<f64>;
         fn simulate(self: &mut Model, controls: &[f64], steps: &[usize]) -> Result<Simulation>;
+        fn trajectory(self: &mut Model, controls: &[f64], steps: &[usize])
+            -> Result<TrajectoryOut>;
         fn robustness(
             self: &Model,
             controls: &[f64],
@@ -226,7 +239,7 @@ pub mod bridge {
 
 pub use bridge::{
     BenchOptions, Metrics, PlanContact, PrimitiveCheck, SceneInfo, Shortcut, Simulation,
-    SolveOptions, SolveOutput,
+    SolveOptions, SolveOutput, TrajectoryOut,
 };
 
 /// The model as the OMPL side holds it: a scene, its propagator and metric.
@@ -546,6 +559,54 @@ impl Model {
                 goal_reached: self.scene().goal.is_satisfied(path.final_state()),
                 message,
             })
+        })
+    }
+
+    /// The executable trajectory of a plan, as plan files hold it (objects of the whole
+    /// scene, Static RRT's clutter at rest).
+    pub fn trajectory(
+        &mut self,
+        controls: &[f64],
+        steps: &[usize],
+    ) -> Result<TrajectoryOut, String> {
+        guarded("trajectory", || {
+            let controls = self.path_controls(controls, steps)?;
+            let start = self.scene().start.clone();
+            let (propagator, start) = if self.static_mode {
+                let reduced = self.static_view.reduce(&start);
+                (&mut self.static_view.propagator, reduced)
+            } else {
+                (&mut self.propagator, start)
+            };
+            let path = crate::path::simulate(propagator, &start, &controls, true);
+            if let Some((i, reason)) = &path.stopped_by {
+                return Err(format!("the plan does not simulate: control {i}: {reason}"));
+            }
+            let scene = propagator.shared_scene();
+            let t = crate::trajectory::executable(&scene, &controls, &path.step_states);
+            let mut out = TrajectoryOut {
+                rate: t.rate,
+                times: t.times,
+                q: t.q.into_iter().flatten().collect(),
+                objects: Vec::new(),
+            };
+            for sample in &t.objects {
+                let state = State {
+                    q: nalgebra::DVector::zeros(0),
+                    objects: sample
+                        .iter()
+                        .map(|p| Pose2::new(p[0], p[1], p[2]))
+                        .collect(),
+                };
+                let full = if self.static_mode {
+                    self.static_view.expand(&state)
+                } else {
+                    state
+                };
+                out.objects
+                    .extend(full.objects.iter().flat_map(|p| [p.x, p.y, p.theta]));
+            }
+            Ok(out)
         })
     }
 

@@ -10,14 +10,12 @@ use crate::path::{simulate, PathControl, PathMetrics};
 use crate::propagate::Propagator;
 use crate::scene::Scene;
 use crate::state::State;
-use crate::trajectory::{time_parameterise, Trajectory};
+pub use crate::trajectory::TRAJECTORY_RATE;
+use crate::trajectory::{executable, Trajectory};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 pub const FORMAT: &str = "pushplan-plan/1";
-
-/// Samples per second of the executable trajectory in plan files.
-pub const TRAJECTORY_RATE: f64 = 50.0;
 
 /// How a plan was made.
 #[derive(Clone, Debug, PartialEq)]
@@ -249,25 +247,7 @@ impl PlanFile {
             objects: scene.objects.iter().map(|o| o.name.clone()).collect(),
             start: StateRecord::from_state(&scene.start),
             controls: records,
-            trajectory: time_parameterise(
-                &scene.robot,
-                &scene
-                    .objects
-                    .iter()
-                    .map(|o| o.bounding_radius)
-                    .collect::<Vec<_>>(),
-                &path.step_states,
-                &controls
-                    .iter()
-                    .scan(0, |step, c| {
-                        *step += c.steps;
-                        Some(*step)
-                    })
-                    .collect::<Vec<_>>(),
-                scene.planner.step,
-                &scene.trajectory,
-                TRAJECTORY_RATE,
-            ),
+            trajectory: executable(&scene, controls, &path.step_states),
             robustness: None,
         })
     }

@@ -4,8 +4,9 @@
 //! predicts along it.
 
 use crate::math::wrap_angle;
+use crate::path::PathControl;
 use crate::robot::Robot;
-use crate::scene::TrajectoryParams;
+use crate::scene::{Scene, TrajectoryParams};
 use crate::state::State;
 use nalgebra::DVector;
 use serde::{Deserialize, Serialize};
@@ -30,6 +31,32 @@ pub fn joint_motion_time(robot: &Robot, from: &DVector<f64>, to: &DVector<f64>) 
     (0..robot.dof())
         .map(|i| (to[i] - from[i]).abs() / robot.chain.dof_joint(i).max_velocity)
         .fold(0.0, f64::max)
+}
+
+/// Samples per second of executable trajectories.
+pub const TRAJECTORY_RATE: f64 = 50.0;
+
+/// The executable trajectory of `controls` in `scene`, whose every step's state is
+/// `step_states` (the start first), at [`TRAJECTORY_RATE`]: it stops at each control's
+/// end, and its limits are the scene's.
+pub fn executable(scene: &Scene, controls: &[PathControl], step_states: &[State]) -> Trajectory {
+    let radii: Vec<f64> = scene.objects.iter().map(|o| o.bounding_radius).collect();
+    let stops: Vec<usize> = controls
+        .iter()
+        .scan(0, |step, c| {
+            *step += c.steps;
+            Some(*step)
+        })
+        .collect();
+    time_parameterise(
+        &scene.robot,
+        &radii,
+        step_states,
+        &stops,
+        scene.planner.step,
+        &scene.trajectory,
+        TRAJECTORY_RATE,
+    )
 }
 
 /// Share of the acceleration limit spent on speeding up and slowing down along the path;

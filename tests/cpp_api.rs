@@ -90,6 +90,44 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
         numbers.len() >= 2 && numbers[0] <= numbers[1] + 1e-9,
         "after vs found: {line}"
     );
+    // The executable trajectory through the C++ API is the plan file's.
+    let plan_file = std::env::temp_dir().join(format!("pushplan-cpp-{}.json", std::process::id()));
+    let cli = Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .args([
+            "plan",
+            "scenes/herb_single_object.yaml",
+            "--seed",
+            "1",
+            "--time",
+            "30",
+            "--quiet",
+        ])
+        .arg("--out")
+        .arg(&plan_file)
+        .output()
+        .unwrap();
+    assert_eq!(cli.status.code(), Some(0));
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&plan_file).unwrap()).unwrap();
+    let times = plan["trajectory"]["times"].as_array().unwrap();
+    let last_q0 = plan["trajectory"]["q"].as_array().unwrap().last().unwrap()[0]
+        .as_f64()
+        .unwrap();
+    let line = stdout
+        .lines()
+        .find(|l| l.contains("trajectory:"))
+        .expect("trajectory printed");
+    let numbers: Vec<f64> = line
+        .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    assert_eq!(numbers[0] as usize, times.len(), "{line}");
+    assert_eq!(numbers[1], 50.0, "{line}");
+    assert!(
+        (numbers[2] - times.last().unwrap().as_f64().unwrap()).abs() < 1e-4,
+        "{line}"
+    );
+    assert!((numbers[3] - last_q0).abs() < 1e-4, "{line} vs {last_q0}");
 
     // A scene given as text (Planner::fromYaml): relative paths resolve against the
     // working directory of the named source.

@@ -41,6 +41,9 @@ int main(int argc, char **argv)
             pushes += contacts.size();
         std::cout << "  " << pushes << " link-object pushes over " << plan.joint_trajectory.size() << " states of "
                   << plan.joint_trajectory.front().size() << " joints\n";
+        const auto &trajectory = plan.trajectory;
+        std::cout << "  trajectory: " << trajectory.times.size() << " samples at " << trajectory.rate << " Hz, "
+                  << trajectory.times.back() << " s; first joint ends at " << trajectory.q.back()[0] << "\n";
         return plan.solved ? 0 : 1;
     }
     catch (const pushplan::Error &e)

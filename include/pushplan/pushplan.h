@@ -92,6 +92,18 @@ namespace pushplan
         std::size_t steps;            ///< propagation steps (duration / step)
     };
 
+    /// The executable trajectory, as plan files hold it: every propagation step timed so
+    /// that no joint exceeds its URDF velocity limit or the scene's acceleration limit and
+    /// no pushed object moves faster than the scene allows (at rest at each control's
+    /// end), sampled at `rate` Hz, with the object poses the model predicts.
+    struct Trajectory
+    {
+        double rate = 0.0;                                   ///< samples per second
+        std::vector<double> times;                           ///< s
+        std::vector<Eigen::VectorXd> q;                      ///< joint values per sample
+        std::vector<std::vector<Eigen::Vector3d>> objects;   ///< (x, y, yaw) per object
+    };
+
     struct Plan
     {
         bool solved = false;          ///< an exact solution: the goal is reached
@@ -111,6 +123,8 @@ namespace pushplan
         /// The path as found and after shortcutting (equal when not shortcut).
         PathMetrics before_shortcut;
         PathMetrics after_shortcut;
+        /// What a controller plays (empty without a path).
+        Trajectory trajectory;
         /// Fraction of the perturbed re-simulations that reached the goal (-1: not checked,
         /// Options::robust_trials was 0).
         double robustness = -1.0;
