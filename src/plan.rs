@@ -48,6 +48,9 @@ pub struct PlanFile {
     pub shortcut: f64,
     /// Propagation step (s).
     pub step: f64,
+    /// The reserves the plan was made with (absent in files from before they existed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub margins: Option<Margins>,
     /// True when the plan reaches the goal.
     pub solved: bool,
     /// The path before and after shortcutting.
@@ -62,6 +65,19 @@ pub struct PlanFile {
     /// Robust planning's check of the plan (only when it was asked for).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub robustness: Option<RobustnessRecord>,
+}
+
+/// The reserves of the validity rules a plan keeps (see the scene's `goal.margin`,
+/// `physics.object_clearance` and `physics.tipping_margin`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Margins {
+    /// How far inside the goal disc's edge the goal object's centre ends (m).
+    pub goal: f64,
+    /// Smallest distance a moving object keeps from other objects and obstacles (m).
+    pub object_clearance: f64,
+    /// Fraction of the footprint kept free of the support's centre of pressure.
+    pub tipping: f64,
 }
 
 /// How robust planning found the plan: the fraction of `trials` re-simulations from
@@ -236,6 +252,14 @@ impl PlanFile {
             time_limit: settings.time_limit,
             shortcut: settings.shortcut,
             step: scene.planner.step,
+            margins: Some(Margins {
+                goal: match scene.goal {
+                    crate::scene::Goal::ObjectInDisc { margin, .. } => margin,
+                    crate::scene::Goal::Configuration { .. } => 0.0,
+                },
+                object_clearance: scene.physics.object_clearance,
+                tipping: scene.physics.tipping_margin,
+            }),
             solved: scene.goal.is_satisfied(path.final_state()),
             metrics: Metrics {
                 before_shortcut: before.unwrap_or(path.metrics),
