@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# The execution benchmark of BENCHMARKS.md ("Plans that work in the world"): for every
+# benchmark scene, plan once (seed 1), play the plan 10 times in the 3D engine and
+# re-simulate it 10 times with parameter noise. Extra `plan` options go in PLAN_ARGS
+# (e.g. PLAN_ARGS="--time 30 --robust 20").
+#
+#   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
+#
+# Writes OUT_DIR/scene_NN.{json,plan.txt,exec.json,exec.txt,check.txt} and a summary line
+# per scene in OUT_DIR/summary.txt.
+set -u
+out=${1:?usage: benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]}
+bin=${2:-target/release/pushplan}
+mkdir -p "$out"
+: > "$out/summary.txt"
+for scene in scenes/benchmark/scene_*.yaml; do
+  n=$(basename "$scene" .yaml)
+  # shellcheck disable=SC2086
+  "$bin" plan "$scene" --seed 1 --time 10 ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
+  if head -1 "$out/$n.plan.txt" | grep -q '^solved'; then
+    "$bin" execute "$out/$n.json" --trials 10 --json "$out/$n.exec.json" > "$out/$n.exec.txt" 2>&1
+    "$bin" check "$out/$n.json" --noise 10 > "$out/$n.check.txt" 2>&1
+    echo "$n: $(head -1 "$out/$n.exec.txt" | sed 's/.*speed: //') | $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
+  else
+    echo "$n: not solved" >> "$out/summary.txt"
+  fi
+done
+reached=$(cat "$out"/*.exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
+echo "trials reaching the goal: $reached of $(( $(ls scenes/benchmark/scene_*.yaml | wc -l) * 10 ))" | tee -a "$out/summary.txt"
