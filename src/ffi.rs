@@ -9,7 +9,7 @@
 use crate::darrt;
 use crate::distance::DistanceMetric;
 use crate::math::Pose2;
-use crate::path::PathControl;
+use crate::path::{PathControl, SimulatedPath};
 use crate::propagate::Propagator;
 use crate::robot::EeAction;
 use crate::scene::{Goal, Scene};
@@ -506,14 +506,7 @@ impl Model {
     pub fn simulate(&mut self, controls: &[f64], steps: &[usize]) -> Result<Simulation, String> {
         guarded("simulate", || {
             let controls = self.path_controls(controls, steps)?;
-            let start = self.scene().start.clone();
-            let (propagator, start) = if self.static_mode {
-                let reduced = self.static_view.reduce(&start);
-                (&mut self.static_view.propagator, reduced)
-            } else {
-                (&mut self.propagator, start)
-            };
-            let path = crate::path::simulate(propagator, &start, &controls, false);
+            let path = self.resimulate(&controls, false);
             let object_index = |i: usize| {
                 if self.static_mode {
                     self.static_view.full_object(i)
@@ -571,18 +564,15 @@ impl Model {
     ) -> Result<TrajectoryOut, String> {
         guarded("trajectory", || {
             let controls = self.path_controls(controls, steps)?;
-            let start = self.scene().start.clone();
-            let (propagator, start) = if self.static_mode {
-                let reduced = self.static_view.reduce(&start);
-                (&mut self.static_view.propagator, reduced)
-            } else {
-                (&mut self.propagator, start)
-            };
-            let path = crate::path::simulate(propagator, &start, &controls, true);
+            let path = self.resimulate(&controls, true);
             if let Some((i, reason)) = &path.stopped_by {
                 return Err(format!("the plan does not simulate: control {i}: {reason}"));
             }
-            let scene = propagator.shared_scene();
+            let scene = if self.static_mode {
+                self.static_view.propagator.shared_scene()
+            } else {
+                self.propagator.shared_scene()
+            };
             let t = crate::trajectory::executable(&scene, &controls, &path.step_states);
             let mut out = TrajectoryOut {
                 rate: t.rate,
@@ -779,6 +769,19 @@ impl Model {
     }
 
     /// Controls in the flat layout, one after another, with their step counts.
+    /// Simulates `controls` from the scene's start in the scene the planner searches
+    /// (Static RRT: the reduced one).
+    fn resimulate(&mut self, controls: &[PathControl], record_steps: bool) -> SimulatedPath {
+        let start = self.scene().start.clone();
+        let (propagator, start) = if self.static_mode {
+            let reduced = self.static_view.reduce(&start);
+            (&mut self.static_view.propagator, reduced)
+        } else {
+            (&mut self.propagator, start)
+        };
+        crate::path::simulate(propagator, &start, controls, record_steps)
+    }
+
     fn path_controls(&self, controls: &[f64], steps: &[usize]) -> Result<Vec<PathControl>, String> {
         PathControl::from_flat(controls, steps, self.scene().robot.dof())
     }
