@@ -2,7 +2,7 @@
 # The execution benchmark of BENCHMARKS.md ("Plans that work in the world"): for every
 # benchmark scene, plan once (seed 1), play the plan 10 times in the 3D engine and
 # re-simulate it 10 times with parameter noise. Extra `plan` options go in PLAN_ARGS
-# (e.g. PLAN_ARGS="--time 30 --robust 20").
+# (e.g. PLAN_ARGS="--robust 20"); TIME sets the search time (default 10 s).
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -16,7 +16,7 @@ mkdir -p "$out"
 for scene in scenes/benchmark/scene_*.yaml; do
   n=$(basename "$scene" .yaml)
   # shellcheck disable=SC2086
-  "$bin" plan "$scene" --seed 1 --time 10 ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
+  "$bin" plan "$scene" --seed 1 --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
   if head -1 "$out/$n.plan.txt" | grep -q '^solved'; then
     "$bin" execute "$out/$n.json" --trials 10 --json "$out/$n.exec.json" > "$out/$n.exec.txt" 2>&1
     "$bin" check "$out/$n.json" --noise 10 > "$out/$n.check.txt" 2>&1
