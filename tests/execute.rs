@@ -2,6 +2,8 @@
 //! below `b / mu_g` slides upright and tips above it; a sliding object stops after
 //! `v^2 / (2 mu_g g)`.
 
+mod common;
+
 use nalgebra::{DVector, Vector3};
 use pushplan::execute::world::{World, STEP};
 use pushplan::execute::TIPPED_TILT;
@@ -15,19 +17,7 @@ fn scene(height: f64, mu_g: f64) -> Scene {
 }
 
 fn scene_with(height: f64, mu_g: f64, shape: &str) -> Scene {
-    let yaml = format!(
-        "robot:
-  type: planar_hand
-  shape: {{type: box, size: [0.04, 0.12, 0.01]}}
-  start: [0.4, 0.0, 0.0]
-  height: {height}
-table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}
-objects:
-  - {{name: box, shape: {shape}, pose: [0.4705, 0.0, 0.0], mass: 1.0, mu_g: {mu_g}, mu_c: 0.3}}
-goal: {{object: box, center: [0.9, 0.3], radius: 0.1}}
-"
-    );
-    Scene::from_yaml(&yaml, Path::new("scenes/execute-test.yaml")).unwrap()
+    common::thin_hand_scene("box", shape, 0.4705, height, mu_g, "")
 }
 
 /// Pushes along +x: the hand speeds up to 0.1 m/s over 0.5 s, then holds that speed for

@@ -1,12 +1,13 @@
 //! Tipping (`physics.md`, "Tipping"): the support balance against closed forms computed
 //! here, and pushes through the whole pipeline at heights around the tipping height.
 
+mod common;
+
 use nalgebra::Vector2;
 use pushplan::physics::limit_surface::GRAVITY;
 use pushplan::physics::tipping::{pusher_forces, support_balance};
 use pushplan::physics::{object_motion, ContactElevation, Footprint, LimitSurface, PlanarContact};
 use pushplan::{EeAction, Invalid, Propagator, Scene};
-use std::path::Path;
 
 const MU_G: f64 = 0.4;
 const MASS: f64 = 1.0;
@@ -152,21 +153,8 @@ fn pressing_down_steeper_than_the_friction_angle_keeps_an_object_flat_and_liftin
 
 /// A thin planar hand (1 cm tall) at `height` pushing `shape` flat-on along +x.
 fn hand_scene(shape: &str, radius: f64, height: f64, mu_g: f64, margin: f64) -> Scene {
-    let yaml = format!(
-        "robot:
-  type: planar_hand
-  shape: {{type: box, size: [0.04, 0.12, 0.01]}}
-  start: [0.4, 0.0, 0.0]
-  height: {height}
-table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}
-objects:
-  - {{name: thing, shape: {shape}, pose: [{x}, 0.0, 0.0], mass: 1.0, mu_g: {mu_g}, mu_c: 0.3}}
-goal: {{object: thing, center: [0.9, 0.3], radius: 0.1}}
-physics: {{tipping_margin: {margin}}}
-",
-        x = 0.42 + radius + 0.01
-    );
-    Scene::from_yaml(&yaml, Path::new("scenes/tipping-test.yaml")).unwrap()
+    let physics = format!("physics: {{tipping_margin: {margin}}}");
+    common::thin_hand_scene("thing", shape, 0.42 + radius + 0.01, height, mu_g, &physics)
 }
 
 fn push_with_hand(scene: &Scene) -> Option<Invalid> {

@@ -82,3 +82,29 @@ pub fn plan_settings(planner: &str, seed: u64, shortcut: f64) -> pushplan::plan:
         shortcut,
     }
 }
+
+/// A 1 cm tall planar hand (front face at x = 0.42) at `height` above the table, and one
+/// object `name` of `shape` at (`x`, 0) on the line it pushes along, on a table with
+/// support friction `mu_g`; `extra` is appended at the top level.
+pub fn thin_hand_scene(
+    name: &str,
+    shape: &str,
+    x: f64,
+    height: f64,
+    mu_g: f64,
+    extra: &str,
+) -> Scene {
+    let yaml = format!(
+        "robot:
+  type: planar_hand
+  shape: {{type: box, size: [0.04, 0.12, 0.01]}}
+  start: [0.4, 0.0, 0.0]
+  height: {height}
+table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}
+objects:
+  - {{name: {name}, shape: {shape}, pose: [{x}, 0.0, 0.0], mass: 1.0, mu_g: {mu_g}, mu_c: 0.3}}
+goal: {{object: {name}, center: [0.9, 0.3], radius: 0.1}}
+{extra}"
+    );
+    Scene::from_yaml(&yaml, Path::new("scenes/thin-hand-test.yaml")).unwrap()
+}
