@@ -118,7 +118,9 @@ impl fmt::Display for Invalid {
             Invalid::ObjectHitsObstacle { object, obstacle } => {
                 write!(f, "object '{object}' overlaps obstacle '{obstacle}'")
             }
-            Invalid::ObjectOffTable { object } => write!(f, "object '{object}' is off the table"),
+            Invalid::ObjectOffTable { object } => {
+                write!(f, "object '{object}' is not wholly on the table")
+            }
             Invalid::Jammed { object } => write!(f, "object '{object}' is jammed between pushers"),
             Invalid::Tips { object, link } => {
                 write!(f, "link '{link}' would tip object '{object}' over")
@@ -282,7 +284,7 @@ pub fn check_objects(
             continue;
         }
         let object = &scene.objects[i];
-        if !scene.table.contains(pose.translation()) {
+        if !scene.table.holds(&object.footprint, pose) {
             return Err(Invalid::ObjectOffTable {
                 object: object.name.clone(),
             });

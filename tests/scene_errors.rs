@@ -214,6 +214,12 @@ fn an_invalid_start_state_is_reported_with_its_reason() {
         message.contains("objects[0].pose") && message.contains("off the table"),
         "{message}"
     );
+    // So is one whose centre is on the table but whose footprint hangs over its edge.
+    let (_, message) = error_of(&edited("pose: [0.75, 0.0, 0.0]", "pose: [1.0, 0.0, 0.0]"));
+    assert!(
+        message.contains("objects[0].pose") && message.contains("reaches past the table's edge"),
+        "{message}"
+    );
 }
 
 #[test]

@@ -185,14 +185,34 @@ fn overlapping_objects_are_invalid_touching_ones_are_not() {
 }
 
 #[test]
-fn an_object_whose_centre_leaves_the_table_is_invalid() {
+fn an_object_must_stand_wholly_on_the_table() {
+    // The 0.1 m box near the table's far edge (x = 1.03): its footprint, not only its
+    // centre, must be on the table, turned corners included.
     let scene = herb();
-    let over_edge = with_object(&scene, 1, Pose2::new(1.02, -0.2, 0.0)); // overhangs, centre on
-    assert_eq!(check_state(&scene, &over_edge), Ok(()));
-    let off = with_object(&scene, 1, Pose2::new(1.04, -0.2, 0.0));
+    let off_table = |pose: Pose2| {
+        matches!(
+            check_state(&scene, &with_object(&scene, 1, pose)),
+            Err(Invalid::ObjectOffTable { object }) if object == "box"
+        )
+    };
+    let inside = with_object(&scene, 1, Pose2::new(0.97, -0.2, 0.0)); // face at 1.02
+    assert_eq!(check_state(&scene, &inside), Ok(()));
     assert!(
-        matches!(check_state(&scene, &off), Err(Invalid::ObjectOffTable { object }) if object == "box")
+        off_table(Pose2::new(0.99, -0.2, 0.0)),
+        "overhangs by 1 cm, centre on"
     );
+    // Turned 45 degrees, a corner reaches 0.05 * sqrt(2) = 0.0707 m out: 1.0407.
+    assert!(off_table(Pose2::new(
+        0.97,
+        -0.2,
+        std::f64::consts::FRAC_PI_4
+    )));
+    assert!(!off_table(Pose2::new(
+        0.955,
+        -0.2,
+        std::f64::consts::FRAC_PI_4
+    )));
+    assert!(off_table(Pose2::new(1.04, -0.2, 0.0)));
 }
 
 #[test]

@@ -333,6 +333,15 @@ impl Loader<'_> {
                 format!("centre ({}, {}) is off the table", pose.x, pose.y),
             ));
         }
+        if !table.holds(&footprint, &pose) {
+            return Err(self.invalid(
+                format!("{field}.pose"),
+                format!(
+                    "the footprint at ({}, {}) reaches past the table's edge",
+                    pose.x, pose.y
+                ),
+            ));
+        }
         self.positive(&format!("{field}.mass"), o.mass)?;
         self.positive(&format!("{field}.mu_g"), o.mu_g)?;
         self.positive(&format!("{field}.mu_c"), o.mu_c)?;

@@ -60,6 +60,25 @@ impl Table {
     pub fn contains(&self, p: Vector2<f64>) -> bool {
         p.x >= self.x.0 && p.x <= self.x.1 && p.y >= self.y.0 && p.y <= self.y.1
     }
+
+    /// Does the table carry the whole `footprint` (object frame) at `pose`? An object
+    /// whose centre is on the table but whose footprint hangs over the edge rests on a
+    /// support polygon the planar model does not know, and tips off at the slightest
+    /// push: the model keeps every footprint wholly on the table.
+    pub fn holds(&self, footprint: &Footprint, pose: &Pose2) -> bool {
+        match footprint {
+            Footprint::Circle { radius } => {
+                let c = pose.translation();
+                c.x - radius >= self.x.0
+                    && c.x + radius <= self.x.1
+                    && c.y - radius >= self.y.0
+                    && c.y + radius <= self.y.1
+            }
+            Footprint::Polygon { vertices } => vertices
+                .iter()
+                .all(|v| self.contains(pose.translation() + pose.rotation() * v)),
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
