@@ -16,12 +16,12 @@ use crate::robustness::Noise;
 use crate::scene::{Goal, Scene};
 use nalgebra::DVector;
 use serde::Serialize;
-use world::{World, STEP};
+use world::{SolverSettings, World, STEP};
 
 /// How to execute.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExecuteSettings {
-    /// Trials; the first is unperturbed when `trials` > 1 (the nominal run).
+    /// Trials; the first is unperturbed (the nominal run), the others perturbed.
     pub trials: usize,
     /// Execution pace relative to the plan's trajectory (0.25: four times slower).
     pub speed: f64,
@@ -30,6 +30,8 @@ pub struct ExecuteSettings {
     pub noise: Noise,
     /// Keep each trial's object poses at the trajectory's rate (for pictures).
     pub record: bool,
+    /// The engine's solver effort.
+    pub solver: SolverSettings,
 }
 
 impl Default for ExecuteSettings {
@@ -40,6 +42,7 @@ impl Default for ExecuteSettings {
             seed: 1,
             noise: Noise::default(),
             record: false,
+            solver: SolverSettings::default(),
         }
     }
 }
@@ -117,7 +120,7 @@ pub fn execute(
     let mut rng = SplitMix64::new(settings.seed);
     let mut trials = Vec::with_capacity(settings.trials);
     for trial in 0..settings.trials {
-        let perturbed = if trial == 0 && settings.trials > 1 {
+        let perturbed = if trial == 0 {
             scene.clone()
         } else {
             settings
@@ -186,7 +189,12 @@ fn run(
     let q_at = |k: usize| DVector::from_column_slice(&trajectory.q[k]);
     let mut poses = Vec::new();
     robot.chain.forward_kinematics(&q_at(0), &mut poses);
-    let mut world = World::new(world_scene, &world_scene.start.objects, &poses);
+    let mut world = World::with_solver(
+        world_scene,
+        &world_scene.start.objects,
+        &poses,
+        &settings.solver,
+    );
     let objects = scene.objects.len();
     let names = |i: usize| scene.objects[i].name.clone();
 

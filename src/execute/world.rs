@@ -15,6 +15,28 @@ use rapier3d_f64::prelude::*;
 /// Simulation step (s): 1 kHz keeps a link from moving more than a millimetre per step.
 pub const STEP: f64 = 0.001;
 
+/// How hard rapier's solver works per step. Pushes with several contacts at once (a
+/// face against a face, a box squeezed between two links) need more than one
+/// Gauss-Seidel sweep per iteration: with one, the outcome of a turning hand's push
+/// changed by a radian when the iterations were doubled; with four it changes by less
+/// than doubling them again does (`tests/execute.rs`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolverSettings {
+    /// Solver iterations (substeps) per step.
+    pub iterations: usize,
+    /// Projected Gauss-Seidel sweeps per iteration.
+    pub pgs_iterations: usize,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        SolverSettings {
+            iterations: 8,
+            pgs_iterations: 4,
+        }
+    }
+}
+
 /// Radius of an object's feet (m): the prism stands this much above the table on them.
 pub const FOOT_RADIUS: f64 = 5e-4;
 /// Feet along each axis of the footprint's bounding box (at the cells' centres).
@@ -167,6 +189,16 @@ impl World {
     /// The scene's table, obstacles and objects (at `objects`, the start poses), and the
     /// arm's links at `link_poses` (`X_WL`, one per chain link).
     pub fn new(scene: &Scene, objects: &[Pose2], link_poses: &[Isometry3<f64>]) -> World {
+        World::with_solver(scene, objects, link_poses, &SolverSettings::default())
+    }
+
+    /// As [`World::new`], with the given solver effort.
+    pub fn with_solver(
+        scene: &Scene,
+        objects: &[Pose2],
+        link_poses: &[Isometry3<f64>],
+        solver: &SolverSettings,
+    ) -> World {
         let mut bodies = RigidBodySet::new();
         let mut colliders = ColliderSet::new();
         let fixed = bodies.insert(RigidBodyBuilder::fixed());
@@ -219,7 +251,8 @@ impl World {
         }
         let params = IntegrationParameters {
             dt: STEP,
-            num_solver_iterations: 8,
+            num_solver_iterations: solver.iterations,
+            num_internal_pgs_iterations: solver.pgs_iterations,
             ..IntegrationParameters::default()
         };
         World {
