@@ -1,37 +1,53 @@
-//! Builds the OMPL side (`cpp/`, public headers in `include/`) with cxx against Debian's
-//! OMPL 1.5.2 and Eigen, and writes `pushplan.pc` (pkg-config) next to the built library
-//! so C++ applications can link `libpushplan.a`.
+//! Builds the OMPL side (`cpp/`, public headers in `include/`) with cxx against the
+//! system's OMPL and Eigen, and writes `pushplan.pc` (pkg-config) next to the built
+//! library so C++ applications can link `libpushplan.a` from the build tree.
+//!
+//! OMPL and Eigen are found, in this order, from the environment
+//! (`PUSHPLAN_OMPL_INCLUDE_DIR`, `PUSHPLAN_OMPL_LIB_DIR`, `PUSHPLAN_EIGEN_INCLUDE_DIR`),
+//! from pkg-config (`ompl`, `eigen3`), then from the usual prefixes (`/usr/local`,
+//! `/usr`, `/opt/ros/*`), so OMPL 1.5 from Debian, 1.6/1.7 from ROS or a source build
+//! under `/usr/local` all work.
 
 use std::path::{Path, PathBuf};
+use std::process::Command;
 
-const OMPL_INCLUDE: &str = "/usr/include/ompl-1.5";
-const EIGEN_INCLUDE: &str = "/usr/include/eigen3";
 const INSTALL: &str = "sudo apt-get install -y libompl-dev libeigen3-dev libfcl-dev ompl-demos";
+const ENV_OMPL_INCLUDE: &str = "PUSHPLAN_OMPL_INCLUDE_DIR";
+const ENV_OMPL_LIB: &str = "PUSHPLAN_OMPL_LIB_DIR";
+const ENV_EIGEN_INCLUDE: &str = "PUSHPLAN_EIGEN_INCLUDE_DIR";
+
+/// Where the C++ dependencies are.
+struct Dependencies {
+    /// The folder holding `ompl/control/SimpleSetup.h`.
+    ompl_include: PathBuf,
+    /// The folder holding `libompl`, when the linker would not look there by itself.
+    ompl_lib: Option<PathBuf>,
+    /// The folder holding `Eigen/Core`.
+    eigen_include: PathBuf,
+}
 
 fn main() {
-    let missing: Vec<&str> = [
-        (
-            Path::new(OMPL_INCLUDE).join("ompl/control/SimpleSetup.h"),
-            "OMPL headers",
-        ),
-        (Path::new(EIGEN_INCLUDE).join("Eigen/Core"), "Eigen headers"),
-        (
-            PathBuf::from("/usr/lib/x86_64-linux-gnu/libompl.so"),
-            "the OMPL library",
-        ),
-        (
-            PathBuf::from("/usr/include/fcl/fcl.h"),
-            "FCL headers (for the tests)",
-        ),
-    ]
-    .iter()
-    .filter(|(path, _)| !path.exists() && !alternative_exists(path))
-    .map(|(_, what)| *what)
-    .collect();
-    if !missing.is_empty() {
-        eprintln!("\npushplan needs {} (not found). Install them with:\n\n    {INSTALL}\n\n(or run `bash .ci/install-packages`)\n", missing.join(", "));
-        std::process::exit(1);
+    for var in [
+        ENV_OMPL_INCLUDE,
+        ENV_OMPL_LIB,
+        ENV_EIGEN_INCLUDE,
+        "PKG_CONFIG_PATH",
+    ] {
+        println!("cargo:rerun-if-env-changed={var}");
     }
+    let deps = match find_dependencies() {
+        Ok(deps) => deps,
+        Err(missing) => {
+            eprintln!(
+                "\npushplan needs {} (not found). Install them with:\n\n    {INSTALL}\n\n\
+                 (or run `bash .ci/install-packages`). OMPL elsewhere: set {ENV_OMPL_INCLUDE} \
+                 (the folder holding ompl/) and {ENV_OMPL_LIB}, or put its ompl.pc on \
+                 PKG_CONFIG_PATH.\n",
+                missing.join(", ")
+            );
+            std::process::exit(1);
+        }
+    };
 
     // Every C++ source in cpp/, in a stable order.
     let mut sources: Vec<PathBuf> = std::fs::read_dir("cpp")
@@ -44,28 +60,203 @@ fn main() {
     build.files(&sources);
     build
         .include("include")
-        .include(OMPL_INCLUDE)
-        .include(EIGEN_INCLUDE)
+        .include(&deps.ompl_include)
+        .include(&deps.eigen_include)
         .std("c++17")
         .flag_if_supported("-Wno-deprecated-copy")
         .flag_if_supported("-Wno-unused-parameter")
         .compile("pushplan-cpp");
+    if let Some(dir) = &deps.ompl_lib {
+        println!("cargo:rustc-link-search=native={}", dir.display());
+    }
     println!("cargo:rustc-link-lib=ompl");
-    build_fcl_oracle();
+    build_fcl_oracle(&deps);
     for dir in ["cpp", "include"] {
         println!("cargo:rerun-if-changed={dir}");
     }
     println!("cargo:rerun-if-changed=src/ffi.rs");
-    write_pkg_config();
+    write_pkg_config(&deps);
+}
+
+fn find_dependencies() -> Result<Dependencies, Vec<&'static str>> {
+    let ompl_include = find_include(
+        ENV_OMPL_INCLUDE,
+        "ompl",
+        "ompl/control/SimpleSetup.h",
+        &ompl_prefix_candidates(),
+    );
+    let eigen_include = find_include(
+        ENV_EIGEN_INCLUDE,
+        "eigen3",
+        "Eigen/Core",
+        &[
+            PathBuf::from("/usr/local/include/eigen3"),
+            PathBuf::from("/usr/include/eigen3"),
+        ],
+    );
+    let ompl_lib = ompl_include.as_ref().and_then(|inc| find_ompl_lib(inc));
+    let mut missing = Vec::new();
+    if ompl_include.is_none() {
+        missing.push("OMPL headers");
+    }
+    if eigen_include.is_none() {
+        missing.push("Eigen headers");
+    }
+    if ompl_include.is_some() && ompl_lib.is_none() {
+        missing.push("the OMPL library");
+    }
+    if !fcl_header_exists() {
+        missing.push("FCL headers (for the tests)");
+    }
+    match (ompl_include, eigen_include, ompl_lib) {
+        (Some(ompl_include), Some(eigen_include), Some(ompl_lib)) if missing.is_empty() => {
+            Ok(Dependencies {
+                ompl_include,
+                ompl_lib: (!linker_searches(&ompl_lib)).then_some(ompl_lib),
+                eigen_include,
+            })
+        }
+        _ => Err(missing),
+    }
+}
+
+/// The first folder holding `marker`: the environment variable, pkg-config's `-I`
+/// folders of `package`, then `candidates`.
+fn find_include(var: &str, package: &str, marker: &str, candidates: &[PathBuf]) -> Option<PathBuf> {
+    if let Some(dir) = std::env::var_os(var) {
+        let dir = PathBuf::from(dir);
+        if dir.join(marker).exists() {
+            return Some(dir);
+        }
+        println!("cargo:warning={var}={} holds no {marker}; looking elsewhere", dir.display());
+    }
+    pkg_config(package, "--cflags-only-I")
+        .iter()
+        .filter_map(|flag| flag.strip_prefix("-I").map(PathBuf::from))
+        .chain(candidates.iter().cloned())
+        .find(|dir| dir.join(marker).exists())
+}
+
+/// `include/ompl-1.*` folders under the usual prefixes, newest first within each.
+fn ompl_prefix_candidates() -> Vec<PathBuf> {
+    let mut prefixes = vec![PathBuf::from("/usr/local"), PathBuf::from("/usr")];
+    if let Ok(entries) = std::fs::read_dir("/opt/ros") {
+        let mut ros: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        ros.sort();
+        prefixes.extend(ros.into_iter().rev());
+    }
+    let mut out = Vec::new();
+    for prefix in prefixes {
+        let include = prefix.join("include");
+        let mut versions: Vec<PathBuf> = std::fs::read_dir(&include)
+            .map(|entries| {
+                entries
+                    .filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| {
+                        p.file_name()
+                            .and_then(|n| n.to_str())
+                            .is_some_and(|n| n.starts_with("ompl-"))
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        versions.sort();
+        out.extend(versions.into_iter().rev());
+        out.push(include);
+    }
+    out
+}
+
+/// The folder of `libompl`: the environment variable, pkg-config's `-L` folders, then
+/// the `lib` folders of the prefix the headers came from and the system's.
+fn find_ompl_lib(ompl_include: &Path) -> Option<PathBuf> {
+    let holds = |dir: &Path| {
+        ["libompl.so", "libompl.a", "libompl.dylib"]
+            .iter()
+            .any(|f| dir.join(f).exists())
+    };
+    if let Some(dir) = std::env::var_os(ENV_OMPL_LIB) {
+        let dir = PathBuf::from(dir);
+        if holds(&dir) {
+            return Some(dir);
+        }
+        println!("cargo:warning={ENV_OMPL_LIB}={} holds no libompl; looking elsewhere", dir.display());
+    }
+    // include/ompl-1.x or include: the prefix is one or two levels up.
+    let prefix = ompl_include
+        .ancestors()
+        .find(|p| p.file_name().is_some_and(|n| n == "include"))
+        .and_then(Path::parent)
+        .map(Path::to_path_buf);
+    let mut candidates: Vec<PathBuf> = pkg_config("ompl", "--libs-only-L")
+        .iter()
+        .filter_map(|flag| flag.strip_prefix("-L").map(PathBuf::from))
+        .collect();
+    if let Some(prefix) = prefix {
+        candidates.push(prefix.join("lib").join(multiarch()));
+        candidates.push(prefix.join("lib"));
+        candidates.push(prefix.join("lib64"));
+    }
+    candidates.extend(system_lib_dirs());
+    candidates.into_iter().find(|d| holds(d))
+}
+
+fn multiarch() -> String {
+    let arch = std::env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_else(|_| "x86_64".into());
+    format!("{arch}-linux-gnu")
+}
+
+fn system_lib_dirs() -> Vec<PathBuf> {
+    vec![
+        PathBuf::from("/usr/lib").join(multiarch()),
+        PathBuf::from("/usr/lib"),
+        PathBuf::from("/usr/lib64"),
+    ]
+}
+
+/// Does the linker look in `dir` without being told?
+fn linker_searches(dir: &Path) -> bool {
+    system_lib_dirs().iter().any(|d| d == dir)
+}
+
+/// The output of `pkg-config FLAG PACKAGE`, split on whitespace (empty if pkg-config or
+/// the package is missing).
+fn pkg_config(package: &str, flag: &str) -> Vec<String> {
+    Command::new("pkg-config")
+        .args([flag, package])
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| {
+            String::from_utf8_lossy(&o.stdout)
+                .split_whitespace()
+                .map(str::to_owned)
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+fn fcl_header_exists() -> bool {
+    pkg_config("fcl", "--cflags-only-I")
+        .iter()
+        .filter_map(|flag| flag.strip_prefix("-I").map(PathBuf::from))
+        .chain([PathBuf::from("/usr/include"), PathBuf::from("/usr/local/include")])
+        .any(|dir| dir.join("fcl/fcl.h").exists())
 }
 
 /// FCL, the independent oracle of the collision tests: linked into test binaries only,
 /// so the library itself does not depend on FCL.
-fn build_fcl_oracle() {
+fn build_fcl_oracle(deps: &Dependencies) {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
-    cxx_build::bridge("tests/fcl_oracle.rs")
+    let mut build = cxx_build::bridge("tests/fcl_oracle.rs");
+    for flag in pkg_config("fcl", "--cflags-only-I") {
+        if let Some(dir) = flag.strip_prefix("-I") {
+            build.include(dir);
+        }
+    }
+    build
         .file("tests/fcl_oracle.cpp")
-        .include(EIGEN_INCLUDE)
+        .include(&deps.eigen_include)
         .std("c++17")
         .flag_if_supported("-Wno-unused-parameter")
         .cargo_metadata(false)
@@ -85,27 +276,30 @@ fn build_fcl_oracle() {
     }
 }
 
-/// Multi-arch library folders other than x86_64.
-fn alternative_exists(path: &Path) -> bool {
-    let name = path.file_name().unwrap_or_default();
-    path.starts_with("/usr/lib")
-        && ["/usr/lib/aarch64-linux-gnu", "/usr/lib"]
-            .iter()
-            .any(|d| Path::new(d).join(name).exists())
-}
-
-/// `target/<profile>/pushplan.pc`, pointing at this checkout's headers and library.
-fn write_pkg_config() {
+/// `target/<profile>/pushplan.pc`, pointing at this checkout's headers and the library
+/// built next to it (an installed copy gets a relocatable one: `pushplan install`). No
+/// `-std` flag: the headers need C++17 or later, and the application chooses which.
+fn write_pkg_config(deps: &Dependencies) {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
     // OUT_DIR is target/<profile>/build/pushplan-<hash>/out.
     let Some(profile_dir) = out.ancestors().nth(3) else {
         return;
     };
     let root = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
+    let ompl_libdir = deps
+        .ompl_lib
+        .as_ref()
+        .map(|d| format!("-L{} ", d.display()))
+        .unwrap_or_default();
     let pc = format!(
-        "prefix={root}\nlibdir={}\nincludedir=${{prefix}}/include\n\nName: pushplan\nDescription: Whole-arm rearrangement planning by quasistatic pushing (OMPL)\nVersion: {}\nCflags: -std=c++17 -I${{includedir}} -I{EIGEN_INCLUDE} -I{OMPL_INCLUDE}\nLibs: ${{libdir}}/libpushplan.a -lompl -lpthread -ldl -lm\n",
+        "prefix={root}\nlibdir={}\nincludedir=${{prefix}}/include\n\nName: pushplan\n\
+         Description: Whole-arm rearrangement planning by quasistatic pushing (OMPL)\n\
+         Version: {}\nCflags: -I${{includedir}} -I{} -I{}\n\
+         Libs: -L${{libdir}} -lpushplan {ompl_libdir}-lompl -lpthread -ldl -lm\n",
         profile_dir.display(),
-        std::env::var("CARGO_PKG_VERSION").unwrap_or_default()
+        std::env::var("CARGO_PKG_VERSION").unwrap_or_default(),
+        deps.eigen_include.display(),
+        deps.ompl_include.display(),
     );
     let _ = std::fs::write(profile_dir.join("pushplan.pc"), pc);
 }
