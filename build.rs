@@ -20,8 +20,8 @@ const ENV_EIGEN_INCLUDE: &str = "PUSHPLAN_EIGEN_INCLUDE_DIR";
 struct Dependencies {
     /// The folder holding `ompl/control/SimpleSetup.h`.
     ompl_include: PathBuf,
-    /// The folder holding `libompl`, when the linker would not look there by itself.
-    ompl_lib: Option<PathBuf>,
+    /// The folder holding `libompl`.
+    ompl_lib: PathBuf,
     /// The folder holding `Eigen/Core`.
     eigen_include: PathBuf,
 }
@@ -66,8 +66,8 @@ fn main() {
         .flag_if_supported("-Wno-deprecated-copy")
         .flag_if_supported("-Wno-unused-parameter")
         .compile("pushplan-cpp");
-    if let Some(dir) = &deps.ompl_lib {
-        println!("cargo:rustc-link-search=native={}", dir.display());
+    if !linker_searches(&deps.ompl_lib) {
+        println!("cargo:rustc-link-search=native={}", deps.ompl_lib.display());
     }
     println!("cargo:rustc-link-lib=ompl");
     build_fcl_oracle(&deps);
@@ -76,6 +76,7 @@ fn main() {
     }
     println!("cargo:rerun-if-changed=src/ffi.rs");
     write_pkg_config(&deps);
+    write_install_manifest(&deps);
 }
 
 fn find_dependencies() -> Result<Dependencies, Vec<&'static str>> {
@@ -112,7 +113,7 @@ fn find_dependencies() -> Result<Dependencies, Vec<&'static str>> {
         (Some(ompl_include), Some(eigen_include), Some(ompl_lib)) if missing.is_empty() => {
             Ok(Dependencies {
                 ompl_include,
-                ompl_lib: (!linker_searches(&ompl_lib)).then_some(ompl_lib),
+                ompl_lib,
                 eigen_include,
             })
         }
@@ -128,7 +129,10 @@ fn find_include(var: &str, package: &str, marker: &str, candidates: &[PathBuf]) 
         if dir.join(marker).exists() {
             return Some(dir);
         }
-        println!("cargo:warning={var}={} holds no {marker}; looking elsewhere", dir.display());
+        println!(
+            "cargo:warning={var}={} holds no {marker}; looking elsewhere",
+            dir.display()
+        );
     }
     pkg_config(package, "--cflags-only-I")
         .iter()
@@ -180,7 +184,10 @@ fn find_ompl_lib(ompl_include: &Path) -> Option<PathBuf> {
         if holds(&dir) {
             return Some(dir);
         }
-        println!("cargo:warning={ENV_OMPL_LIB}={} holds no libompl; looking elsewhere", dir.display());
+        println!(
+            "cargo:warning={ENV_OMPL_LIB}={} holds no libompl; looking elsewhere",
+            dir.display()
+        );
     }
     // include/ompl-1.x or include: the prefix is one or two levels up.
     let prefix = ompl_include
@@ -240,7 +247,10 @@ fn fcl_header_exists() -> bool {
     pkg_config("fcl", "--cflags-only-I")
         .iter()
         .filter_map(|flag| flag.strip_prefix("-I").map(PathBuf::from))
-        .chain([PathBuf::from("/usr/include"), PathBuf::from("/usr/local/include")])
+        .chain([
+            PathBuf::from("/usr/include"),
+            PathBuf::from("/usr/local/include"),
+        ])
         .any(|dir| dir.join("fcl/fcl.h").exists())
 }
 
@@ -286,11 +296,11 @@ fn write_pkg_config(deps: &Dependencies) {
         return;
     };
     let root = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
-    let ompl_libdir = deps
-        .ompl_lib
-        .as_ref()
-        .map(|d| format!("-L{} ", d.display()))
-        .unwrap_or_default();
+    let ompl_libdir = if linker_searches(&deps.ompl_lib) {
+        String::new()
+    } else {
+        format!("-L{} ", deps.ompl_lib.display())
+    };
     let pc = format!(
         "prefix={root}\nlibdir={}\nincludedir=${{prefix}}/include\n\nName: pushplan\n\
          Description: Whole-arm rearrangement planning by quasistatic pushing (OMPL)\n\
@@ -302,4 +312,58 @@ fn write_pkg_config(deps: &Dependencies) {
         deps.ompl_include.display(),
     );
     let _ = std::fs::write(profile_dir.join("pushplan.pc"), pc);
+}
+
+/// `OUT_DIR/install_manifest.rs`, read by `src/install.rs`: every public header (so an
+/// installed copy does not depend on this checkout) and where OMPL and Eigen are (the
+/// installed library was built against them).
+fn write_install_manifest(deps: &Dependencies) {
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
+    let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets it"));
+    let mut headers = Vec::new();
+    let mut folders = vec![root.join("include")];
+    while let Some(dir) = folders.pop() {
+        for entry in std::fs::read_dir(&dir)
+            .expect("include/ is readable")
+            .flatten()
+        {
+            let path = entry.path();
+            if path.is_dir() {
+                folders.push(path);
+            } else {
+                headers.push(path);
+            }
+        }
+    }
+    headers.sort();
+    let ompl_library = ["libompl.so", "libompl.a", "libompl.dylib"]
+        .iter()
+        .map(|f| deps.ompl_lib.join(f))
+        .find(|p| p.exists())
+        .expect("found with the folder");
+    let mut code = String::from(
+        "/// The public headers: (path under the include folder, text).\n\
+         pub const HEADERS: &[(&str, &str)] = &[\n",
+    );
+    for h in &headers {
+        let relative = h
+            .strip_prefix(root.join("include"))
+            .expect("under include/");
+        code += &format!(
+            "    ({:?}, include_str!({:?})),\n",
+            relative.display().to_string(),
+            h.display().to_string()
+        );
+    }
+    code += "];\n";
+    code += &format!(
+        "/// OMPL's and Eigen's headers, and OMPL's library, as this build found them.\n\
+         pub const OMPL_INCLUDE_DIR: &str = {:?};\n\
+         pub const EIGEN_INCLUDE_DIR: &str = {:?};\n\
+         pub const OMPL_LIBRARY: &str = {:?};\n",
+        deps.ompl_include.display().to_string(),
+        deps.eigen_include.display().to_string(),
+        ompl_library.display().to_string(),
+    );
+    std::fs::write(out.join("install_manifest.rs"), code).expect("OUT_DIR is writable");
 }

@@ -20,6 +20,7 @@ pub mod distance;
 pub mod error;
 pub mod execute;
 pub mod ffi;
+pub mod install;
 pub mod math;
 pub mod path;
 pub mod physics;

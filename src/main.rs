@@ -168,6 +168,13 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         times: Vec<f64>,
     },
+    /// Install the CLI, libpushplan.a, the C++ headers, pushplan.pc and the CMake package
+    /// (find_package(pushplan) -> pushplan::pushplan) into a prefix.
+    Install {
+        /// Installation prefix (e.g. ~/.local or /usr/local).
+        #[arg(long)]
+        prefix: PathBuf,
+    },
 }
 
 #[derive(Subcommand)]
@@ -289,6 +296,7 @@ fn main() -> ExitCode {
             bench(&scenes, &settings, &out, jobs)
         }
         Command::Plots { dir } => plots(&dir),
+        Command::Install { prefix } => install(&prefix),
         Command::BenchScene {
             scene,
             planners,
@@ -316,6 +324,17 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+fn install(prefix: &Path) -> Result<ExitCode, String> {
+    let binary = std::env::current_exe().map_err(|e| format!("the running binary: {e}"))?;
+    let written = pushplan::install::install(prefix, &binary)?;
+    println!(
+        "installed {} files into {}",
+        written.len(),
+        prefix.display()
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 /// The `plan` command's options.

@@ -1,0 +1,100 @@
+//! `pushplan install --prefix DIR`: the CLI, the static library, the public headers, a
+//! pkg-config file and a CMake package, laid out as C++ build systems expect:
+//!
+//! ```text
+//! DIR/bin/pushplan
+//! DIR/lib/libpushplan.a
+//! DIR/include/pushplan/...
+//! DIR/lib/pkgconfig/pushplan.pc              (relocatable: paths from ${pcfiledir})
+//! DIR/lib/cmake/pushplan/pushplan-config.cmake, pushplan-config-version.cmake
+//! ```
+//!
+//! The headers are compiled into the binary (an installed copy does not need the
+//! checkout); the library is the `libpushplan.a` cargo built next to the binary.
+
+use std::path::{Path, PathBuf};
+
+include!(concat!(env!("OUT_DIR"), "/install_manifest.rs"));
+
+const CMAKE_CONFIG: &str = include_str!("../cpp/cmake/pushplan-config.cmake.in");
+const CMAKE_VERSION: &str = include_str!("../cpp/cmake/pushplan-config-version.cmake.in");
+const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Installs into `prefix` the running `binary` and the `libpushplan.a` beside it.
+/// Returns the files written.
+pub fn install(prefix: &Path, binary: &Path) -> Result<Vec<PathBuf>, String> {
+    let library = binary.with_file_name("libpushplan.a");
+    if !library.is_file() {
+        return Err(format!(
+            "{}: not found next to the binary; install from a cargo build \
+             (`cargo run --release -- install --prefix DIR`)",
+            library.display()
+        ));
+    }
+    let mut written = Vec::new();
+    let mut put = |relative: &str, contents: Contents| -> Result<(), String> {
+        let path = prefix.join(relative);
+        let fail = |e: std::io::Error| format!("{}: {e}", path.display());
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(fail)?;
+        }
+        match contents {
+            Contents::Text(text) => std::fs::write(&path, text).map_err(fail)?,
+            Contents::Copy(from) => {
+                // Replace rather than overwrite: the binary being installed may be the
+                // one running (re-installing into the same prefix).
+                let _ = std::fs::remove_file(&path);
+                std::fs::copy(from, &path)
+                    .map_err(|e| format!("{} -> {}: {e}", from.display(), path.display()))?;
+            }
+        }
+        written.push(path);
+        Ok(())
+    };
+    put("bin/pushplan", Contents::Copy(binary))?;
+    put("lib/libpushplan.a", Contents::Copy(&library))?;
+    for (path, text) in HEADERS {
+        put(&format!("include/{path}"), Contents::Text(text.to_string()))?;
+    }
+    put("lib/pkgconfig/pushplan.pc", Contents::Text(pkg_config()))?;
+    put(
+        "lib/cmake/pushplan/pushplan-config.cmake",
+        Contents::Text(fill(CMAKE_CONFIG)),
+    )?;
+    put(
+        "lib/cmake/pushplan/pushplan-config-version.cmake",
+        Contents::Text(fill(CMAKE_VERSION)),
+    )?;
+    Ok(written)
+}
+
+enum Contents<'a> {
+    Text(String),
+    Copy(&'a Path),
+}
+
+/// The installed `pushplan.pc`: the prefix is found from the file's own folder, so the
+/// tree can move; `-L -l` form, so build systems put it after the objects; no `-std`.
+fn pkg_config() -> String {
+    let ompl_dir = Path::new(OMPL_LIBRARY)
+        .parent()
+        .map(|d| d.display().to_string())
+        .unwrap_or_default();
+    format!(
+        "prefix=${{pcfiledir}}/../..\nlibdir=${{prefix}}/lib\nincludedir=${{prefix}}/include\n\n\
+         Name: pushplan\n\
+         Description: Whole-arm rearrangement planning by quasistatic pushing (OMPL)\n\
+         Version: {VERSION}\n\
+         Cflags: -I${{includedir}} -I{EIGEN_INCLUDE_DIR} -I{OMPL_INCLUDE_DIR}\n\
+         Libs: -L${{libdir}} -lpushplan -L{ompl_dir} -lompl -lpthread -ldl -lm\n"
+    )
+}
+
+/// A CMake template with this build's version and dependency paths.
+fn fill(template: &str) -> String {
+    template
+        .replace("@VERSION@", VERSION)
+        .replace("@OMPL_INCLUDE_DIR@", OMPL_INCLUDE_DIR)
+        .replace("@EIGEN_INCLUDE_DIR@", EIGEN_INCLUDE_DIR)
+        .replace("@OMPL_LIBRARY@", OMPL_LIBRARY)
+}

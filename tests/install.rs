@@ -1,0 +1,119 @@
+//! `pushplan install` as a C++ user meets it: install into a prefix, move the prefix
+//! (nothing may point back into the build), then build the C++ example against it with
+//! CMake (`find_package(pushplan)` beside `find_package(ompl)`) and with pkg-config, and
+//! run both.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn ok(what: &str, output: std::io::Result<Output>) -> Output {
+    let output = output.unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert!(
+        output.status.success(),
+        "{what} failed:\n{}{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    output
+}
+
+/// Plans the single-object scene with a consumer binary; checks it solved.
+fn plans(binary: &Path) {
+    let run = ok(
+        "the consumer",
+        Command::new(binary)
+            .args(["scenes/herb_single_object.yaml", "1"])
+            .output(),
+    );
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        stdout.starts_with("herb-single-object: solved in"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn an_installed_pushplan_builds_with_cmake_and_with_pkg_config() {
+    let work = std::env::temp_dir().join(format!("pushplan-install-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&work);
+    // libpushplan.a lands next to the binary on a direct build of the library.
+    let mut build = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    build.args(["build", "--lib"]);
+    let binary = PathBuf::from(env!("CARGO_BIN_EXE_pushplan"));
+    if binary.parent().is_some_and(|d| d.ends_with("release")) {
+        build.arg("--release");
+    }
+    ok("cargo build --lib", build.output());
+    let staged = work.join("staged");
+    let out = ok(
+        "pushplan install",
+        Command::new(&binary)
+            .args(["install", "--prefix"])
+            .arg(&staged)
+            .output(),
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("installed"));
+    let prefix = work.join("prefix");
+    std::fs::rename(&staged, &prefix).unwrap();
+    for file in [
+        "bin/pushplan",
+        "lib/libpushplan.a",
+        "include/pushplan/pushplan.h",
+        "lib/pkgconfig/pushplan.pc",
+        "lib/cmake/pushplan/pushplan-config.cmake",
+        "lib/cmake/pushplan/pushplan-config-version.cmake",
+    ] {
+        assert!(prefix.join(file).is_file(), "{file} not installed");
+    }
+    let version = ok(
+        "the installed CLI",
+        Command::new(prefix.join("bin/pushplan"))
+            .arg("--version")
+            .output(),
+    );
+    assert!(String::from_utf8_lossy(&version.stdout).starts_with("pushplan "));
+
+    // CMake: find_package(pushplan) and find_package(ompl) in one project.
+    let cmake_build = work.join("cmake-build");
+    let configure = ok(
+        "cmake configure",
+        Command::new("cmake")
+            .args(["-S", "examples/cpp/cmake", "-B"])
+            .arg(&cmake_build)
+            .arg(format!("-DCMAKE_PREFIX_PATH={}", prefix.display()))
+            .output(),
+    );
+    let log = String::from_utf8_lossy(&configure.stdout);
+    assert!(log.contains("pushplan 0.1.0, OMPL 1."), "{log}");
+    ok(
+        "cmake build",
+        Command::new("cmake")
+            .arg("--build")
+            .arg(&cmake_build)
+            .output(),
+    );
+    plans(&cmake_build.join("plan_scene"));
+
+    // pkg-config, from the moved prefix.
+    let flags = ok(
+        "pkg-config",
+        Command::new("pkg-config")
+            .args(["--cflags", "--libs", "pushplan"])
+            .env("PKG_CONFIG_PATH", prefix.join("lib/pkgconfig"))
+            .output(),
+    );
+    let flags = String::from_utf8(flags.stdout).unwrap();
+    assert!(!flags.contains("-std="), "{flags}");
+    let consumer = work.join("plan_scene_pkg_config");
+    ok(
+        "g++ with pkg-config's flags",
+        Command::new("g++")
+            .arg("-o")
+            .arg(&consumer)
+            .arg("examples/cpp/plan_scene.cpp")
+            .args(flags.split_whitespace())
+            .output(),
+    );
+    plans(&consumer);
+    let _ = std::fs::remove_dir_all(&work);
+}
