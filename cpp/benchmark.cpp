@@ -14,6 +14,7 @@
 #include <ompl/util/Console.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 
 namespace ob = ompl::base;
@@ -43,8 +44,13 @@ namespace pushplan::bridge
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
         benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.k));
-        for (const auto &name : options.planners)
-            benchmark.addPlanner(detail::makePlanner(std::string(name), problem, options.seed, info.goal_bias, false));
+        std::map<const ob::Planner *, PlannerKind> kinds;
+        for (const PlannerKind kind : options.planners)
+        {
+            const ob::PlannerPtr planner = detail::makePlanner(kind, problem, options.seed, info.goal_bias, false);
+            kinds[planner.get()] = kind;
+            benchmark.addPlanner(planner);
+        }
 
         std::uint64_t run = 0, steps_before = 0;
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &planner) {
@@ -53,7 +59,7 @@ namespace pushplan::bridge
             if (auto darrt = std::dynamic_pointer_cast<detail::Darrt>(planner))
                 darrt->reseed(detail::subSeed(options.seed, 100 + run));
             // Static RRT shares the problem: the model treats the clutter as obstacles.
-            model->model().set_static_clutter(planner->getName() == "StaticRRT");
+            model->model().set_static_clutter(kinds.at(planner.get()) == PlannerKind::StaticRrt);
             ++run;
             steps_before = model->model().propagation_steps();
         });

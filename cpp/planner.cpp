@@ -10,6 +10,7 @@
 #include <ompl/control/SimpleSetup.h>
 #include <ompl/util/Console.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -74,6 +75,23 @@ namespace pushplan
         return source_->name;
     }
 
+    std::string plannerName(PlannerKind kind)
+    {
+        return std::string(bridge::planner_name(kind));
+    }
+
+    PlannerKind plannerKind(const std::string &name)
+    {
+        try
+        {
+            return bridge::planner_kind(name);
+        }
+        catch (const rust::Error &e)
+        {
+            throw Error(e.what());
+        }
+    }
+
     double Plan::duration() const
     {
         double total = 0.0;
@@ -85,7 +103,10 @@ namespace pushplan
     Plan Planner::solve(const Options &options) const
     {
         using detail::checked;
-        const bool static_clutter = options.planner == PlannerType::StaticRrt;
+        if (options.planner == PlannerKind::Darrt)
+            throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
+                        "(measure DARRT with `pushplan bench`)");
+        const bool static_clutter = options.planner == PlannerKind::StaticRrt;
         auto model = std::make_shared<detail::ModelHandle>(source_->load(static_clutter));
         const bridge::SceneInfo &info = model->info();
         const double time_limit = options.time_limit.value_or(info.time_limit);
@@ -95,13 +116,20 @@ namespace pushplan
         const double goal_bias = options.goal_bias.value_or(info.goal_bias);
         checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
 
-        ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+        // OMPL's log level is process-wide: quiet below warnings while planning, then put
+        // back as the application had it.
+        const struct LogLevelGuard
+        {
+            ompl::msg::LogLevel saved = ompl::msg::getLogLevel();
+            LogLevelGuard() { ompl::msg::setLogLevel(std::max(saved, ompl::msg::LOG_WARN)); }
+            ~LogLevelGuard() { ompl::msg::setLogLevel(saved); }
+        } log_level;
         const detail::Problem problem = detail::makeProblem(model, seed, k);
         oc::SimpleSetup &setup = *problem.setup;
         const oc::SpaceInformationPtr &si = setup.getSpaceInformation();
-        const ob::PlannerPtr rrt = detail::makePlanner(static_clutter ? "static" : "pcrrt", problem, seed, goal_bias,
-                                                       options.intermediate_states);
-        setup.setPlanner(rrt);
+        const ob::PlannerPtr planner =
+            detail::makePlanner(options.planner, problem, seed, goal_bias, options.intermediate_states);
+        setup.setPlanner(planner);
         setup.setup();
 
         // Search until an exact solution or the time limit; progress once a second.
@@ -177,7 +205,7 @@ namespace pushplan
                 break;
             }
             setup.getProblemDefinition()->clearSolutionPaths();
-            rrt->clear();
+            planner->clear();
             try
             {
                 setup.solve(done);
@@ -195,7 +223,7 @@ namespace pushplan
         plan.propagation_steps = model->model().propagation_steps();
         plan.step = info.step;
         ob::PlannerData data(si);
-        rrt->getPlannerData(data);
+        planner->getPlannerData(data);
         plan.tree_size = data.numVertices();
         plan.solved = solved;
         for (const auto &n : info.joint_names)

@@ -8,6 +8,7 @@
 
 #include "pushplan/pushplan.h"
 
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/control/SimpleDirectedControlSampler.h>
 #include <ompl/control/planners/est/EST.h>
 #include <ompl/control/planners/kpiece/KPIECE1.h>
@@ -90,34 +91,41 @@ namespace pushplan::detail
         model->write(std::vector<double>(info.start.begin(), info.start.end()), start.get());
         setup->setStartState(start);
         setup->setGoal(std::make_shared<PushGoal>(si, model, subSeed(seed, 2)));
+        // Path length in the model's metric: what SST (and any optimizing planner) minimizes.
+        setup->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
         return Problem{std::move(model), std::move(space), std::move(setup)};
     }
 
-    ob::PlannerPtr makePlanner(const std::string &name, const Problem &problem, std::uint64_t seed, double goal_bias,
+    ob::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
                                bool intermediate_states)
     {
         const oc::SpaceInformationPtr &si = problem.setup->getSpaceInformation();
-        if (name == "pcrrt" || name == "static")
+        switch (kind)
         {
-            auto rrt = std::make_shared<SeededRRT>(si, subSeed(seed, 3), name == "static" ? "StaticRRT" : "PCRRT");
-            rrt->setGoalBias(goal_bias);
-            rrt->setIntermediateStates(intermediate_states);
-            return rrt;
+            case PlannerKind::PcRrt:
+            case PlannerKind::StaticRrt:
+            {
+                auto rrt = std::make_shared<SeededRRT>(si, subSeed(seed, 3),
+                                                       kind == PlannerKind::StaticRrt ? "StaticRRT" : "PCRRT");
+                rrt->setGoalBias(goal_bias);
+                rrt->setIntermediateStates(intermediate_states);
+                return rrt;
+            }
+            case PlannerKind::Darrt:
+            {
+                auto darrt = std::make_shared<Darrt>(si, problem.model, subSeed(seed, 3));
+                darrt->setGoalBias(goal_bias);
+                return darrt;
+            }
+            case PlannerKind::Kpiece:
+                return std::make_shared<oc::KPIECE1>(si);
+            case PlannerKind::Est:
+                return std::make_shared<oc::EST>(si);
+            case PlannerKind::Pdst:
+                return std::make_shared<oc::PDST>(si);
+            case PlannerKind::Sst:
+                return std::make_shared<oc::SST>(si);
         }
-        if (name == "darrt")
-        {
-            auto darrt = std::make_shared<Darrt>(si, problem.model, subSeed(seed, 3));
-            darrt->setGoalBias(goal_bias);
-            return darrt;
-        }
-        if (name == "kpiece")
-            return std::make_shared<oc::KPIECE1>(si);
-        if (name == "est")
-            return std::make_shared<oc::EST>(si);
-        if (name == "pdst")
-            return std::make_shared<oc::PDST>(si);
-        if (name == "sst")
-            return std::make_shared<oc::SST>(si);
-        throw Error("unknown planner '" + name + "' (pcrrt, static, darrt, kpiece, est, pdst, sst)");
+        throw Error("unknown planner kind " + std::to_string(static_cast<int>(kind)));
     }
 }  // namespace pushplan::detail

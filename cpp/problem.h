@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model_handle.h"
+#include "pushplan/pushplan.h"
 #include "state_space.h"
 
 #include <ompl/base/ProjectionEvaluator.h>
@@ -50,8 +51,8 @@ namespace pushplan::detail
     /// Sets up the problem: k is the number of control samples per extension (Alg. 1).
     Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k);
 
-    /// A planner by name: pcrrt, static (the same RRT, on a static-clutter model), kpiece,
-    /// darrt (the primitive baseline), est, pdst, sst. Throws pushplan::Error for other names.
-    ompl::base::PlannerPtr makePlanner(const std::string &name, const Problem &problem, std::uint64_t seed,
+    /// A planner of the problem. Static RRT is the same RRT as PC RRT; the model decides
+    /// that the clutter is static (ModelHandle's static-clutter mode).
+    ompl::base::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed,
                                        double goal_bias, bool intermediate_states);
 }  // namespace pushplan::detail

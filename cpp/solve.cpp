@@ -19,13 +19,7 @@ namespace pushplan::bridge
         o.robust_trials = static_cast<unsigned>(options.robust_trials);
         o.robust_rate = options.robust_rate;
         o.shortcut = 0.0;  // the CLI runs the same shortcutting itself, to report before and after
-        const std::string planner(options.planner);
-        if (planner == "pcrrt")
-            o.planner = PlannerType::PcRrt;
-        else if (planner == "static")
-            o.planner = PlannerType::StaticRrt;
-        else
-            throw Error("unknown planner '" + planner + "' (pcrrt or static)");
+        o.planner = options.planner;
 
         const Plan plan = Planner(std::string(scene_path)).solve(o);
         SolveOutput out;

@@ -22,6 +22,21 @@ use std::path::Path;
 
 #[cxx::bridge(namespace = "pushplan::bridge")]
 pub mod bridge {
+    /// The planners pushplan runs ([`crate::planner::PlannerKind`]): C++'s
+    /// `pushplan::PlannerKind` of `include/pushplan/pushplan.h`, checked against this
+    /// list by cxx.
+    #[namespace = "pushplan"]
+    #[derive(Debug, Hash)]
+    enum PlannerKind {
+        PcRrt,
+        StaticRrt,
+        Darrt,
+        Kpiece,
+        Est,
+        Pdst,
+        Sst,
+    }
+
     /// What the OMPL side needs to know about a scene.
     #[derive(Debug, Clone)]
     pub struct SceneInfo {
@@ -134,8 +149,7 @@ pub mod bridge {
         pub seed: u64,
         pub k: u32,
         pub goal_bias: f64,
-        /// "pcrrt" or "static".
-        pub planner: String,
+        pub planner: PlannerKind,
         pub intermediate_states: bool,
         pub progress: bool,
         /// Perturbed re-simulations a solution must survive (0: no robustness check).
@@ -163,8 +177,7 @@ pub mod bridge {
     /// Options of a benchmark of one scene.
     #[derive(Debug, Clone)]
     pub struct BenchOptions {
-        /// Planner names: pcrrt, static, darrt, kpiece, est, pdst, sst.
-        pub planners: Vec<String>,
+        pub planners: Vec<PlannerKind>,
         pub runs: u32,
         pub time_limit: f64,
         pub seed: u64,
@@ -225,9 +238,14 @@ pub mod bridge {
             target: &[f64],
         ) -> Result<Vec<f64>>;
         fn darrt_check(self: &Model, states: &[f64]) -> Result<PrimitiveCheck>;
+        fn planner_name(kind: PlannerKind) -> &'static str;
+        fn planner_kind(name: &str) -> Result<PlannerKind>;
     }
 
     unsafe extern "C++" {
+        include!("pushplan/pushplan.h");
+        #[namespace = "pushplan"]
+        type PlannerKind;
         include!("pushplan/cpp/solve.h");
         /// Plans the scene file with OMPL (the CLI's entry point).
         fn solve(scene_path: &str, options: &SolveOptions) -> Result<SolveOutput>;
@@ -237,6 +255,7 @@ pub mod bridge {
     }
 }
 
+use bridge::PlannerKind;
 pub use bridge::{
     BenchOptions, Metrics, PlanContact, PrimitiveCheck, SceneInfo, Shortcut, Simulation,
     SolveOptions, SolveOutput, TrajectoryOut,
@@ -253,6 +272,14 @@ pub struct Model {
     /// `isValid` of exactly that state next, and the propagation already knows.
     last_result: Option<(Vec<f64>, bool)>,
     steps_taken: u64,
+}
+
+fn planner_name(kind: PlannerKind) -> &'static str {
+    kind.name()
+}
+
+fn planner_kind(name: &str) -> Result<PlannerKind, String> {
+    name.parse()
 }
 
 /// Runs `f`, turning a panic into an error message: nothing unwinds into C++.
@@ -286,7 +313,11 @@ fn model_from_yaml(yaml: &str, source: &str, static_clutter: bool) -> Result<Box
 
 impl Model {
     pub fn new(scene: Scene, static_clutter: bool) -> Model {
-        let scene = scene.planned_by(if static_clutter { "static" } else { "pcrrt" });
+        let scene = scene.planned_by(if static_clutter {
+            PlannerKind::StaticRrt
+        } else {
+            PlannerKind::PcRrt
+        });
         Model {
             metric: DistanceMetric::from_scene(&scene),
             static_view: StaticClutter::new(&scene),

@@ -25,6 +25,7 @@ pub mod math;
 pub mod path;
 pub mod physics;
 pub mod plan;
+pub mod planner;
 pub mod propagate;
 pub mod random;
 pub mod render;

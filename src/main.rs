@@ -1,10 +1,11 @@
 //! The `pushplan` command: plan a scene with OMPL, check a plan by re-simulating it.
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand};
 use pushplan::execute::{ExecuteSettings, ExecutionReport};
 use pushplan::ffi::{benchmark_scene, solve, BenchOptions, SolveOptions};
 use pushplan::path::PathControl;
 use pushplan::plan::{PlanFile, PlanSettings, RobustnessRecord};
+use pushplan::planner::PlannerKind;
 use pushplan::robustness::{robustness, Noise};
 use pushplan::shortcut::{shortcut, ShortcutSettings};
 use pushplan::Propagator;
@@ -41,9 +42,10 @@ enum Command {
         /// Control samples per extension; default: the scene's planner.k.
         #[arg(long)]
         k: Option<u32>,
-        /// pcrrt (pushes objects) or static (only the goal object moves).
-        #[arg(long, value_enum, default_value_t = PlannerChoice::Pcrrt)]
-        planner: PlannerChoice,
+        /// pcrrt (pushes objects), static (only the goal object moves), or one of OMPL's
+        /// control planners on the same problem: kpiece, est, pdst, sst.
+        #[arg(long, default_value_t = PlannerKind::PcRrt)]
+        planner: PlannerKind,
         /// Where to write the plan.
         #[arg(long, default_value = "plan.json")]
         out: PathBuf,
@@ -115,7 +117,7 @@ enum Command {
             value_delimiter = ',',
             default_value = "pcrrt,static,kpiece,est,pdst,sst"
         )]
-        planners: Vec<String>,
+        planners: Vec<PlannerKind>,
         /// Runs per planner and scene.
         #[arg(long, default_value_t = 10)]
         runs: u32,
@@ -141,7 +143,7 @@ enum Command {
     BenchScene {
         scene: PathBuf,
         #[arg(long, value_delimiter = ',')]
-        planners: Vec<String>,
+        planners: Vec<PlannerKind>,
         #[arg(long)]
         runs: u32,
         #[arg(long)]
@@ -193,21 +195,6 @@ enum ScenesCommand {
         #[arg(long)]
         out: PathBuf,
     },
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum PlannerChoice {
-    Pcrrt,
-    Static,
-}
-
-impl PlannerChoice {
-    fn name(self) -> &'static str {
-        match self {
-            PlannerChoice::Pcrrt => "pcrrt",
-            PlannerChoice::Static => "static",
-        }
-    }
 }
 
 fn main() -> ExitCode {
@@ -344,7 +331,7 @@ struct RunOptions {
     time: Option<f64>,
     seed: Option<u64>,
     k: Option<u32>,
-    planner: PlannerChoice,
+    planner: PlannerKind,
     shortcut: f64,
     intermediate_states: bool,
     quiet: bool,
@@ -359,7 +346,7 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
         seed: run.seed.unwrap_or(p.seed),
         k: run.k.unwrap_or(p.k),
         goal_bias: p.goal_bias,
-        planner: planner.name().into(),
+        planner,
         intermediate_states: run.intermediate_states,
         progress: !quiet,
         robust_trials: run.robust,
@@ -397,7 +384,7 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
         ));
     }
     let solution = solve(scene_path, &options)?;
-    let variant = scene.clone().planned_by(planner.name());
+    let variant = scene.clone().planned_by(planner);
     let mut controls =
         PathControl::from_flat(&solution.controls, &solution.steps, variant.robot.dof())?;
     let mut before = None;
@@ -435,7 +422,7 @@ fn plan(scene_path: &Path, run: &RunOptions, out: &Path) -> Result<ExitCode, Str
         }
     }
     let settings = PlanSettings {
-        planner: planner.name().into(),
+        planner,
         seed: options.seed,
         k: options.k,
         goal_bias: options.goal_bias,
@@ -537,7 +524,7 @@ fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
     if noise > 0 {
         let scene = Scene::load(plan.scene_path(path))
             .map_err(|e| e.to_string())?
-            .planned_by(&plan.planner);
+            .planned_by(plan.planner);
         let r = robustness(
             &scene,
             &plan.path_controls(),
@@ -602,11 +589,19 @@ fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, String>
 
 /// What every scene of a benchmark runs.
 struct BenchSettings {
-    planners: Vec<String>,
+    planners: Vec<PlannerKind>,
     runs: u32,
     time: f64,
     shortcut: f64,
     seed: u64,
+}
+
+fn planner_list(planners: &[PlannerKind]) -> String {
+    planners
+        .iter()
+        .map(|p| p.name())
+        .collect::<Vec<_>>()
+        .join(",")
 }
 
 /// Runs one `bench-scene` process per scene, `jobs` at a time, then merges the logs.
@@ -616,17 +611,6 @@ fn bench(
     out: &Path,
     jobs: Option<usize>,
 ) -> Result<ExitCode, String> {
-    const KNOWN: [&str; 7] = ["pcrrt", "static", "darrt", "kpiece", "est", "pdst", "sst"];
-    if let Some(p) = settings
-        .planners
-        .iter()
-        .find(|p| !KNOWN.contains(&p.as_str()))
-    {
-        return Err(format!(
-            "unknown planner '{p}' (known: {})",
-            KNOWN.join(", ")
-        ));
-    }
     if !(settings.time.is_finite() && settings.time > 0.0) || settings.runs == 0 {
         return Err("--time must be positive and --runs at least 1".into());
     }
@@ -669,7 +653,7 @@ fn bench(
             let child = std::process::Command::new(&exe)
                 .arg("bench-scene")
                 .arg(&scenes[i])
-                .args(["--planners", &settings.planners.join(",")])
+                .args(["--planners", &planner_list(&settings.planners)])
                 .args([
                     "--runs",
                     &settings.runs.to_string(),

@@ -7,6 +7,7 @@
 
 use crate::ffi::{pack_state, Model};
 use crate::path::{simulate, PathControl, PathMetrics};
+use crate::planner::PlannerKind;
 use crate::propagate::Propagator;
 use crate::scene::Scene;
 use crate::state::State;
@@ -20,8 +21,7 @@ pub const FORMAT: &str = "pushplan-plan/1";
 /// How a plan was made.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlanSettings {
-    /// "pcrrt" or "static".
-    pub planner: String,
+    pub planner: PlannerKind,
     pub seed: u64,
     pub k: u32,
     pub goal_bias: f64,
@@ -38,8 +38,7 @@ pub struct PlanFile {
     /// The scene file, as given to the planner.
     pub scene: String,
     pub scene_name: String,
-    /// "pcrrt" or "static".
-    pub planner: String,
+    pub planner: PlannerKind,
     pub seed: u64,
     pub k: u32,
     pub goal_bias: f64,
@@ -204,7 +203,7 @@ impl PlanFile {
         controls: &[PathControl],
         before: Option<PathMetrics>,
     ) -> Result<PlanFile, String> {
-        let scene = scene.planned_by(&settings.planner);
+        let scene = scene.planned_by(settings.planner);
         let mut propagator = Propagator::new(scene);
         let scene = propagator.shared_scene();
         let path = simulate(&mut propagator, &scene.start, controls, true);
@@ -245,7 +244,7 @@ impl PlanFile {
             format: FORMAT.into(),
             scene: scene_ref.into(),
             scene_name: scene.name.clone(),
-            planner: settings.planner.clone(),
+            planner: settings.planner,
             seed: settings.seed,
             k: settings.k,
             goal_bias: settings.goal_bias,
@@ -294,7 +293,7 @@ impl PlanFile {
     /// planner: every state valid, the recorded states reproduced, the goal reached.
     pub fn check(&self, plan_path: &Path) -> Result<CheckReport, String> {
         let scene = Scene::load(self.scene_path(plan_path)).map_err(|e| e.to_string())?;
-        let mut model = Model::new(scene, self.planner == "static");
+        let mut model = Model::new(scene, self.planner.pins_clutter());
         let dof = model.scene().robot.dof();
         let mut problems = Vec::new();
         if self.start.flat() != pack_state(&model.scene().start) {

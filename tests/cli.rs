@@ -237,3 +237,63 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("--speed"), "{stderr}");
 }
+
+#[test]
+fn every_planner_kind_is_chosen_by_its_name() {
+    // OMPL's control planners plan the same problem from the CLI; the plan file names
+    // the planner, and `check` re-simulates it like any other.
+    let out = temp("kpiece.json");
+    let (code, stdout, stderr) = pushplan(&[
+        "plan",
+        "scenes/herb_single_object.yaml",
+        "--planner",
+        "kpiece",
+        "--seed",
+        "1",
+        "--time",
+        "20",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(plan["planner"], "kpiece");
+    let (code, stdout, _) = pushplan(&["check", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stdout}");
+    // One list of names: an unknown one is refused with all of them.
+    let (code, _, stderr) = pushplan(&["plan", "--planner", "rrtstar", "--quiet"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains(
+            "unknown planner 'rrtstar' (known: pcrrt, static, darrt, kpiece, est, pdst, sst)"
+        ),
+        "{stderr}"
+    );
+    let bench_out = temp("bench");
+    let (code, _, stderr) = pushplan(&[
+        "bench",
+        "scenes/herb_single_object.yaml",
+        "--planners",
+        "pcrrt,rrtstar",
+        "--out",
+        bench_out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("unknown planner 'rrtstar'"), "{stderr}");
+    // DARRT's paths are primitives, not controls: plan refuses it clearly.
+    let (code, _, stderr) = pushplan(&[
+        "plan",
+        "--planner",
+        "darrt",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("DARRT's paths are sequences of primitives"),
+        "{stderr}"
+    );
+}

@@ -14,8 +14,9 @@ fn profile_dir() -> PathBuf {
         .to_path_buf()
 }
 
-#[test]
-fn the_cpp_example_builds_plans_and_reports_errors() {
+/// Builds `source` the way a user does (after `cargo build --lib`, with the documented
+/// pkg-config command) into a binary in the temporary folder.
+fn compile(source: &str, name: &str) -> PathBuf {
     let dir = profile_dir();
     // What a user does first: build the library (cargo copies libpushplan.a into place
     // only for a direct build of the library; it is up to date, so this is quick).
@@ -47,11 +48,11 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
         String::from_utf8_lossy(&flags.stderr)
     );
     let flags = String::from_utf8(flags.stdout).unwrap();
-    let binary = std::env::temp_dir().join(format!("pushplan-plan-scene-{}", std::process::id()));
+    let binary = std::env::temp_dir().join(format!("pushplan-{name}-{}", std::process::id()));
     let compile = Command::new("g++")
         .args(["-o"])
         .arg(&binary)
-        .arg("examples/cpp/plan_scene.cpp")
+        .arg(source)
         .args(flags.split_whitespace())
         .output()
         .expect("g++ runs");
@@ -60,7 +61,12 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
         "{}",
         String::from_utf8_lossy(&compile.stderr)
     );
+    binary
+}
 
+#[test]
+fn the_cpp_example_builds_plans_and_reports_errors() {
+    let binary = compile("examples/cpp/plan_scene.cpp", "plan-scene");
     let run = Command::new(&binary)
         .args(["scenes/herb_single_object.yaml", "1"])
         .output()
@@ -174,4 +180,25 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
         "{stderr}"
     );
     let _ = std::fs::remove_file(&binary);
+}
+
+#[test]
+fn the_cpp_api_keeps_its_contract() {
+    // Planner kinds and names, OMPL's log level left as found, every failure as
+    // pushplan::Error: tests/cpp/api_contract.cpp checks each and prints what it checked.
+    let binary = compile("tests/cpp/api_contract.cpp", "api-contract");
+    let run = Command::new(&binary).output().unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    let _ = std::fs::remove_file(&binary);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_eq!(
+        stdout.lines().filter(|l| l.starts_with("ok: ")).count(),
+        21,
+        "{stdout}"
+    );
 }

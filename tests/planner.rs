@@ -15,7 +15,7 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
         seed,
         k: 3,
         goal_bias: 0.05,
-        planner: planner.into(),
+        planner: planner.parse().unwrap(),
         intermediate_states: false,
         progress: false,
         robust_trials: 0,

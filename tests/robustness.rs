@@ -61,7 +61,7 @@ fn without_noise_every_trial_is_the_plan_and_more_noise_reaches_the_goal_less_of
 fn the_plan_executed_in_3d_reaches_the_goal_and_matches_the_prediction() {
     let scene = Scene::load(SCENE).unwrap();
     let settings = pushplan::plan::PlanSettings {
-        planner: "pcrrt".into(),
+        planner: pushplan::planner::PlannerKind::PcRrt,
         seed: 1,
         k: 3,
         goal_bias: 0.05,

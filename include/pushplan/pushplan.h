@@ -32,14 +32,33 @@ namespace pushplan
         using std::runtime_error::runtime_error;
     };
 
-    enum class PlannerType
+    /// The planners pushplan runs: the paper's planner, its baselines and OMPL's control
+    /// planners on pushplan's problem. The same list, with the same names, is the CLI's
+    /// `--planner` / `--planners` and the plan file's `planner` (plannerName()).
+    enum class PlannerKind : std::uint8_t
     {
-        /// Physics-constrained RRT: objects are pushed (the paper's PC RRT).
+        /// Physics-constrained RRT: objects are pushed (the paper's PC RRT). "pcrrt"
         PcRrt,
-        /// The same planner where only the goal object can move; other objects are
-        /// static obstacles (the paper's Static RRT baseline).
+        /// The same RRT where only the goal object can move; the other objects are static
+        /// obstacles (the paper's Static RRT baseline). "static"
         StaticRrt,
+        /// DARRT's primitives (transit, push) searched by RRT (the paper's baseline; its
+        /// paths are primitive sequences, measured by `pushplan bench`). "darrt"
+        Darrt,
+        /// OMPL's KPIECE1 with pushplan's projection (end-effector and goal-object xy). "kpiece"
+        Kpiece,
+        /// OMPL's EST. "est"
+        Est,
+        /// OMPL's PDST. "pdst"
+        Pdst,
+        /// OMPL's SST (asymptotically near-optimal: searches the whole time limit). "sst"
+        Sst,
     };
+
+    /// The planner's name ("pcrrt", "static", ...).
+    std::string plannerName(PlannerKind kind);
+    /// The planner of a name; throws pushplan::Error listing the names for another.
+    PlannerKind plannerKind(const std::string &name);
 
     /// Planner options. Unset values take the scene file's `planner:` values.
     struct Options
@@ -48,7 +67,7 @@ namespace pushplan
         std::optional<std::uint64_t> seed;    ///< random seed
         std::optional<unsigned> k;            ///< control samples per extension
         std::optional<double> goal_bias;      ///< probability of sampling the goal
-        PlannerType planner = PlannerType::PcRrt;
+        PlannerKind planner = PlannerKind::PcRrt;
         /// Shortcutting budget after an exact solution, in seconds of work (counted in
         /// propagation steps, so the result is deterministic); 0 turns it off.
         double shortcut = 3.0;

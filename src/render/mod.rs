@@ -47,7 +47,7 @@ impl Film {
     pub fn of(plan: &PlanFile, plan_path: &Path) -> Result<Film, String> {
         let scene = Scene::load(plan.scene_path(plan_path))
             .map_err(|e| e.to_string())?
-            .planned_by(&plan.planner);
+            .planned_by(plan.planner);
         let mut propagator = Propagator::new(scene.clone());
         let path = simulate(&mut propagator, &scene.start, &plan.path_controls(), true);
         if let Some((i, reason)) = path.stopped_by {

@@ -10,6 +10,7 @@ mod load;
 use crate::collision::Geometry;
 use crate::math::Pose2;
 use crate::physics::{Footprint, LimitSurface};
+use crate::planner::PlannerKind;
 use crate::robot::Robot;
 use crate::state::State;
 use crate::validity::Clearances;
@@ -166,10 +167,10 @@ impl Goal {
 }
 
 impl Scene {
-    /// The scene a planner searches: `static` (Static RRT) holds the clutter as static
-    /// obstacles ([`Scene::with_static_clutter`]); the others push it.
-    pub fn planned_by(self, planner: &str) -> Scene {
-        if planner == "static" {
+    /// The scene a planner searches: Static RRT holds the clutter as static obstacles
+    /// ([`Scene::with_static_clutter`]); the others push it.
+    pub fn planned_by(self, planner: PlannerKind) -> Scene {
+        if planner.pins_clutter() {
             self.with_static_clutter()
         } else {
             self

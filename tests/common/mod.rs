@@ -55,7 +55,7 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>
         seed,
         k: 3,
         goal_bias: 0.05,
-        planner: "pcrrt".into(),
+        planner: pushplan::planner::PlannerKind::PcRrt,
         intermediate_states: false,
         progress: false,
         robust_trials: 0,
@@ -74,7 +74,7 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>
 /// How a test's plan was made: k = 3, goal bias 0.05, 30 s, and the given shortcut budget.
 pub fn plan_settings(planner: &str, seed: u64, shortcut: f64) -> pushplan::plan::PlanSettings {
     pushplan::plan::PlanSettings {
-        planner: planner.into(),
+        planner: planner.parse().unwrap(),
         seed,
         k: 3,
         goal_bias: 0.05,

@@ -1,0 +1,83 @@
+//! The planners pushplan runs, by one list of names: the CLI's `--planner` and
+//! `--planners`, the plan file's `planner`, the benchmark logs and C++'s
+//! `pushplan::PlannerKind` all use it.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// A planner. The type is the bridge's shared enum, so C++ sees the same one.
+pub use crate::ffi::bridge::PlannerKind;
+
+impl PlannerKind {
+    /// Every planner, in the order the CLI lists them.
+    pub const ALL: [PlannerKind; 7] = [
+        PlannerKind::PcRrt,
+        PlannerKind::StaticRrt,
+        PlannerKind::Darrt,
+        PlannerKind::Kpiece,
+        PlannerKind::Est,
+        PlannerKind::Pdst,
+        PlannerKind::Sst,
+    ];
+
+    /// The planner's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            PlannerKind::PcRrt => "pcrrt",
+            PlannerKind::StaticRrt => "static",
+            PlannerKind::Darrt => "darrt",
+            PlannerKind::Kpiece => "kpiece",
+            PlannerKind::Est => "est",
+            PlannerKind::Pdst => "pdst",
+            PlannerKind::Sst => "sst",
+            _ => "unknown",
+        }
+    }
+
+    /// Does it treat every object but the goal object as a static obstacle (Static RRT)?
+    pub fn pins_clutter(self) -> bool {
+        self == PlannerKind::StaticRrt
+    }
+
+    /// Are its solutions control paths (a plan file holds controls)? DARRT's are
+    /// sequences of primitives.
+    pub fn yields_controls(self) -> bool {
+        self != PlannerKind::Darrt
+    }
+
+    /// The names, comma-separated (for messages).
+    pub fn names() -> String {
+        PlannerKind::ALL.map(PlannerKind::name).join(", ")
+    }
+}
+
+impl FromStr for PlannerKind {
+    type Err = String;
+
+    fn from_str(name: &str) -> Result<Self, String> {
+        PlannerKind::ALL
+            .into_iter()
+            .find(|k| k.name() == name)
+            .ok_or_else(|| format!("unknown planner '{name}' (known: {})", PlannerKind::names()))
+    }
+}
+
+impl fmt::Display for PlannerKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// In files (plan files, logs) a planner is its name.
+impl serde::Serialize for PlannerKind {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for PlannerKind {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}

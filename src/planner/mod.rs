@@ -1,0 +1,5 @@
+//! What the CLI, the C++ API and the benchmark share about planners.
+
+mod kind;
+
+pub use kind::PlannerKind;

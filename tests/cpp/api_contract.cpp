@@ -1,0 +1,81 @@
+// The C++ API's contract beyond planning (run by tests/cpp_api.rs):
+// - every planner kind has the CLI's name, and a name gives the kind back;
+// - OMPL's process-wide log level is as the application left it after solve();
+// - every failure crosses as pushplan::Error: an unknown name, a bad option, a planner
+//   whose paths are not controls, a bad scene.
+// Prints one line per check; exits non-zero at the first failure.
+#include <pushplan/pushplan.h>
+
+#include <ompl/util/Console.h>
+
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <string>
+
+namespace
+{
+    int failures = 0;
+
+    void expect(bool ok, const std::string &what)
+    {
+        std::cout << (ok ? "ok: " : "FAILED: ") << what << "\n";
+        if (!ok)
+            ++failures;
+    }
+
+    /// Runs `f`; true if it threw pushplan::Error whose message contains `text`.
+    bool throwsError(const std::function<void()> &f, const std::string &text)
+    {
+        try
+        {
+            f();
+        }
+        catch (const pushplan::Error &e)
+        {
+            return std::string(e.what()).find(text) != std::string::npos;
+        }
+        catch (...)
+        {
+            return false;
+        }
+        return false;
+    }
+}  // namespace
+
+int main()
+{
+    using pushplan::PlannerKind;
+    const PlannerKind all[] = {PlannerKind::PcRrt, PlannerKind::StaticRrt, PlannerKind::Darrt, PlannerKind::Kpiece,
+                               PlannerKind::Est,   PlannerKind::Pdst,      PlannerKind::Sst};
+    const char *names[] = {"pcrrt", "static", "darrt", "kpiece", "est", "pdst", "sst"};
+    for (int i = 0; i < 7; ++i)
+    {
+        expect(pushplan::plannerName(all[i]) == names[i], std::string("plannerName -> ") + names[i]);
+        expect(pushplan::plannerKind(names[i]) == all[i], std::string("plannerKind(") + names[i] + ")");
+    }
+    expect(throwsError([] { pushplan::plannerKind("rrtstar"); }, "unknown planner 'rrtstar'"),
+           "an unknown name throws pushplan::Error");
+
+    const pushplan::Planner planner("scenes/herb_single_object.yaml");
+    ompl::msg::setLogLevel(ompl::msg::LOG_DEBUG);
+    pushplan::Options options;
+    options.planner = PlannerKind::Kpiece;
+    options.time_limit = 20.0;
+    options.seed = 1;
+    const pushplan::Plan plan = planner.solve(options);
+    expect(plan.solved && !plan.controls.empty(), "KPIECE1 through the API solves the single-object scene");
+    expect(ompl::msg::getLogLevel() == ompl::msg::LOG_DEBUG, "the log level is the application's after solve()");
+    ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+    planner.solve(options);
+    expect(ompl::msg::getLogLevel() == ompl::msg::LOG_ERROR, "... whatever it was");
+
+    options.time_limit = -1.0;
+    expect(throwsError([&] { planner.solve(options); }, "time_limit"), "a bad option throws pushplan::Error");
+    options.time_limit = 1.0;
+    options.planner = PlannerKind::Darrt;
+    expect(throwsError([&] { planner.solve(options); }, "DARRT"), "DARRT through solve() throws pushplan::Error");
+    expect(throwsError([] { pushplan::Planner("scenes/none.yaml"); }, "none.yaml"),
+           "a missing scene throws pushplan::Error");
+    return failures == 0 ? 0 : 1;
+}
