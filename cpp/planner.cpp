@@ -4,6 +4,7 @@
 #include "pushplan/pushplan.h"
 
 #include "model_handle.h"
+#include "planner_source.h"
 #include "problem.h"
 
 #include <ompl/base/PlannerData.h>
@@ -30,27 +31,6 @@ namespace pushplan
             return value;
         }
     }  // namespace detail
-
-    struct Planner::Source
-    {
-        std::string path;  // the scene file, or the label of YAML text
-        std::string yaml;
-        bool from_yaml = false;
-        std::string name;
-
-        rust::Box<bridge::Model> load(bool static_clutter) const
-        {
-            try
-            {
-                return from_yaml ? bridge::model_from_yaml(yaml, path, static_clutter) :
-                                   bridge::load_model(path, static_clutter);
-            }
-            catch (const rust::Error &e)
-            {
-                throw Error(e.what());
-            }
-        }
-    };
 
     Planner::Planner(const std::string &scene_file) : Planner(std::make_unique<Source>(Source{scene_file, "", false, ""}))
     {

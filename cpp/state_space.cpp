@@ -56,6 +56,11 @@ namespace pushplan::detail
         layout_.size = layout_.yaws + sizeof(ob::SO2StateSpace::StateType) * info.objects;
     }
 
+    double PushStateSpace::getMaximumExtent() const
+    {
+        return model_->model().max_extent();
+    }
+
     ob::State *PushStateSpace::allocState() const
     {
         auto *block = static_cast<char *>(::operator new(layout_.size, std::align_val_t(alignof(std::max_align_t))));

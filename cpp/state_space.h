@@ -24,6 +24,8 @@ namespace pushplan::detail
     public:
         explicit PushStateSpace(ModelHandlePtr model);
         double distance(const ompl::base::State *a, const ompl::base::State *b) const override;
+        /// The model metric's largest distance within the bounds.
+        double getMaximumExtent() const override;
         ompl::base::State *allocState() const override;
         void freeState(ompl::base::State *state) const override;
         const ModelHandlePtr &model() const { return model_; }

@@ -42,6 +42,26 @@ impl DistanceMetric {
         }
     }
 
+    /// The largest distance between two states within the bounds: joints at opposite
+    /// limits, every object at opposite corners of the table and turned half a turn
+    /// (OMPL's `getMaximumExtent`).
+    pub fn max_extent(&self, scene: &Scene) -> f64 {
+        let joints = scene
+            .robot
+            .chain
+            .limits()
+            .iter()
+            .map(|(lo, hi)| (hi - lo) * (hi - lo))
+            .sum::<f64>()
+            .sqrt();
+        let table = &scene.table;
+        let object = ((table.x.1 - table.x.0).powi(2)
+            + (table.y.1 - table.y.0).powi(2)
+            + (std::f64::consts::PI * self.rotation_length).powi(2))
+        .sqrt();
+        self.robot_weight * joints + self.object_weights.iter().sum::<f64>() * object
+    }
+
     /// Distance between two object poses (m).
     pub fn object_distance(&self, a: &Pose2, b: &Pose2) -> f64 {
         let dtheta = wrap_angle(a.theta - b.theta) * self.rotation_length;

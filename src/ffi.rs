@@ -201,6 +201,7 @@ pub mod bridge {
         ) -> Result<bool>;
         fn is_valid(self: &mut Model, state: &[f64]) -> Result<bool>;
         fn distance(self: &Model, a: &[f64], b: &[f64]) -> Result<f64>;
+        fn max_extent(self: &Model) -> f64;
         fn goal_distance(self: &Model, state: &[f64]) -> Result<f64>;
         fn simulate(self: &mut Model, controls: &[f64], steps: &[usize]) -> Result<Simulation>;
         fn trajectory(self: &mut Model, controls: &[f64], steps: &[usize])
@@ -494,6 +495,11 @@ impl Model {
             }
             Ok(self.metric.distance_flat(a, b))
         })
+    }
+
+    /// The largest distance between two states within the bounds.
+    pub fn max_extent(&self) -> f64 {
+        self.metric.max_extent(self.scene())
     }
 
     pub fn goal_distance(&self, state: &[f64]) -> Result<f64, String> {

@@ -1,7 +1,8 @@
 //! `pushplan install` as a C++ user meets it: install into a prefix, move the prefix
-//! (nothing may point back into the build), then build the C++ example against it with
-//! CMake (`find_package(pushplan)` beside `find_package(ompl)`) and with pkg-config, and
-//! run both.
+//! (nothing may point back into the build), then build the C++ examples against it with
+//! CMake (`find_package(pushplan)` beside `find_package(ompl)`; the C++ API and the
+//! public OMPL layer with OMPL's SST, KPIECE1 and Benchmark) and with pkg-config, and
+//! run them.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -59,6 +60,7 @@ fn an_installed_pushplan_builds_with_cmake_and_with_pkg_config() {
         "bin/pushplan",
         "lib/libpushplan.a",
         "include/pushplan/pushplan.h",
+        "include/pushplan/ompl.h",
         "lib/pkgconfig/pushplan.pc",
         "lib/cmake/pushplan/pushplan-config.cmake",
         "lib/cmake/pushplan/pushplan-config-version.cmake",
@@ -93,6 +95,39 @@ fn an_installed_pushplan_builds_with_cmake_and_with_pkg_config() {
             .output(),
     );
     plans(&cmake_build.join("plan_scene"));
+    // The public OMPL layer with OMPL's planners: SST, KPIECE1 with a projection of the
+    // application's own, and an ompl::tools::Benchmark of its own.
+    let sst = ok(
+        "ompl_sst",
+        Command::new(cmake_build.join("ompl_sst"))
+            .args(["scenes/herb_single_object.yaml", "3"])
+            .output(),
+    );
+    let stdout = String::from_utf8_lossy(&sst.stdout);
+    assert!(
+        stdout.contains("SST solved:") && stdout.contains("path valid"),
+        "{stdout}"
+    );
+    let kpiece = ok(
+        "ompl_kpiece_projection",
+        Command::new(cmake_build.join("ompl_kpiece_projection")).output(),
+    );
+    let stdout = String::from_utf8_lossy(&kpiece.stdout);
+    assert!(stdout.contains("projection: solved"), "{stdout}");
+    let log = work.join("own-benchmark.log");
+    ok(
+        "ompl_benchmark",
+        Command::new(cmake_build.join("ompl_benchmark"))
+            .arg("scenes/herb_single_object.yaml")
+            .arg(&log)
+            .args(["1", "1"])
+            .output(),
+    );
+    let text = std::fs::read_to_string(&log).unwrap();
+    assert!(
+        text.contains("control_SST") && text.contains("control_KPIECE1"),
+        "{text}"
+    );
 
     // pkg-config, from the moved prefix.
     let flags = ok(

@@ -23,6 +23,11 @@
 #include <string>
 #include <vector>
 
+namespace ompl::control
+{
+    class SimpleSetup;
+}
+
 namespace pushplan
 {
     /// Any failure: bad scene, bad option, internal error. what() says which and why.
@@ -151,6 +156,21 @@ namespace pushplan
         double duration() const;
     };
 
+    /// Options of the OMPL problem of a scene (pushplan/ompl.h). Unset values take the
+    /// scene file's `planner:` values.
+    struct SetupOptions
+    {
+        std::optional<std::uint64_t> seed;  ///< seeds every random source of the problem
+        std::optional<unsigned> k;          ///< control samples per extension (best of k)
+        /// Static RRT's problem: every object but the goal object is a static obstacle.
+        bool static_clutter = false;
+    };
+
+    class Planner;
+    /// pushplan's problem of a scene as OMPL objects (declared in pushplan/ompl.h).
+    std::shared_ptr<ompl::control::SimpleSetup> makeSetup(const Planner &planner,
+                                                          const SetupOptions &options);
+
     class Planner
     {
     public:
@@ -171,6 +191,8 @@ namespace pushplan
         std::string sceneName() const;
 
     private:
+        friend std::shared_ptr<ompl::control::SimpleSetup> makeSetup(const Planner &planner,
+                                                                     const SetupOptions &options);
         struct Source;
         explicit Planner(std::unique_ptr<Source> source);
         std::unique_ptr<Source> source_;

@@ -2,9 +2,14 @@
 // - every planner kind has the CLI's name, and a name gives the kind back;
 // - OMPL's process-wide log level is as the application left it after solve();
 // - every failure crosses as pushplan::Error: an unknown name, a bad option, a planner
-//   whose paths are not controls, a bad scene.
+//   whose paths are not controls, a bad scene;
+// - the public OMPL layer (pushplan/ompl.h): the state space passes OMPL's own sanity
+//   checks, and StateAccess reads what it wrote.
 // Prints one line per check; exits non-zero at the first failure.
+#include <pushplan/ompl.h>
 #include <pushplan/pushplan.h>
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include <ompl/util/Console.h>
 
@@ -77,5 +82,34 @@ int main()
     expect(throwsError([&] { planner.solve(options); }, "DARRT"), "DARRT through solve() throws pushplan::Error");
     expect(throwsError([] { pushplan::Planner("scenes/none.yaml"); }, "none.yaml"),
            "a missing scene throws pushplan::Error");
+
+    // The public OMPL layer.
+    const ompl::control::SimpleSetupPtr setup = pushplan::makeSetup(pushplan::Planner("scenes/herb_fig1_clutter.yaml"));
+    const ompl::base::StateSpacePtr &space = setup->getStateSpace();
+    bool sane = true;
+    try
+    {
+        space->sanityChecks();
+    }
+    catch (const std::exception &e)
+    {
+        std::cout << e.what() << "\n";
+        sane = false;
+    }
+    expect(sane, "the state space passes OMPL's sanityChecks()");
+    const pushplan::StateAccess states(space);
+    expect(states.dof() == 7 && states.objectCount() == 4 && states.objectNames()[0] == "green_box",
+           "StateAccess knows the scene's joints and objects");
+    ompl::base::State *state = space->allocState();
+    Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(7, 0.1, 0.7);
+    states.setJoints(state, q);
+    states.setObjectPose(state, 2, Eigen::Vector3d(0.6, -0.1, 0.5));
+    expect(states.joints(state) == q && states.objectPose(state, 2) == Eigen::Vector3d(0.6, -0.1, 0.5),
+           "StateAccess reads back what it wrote");
+    expect(throwsError([&] { states.objectPose(state, 4); }, "object 4 of 4"), "an object out of range throws");
+    space->freeState(state);
+    expect(throwsError([] { pushplan::StateAccess(std::make_shared<ompl::base::RealVectorStateSpace>(3)); },
+                       "not pushplan's state space"),
+           "StateAccess refuses another state space");
     return failures == 0 ? 0 : 1;
 }
