@@ -18,12 +18,14 @@ namespace pushplan
 {
     std::shared_ptr<oc::SimpleSetup> makeSetup(const Planner &planner, const SetupOptions &options)
     {
-        auto model = std::make_shared<detail::ModelHandle>(planner.source_->load(options.static_clutter));
-        const bridge::SceneInfo &info = model->info();
-        const unsigned k = options.k.value_or(info.k);
-        if (k < 1)
-            throw Error("SetupOptions::k must be at least 1");
-        return detail::makeProblem(model, options.seed.value_or(info.seed), k).setup;
+        return detail::asPushplanError([&] {
+            auto model = std::make_shared<detail::ModelHandle>(planner.source_->load(options.static_clutter));
+            const bridge::SceneInfo &info = model->info();
+            const unsigned k = options.k.value_or(info.k);
+            if (k < 1)
+                throw Error("SetupOptions::k must be at least 1");
+            return detail::makeProblem(model, options.seed.value_or(info.seed), k).setup;
+        });
     }
 
     StateAccess::StateAccess(ob::StateSpacePtr space) : space_(std::move(space))

@@ -82,110 +82,54 @@ namespace pushplan
 
     Plan Planner::solve(const Options &options) const
     {
-        using detail::checked;
-        if (options.planner == PlannerKind::Darrt)
-            throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
-                        "(measure DARRT with `pushplan bench`)");
-        const bool static_clutter = options.planner == PlannerKind::StaticRrt;
-        auto model = std::make_shared<detail::ModelHandle>(source_->load(static_clutter));
-        const bridge::SceneInfo &info = model->info();
-        const double time_limit = options.time_limit.value_or(info.time_limit);
-        checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
-        const std::uint64_t seed = options.seed.value_or(info.seed);
-        const unsigned k = checked("k", options.k.value_or(info.k), options.k.value_or(info.k) >= 1);
-        const double goal_bias = options.goal_bias.value_or(info.goal_bias);
-        checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
+        // Every failure inside, the model's or OMPL's, leaves as pushplan::Error.
+        return detail::asPushplanError([&]() -> Plan {
+            using detail::checked;
+            if (options.planner == PlannerKind::Darrt)
+                throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
+                            "(measure DARRT with `pushplan bench`)");
+            const bool static_clutter = options.planner == PlannerKind::StaticRrt;
+            auto model = std::make_shared<detail::ModelHandle>(source_->load(static_clutter));
+            const bridge::SceneInfo &info = model->info();
+            const double time_limit = options.time_limit.value_or(info.time_limit);
+            checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
+            const std::uint64_t seed = options.seed.value_or(info.seed);
+            const unsigned k = checked("k", options.k.value_or(info.k), options.k.value_or(info.k) >= 1);
+            const double goal_bias = options.goal_bias.value_or(info.goal_bias);
+            checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
 
-        // OMPL's log level is process-wide: quiet below warnings while planning, then put
-        // back as the application had it.
-        const struct LogLevelGuard
-        {
-            ompl::msg::LogLevel saved = ompl::msg::getLogLevel();
-            LogLevelGuard() { ompl::msg::setLogLevel(std::max(saved, ompl::msg::LOG_WARN)); }
-            ~LogLevelGuard() { ompl::msg::setLogLevel(saved); }
-        } log_level;
-        const detail::Problem problem = detail::makeProblem(model, seed, k);
-        oc::SimpleSetup &setup = *problem.setup;
-        const oc::SpaceInformationPtr &si = setup.getSpaceInformation();
-        const ob::PlannerPtr planner =
-            detail::makePlanner(options.planner, problem, seed, goal_bias, options.intermediate_states);
-        setup.setPlanner(planner);
-        setup.setup();
+            // OMPL's log level is process-wide: quiet below warnings while planning, then put
+            // back as the application had it.
+            const struct LogLevelGuard
+            {
+                ompl::msg::LogLevel saved = ompl::msg::getLogLevel();
+                LogLevelGuard() { ompl::msg::setLogLevel(std::max(saved, ompl::msg::LOG_WARN)); }
+                ~LogLevelGuard() { ompl::msg::setLogLevel(saved); }
+            } log_level;
+            const detail::Problem problem = detail::makeProblem(model, seed, k);
+            oc::SimpleSetup &setup = *problem.setup;
+            const oc::SpaceInformationPtr &si = setup.getSpaceInformation();
+            const ob::PlannerPtr planner =
+                detail::makePlanner(options.planner, problem, seed, goal_bias, options.intermediate_states);
+            setup.setPlanner(planner);
+            setup.setup();
 
-        // Search until an exact solution or the time limit; progress once a second.
-        const auto started = std::chrono::steady_clock::now();
-        const auto elapsed = [&] {
-            return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        };
-        double next_report = 1.0;
-        ob::PlannerTerminationCondition done([&] {
-            const double t = elapsed();
-            if (options.progress && t >= next_report)
-            {
-                std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps\n", t,
-                             static_cast<unsigned long long>(model->model().propagation_steps()));
-                next_report += 1.0;
-            }
-            return t >= time_limit;
-        });
-        try
-        {
-            setup.solve(done);
-        }
-        catch (const rust::Error &e)
-        {
-            throw Error(std::string("planning failed: ") + e.what());
-        }
-
-        // The path: controls with their step counts, and the states OMPL reached.
-        std::vector<double> flat_controls, control, state, path_states;
-        std::vector<std::size_t> steps;
-        const auto read_path = [&] {
-            flat_controls.clear();
-            steps.clear();
-            path_states.clear();
-            const oc::PathControl &path = setup.getSolutionPath();
-            for (std::size_t i = 0; i < path.getControlCount(); ++i)
-            {
-                model->readControl(path.getControl(i), control);
-                flat_controls.insert(flat_controls.end(), control.begin(), control.end());
-                steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info.step)));
-            }
-            for (std::size_t i = 0; i < path.getStateCount(); ++i)
-            {
-                model->read(path.getState(i), state);
-                path_states.insert(path_states.end(), state.begin(), state.end());
-            }
-        };
-        const auto robustness = [&] {
-            return model->model().robustness(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-                                             rust::Slice<const std::size_t>(steps.data(), steps.size()),
-                                             options.robust_trials, seed);
-        };
-        checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
-
-        Plan plan;
-        bool solved = setup.haveExactSolutionPath();
-        if (setup.haveSolutionPath())
-            read_path();
-        // Robust planning: a solution that too few perturbed re-simulations carry to the
-        // goal is dropped, and the search starts over with a new tree (the old tree's
-        // next solutions would mostly extend the dropped one, past its goal node).
-        while (solved && options.robust_trials > 0)
-        {
-            plan.robustness = robustness();
-            if (plan.robustness >= options.robust_rate)
-                break;
-            if (options.progress)
-                std::fprintf(stderr, "  a solution reaches the goal in %.0f %% of %u perturbed re-simulations: searching on\n",
-                             100.0 * plan.robustness, options.robust_trials);
-            if (done())
-            {
-                solved = false;  // the last path is kept, as an approximate solution
-                break;
-            }
-            setup.getProblemDefinition()->clearSolutionPaths();
-            planner->clear();
+            // Search until an exact solution or the time limit; progress once a second.
+            const auto started = std::chrono::steady_clock::now();
+            const auto elapsed = [&] {
+                return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            };
+            double next_report = 1.0;
+            ob::PlannerTerminationCondition done([&] {
+                const double t = elapsed();
+                if (options.progress && t >= next_report)
+                {
+                    std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps\n", t,
+                                 static_cast<unsigned long long>(model->model().propagation_steps()));
+                    next_report += 1.0;
+                }
+                return t >= time_limit;
+            });
             try
             {
                 setup.solve(done);
@@ -194,107 +138,166 @@ namespace pushplan
             {
                 throw Error(std::string("planning failed: ") + e.what());
             }
-            solved = setup.haveExactSolutionPath();
+
+            // The path: controls with their step counts, and the states OMPL reached.
+            std::vector<double> flat_controls, control, state, path_states;
+            std::vector<std::size_t> steps;
+            const auto read_path = [&] {
+                flat_controls.clear();
+                steps.clear();
+                path_states.clear();
+                const oc::PathControl &path = setup.getSolutionPath();
+                for (std::size_t i = 0; i < path.getControlCount(); ++i)
+                {
+                    model->readControl(path.getControl(i), control);
+                    flat_controls.insert(flat_controls.end(), control.begin(), control.end());
+                    steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info.step)));
+                }
+                for (std::size_t i = 0; i < path.getStateCount(); ++i)
+                {
+                    model->read(path.getState(i), state);
+                    path_states.insert(path_states.end(), state.begin(), state.end());
+                }
+            };
+            const auto robustness = [&] {
+                return model->model().robustness(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+                                                 rust::Slice<const std::size_t>(steps.data(), steps.size()),
+                                                 options.robust_trials, seed);
+            };
+            checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
+
+            Plan plan;
+            bool solved = setup.haveExactSolutionPath();
             if (setup.haveSolutionPath())
                 read_path();
-        }
+            // Robust planning: a solution that too few perturbed re-simulations carry to the
+            // goal is dropped, and the search starts over with a new tree (the old tree's
+            // next solutions would mostly extend the dropped one, past its goal node).
+            while (solved && options.robust_trials > 0)
+            {
+                plan.robustness = robustness();
+                if (plan.robustness >= options.robust_rate)
+                    break;
+                if (options.progress)
+                    std::fprintf(stderr, "  a solution reaches the goal in %.0f %% of %u perturbed re-simulations: searching on\n",
+                                 100.0 * plan.robustness, options.robust_trials);
+                if (done())
+                {
+                    solved = false;  // the last path is kept, as an approximate solution
+                    break;
+                }
+                setup.getProblemDefinition()->clearSolutionPaths();
+                planner->clear();
+                try
+                {
+                    setup.solve(done);
+                }
+                catch (const rust::Error &e)
+                {
+                    throw Error(std::string("planning failed: ") + e.what());
+                }
+                solved = setup.haveExactSolutionPath();
+                if (setup.haveSolutionPath())
+                    read_path();
+            }
 
-        plan.planning_time = elapsed();
-        plan.propagation_steps = model->model().propagation_steps();
-        plan.step = info.step;
-        ob::PlannerData data(si);
-        planner->getPlannerData(data);
-        plan.tree_size = data.numVertices();
-        plan.solved = solved;
-        for (const auto &n : info.joint_names)
-            plan.joint_names.emplace_back(n);
-        for (const auto &n : info.object_names)
-            plan.object_names.emplace_back(n);
-        if (flat_controls.empty() && path_states.empty())
+            plan.planning_time = elapsed();
+            plan.propagation_steps = model->model().propagation_steps();
+            plan.step = info.step;
+            ob::PlannerData data(si);
+            planner->getPlannerData(data);
+            plan.tree_size = data.numVertices();
+            plan.solved = solved;
+            for (const auto &n : info.joint_names)
+                plan.joint_names.emplace_back(n);
+            for (const auto &n : info.object_names)
+                plan.object_names.emplace_back(n);
+            if (flat_controls.empty() && path_states.empty())
+                return plan;
+
+            // Every plan is checked: re-simulating its controls reproduces its states.
+            const auto simulate = [&] {
+                return model->model().simulate(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+                                               rust::Slice<const std::size_t>(steps.data(), steps.size()));
+            };
+            bridge::Simulation sim = simulate();
+            const bool reproduced = sim.valid && sim.states.size() == path_states.size() &&
+                                    std::equal(path_states.begin(), path_states.end(), sim.states.begin());
+            if (!reproduced || (plan.solved && !sim.goal_reached))
+                throw Error("internal error: re-simulating the plan does not reproduce it (" + std::string(sim.message) + ")");
+
+            // Shortcutting (Sec. IV), which also measures the path.
+            const double budget = plan.solved ? options.shortcut : 0.0;
+            checked("shortcut", budget, std::isfinite(budget) && budget >= 0.0);
+            const bridge::Shortcut shortened =
+                model->model().shortcut(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+                                        rust::Slice<const std::size_t>(steps.data(), steps.size()), budget, seed);
+            const auto metrics = [](const bridge::Metrics &m) {
+                return PathMetrics{m.joint_length, m.ee_length, m.object_displacement, m.objects_moved,
+                                   m.links_in_contact, m.duration};
+            };
+            plan.before_shortcut = metrics(shortened.before);
+            plan.after_shortcut = metrics(shortened.after);
+            if (shortened.accepted > 0)
+            {
+                const std::vector<double> found_controls = flat_controls;
+                const std::vector<std::size_t> found_steps = steps;
+                flat_controls.assign(shortened.controls.begin(), shortened.controls.end());
+                steps.assign(shortened.steps.begin(), shortened.steps.end());
+                // In robust planning a shortcut is kept only while it stays robust.
+                const double shortcut_robustness = options.robust_trials > 0 ? robustness() : 1.0;
+                if (shortcut_robustness < options.robust_rate)
+                {
+                    flat_controls = found_controls;
+                    steps = found_steps;
+                    plan.after_shortcut = plan.before_shortcut;
+                }
+                else if (options.robust_trials > 0)
+                    plan.robustness = shortcut_robustness;
+                sim = simulate();
+                if (!sim.valid || !sim.goal_reached)
+                    throw Error("internal error: the shortcut plan does not re-simulate (" + std::string(sim.message) + ")");
+            }
+
+            const std::size_t width = model->stateSize();
+            for (std::size_t s = 0; s * width < sim.states.size(); ++s)
+            {
+                const double *x = sim.states.data() + s * width;
+                plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
+                std::vector<Eigen::Vector3d> poses;
+                for (std::size_t o = 0; o < info.objects; ++o)
+                    poses.emplace_back(x[info.dof + 3 * o], x[info.dof + 3 * o + 1], x[info.dof + 3 * o + 2]);
+                plan.object_poses.push_back(std::move(poses));
+            }
+            const std::size_t cwidth = model->controlSize();
+            for (std::size_t i = 0; i < steps.size(); ++i)
+            {
+                const double *c = flat_controls.data() + i * cwidth;
+                plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
+                                                Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
+                                                static_cast<double>(steps[i]) * info.step, steps[i]});
+            }
+            const bridge::TrajectoryOut trajectory =
+                model->model().trajectory(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
+                                          rust::Slice<const std::size_t>(steps.data(), steps.size()));
+            plan.trajectory.rate = trajectory.rate;
+            for (std::size_t k = 0; k < trajectory.times.size(); ++k)
+            {
+                plan.trajectory.times.push_back(trajectory.times[k]);
+                plan.trajectory.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(trajectory.q.data() + k * info.dof, info.dof));
+                std::vector<Eigen::Vector3d> poses;
+                for (std::size_t o = 0; o < info.objects; ++o)
+                {
+                    const double *p = trajectory.objects.data() + (k * info.objects + o) * 3;
+                    poses.emplace_back(p[0], p[1], p[2]);
+                }
+                plan.trajectory.objects.push_back(std::move(poses));
+            }
+            plan.contacts.resize(steps.size());
+            for (const auto &c : sim.contacts)
+                plan.contacts[c.control].push_back(
+                    Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
             return plan;
-
-        // Every plan is checked: re-simulating its controls reproduces its states.
-        const auto simulate = [&] {
-            return model->model().simulate(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-                                           rust::Slice<const std::size_t>(steps.data(), steps.size()));
-        };
-        bridge::Simulation sim = simulate();
-        const bool reproduced = sim.valid && sim.states.size() == path_states.size() &&
-                                std::equal(path_states.begin(), path_states.end(), sim.states.begin());
-        if (!reproduced || (plan.solved && !sim.goal_reached))
-            throw Error("internal error: re-simulating the plan does not reproduce it (" + std::string(sim.message) + ")");
-
-        // Shortcutting (Sec. IV), which also measures the path.
-        const double budget = plan.solved ? options.shortcut : 0.0;
-        checked("shortcut", budget, std::isfinite(budget) && budget >= 0.0);
-        const bridge::Shortcut shortened =
-            model->model().shortcut(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-                                    rust::Slice<const std::size_t>(steps.data(), steps.size()), budget, seed);
-        const auto metrics = [](const bridge::Metrics &m) {
-            return PathMetrics{m.joint_length, m.ee_length, m.object_displacement, m.objects_moved,
-                               m.links_in_contact, m.duration};
-        };
-        plan.before_shortcut = metrics(shortened.before);
-        plan.after_shortcut = metrics(shortened.after);
-        if (shortened.accepted > 0)
-        {
-            const std::vector<double> found_controls = flat_controls;
-            const std::vector<std::size_t> found_steps = steps;
-            flat_controls.assign(shortened.controls.begin(), shortened.controls.end());
-            steps.assign(shortened.steps.begin(), shortened.steps.end());
-            // In robust planning a shortcut is kept only while it stays robust.
-            const double shortcut_robustness = options.robust_trials > 0 ? robustness() : 1.0;
-            if (shortcut_robustness < options.robust_rate)
-            {
-                flat_controls = found_controls;
-                steps = found_steps;
-                plan.after_shortcut = plan.before_shortcut;
-            }
-            else if (options.robust_trials > 0)
-                plan.robustness = shortcut_robustness;
-            sim = simulate();
-            if (!sim.valid || !sim.goal_reached)
-                throw Error("internal error: the shortcut plan does not re-simulate (" + std::string(sim.message) + ")");
-        }
-
-        const std::size_t width = model->stateSize();
-        for (std::size_t s = 0; s * width < sim.states.size(); ++s)
-        {
-            const double *x = sim.states.data() + s * width;
-            plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
-            std::vector<Eigen::Vector3d> poses;
-            for (std::size_t o = 0; o < info.objects; ++o)
-                poses.emplace_back(x[info.dof + 3 * o], x[info.dof + 3 * o + 1], x[info.dof + 3 * o + 2]);
-            plan.object_poses.push_back(std::move(poses));
-        }
-        const std::size_t cwidth = model->controlSize();
-        for (std::size_t i = 0; i < steps.size(); ++i)
-        {
-            const double *c = flat_controls.data() + i * cwidth;
-            plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
-                                            Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
-                                            static_cast<double>(steps[i]) * info.step, steps[i]});
-        }
-        const bridge::TrajectoryOut trajectory =
-            model->model().trajectory(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-                                      rust::Slice<const std::size_t>(steps.data(), steps.size()));
-        plan.trajectory.rate = trajectory.rate;
-        for (std::size_t k = 0; k < trajectory.times.size(); ++k)
-        {
-            plan.trajectory.times.push_back(trajectory.times[k]);
-            plan.trajectory.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(trajectory.q.data() + k * info.dof, info.dof));
-            std::vector<Eigen::Vector3d> poses;
-            for (std::size_t o = 0; o < info.objects; ++o)
-            {
-                const double *p = trajectory.objects.data() + (k * info.objects + o) * 3;
-                poses.emplace_back(p[0], p[1], p[2]);
-            }
-            plan.trajectory.objects.push_back(std::move(poses));
-        }
-        plan.contacts.resize(steps.size());
-        for (const auto &c : sim.contacts)
-            plan.contacts[c.control].push_back(
-                Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
-        return plan;
+            });
     }
 }  // namespace pushplan

@@ -1,5 +1,5 @@
-// Where a Planner's scene comes from (a file or YAML text), shared by the C++ API's
-// sources.
+// Where a Planner's scene comes from (a file or YAML text), and how failures leave the
+// C++ API, shared by its sources.
 #pragma once
 
 #include "pushplan/pushplan.h"
@@ -9,6 +9,32 @@
 
 namespace pushplan
 {
+    namespace detail
+    {
+        /// Runs `f`; an error of the model (rust::Error) or of OMPL (std::exception)
+        /// leaves as pushplan::Error, the one exception type the API promises.
+        template <typename F>
+        auto asPushplanError(F &&f) -> decltype(f())
+        {
+            try
+            {
+                return f();
+            }
+            catch (const Error &)
+            {
+                throw;
+            }
+            catch (const rust::Error &e)
+            {
+                throw Error(e.what());
+            }
+            catch (const std::exception &e)
+            {
+                throw Error(std::string("OMPL: ") + e.what());
+            }
+        }
+    }  // namespace detail
+
     struct Planner::Source
     {
         std::string path;  // the scene file, or the label of YAML text
