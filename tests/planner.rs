@@ -6,6 +6,7 @@ mod common;
 use pushplan::ffi::{solve, SolveOptions, SolveOutput};
 use pushplan::path::PathControl;
 use pushplan::plan::{PlanFile, PlanSettings};
+use pushplan::planner::PlannerKind;
 use pushplan::Scene;
 use std::path::Path;
 
@@ -127,11 +128,7 @@ fn bad_scenes_and_options_are_errors_not_crashes() {
     )
     .unwrap_err();
     assert!(err.contains("gripper.urdf"), "{err}");
-    let err = solve(
-        Path::new("scenes/herb_single_object.yaml"),
-        &options("rrtstar", 1, 1.0),
-    )
-    .unwrap_err();
+    let err = "rrtstar".parse::<PlannerKind>().unwrap_err();
     assert!(err.contains("unknown planner 'rrtstar'"), "{err}");
     let err = solve(
         Path::new("scenes/herb_single_object.yaml"),
