@@ -56,7 +56,7 @@ fn main() {
         .filter(|p| p.extension().is_some_and(|x| x == "cpp"))
         .collect();
     sources.sort();
-    let mut build = cxx_build::bridge("src/ffi.rs");
+    let mut build = cxx_build::bridges(["src/ffi.rs", "src/ffi/entry.rs"]);
     build.files(&sources);
     build
         .include("include")
@@ -75,6 +75,7 @@ fn main() {
         println!("cargo:rerun-if-changed={dir}");
     }
     println!("cargo:rerun-if-changed=src/ffi.rs");
+    println!("cargo:rerun-if-changed=src/ffi/entry.rs");
     write_pkg_config(&deps);
     write_install_manifest(&deps);
 }

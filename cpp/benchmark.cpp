@@ -8,6 +8,7 @@
 #include "problem.h"
 #include "pushplan/pushplan.h"
 #include "pushplan/src/ffi.rs.h"
+#include "pushplan/src/ffi/entry.rs.h"
 
 #include <ompl/control/PathControl.h>
 #include <ompl/tools/benchmark/Benchmark.h>
@@ -30,7 +31,7 @@ namespace pushplan::bridge
         rust::Box<Model> loaded = [&] {
             try
             {
-                return load_model(scene_path, false);
+                return Model::load(scene_path, false);
             }
             catch (const rust::Error &e)
             {
@@ -72,7 +73,7 @@ namespace pushplan::bridge
             const auto &pdef = problem.setup->getProblemDefinition();
             if (!pdef->hasExactSolution())
                 return;
-            const auto measured = [&](const Metrics &m, const std::string &suffix) {
+            const auto measured = [&](const PathMetrics &m, const std::string &suffix) {
                 props["object displacement" + suffix + " REAL"] = std::to_string(m.object_displacement);
                 props["manipulator path length" + suffix + " REAL"] = std::to_string(m.joint_length);
                 props["end effector path length" + suffix + " REAL"] = std::to_string(m.ee_length);
@@ -81,24 +82,17 @@ namespace pushplan::bridge
             // re-propagation does not apply to them.
             if (const auto *primitives = dynamic_cast<const detail::PrimitivePath *>(pdef->getSolutionPath().get()))
             {
-                const Metrics &m = primitives->report().metrics;
+                const PathMetrics &m = primitives->report().metrics;
                 props["objects moved INTEGER"] = std::to_string(m.objects_moved);
                 props["links in contact INTEGER"] = std::to_string(m.links_in_contact);
                 measured(m, "");
                 return;
             }
-            const auto *path = pdef->getSolutionPath()->as<oc::PathControl>();
-            std::vector<double> controls, control;
-            std::vector<std::size_t> steps;
-            for (std::size_t i = 0; i < path->getControlCount(); ++i)
-            {
-                model->readControl(path->getControl(i), control);
-                controls.insert(controls.end(), control.begin(), control.end());
-                steps.push_back(static_cast<std::size_t>(std::round(path->getControlDuration(i) / info.step)));
-            }
-            const Shortcut s = model->model().shortcut(rust::Slice<const double>(controls.data(), controls.size()),
-                                                       rust::Slice<const std::size_t>(steps.data(), steps.size()),
-                                                       options.shortcut, options.seed + run);
+            // Finished the one way (planner::finish): re-simulated, then shortcut in the
+            // problem the planner searched (Static RRT's clutter stays put).
+            const auto found = model->readPath(*pdef->getSolutionPath()->as<oc::PathControl>());
+            const FinishedPath s =
+                model->finish(found, true, FinishSettings{options.shortcut, options.seed + run, 0, 0.0});
             props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
             props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);
             measured(s.before, "");

@@ -1,4 +1,4 @@
-// OMPL's benchmark tooling on one scene (declared for the cxx bridge in src/ffi.rs).
+// OMPL's benchmark tooling on one scene (declared for the cxx bridge in src/ffi/entry.rs).
 #pragma once
 
 #include "rust/cxx.h"

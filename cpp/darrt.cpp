@@ -147,7 +147,7 @@ namespace pushplan::detail
 
     bool PrimitivePath::check() const
     {
-        return model_->model().darrt_check(slice(flat_)).valid;
+        return bridge::darrt_check(model_->model(), slice(flat_)).valid;
     }
 
     ArmTransit::ArmTransit(ModelHandlePtr model, double time_cap)
@@ -290,11 +290,11 @@ namespace pushplan::detail
             // Uniform in the goal disc: radius ~ R sqrt(u).
             const double r = info.goal_radius * std::sqrt(rng_.uniform01());
             const double a = rng_.uniformReal(-M_PI, M_PI);
-            target = {info.goal_center_x + r * std::cos(a), info.goal_center_y + r * std::sin(a), 0.0};
+            target = {info.goal_center[0] + r * std::cos(a), info.goal_center[1] + r * std::sin(a), 0.0};
         }
         else
-            target = {rng_.uniformReal(info.table_min_x, info.table_max_x),
-                      rng_.uniformReal(info.table_min_y, info.table_max_y), 0.0};
+            target = {rng_.uniformReal(info.table[0], info.table[1]),
+                      rng_.uniformReal(info.table[2], info.table[3]), 0.0};
         target[2] = rng_.uniformReal(-M_PI, M_PI);
 
         // The node whose copy of the object is nearest (centre distance). Many nodes share
@@ -378,7 +378,7 @@ namespace pushplan::detail
         for (auto it = chain.rbegin() + 1; it != chain.rend(); ++it)
             for (const FlatState &s : nodes_[*it].motion)
                 states.insert(states.end(), s.begin(), s.end());
-        bridge::PrimitiveCheck check = model_->model().darrt_check(slice(states));
+        bridge::PrimitiveCheck check = bridge::darrt_check(model_->model(), slice(states));
         if (!check.valid || !check.goal_reached)
         {
             // A primitive the model accepted fails its own check: a bug, never a plan.

@@ -33,8 +33,8 @@ namespace pushplan::detail
                 const double r = info.goal_radius * std::sqrt(rng_.uniform01());
                 const double a = rng_.uniformReal(-M_PI, M_PI);
                 const std::size_t at = info.dof + 3 * static_cast<std::size_t>(info.goal_object);
-                buffer_[at] = info.goal_center_x + r * std::cos(a);
-                buffer_[at + 1] = info.goal_center_y + r * std::sin(a);
+                buffer_[at] = info.goal_center[0] + r * std::cos(a);
+                buffer_[at + 1] = info.goal_center[1] + r * std::sin(a);
             }
             else
             {

@@ -4,12 +4,14 @@
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
+#include <cmath>
+
 namespace ob = ompl::base;
 namespace oc = ompl::control;
 
 namespace pushplan::detail
 {
-    ModelHandle::ModelHandle(rust::Box<bridge::Model> model) : model_(std::move(model)), info_(model_->info())
+    ModelHandle::ModelHandle(rust::Box<bridge::Model> model) : model_(std::move(model)), info_(bridge::scene_info(*model_))
     {
     }
 
@@ -99,5 +101,29 @@ namespace pushplan::detail
                                              rust::Slice<double>(b_.data(), b_.size()));
         write(b_, result);
         return valid;
+    }
+
+    ModelHandle::FlatPath ModelHandle::readPath(const oc::PathControl &path) const
+    {
+        FlatPath flat;
+        for (std::size_t i = 0; i < path.getControlCount(); ++i)
+        {
+            readControl(path.getControl(i), control_);
+            flat.controls.insert(flat.controls.end(), control_.begin(), control_.end());
+            flat.steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info_.step)));
+        }
+        for (std::size_t i = 0; i < path.getStateCount(); ++i)
+        {
+            read(path.getState(i), a_);
+            flat.states.insert(flat.states.end(), a_.begin(), a_.end());
+        }
+        return flat;
+    }
+
+    bridge::FinishedPath ModelHandle::finish(const FlatPath &found, bool solved,
+                                             const bridge::FinishSettings &settings) const
+    {
+        return bridge::finish(*model_, slice(found.controls), slice(found.steps), slice(found.states), solved,
+                              settings);
     }
 }  // namespace pushplan::detail

@@ -2,9 +2,11 @@
 #pragma once
 
 #include "pushplan/src/ffi.rs.h"
+#include "rust/cxx.h"  // rust::Error
 
 #include <ompl/base/State.h>
 #include <ompl/control/Control.h>
+#include <ompl/control/PathControl.h>
 #include <array>
 #include <memory>
 #include <vector>
@@ -43,6 +45,20 @@ namespace pushplan::detail
         /// End-effector xy and goal-object xy (m): the benchmark planners' projection.
         std::array<double, 4> project(const ompl::base::State *state) const;
 
+        /// A control path, flat: the controls one after another, their step counts, and
+        /// the states at the start and after each control.
+        struct FlatPath
+        {
+            std::vector<double> controls;
+            std::vector<std::size_t> steps;
+            std::vector<double> states;
+        };
+        FlatPath readPath(const ompl::control::PathControl &path) const;
+        /// Finishes a found path the one way the model does (re-simulated, shortcut,
+        /// robust: `planner::finish`).
+        bridge::FinishedPath finish(const FlatPath &found, bool solved,
+                                    const bridge::FinishSettings &settings) const;
+
         bridge::Model &model() const { return *model_; }
 
     private:
@@ -56,5 +72,10 @@ namespace pushplan::detail
     inline rust::Slice<const double> slice(const std::vector<double> &v)
     {
         return rust::Slice<const double>(v.data(), v.size());
+    }
+
+    inline rust::Slice<const std::size_t> slice(const std::vector<std::size_t> &v)
+    {
+        return rust::Slice<const std::size_t>(v.data(), v.size());
     }
 }  // namespace pushplan::detail

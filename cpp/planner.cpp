@@ -43,7 +43,7 @@ namespace pushplan
 
     Planner::Planner(std::unique_ptr<Source> source) : source_(std::move(source))
     {
-        source_->name = std::string(source_->load(false)->info().name);  // validates now
+        source_->name = std::string(bridge::scene_info(*source_->load(false)).name);  // validates now
     }
 
     Planner::~Planner() = default;
@@ -139,43 +139,24 @@ namespace pushplan
                 throw Error(std::string("planning failed: ") + e.what());
             }
 
-            // The path: controls with their step counts, and the states OMPL reached.
-            std::vector<double> flat_controls, control, state, path_states;
-            std::vector<std::size_t> steps;
+            // The path as found: controls with their step counts, and the states OMPL reached.
+            detail::ModelHandle::FlatPath found;
             const auto read_path = [&] {
-                flat_controls.clear();
-                steps.clear();
-                path_states.clear();
-                const oc::PathControl &path = setup.getSolutionPath();
-                for (std::size_t i = 0; i < path.getControlCount(); ++i)
-                {
-                    model->readControl(path.getControl(i), control);
-                    flat_controls.insert(flat_controls.end(), control.begin(), control.end());
-                    steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info.step)));
-                }
-                for (std::size_t i = 0; i < path.getStateCount(); ++i)
-                {
-                    model->read(path.getState(i), state);
-                    path_states.insert(path_states.end(), state.begin(), state.end());
-                }
-            };
-            const auto robustness = [&] {
-                return model->model().robustness(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-                                                 rust::Slice<const std::size_t>(steps.data(), steps.size()),
-                                                 options.robust_trials, seed);
+                if (setup.haveSolutionPath())
+                    found = model->readPath(setup.getSolutionPath());
             };
             checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
 
             Plan plan;
             bool solved = setup.haveExactSolutionPath();
-            if (setup.haveSolutionPath())
-                read_path();
+            read_path();
             // Robust planning: a solution that too few perturbed re-simulations carry to the
             // goal is dropped, and the search starts over with a new tree (the old tree's
             // next solutions would mostly extend the dropped one, past its goal node).
             while (solved && options.robust_trials > 0)
             {
-                plan.robustness = robustness();
+                plan.robustness = model->model().robustness(detail::slice(found.controls), detail::slice(found.steps),
+                                                            options.robust_trials, seed);
                 if (plan.robustness >= options.robust_rate)
                     break;
                 if (options.progress)
@@ -197,8 +178,7 @@ namespace pushplan
                     throw Error(std::string("planning failed: ") + e.what());
                 }
                 solved = setup.haveExactSolutionPath();
-                if (setup.haveSolutionPath())
-                    read_path();
+                read_path();
             }
 
             plan.planning_time = elapsed();
@@ -212,57 +192,27 @@ namespace pushplan
                 plan.joint_names.emplace_back(n);
             for (const auto &n : info.object_names)
                 plan.object_names.emplace_back(n);
-            if (flat_controls.empty() && path_states.empty())
+            if (found.states.empty())
                 return plan;
 
-            // Every plan is checked: re-simulating its controls reproduces its states.
-            const auto simulate = [&] {
-                return model->model().simulate(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-                                               rust::Slice<const std::size_t>(steps.data(), steps.size()));
-            };
-            bridge::Simulation sim = simulate();
-            const bool reproduced = sim.valid && sim.states.size() == path_states.size() &&
-                                    std::equal(path_states.begin(), path_states.end(), sim.states.begin());
-            if (!reproduced || (plan.solved && !sim.goal_reached))
-                throw Error("internal error: re-simulating the plan does not reproduce it (" + std::string(sim.message) + ")");
-
-            // Shortcutting (Sec. IV), which also measures the path.
-            const double budget = plan.solved ? options.shortcut : 0.0;
-            checked("shortcut", budget, std::isfinite(budget) && budget >= 0.0);
-            const bridge::Shortcut shortened =
-                model->model().shortcut(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-                                        rust::Slice<const std::size_t>(steps.data(), steps.size()), budget, seed);
-            const auto metrics = [](const bridge::Metrics &m) {
+            // Every plan is checked (re-simulating it reproduces its states) and finished
+            // (shortcut, kept robust) by the model, the same way as the CLI's and bench's.
+            checked("shortcut", options.shortcut, std::isfinite(options.shortcut) && options.shortcut >= 0.0);
+            const bridge::FinishedPath path = model->finish(
+                found, solved, bridge::FinishSettings{options.shortcut, seed, options.robust_trials, options.robust_rate});
+            const auto metrics = [](const bridge::PathMetrics &m) {
                 return PathMetrics{m.joint_length, m.ee_length, m.object_displacement, m.objects_moved,
                                    m.links_in_contact, m.duration};
             };
-            plan.before_shortcut = metrics(shortened.before);
-            plan.after_shortcut = metrics(shortened.after);
-            if (shortened.accepted > 0)
-            {
-                const std::vector<double> found_controls = flat_controls;
-                const std::vector<std::size_t> found_steps = steps;
-                flat_controls.assign(shortened.controls.begin(), shortened.controls.end());
-                steps.assign(shortened.steps.begin(), shortened.steps.end());
-                // In robust planning a shortcut is kept only while it stays robust.
-                const double shortcut_robustness = options.robust_trials > 0 ? robustness() : 1.0;
-                if (shortcut_robustness < options.robust_rate)
-                {
-                    flat_controls = found_controls;
-                    steps = found_steps;
-                    plan.after_shortcut = plan.before_shortcut;
-                }
-                else if (options.robust_trials > 0)
-                    plan.robustness = shortcut_robustness;
-                sim = simulate();
-                if (!sim.valid || !sim.goal_reached)
-                    throw Error("internal error: the shortcut plan does not re-simulate (" + std::string(sim.message) + ")");
-            }
+            plan.before_shortcut = metrics(path.before);
+            plan.after_shortcut = metrics(path.after);
+            if (path.robustness >= 0.0)
+                plan.robustness = path.robustness;
 
             const std::size_t width = model->stateSize();
-            for (std::size_t s = 0; s * width < sim.states.size(); ++s)
+            for (std::size_t s = 0; s * width < path.states.size(); ++s)
             {
-                const double *x = sim.states.data() + s * width;
+                const double *x = path.states.data() + s * width;
                 plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
                 std::vector<Eigen::Vector3d> poses;
                 for (std::size_t o = 0; o < info.objects; ++o)
@@ -270,16 +220,16 @@ namespace pushplan
                 plan.object_poses.push_back(std::move(poses));
             }
             const std::size_t cwidth = model->controlSize();
-            for (std::size_t i = 0; i < steps.size(); ++i)
+            for (std::size_t i = 0; i < path.steps.size(); ++i)
             {
-                const double *c = flat_controls.data() + i * cwidth;
+                const double *c = path.controls.data() + i * cwidth;
                 plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
                                                 Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
-                                                static_cast<double>(steps[i]) * info.step, steps[i]});
+                                                static_cast<double>(path.steps[i]) * info.step, path.steps[i]});
             }
-            const bridge::TrajectoryOut trajectory =
-                model->model().trajectory(rust::Slice<const double>(flat_controls.data(), flat_controls.size()),
-                                          rust::Slice<const std::size_t>(steps.data(), steps.size()));
+            const bridge::Trajectory trajectory =
+                bridge::trajectory(model->model(), rust::Slice<const double>(path.controls.data(), path.controls.size()),
+                                   rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
             plan.trajectory.rate = trajectory.rate;
             for (std::size_t k = 0; k < trajectory.times.size(); ++k)
             {
@@ -293,8 +243,8 @@ namespace pushplan
                 }
                 plan.trajectory.objects.push_back(std::move(poses));
             }
-            plan.contacts.resize(steps.size());
-            for (const auto &c : sim.contacts)
+            plan.contacts.resize(path.steps.size());
+            for (const auto &c : path.contacts)
                 plan.contacts[c.control].push_back(
                     Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
             return plan;

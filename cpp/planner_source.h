@@ -4,6 +4,7 @@
 
 #include "pushplan/pushplan.h"
 #include "pushplan/src/ffi.rs.h"
+#include "rust/cxx.h"  // rust::Error
 
 #include <string>
 
@@ -46,8 +47,8 @@ namespace pushplan
         {
             try
             {
-                return from_yaml ? bridge::model_from_yaml(yaml, path, static_clutter) :
-                                   bridge::load_model(path, static_clutter);
+                return from_yaml ? bridge::Model::from_yaml(yaml, path, static_clutter) :
+                                   bridge::Model::load(path, static_clutter);
             }
             catch (const rust::Error &e)
             {

@@ -1,15 +1,14 @@
 #include "solve.h"
 
 #include "pushplan/pushplan.h"
-#include "pushplan/src/ffi.rs.h"
-
-#include <ompl/util/RandomNumbers.h>
+#include "pushplan/src/ffi/entry.rs.h"
 
 namespace pushplan::bridge
 {
     SolveOutput solve(rust::Str scene_path, const SolveOptions &options)
     {
         Options o;
+        o.planner = options.planner;
         o.time_limit = options.time_limit;
         o.seed = options.seed;
         o.k = options.k;
@@ -18,8 +17,7 @@ namespace pushplan::bridge
         o.progress = options.progress;
         o.robust_trials = static_cast<unsigned>(options.robust_trials);
         o.robust_rate = options.robust_rate;
-        o.shortcut = 0.0;  // the CLI runs the same shortcutting itself, to report before and after
-        o.planner = options.planner;
+        o.shortcut = 0.0;  // the CLI finishes the path itself (planner::finish), to report on it
 
         const Plan plan = Planner(std::string(scene_path)).solve(o);
         SolveOutput out;
@@ -28,7 +26,6 @@ namespace pushplan::bridge
         out.planning_time = plan.planning_time;
         out.tree_size = plan.tree_size;
         out.propagation_steps = plan.propagation_steps;
-        out.robustness = plan.robustness;
         for (std::size_t i = 0; i < plan.joint_trajectory.size(); ++i)
         {
             for (double v : plan.joint_trajectory[i])

@@ -1,4 +1,4 @@
-// The CLI's way into the C++ planner (declared for the cxx bridge in src/ffi.rs).
+// The CLI's way into the C++ planner (declared for the cxx bridge in src/ffi/entry.rs).
 #pragma once
 
 #include "rust/cxx.h"

@@ -28,10 +28,10 @@ namespace pushplan::detail
         {
             auto object = std::make_shared<ob::SE2StateSpace>();
             ob::RealVectorBounds table(2);
-            table.setLow(0, info.table_min_x);
-            table.setHigh(0, info.table_max_x);
-            table.setLow(1, info.table_min_y);
-            table.setHigh(1, info.table_max_y);
+            table.setLow(0, info.table[0]);
+            table.setHigh(0, info.table[1]);
+            table.setLow(1, info.table[2]);
+            table.setHigh(1, info.table[3]);
             object->setBounds(table);
             object->setName(std::string(info.object_names[i]));
             addSubspace(object, 1.0);
@@ -116,8 +116,8 @@ namespace pushplan::detail
         const double pi = boost::math::constants::pi<double>();
         for (std::size_t i = 0; i < info.objects; ++i)
         {
-            out.push_back(rng.uniformReal(info.table_min_x, info.table_max_x));
-            out.push_back(rng.uniformReal(info.table_min_y, info.table_max_y));
+            out.push_back(rng.uniformReal(info.table[0], info.table[1]));
+            out.push_back(rng.uniformReal(info.table[2], info.table[3]));
             out.push_back(rng.uniformReal(-pi, pi));
         }
     }

@@ -13,6 +13,7 @@
 //! Units are SI throughout (m, rad, s, kg, N); the world frame has z up.
 
 pub mod benchmark;
+pub mod cli;
 pub mod collision;
 pub mod contact;
 pub mod darrt;

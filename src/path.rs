@@ -14,8 +14,8 @@ pub struct PathControl {
 }
 
 impl PathControl {
-    /// Controls in the bridge's flat layout `[vx, vy, omega_z, z_0 .. z_{dof-1}]`, one
-    /// after another, with their step counts.
+    /// Controls in the flat layout of [`EeAction::from_flat`], one after another, with
+    /// their step counts.
     pub fn from_flat(
         controls: &[f64],
         steps: &[usize],
@@ -33,13 +33,18 @@ impl PathControl {
             .chunks(width)
             .zip(steps)
             .map(|(c, &steps)| PathControl {
-                action: EeAction {
-                    velocity: [c[0], c[1], c[2]],
-                    nullspace: nalgebra::DVector::from_column_slice(&c[3..]),
-                },
+                action: EeAction::from_flat(c),
                 steps,
             })
             .collect())
+    }
+
+    /// The flat layout of [`PathControl::from_flat`]: the actions and the step counts.
+    pub fn to_flat(controls: &[PathControl]) -> (Vec<f64>, Vec<usize>) {
+        (
+            controls.iter().flat_map(|c| c.action.flat()).collect(),
+            controls.iter().map(|c| c.steps).collect(),
+        )
     }
 }
 

@@ -5,7 +5,6 @@
 //! count, the state it reaches and the pushes during its steps. Nothing in it depends on
 //! the machine or the clock, so the same scene, parameters and seed give the same bytes.
 
-use crate::ffi::{pack_state, Model};
 use crate::path::{simulate, PathControl, PathMetrics};
 use crate::planner::PlannerKind;
 use crate::propagate::Propagator;
@@ -292,15 +291,14 @@ impl PlanFile {
     /// Re-simulates the plan with the model from the scene's start, independently of the
     /// planner: every state valid, the recorded states reproduced, the goal reached.
     pub fn check(&self, plan_path: &Path) -> Result<CheckReport, String> {
-        let scene = Scene::load(self.scene_path(plan_path)).map_err(|e| e.to_string())?;
-        let mut model = Model::new(scene, self.planner.pins_clutter());
-        let dof = model.scene().robot.dof();
+        let scene = Scene::load(self.scene_path(plan_path))
+            .map_err(|e| e.to_string())?
+            .planned_by(self.planner);
+        let dof = scene.robot.dof();
         let mut problems = Vec::new();
-        if self.start.flat() != pack_state(&model.scene().start) {
+        if self.start.flat() != scene.start.to_flat() {
             problems.push("the plan's start state is not the scene's".to_string());
         }
-        let mut controls = Vec::new();
-        let mut steps = Vec::new();
         for (i, c) in self.controls.iter().enumerate() {
             if c.nullspace.len() != dof {
                 return Err(format!(
@@ -308,18 +306,20 @@ impl PlanFile {
                     c.nullspace.len()
                 ));
             }
-            controls.extend(c.ee_velocity);
-            controls.extend(&c.nullspace);
-            steps.push(c.steps);
         }
-        let sim = model.simulate(&controls, &steps)?;
-        if !sim.valid {
-            problems.push(sim.message.clone());
+        let mut propagator = Propagator::new(scene);
+        let scene = propagator.shared_scene();
+        let sim = simulate(&mut propagator, &scene.start, &self.path_controls(), false);
+        if let Some((i, reason)) = &sim.stopped_by {
+            problems.push(format!(
+                "control {i} stops after {} of {} steps: {reason}",
+                sim.pushes[*i].len(),
+                self.controls[*i].steps
+            ));
         }
-        let width = model.scene().robot.dof() + 3 * model.scene().objects.len();
-        let mut states_match = sim.states.len() == width * (self.controls.len() + 1);
+        let mut states_match = sim.states.len() == self.controls.len() + 1;
         for (i, c) in self.controls.iter().enumerate() {
-            let simulated = sim.states.get((i + 1) * width..(i + 2) * width);
+            let simulated = sim.states.get(i + 1).map(State::to_flat);
             if simulated.map(|s| {
                 s.iter()
                     .zip(c.state.flat())
@@ -333,13 +333,14 @@ impl PlanFile {
                 break;
             }
         }
-        if !sim.goal_reached {
+        let goal_reached = scene.goal.is_satisfied(sim.final_state());
+        if !goal_reached {
             problems.push("the goal is not reached".to_string());
         }
         Ok(CheckReport {
-            all_valid: sim.valid,
+            all_valid: sim.valid(),
             states_match,
-            goal_reached: sim.goal_reached,
+            goal_reached,
             problems,
         })
     }

@@ -11,3 +11,48 @@ pub struct State {
     /// Object poses, in the scene's object order (world frame).
     pub objects: Vec<Pose2>,
 }
+
+/// The flat layout in which states cross to OMPL and back:
+/// `[q_0 .. q_{dof-1}, x_1, y_1, theta_1, .., x_M, y_M, theta_M]` (rad or m; m, m, rad in
+/// the world frame).
+impl State {
+    /// The number of values of a flat state.
+    pub fn flat_len(dof: usize, objects: usize) -> usize {
+        dof + 3 * objects
+    }
+
+    pub fn to_flat(&self) -> Vec<f64> {
+        let mut out = vec![0.0; Self::flat_len(self.q.len(), self.objects.len())];
+        self.write_flat(&mut out);
+        out
+    }
+
+    /// Writes the flat state into `out`, which has [`State::flat_len`] values.
+    pub fn write_flat(&self, out: &mut [f64]) {
+        let dof = self.q.len();
+        out[..dof].copy_from_slice(self.q.as_slice());
+        for (pose, slot) in self.objects.iter().zip(out[dof..].chunks_exact_mut(3)) {
+            slot.copy_from_slice(&[pose.x, pose.y, pose.theta]);
+        }
+    }
+
+    /// States one after another in a flat array, for `dof` joints and `objects` objects.
+    pub fn many_from_flat(flat: &[f64], dof: usize, objects: usize) -> Result<Vec<State>, String> {
+        let n = Self::flat_len(dof, objects);
+        if flat.len() % n != 0 {
+            return Err(format!("{} values are not whole states of {n}", flat.len()));
+        }
+        Ok(flat.chunks(n).map(|s| Self::from_flat(s, dof)).collect())
+    }
+
+    /// The state of a flat array for a robot with `dof` joints; the rest are object poses.
+    pub fn from_flat(flat: &[f64], dof: usize) -> State {
+        State {
+            q: DVector::from_column_slice(&flat[..dof]),
+            objects: flat[dof..]
+                .chunks_exact(3)
+                .map(|c| Pose2::new(c[0], c[1], c[2]))
+                .collect(),
+        }
+    }
+}

@@ -89,7 +89,7 @@ fn the_flat_distance_is_the_same_metric() {
     b.q[1] -= 0.2;
     b.objects[0] = Pose2::new(0.7, 0.1, -3.0);
     b.objects[3].theta = 3.1;
-    let flat = |s: &State| pushplan::ffi::pack_state(s);
+    let flat = State::to_flat;
     assert_eq!(
         metric.distance_flat(&flat(&a), &flat(&b)),
         metric.distance(&a, &b)

@@ -179,15 +179,15 @@ fn a_robot_configuration_goal_is_planned_for_too() {
 
 #[test]
 fn the_static_mode_of_the_full_problem_is_the_static_clutter_scene() {
-    use pushplan::ffi::{pack_state, Model};
+    use pushplan::planner::Model;
     let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
     let mut reduced = Model::new(scene.clone(), true);
     let mut full = Model::new(scene.clone(), false);
     full.set_static_clutter(true);
     // Push forward into the clutter: in the static problem the first contact is invalid.
     let control = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
-    let start_full = pack_state(&scene.start);
-    let start_reduced = pack_state(&reduced.scene().start);
+    let start_full = scene.start.to_flat();
+    let start_reduced = reduced.scene().start.to_flat();
     let (mut a, mut b) = (vec![0.0; start_reduced.len()], vec![0.0; start_full.len()]);
     for steps in [1, 20, 80, 200] {
         let valid_a = reduced

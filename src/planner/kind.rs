@@ -5,8 +5,19 @@
 use std::fmt;
 use std::str::FromStr;
 
-/// A planner. The type is the bridge's shared enum, so C++ sees the same one.
-pub use crate::ffi::bridge::PlannerKind;
+/// A planner. C++'s `pushplan::PlannerKind` (`include/pushplan/pushplan.h`) is the same
+/// type, value for value: the bridge passes it as is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum PlannerKind {
+    PcRrt = 0,
+    StaticRrt = 1,
+    Darrt = 2,
+    Kpiece = 3,
+    Est = 4,
+    Pdst = 5,
+    Sst = 6,
+}
 
 impl PlannerKind {
     /// Every planner, in the order the CLI lists them.
@@ -30,7 +41,6 @@ impl PlannerKind {
             PlannerKind::Est => "est",
             PlannerKind::Pdst => "pdst",
             PlannerKind::Sst => "sst",
-            _ => "unknown",
         }
     }
 

@@ -101,6 +101,22 @@ impl EeAction {
             nullspace: DVector::zeros(0),
         }
     }
+
+    /// The action of the flat layout in which controls cross to OMPL and back:
+    /// `[vx, vy, omega_z, z_0 .. z_{dof-1}]` (at least three values).
+    pub fn from_flat(flat: &[f64]) -> Self {
+        Self {
+            velocity: [flat[0], flat[1], flat[2]],
+            nullspace: DVector::from_column_slice(&flat[3..]),
+        }
+    }
+
+    /// The flat layout of [`EeAction::from_flat`].
+    pub fn flat(&self) -> impl Iterator<Item = f64> + '_ {
+        self.velocity
+            .into_iter()
+            .chain(self.nullspace.iter().copied())
+    }
 }
 
 /// Limits of the projection.

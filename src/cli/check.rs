@@ -1,0 +1,75 @@
+//! `pushplan check`: re-simulate a plan file, optionally under parameter noise.
+
+use crate::plan::PlanFile;
+use crate::robustness::{robustness, Noise};
+use crate::Scene;
+use std::path::Path;
+use std::process::ExitCode;
+
+pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
+    let plan = PlanFile::read(path)?;
+    let report = plan.check(path)?;
+    if noise > 0 {
+        let scene = Scene::load(plan.scene_path(path))
+            .map_err(|e| e.to_string())?
+            .planned_by(plan.planner);
+        let r = robustness(
+            &scene,
+            &plan.path_controls(),
+            &Noise::default(),
+            noise,
+            seed,
+        );
+        println!(
+            "perturbed re-simulations: {} of {noise} reach the goal ({:.0} %); goal object's final centre {:.1} mm from the planned one on average (largest {:.1} mm), spread x {:.1} mm, y {:.1} mm, yaw {:.3} rad",
+            r.trials.iter().filter(|t| t.reached).count(),
+            100.0 * r.success_rate,
+            1e3 * r.mean_deviation,
+            1e3 * r.max_deviation,
+            1e3 * r.std_xy_yaw[0],
+            1e3 * r.std_xy_yaw[1],
+            r.std_xy_yaw[2],
+        );
+        for (i, t) in r.trials.iter().enumerate().filter(|(_, t)| !t.reached) {
+            match &t.failure {
+                Some(why) => println!("  trial {i}: {why}"),
+                None => println!(
+                    "  trial {i}: the goal object ends {:.1} mm outside the disc",
+                    1e3 * t.goal_distance
+                ),
+            }
+        }
+    }
+    println!(
+        "{}: {} controls; every state valid: {}; states reproduced: {}; goal reached: {}",
+        path.display(),
+        plan.controls.len(),
+        yes(report.all_valid),
+        yes(report.states_match),
+        yes(report.goal_reached)
+    );
+    for problem in &report.problems {
+        println!("  {problem}");
+    }
+    println!(
+        "{}",
+        if report.passed() {
+            "plan OK"
+        } else {
+            "plan FAILED"
+        }
+    );
+    Ok(if report.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn yes(b: bool) -> &'static str {
+    if b {
+        "yes"
+    } else {
+        "no"
+    }
+}

@@ -1,0 +1,196 @@
+//! `pushplan plan`: search a scene with OMPL, finish the path, write the plan file.
+
+use crate::ffi::{solve, SolveOptions};
+use crate::path::PathControl;
+use crate::plan::{PlanFile, PlanSettings, RobustnessRecord};
+use crate::planner::{finish, FinishSettings, PlannerKind, RobustRequirement};
+use crate::state::State;
+use crate::Scene;
+use std::path::Path;
+use std::process::ExitCode;
+
+/// The `plan` command's options.
+pub struct PlanOptions {
+    pub robust: usize,
+    pub robust_rate: f64,
+    pub time: Option<f64>,
+    pub seed: Option<u64>,
+    pub k: Option<u32>,
+    pub planner: PlannerKind,
+    pub shortcut: f64,
+    pub intermediate_states: bool,
+    pub quiet: bool,
+}
+
+pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode, String> {
+    let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
+    let p = scene.planner.clone();
+    let (planner, quiet) = (run.planner, run.quiet);
+    let seed = run.seed.unwrap_or(p.seed);
+    let options = SolveOptions {
+        planner,
+        time_limit: run.time.unwrap_or(p.time_limit),
+        seed,
+        k: run.k.unwrap_or(p.k),
+        goal_bias: p.goal_bias,
+        intermediate_states: run.intermediate_states,
+        progress: !quiet,
+        robust_trials: run.robust,
+        robust_rate: run.robust_rate,
+    };
+    if !(0.0..=1.0).contains(&run.robust_rate) {
+        return Err(format!(
+            "--robust-rate must be in [0, 1], got {}",
+            run.robust_rate
+        ));
+    }
+    if !(options.time_limit.is_finite() && options.time_limit > 0.0) {
+        return Err(format!(
+            "--time must be positive, got {}",
+            options.time_limit
+        ));
+    }
+    if options.k == 0 {
+        return Err("--k must be at least 1".into());
+    }
+    if !(run.shortcut.is_finite() && run.shortcut >= 0.0) {
+        return Err(format!(
+            "--shortcut must be zero or positive, got {}",
+            run.shortcut
+        ));
+    }
+    if !quiet {
+        eprintln!(
+            "planning '{}' with {} (k = {}, seed = {}, up to {} s)",
+            scene.name,
+            planner.name(),
+            options.k,
+            options.seed,
+            options.time_limit
+        );
+    }
+    let solution = solve(scene_path, &options)?;
+    let searched = scene.clone().planned_by(planner);
+    let found = PathControl::from_flat(&solution.controls, &solution.steps, searched.robot.dof())?;
+    let found_states = State::many_from_flat(
+        &solution.states,
+        searched.robot.dof(),
+        searched.objects.len(),
+    )?;
+    let finish_settings = FinishSettings {
+        shortcut: run.shortcut,
+        seed,
+        robust: (run.robust > 0).then_some(RobustRequirement {
+            trials: run.robust,
+            rate: run.robust_rate,
+        }),
+    };
+    let path = finish(
+        &searched,
+        &found,
+        &found_states,
+        solution.exact,
+        &finish_settings,
+    )?;
+    if !quiet && path.shortcut.attempts > 0 {
+        eprintln!(
+            "shortcutting: {} of {} attempts accepted",
+            path.shortcut.accepted, path.shortcut.attempts
+        );
+        if path.shortcut.dropped_as_less_robust {
+            eprintln!("shortcutting: the shortcut path is less robust; the path as found is kept");
+        }
+    }
+    let settings = PlanSettings {
+        planner,
+        seed: options.seed,
+        k: options.k,
+        goal_bias: options.goal_bias,
+        time_limit: options.time_limit,
+        shortcut: run.shortcut,
+    };
+    let reference = scene_path.to_string_lossy().into_owned();
+    let mut file = PlanFile::build(
+        &reference,
+        scene,
+        &settings,
+        &path.controls,
+        Some(path.before),
+    )?;
+    file.robustness = path.robustness.map(|success_rate| RobustnessRecord {
+        trials: run.robust,
+        required_rate: run.robust_rate,
+        success_rate,
+    });
+    std::fs::write(out, file.to_json())
+        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+
+    let status = if solution.exact {
+        "solved"
+    } else if solution.approximate {
+        "not solved (approximate path written)"
+    } else {
+        "not solved"
+    };
+    println!(
+        "{status} in {:.2} s: tree of {} states, {} propagation steps ({:.0} steps/s)",
+        solution.planning_time,
+        solution.tree_size,
+        solution.propagation_steps,
+        solution.propagation_steps as f64 / solution.planning_time.max(1e-9)
+    );
+    if let Some(r) = &file.robustness {
+        println!(
+            "robust: {:.0} % of {} perturbed re-simulations reach the goal (at least {:.0} % required)",
+            100.0 * r.success_rate,
+            r.trials,
+            100.0 * r.required_rate
+        );
+    }
+    let moved: Vec<&str> = file
+        .objects
+        .iter()
+        .zip(
+            file.start.objects.iter().zip(
+                &file
+                    .controls
+                    .last()
+                    .map_or(&file.start, |c| &c.state)
+                    .objects,
+            ),
+        )
+        .filter(|(_, (a, b))| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt() > 1e-3)
+        .map(|(name, _)| name.as_str())
+        .collect();
+    let (b, a) = (&file.metrics.before_shortcut, &file.metrics.after_shortcut);
+    println!(
+        "path: {} controls, {:.2} s; objects moved: {}",
+        file.controls.len(),
+        a.duration,
+        if moved.is_empty() {
+            "none".to_string()
+        } else {
+            moved.join(", ")
+        }
+    );
+    println!(
+        "manipulator path: {:.2} rad / {:.2} m of end-effector travel (before shortcutting {:.2} rad / {:.2} m); \
+         object displacement {:.3} m (before {:.3} m); {} made contact",
+        a.joint_length,
+        a.ee_length,
+        b.joint_length,
+        b.ee_length,
+        a.object_displacement,
+        b.object_displacement,
+        match a.links_in_contact {
+            1 => "1 link".to_string(),
+            n => format!("{n} links"),
+        }
+    );
+    println!("plan written to {}", out.display());
+    Ok(if solution.exact {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}

@@ -1,0 +1,194 @@
+//! The bridge's shared types from and to the model's own, and the delegations that
+//! convert.
+
+use super::bridge::{
+    self, FinishedPath as FlatFinishedPath, PrimitiveCheck, SceneInfo, Trajectory,
+};
+use crate::darrt::PrimitivePath;
+use crate::path::{PathControl, PathMetrics};
+use crate::planner::Model;
+use crate::planner::{FinishSettings, FinishedPath, RobustRequirement};
+use crate::scene::{Goal, Scene};
+
+pub(super) fn scene_info(model: &Model) -> SceneInfo {
+    SceneInfo::from(model.scene())
+}
+
+pub(super) fn finish(
+    model: &mut Model,
+    controls: &[f64],
+    steps: &[usize],
+    states: &[f64],
+    solved: bool,
+    settings: &bridge::FinishSettings,
+) -> Result<FlatFinishedPath, String> {
+    let settings = settings.try_into()?;
+    model
+        .finish(controls, steps, states, solved, &settings)
+        .map(FlatFinishedPath::from)
+}
+
+pub(super) fn trajectory(
+    model: &mut Model,
+    controls: &[f64],
+    steps: &[usize],
+) -> Result<Trajectory, String> {
+    model.trajectory(controls, steps).map(Trajectory::from)
+}
+
+pub(super) fn darrt_check(model: &Model, states: &[f64]) -> Result<PrimitiveCheck, String> {
+    model.darrt_check(states).map(PrimitiveCheck::from)
+}
+
+impl From<&Scene> for bridge::SceneInfo {
+    fn from(scene: &Scene) -> Self {
+        let chain = &scene.robot.chain;
+        let limits = chain.limits();
+        let (goal_object, center, radius, configuration) = match &scene.goal {
+            Goal::ObjectInDisc {
+                object,
+                center,
+                radius,
+                margin,
+            } => (
+                *object as i64,
+                [center.x, center.y],
+                radius - margin,
+                vec![],
+            ),
+            Goal::Configuration { q, tolerance } => {
+                (-1, [0.0; 2], *tolerance, q.as_slice().to_vec())
+            }
+        };
+        let p = &scene.planner;
+        bridge::SceneInfo {
+            name: scene.name.clone(),
+            dof: scene.robot.dof(),
+            objects: scene.objects.len(),
+            joint_names: (0..chain.dof())
+                .map(|i| chain.dof_joint(i).name.clone())
+                .collect(),
+            joint_lower: limits.iter().map(|l| l.0).collect(),
+            joint_upper: limits.iter().map(|l| l.1).collect(),
+            object_names: scene.objects.iter().map(|o| o.name.clone()).collect(),
+            link_names: chain.links.iter().map(|l| l.name.clone()).collect(),
+            table: [
+                scene.table.x.0,
+                scene.table.x.1,
+                scene.table.y.0,
+                scene.table.y.1,
+            ],
+            step: p.step,
+            min_duration: p.min_duration,
+            max_duration: p.max_duration,
+            max_ee_speed: p.max_ee_speed,
+            max_ee_turn_rate: p.max_ee_turn_rate,
+            max_nullspace_speed: p.max_nullspace_speed,
+            k: p.k,
+            goal_bias: p.goal_bias,
+            time_limit: p.time_limit,
+            seed: p.seed,
+            goal_object,
+            goal_center: center,
+            goal_radius: radius,
+            goal_configuration: configuration,
+            start: scene.start.to_flat(),
+        }
+    }
+}
+
+impl From<&PathMetrics> for bridge::PathMetrics {
+    fn from(m: &PathMetrics) -> Self {
+        bridge::PathMetrics {
+            joint_length: m.joint_length,
+            ee_length: m.ee_length,
+            object_displacement: m.object_displacement,
+            objects_moved: m.objects_moved,
+            links_in_contact: m.links_in_contact,
+            duration: m.duration,
+        }
+    }
+}
+
+impl TryFrom<&bridge::FinishSettings> for FinishSettings {
+    type Error = String;
+
+    fn try_from(s: &bridge::FinishSettings) -> Result<Self, String> {
+        if !(0.0..=1.0).contains(&s.robust_rate) {
+            return Err(format!(
+                "the robust rate must be in [0, 1], got {}",
+                s.robust_rate
+            ));
+        }
+        Ok(FinishSettings {
+            shortcut: s.shortcut,
+            seed: s.seed,
+            robust: (s.robust_trials > 0).then_some(RobustRequirement {
+                trials: s.robust_trials,
+                rate: s.robust_rate,
+            }),
+        })
+    }
+}
+
+impl From<FinishedPath> for bridge::FinishedPath {
+    fn from(path: FinishedPath) -> Self {
+        let (controls, steps) = PathControl::to_flat(&path.controls);
+        let sim = &path.simulation;
+        let contacts = sim.pushes.iter().enumerate().flat_map(|(control, steps)| {
+            steps.iter().enumerate().flat_map(move |(step, pushes)| {
+                pushes.iter().map(move |p| bridge::Contact {
+                    control,
+                    step,
+                    link: p.link,
+                    object: p.object,
+                    force: p.force,
+                })
+            })
+        });
+        bridge::FinishedPath {
+            controls,
+            steps,
+            states: sim.states.iter().flat_map(|s| s.to_flat()).collect(),
+            contacts: contacts.collect(),
+            before: (&path.before).into(),
+            after: (&sim.metrics).into(),
+            shortcut_attempts: path.shortcut.attempts,
+            shortcut_accepted: path.shortcut.accepted,
+            shortcut_dropped_as_less_robust: path.shortcut.dropped_as_less_robust,
+            robustness: path.robustness.unwrap_or(-1.0),
+        }
+    }
+}
+
+impl From<crate::trajectory::Trajectory> for bridge::Trajectory {
+    fn from(t: crate::trajectory::Trajectory) -> Self {
+        bridge::Trajectory {
+            rate: t.rate,
+            times: t.times,
+            q: t.q.into_iter().flatten().collect(),
+            objects: t.objects.into_iter().flatten().flatten().collect(),
+        }
+    }
+}
+
+impl From<Result<PrimitivePath, String>> for bridge::PrimitiveCheck {
+    fn from(checked: Result<PrimitivePath, String>) -> Self {
+        match checked {
+            Ok(path) => bridge::PrimitiveCheck {
+                valid: true,
+                goal_reached: path.goal_reached,
+                message: String::new(),
+                metrics: (&path.metrics).into(),
+                durations: path.durations,
+            },
+            Err(message) => bridge::PrimitiveCheck {
+                valid: false,
+                goal_reached: false,
+                message,
+                metrics: bridge::PathMetrics::default(),
+                durations: vec![],
+            },
+        }
+    }
+}

@@ -1,0 +1,75 @@
+//! The bridge's second half: the C++ entry points Rust calls (the CLI's search and the
+//! benchmark of a scene), declarations only. `cpp/solve.h` and `cpp/benchmark.h` declare
+//! them on the C++ side.
+
+#[cxx::bridge(namespace = "pushplan::bridge")]
+pub mod bridge {
+    /// One search of the CLI (`plan`); the CLI finishes the path itself.
+    #[derive(Debug, Clone)]
+    pub struct SolveOptions {
+        pub planner: PlannerKind,
+        pub time_limit: f64,
+        pub seed: u64,
+        pub k: u32,
+        pub goal_bias: f64,
+        pub intermediate_states: bool,
+        pub progress: bool,
+        /// Robust planning: the search goes on until a solution keeps this robustness.
+        pub robust_trials: usize,
+        pub robust_rate: f64,
+    }
+
+    /// The outcome of one search and the path found: controls, their step counts and the
+    /// states at the start and after each control, flat.
+    #[derive(Debug, Clone)]
+    pub struct SolveOutput {
+        pub exact: bool,
+        pub approximate: bool,
+        pub planning_time: f64,
+        pub tree_size: usize,
+        pub propagation_steps: u64,
+        pub controls: Vec<f64>,
+        pub steps: Vec<usize>,
+        pub states: Vec<f64>,
+    }
+
+    /// A benchmark of one scene (`ompl::tools::Benchmark`); the OMPL log goes to `log`.
+    #[derive(Debug, Clone)]
+    pub struct BenchOptions {
+        pub planners: Vec<PlannerKind>,
+        pub runs: u32,
+        pub time_limit: f64,
+        pub seed: u64,
+        /// Shortcutting budget (s of work) measured after each solved run.
+        pub shortcut: f64,
+        pub log: String,
+    }
+
+    unsafe extern "C++" {
+        include!("pushplan/pushplan.h");
+        #[namespace = "pushplan"]
+        type PlannerKind = crate::planner::PlannerKind;
+        include!("pushplan/cpp/solve.h");
+        /// Searches the scene file with OMPL (the CLI's entry point).
+        fn solve(scene_path: &str, options: &SolveOptions) -> Result<SolveOutput>;
+        include!("pushplan/cpp/benchmark.h");
+        /// Benchmarks a scene with ompl::tools::Benchmark and writes the log.
+        fn benchmark_scene(scene_path: &str, options: &BenchOptions) -> Result<()>;
+    }
+
+    impl Vec<PlannerKind> {}
+}
+
+pub use bridge::{BenchOptions, SolveOptions, SolveOutput};
+use std::path::Path;
+
+/// Searches a scene file with OMPL (the C++ side), as the CLI does.
+pub fn solve(scene_path: &Path, options: &SolveOptions) -> Result<SolveOutput, String> {
+    bridge::solve(&scene_path.to_string_lossy(), options).map_err(|e| e.what().to_string())
+}
+
+/// Benchmarks one scene with OMPL's tooling, writing `options.log`.
+pub fn benchmark_scene(scene_path: &Path, options: &BenchOptions) -> Result<(), String> {
+    bridge::benchmark_scene(&scene_path.to_string_lossy(), options)
+        .map_err(|e| e.what().to_string())
+}

@@ -1,0 +1,126 @@
+//! Finishing a found path, one way for the CLI, the C++ API and `bench`: re-simulate it
+//! (it must reproduce the planner's states and, if solved, reach the goal), shortcut it
+//! (Sec. IV) and, in robust planning, keep a shortcut only while it stays robust.
+
+use crate::path::{simulate, PathControl, PathMetrics, SimulatedPath};
+use crate::propagate::Propagator;
+use crate::robustness::{robustness, Noise};
+use crate::scene::Scene;
+use crate::shortcut::{shortcut, ShortcutSettings};
+use crate::state::State;
+
+/// How a found path is finished.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FinishSettings {
+    /// Shortcutting budget in seconds of work (0: none).
+    pub shortcut: f64,
+    /// Seeds shortcutting and the robustness trials.
+    pub seed: u64,
+    /// The robustness a solution must keep, if any.
+    pub robust: Option<RobustRequirement>,
+}
+
+/// Keep a path only if at least `rate` of `trials` perturbed re-simulations
+/// ([`crate::robustness`], default noise) reach the goal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RobustRequirement {
+    pub trials: usize,
+    pub rate: f64,
+}
+
+impl RobustRequirement {
+    /// The fraction of perturbed re-simulations of `controls` that reach the goal.
+    pub fn success_rate(&self, scene: &Scene, controls: &[PathControl], seed: u64) -> f64 {
+        robustness(scene, controls, &Noise::default(), self.trials, seed).success_rate
+    }
+}
+
+/// What shortcutting did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ShortcutReport {
+    pub attempts: usize,
+    pub accepted: usize,
+    /// The shortcut path was dropped because it was less robust than required.
+    pub dropped_as_less_robust: bool,
+}
+
+/// A finished path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FinishedPath {
+    pub controls: Vec<PathControl>,
+    /// The finished path simulated from the start (no step states).
+    pub simulation: SimulatedPath,
+    /// The metrics of the path as found (the same as after if nothing was shortened).
+    pub before: PathMetrics,
+    pub shortcut: ShortcutReport,
+    /// The finished path's success rate under noise, in robust planning.
+    pub robustness: Option<f64>,
+}
+
+/// Finishes `found` in `scene` (the scene the planner searched). `found_states` are the
+/// planner's states at the control boundaries, start first; re-simulation must reproduce
+/// them bit for bit. Only solved paths are shortened and measured for robustness.
+pub fn finish(
+    scene: &Scene,
+    found: &[PathControl],
+    found_states: &[State],
+    solved: bool,
+    settings: &FinishSettings,
+) -> Result<FinishedPath, String> {
+    if !(settings.shortcut.is_finite() && settings.shortcut >= 0.0) {
+        return Err(format!(
+            "the shortcut budget must be zero or positive, got {}",
+            settings.shortcut
+        ));
+    }
+    let mut propagator = Propagator::new(scene.clone());
+    let path = simulate(&mut propagator, &scene.start, found, false);
+    let reproduced = path.valid() && path.states.as_slice() == found_states;
+    if !reproduced || (solved && !scene.goal.is_satisfied(path.final_state())) {
+        return Err(format!(
+            "internal error: re-simulating the plan does not reproduce it{}",
+            path.stopped_by
+                .as_ref()
+                .map(|(i, why)| format!(" (control {i}: {why})"))
+                .unwrap_or_default()
+        ));
+    }
+    let mut finished = FinishedPath {
+        controls: found.to_vec(),
+        before: path.metrics,
+        simulation: path,
+        shortcut: ShortcutReport::default(),
+        robustness: None,
+    };
+    if !solved {
+        return Ok(finished);
+    }
+    if settings.shortcut > 0.0 {
+        let budget = ShortcutSettings::from_seconds(settings.shortcut, settings.seed);
+        // A propagator of its own: the outcome does not depend on what ran before.
+        let outcome = shortcut(
+            &mut Propagator::new(scene.clone()),
+            &scene.start,
+            found,
+            &budget,
+        );
+        finished.shortcut.attempts = outcome.attempts;
+        finished.shortcut.accepted = outcome.accepted;
+        if outcome.accepted > 0 {
+            let robust_enough = settings
+                .robust
+                .is_none_or(|r| r.success_rate(scene, &outcome.controls, settings.seed) >= r.rate);
+            if robust_enough {
+                finished.simulation =
+                    simulate(&mut propagator, &scene.start, &outcome.controls, false);
+                finished.controls = outcome.controls;
+            } else {
+                finished.shortcut.dropped_as_less_robust = true;
+            }
+        }
+    }
+    finished.robustness = settings
+        .robust
+        .map(|r| r.success_rate(scene, &finished.controls, settings.seed));
+    Ok(finished)
+}

@@ -1,0 +1,437 @@
+//! The planning problem as OMPL sees it: a scene, its propagator and metric, reached
+//! through flat arrays ([`State::to_flat`], [`EeAction::from_flat`]). Every method checks
+//! the arrays' lengths and turns a panic into an error message, because its caller is
+//! C++ (nothing may unwind across the bridge).
+
+use super::finish::{finish, FinishSettings, FinishedPath, RobustRequirement};
+use super::PlannerKind;
+use crate::darrt;
+use crate::distance::DistanceMetric;
+use crate::math::Pose2;
+use crate::path::{PathControl, SimulatedPath};
+use crate::propagate::Propagator;
+use crate::robot::EeAction;
+use crate::scene::{Goal, Scene};
+use crate::state::State;
+use crate::static_clutter::StaticClutter;
+use crate::trajectory::Trajectory;
+use crate::validity::check_state;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// A scene with its propagator and metric, in pushing mode or in Static RRT's mode.
+pub struct Model {
+    propagator: Propagator,
+    /// The Static RRT baseline's view of the same problem, used while `static_mode`.
+    static_view: StaticClutter,
+    static_mode: bool,
+    metric: DistanceMetric,
+    /// The last state `propagate` produced and whether it was valid: OMPL asks
+    /// `isValid` of exactly that state next, and the propagation already knows.
+    last_result: Option<(Vec<f64>, bool)>,
+    steps_taken: u64,
+}
+
+/// Runs `f`, turning a panic into an error message.
+pub fn guarded<T>(what: &str, f: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(result) => result,
+        Err(panic) => {
+            let detail = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(format!("internal error in {what}: {detail}"))
+        }
+    }
+}
+
+impl Model {
+    /// The model of `scene`; with `static_clutter`, of its Static RRT variant (the
+    /// clutter as obstacles, the state only the robot and the goal object).
+    pub fn new(scene: Scene, static_clutter: bool) -> Model {
+        let scene = scene.planned_by(if static_clutter {
+            PlannerKind::StaticRrt
+        } else {
+            PlannerKind::PcRrt
+        });
+        Model {
+            metric: DistanceMetric::from_scene(&scene),
+            static_view: StaticClutter::new(&scene),
+            static_mode: false,
+            propagator: Propagator::new(scene),
+            last_result: None,
+            steps_taken: 0,
+        }
+    }
+
+    /// Loads a scene file into a model (boxed for C++).
+    pub fn load(path: &str, static_clutter: bool) -> Result<Box<Model>, String> {
+        guarded("loading a scene", || {
+            let scene = Scene::load(path).map_err(|e| e.to_string())?;
+            Ok(Box::new(Model::new(scene, static_clutter)))
+        })
+    }
+
+    /// A model from a scene's YAML text; `source` names it in messages and anchors its
+    /// relative paths.
+    pub fn from_yaml(yaml: &str, source: &str, static_clutter: bool) -> Result<Box<Model>, String> {
+        guarded("reading a scene", || {
+            let scene =
+                Scene::from_yaml(yaml, std::path::Path::new(source)).map_err(|e| e.to_string())?;
+            Ok(Box::new(Model::new(scene, static_clutter)))
+        })
+    }
+
+    /// The scene whose states OMPL holds.
+    pub fn scene(&self) -> &Scene {
+        self.propagator.scene()
+    }
+
+    /// The scene the planner searches: in Static RRT's mode, the clutter is obstacles.
+    fn searched_scene(&self) -> &Scene {
+        if self.static_mode {
+            self.static_view.propagator.scene()
+        } else {
+            self.scene()
+        }
+    }
+
+    fn state_len(&self) -> usize {
+        State::flat_len(self.scene().robot.dof(), self.scene().objects.len())
+    }
+
+    /// The state of a flat array, its length checked.
+    fn state(&self, flat: &[f64]) -> Result<State, String> {
+        if flat.len() != self.state_len() {
+            return Err(format!(
+                "a state has {} values, this scene needs {}",
+                flat.len(),
+                self.state_len()
+            ));
+        }
+        Ok(State::from_flat(flat, self.scene().robot.dof()))
+    }
+
+    /// States one after another in a flat array.
+    fn states(&self, flat: &[f64]) -> Result<Vec<State>, String> {
+        let scene = self.scene();
+        State::many_from_flat(flat, scene.robot.dof(), scene.objects.len())
+    }
+
+    fn action(&self, control: &[f64]) -> Result<EeAction, String> {
+        let dof = self.scene().robot.dof();
+        if control.len() != 3 + dof {
+            return Err(format!(
+                "a control has {} values, this scene needs {}",
+                control.len(),
+                3 + dof
+            ));
+        }
+        Ok(EeAction::from_flat(control))
+    }
+
+    fn path_controls(&self, controls: &[f64], steps: &[usize]) -> Result<Vec<PathControl>, String> {
+        PathControl::from_flat(controls, steps, self.scene().robot.dof())
+    }
+
+    /// Holds `control` for `steps` steps from `state`; writes the state reached (or, if a
+    /// step was invalid, the invalid state it tried to reach) and says whether it is valid.
+    pub fn propagate(
+        &mut self,
+        state: &[f64],
+        control: &[f64],
+        steps: usize,
+        result: &mut [f64],
+    ) -> Result<bool, String> {
+        guarded("propagate", || {
+            let start = self.state(state)?;
+            let action = self.action(control)?;
+            if result.len() != state.len() {
+                return Err("the result state has the wrong length".into());
+            }
+            let (valid, taken, reached) = if self.static_mode {
+                let view = &mut self.static_view;
+                let run = view
+                    .propagator
+                    .propagate_steps(&view.reduce(&start), &action, steps);
+                let valid = run.stopped_by.is_none();
+                let reached = if valid {
+                    run.state
+                } else {
+                    view.propagator.attempted_state()
+                };
+                (valid, run.steps, view.expand(&reached))
+            } else {
+                let run = self.propagator.propagate_steps(&start, &action, steps);
+                let valid = run.stopped_by.is_none();
+                let reached = if valid {
+                    run.state
+                } else {
+                    self.propagator.attempted_state()
+                };
+                (valid, run.steps, reached)
+            };
+            self.steps_taken += taken as u64 + u64::from(!valid);
+            reached.write_flat(result);
+            self.last_result = Some((result.to_vec(), valid));
+            Ok(valid)
+        })
+    }
+
+    pub fn is_valid(&mut self, state: &[f64]) -> Result<bool, String> {
+        guarded("is_valid", || {
+            if let Some((last, valid)) = &self.last_result {
+                if last.len() == state.len()
+                    && last
+                        .iter()
+                        .zip(state)
+                        .all(|(a, b)| a.to_bits() == b.to_bits())
+                {
+                    return Ok(*valid);
+                }
+            }
+            let state = self.state(state)?;
+            if self.static_mode {
+                let view = &self.static_view;
+                return Ok(view.clutter_in_place(&state)
+                    && check_state(view.propagator.scene(), &view.reduce(&state)).is_ok());
+            }
+            Ok(check_state(self.scene(), &state).is_ok())
+        })
+    }
+
+    pub fn distance(&self, a: &[f64], b: &[f64]) -> Result<f64, String> {
+        guarded("distance", || {
+            let n = self.state_len();
+            if a.len() != n || b.len() != n {
+                return Err(format!(
+                    "states of {} and {} values, this scene needs {n}",
+                    a.len(),
+                    b.len()
+                ));
+            }
+            Ok(self.metric.distance_flat(a, b))
+        })
+    }
+
+    /// The largest distance between two states within the bounds.
+    pub fn max_extent(&self) -> f64 {
+        self.metric.max_extent(self.scene())
+    }
+
+    pub fn goal_distance(&self, state: &[f64]) -> Result<f64, String> {
+        guarded("goal_distance", || {
+            Ok(self.scene().goal.distance(&self.state(state)?))
+        })
+    }
+
+    /// End-effector xy and goal-object xy (m); the goal object's xy is (0, 0) for a
+    /// configuration goal.
+    pub fn projection(&self, state: &[f64]) -> Result<Vec<f64>, String> {
+        guarded("projection", || {
+            let state = self.state(state)?;
+            let robot = &self.scene().robot;
+            let tool = robot.tool_pose(&robot.link_poses(&state.q)).translation;
+            let goal = match self.scene().goal {
+                Goal::ObjectInDisc { object, .. } => state.objects[object].translation(),
+                Goal::Configuration { .. } => nalgebra::Vector2::zeros(),
+            };
+            Ok(vec![tool.x, tool.y, goal.x, goal.y])
+        })
+    }
+
+    /// Switches to (or from) the Static RRT baseline: clutter objects become static
+    /// obstacles at their start poses.
+    pub fn set_static_clutter(&mut self, on: bool) {
+        self.static_mode = on;
+        self.last_result = None;
+    }
+
+    pub fn static_clutter(&self) -> bool {
+        self.static_mode
+    }
+
+    pub fn propagation_steps(&self) -> u64 {
+        self.steps_taken
+    }
+
+    /// Fraction of `trials` perturbed re-simulations of a plan that reach the goal
+    /// ([`crate::robustness`], default noise, drawn from `seed`).
+    pub fn robustness(
+        &self,
+        controls: &[f64],
+        steps: &[usize],
+        trials: usize,
+        seed: u64,
+    ) -> Result<f64, String> {
+        guarded("robustness", || {
+            let controls = self.path_controls(controls, steps)?;
+            let requirement = RobustRequirement { trials, rate: 0.0 };
+            Ok(requirement.success_rate(self.searched_scene(), &controls, seed))
+        })
+    }
+
+    /// Finishes a found path ([`finish`]): `controls` and `steps` as found, `states` the
+    /// planner's states at the control boundaries. The result is in the terms of the
+    /// states OMPL holds (in Static RRT's mode, every object, the clutter at rest).
+    pub fn finish(
+        &mut self,
+        controls: &[f64],
+        steps: &[usize],
+        states: &[f64],
+        solved: bool,
+        settings: &FinishSettings,
+    ) -> Result<FinishedPath, String> {
+        guarded("finish", || {
+            let controls = self.path_controls(controls, steps)?;
+            let states = self.states(states)?;
+            let searched: Vec<State> = if self.static_mode {
+                states.iter().map(|s| self.static_view.reduce(s)).collect()
+            } else {
+                states
+            };
+            let mut finished = finish(
+                self.searched_scene(),
+                &controls,
+                &searched,
+                solved,
+                settings,
+            )?;
+            if self.static_mode {
+                finished.simulation = self.full_path(finished.simulation);
+            }
+            Ok(finished)
+        })
+    }
+
+    /// A path of Static RRT's mode in the full state: every object, clutter at rest.
+    fn full_path(&self, mut path: SimulatedPath) -> SimulatedPath {
+        let view = &self.static_view;
+        for states in [&mut path.states, &mut path.step_states] {
+            for state in states.iter_mut() {
+                *state = view.expand(state);
+            }
+        }
+        for push in path.pushes.iter_mut().flatten().flatten() {
+            push.object = view.full_object(push.object);
+        }
+        path
+    }
+
+    /// The executable trajectory of a plan, as plan files hold it (every object of the
+    /// scene OMPL holds).
+    pub fn trajectory(&mut self, controls: &[f64], steps: &[usize]) -> Result<Trajectory, String> {
+        guarded("trajectory", || {
+            let controls = self.path_controls(controls, steps)?;
+            let scene = self.searched_scene().clone();
+            let mut propagator = Propagator::new(scene);
+            let scene = propagator.shared_scene();
+            let path = crate::path::simulate(&mut propagator, &scene.start, &controls, true);
+            if let Some((i, reason)) = &path.stopped_by {
+                return Err(format!("the plan does not simulate: control {i}: {reason}"));
+            }
+            let mut trajectory =
+                crate::trajectory::executable(&scene, &controls, &path.step_states);
+            if self.static_mode {
+                for sample in &mut trajectory.objects {
+                    let reduced = State {
+                        q: nalgebra::DVector::zeros(0),
+                        objects: sample
+                            .iter()
+                            .map(|p| Pose2::new(p[0], p[1], p[2]))
+                            .collect(),
+                    };
+                    let full = self.static_view.expand(&reduced);
+                    *sample = full.objects.iter().map(|p| [p.x, p.y, p.theta]).collect();
+                }
+            }
+            Ok(trajectory)
+        })
+    }
+
+    /// DARRT's Transit: is the straight joint-space line from `from` to `to` (same object
+    /// poses) valid?
+    pub fn darrt_transit(&self, from: &[f64], to: &[f64]) -> Result<bool, String> {
+        guarded("darrt_transit", || {
+            let (from, to) = (self.state(from)?, self.state(to)?);
+            if from.objects != to.objects {
+                return Err("a transit moves no object: the object poses differ".into());
+            }
+            Ok(darrt::check_transit(self.scene(), &from, &to.q).is_ok())
+        })
+    }
+
+    /// DARRT's Push, first part: writes the state with the hand caging `object` (ready
+    /// to carry it to `target`, `[x, y, yaw]`) and returns true, or false if none is found.
+    pub fn darrt_approach(
+        &self,
+        state: &[f64],
+        object: usize,
+        target: &[f64],
+        result: &mut [f64],
+    ) -> Result<bool, String> {
+        guarded("darrt_approach", || {
+            let state = self.state(state)?;
+            let (object, target) = self.object_target(object, target)?;
+            if result.len() != self.state_len() {
+                return Err("the result state has the wrong length".into());
+            }
+            match darrt::approach(self.scene(), &state, object, &target) {
+                Ok(caged) => {
+                    caged.write_flat(result);
+                    Ok(true)
+                }
+                Err(_) => Ok(false),
+            }
+        })
+    }
+
+    /// DARRT's Push, second part: carries the object caged in `state` to `target`
+    /// (`[x, y, yaw]`). Returns the states of the carry (flat, one after another), or none
+    /// if the line is blocked.
+    pub fn darrt_carry(
+        &self,
+        state: &[f64],
+        object: usize,
+        target: &[f64],
+    ) -> Result<Vec<f64>, String> {
+        guarded("darrt_carry", || {
+            let state = self.state(state)?;
+            let (object, target) = self.object_target(object, target)?;
+            let cage = darrt::Cage::of_state(self.scene(), &state, object);
+            Ok(darrt::carry(self.scene(), &state, &cage, &target)
+                .map(|states| states.iter().flat_map(State::to_flat).collect())
+                .unwrap_or_default())
+        })
+    }
+
+    /// Checks a DARRT path (flat states one after another) and measures it: the outer
+    /// error is a malformed call, the inner one why the path is invalid.
+    pub fn darrt_check(
+        &self,
+        states: &[f64],
+    ) -> Result<Result<darrt::PrimitivePath, String>, String> {
+        guarded("darrt_check", || {
+            Ok(darrt::check_path(self.scene(), &self.states(states)?))
+        })
+    }
+
+    /// An object index and a target pose `[x, y, yaw]`, checked.
+    fn object_target(&self, object: usize, target: &[f64]) -> Result<(usize, Pose2), String> {
+        if object >= self.scene().objects.len() {
+            return Err(format!(
+                "object {object} does not exist ({} objects)",
+                self.scene().objects.len()
+            ));
+        }
+        match target {
+            [x, y, yaw] if target.iter().all(|v| v.is_finite()) => {
+                Ok((object, Pose2::new(*x, *y, *yaw)))
+            }
+            _ => Err(format!(
+                "a target pose is [x, y, yaw], finite; got {target:?}"
+            )),
+        }
+    }
+}
