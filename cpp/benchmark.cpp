@@ -1,6 +1,6 @@
-// ompl::tools::Benchmark on one scene: the planners side by side on the same problem,
-// with pushplan's own run properties (objects moved, object displacement, manipulator
-// path length before and after shortcutting, propagation steps per second).
+// ompl::tools::Benchmark for one run of one planner on one scene (a cell of `pushplan
+// bench`), with pushplan's own run properties (the run's index, objects moved, object
+// displacement, manipulator path length before and after shortcutting, steps per second).
 
 #include "benchmark.h"
 
@@ -15,7 +15,6 @@
 #include <ompl/util/Console.h>
 
 #include <cmath>
-#include <map>
 #include <string>
 
 namespace ob = ompl::base;
@@ -25,8 +24,11 @@ namespace pushplan::bridge
 {
     void benchmark_scene(rust::Str scene_path, const BenchOptions &options)
     {
-        // One scene per process: seed OMPL's global generator before any other exists.
-        ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
+        // One run per process, seeded from the grid's seed and the run's index only: the
+        // run is the same whichever shard or machine runs it. OMPL's global generator is
+        // seeded before any other exists (its planners draw their own seeds from it).
+        const std::uint_fast32_t seed = detail::subSeed(options.seed, 100 + options.run);
+        ompl::RNG::setSeed(seed);
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
         rust::Box<Model> loaded = [&] {
             try
@@ -40,31 +42,19 @@ namespace pushplan::bridge
         }();
         auto model = std::make_shared<detail::ModelHandle>(std::move(loaded));
         const SceneInfo &info = model->info();
-        const detail::Problem problem = detail::makeProblem(model, options.seed, info.k);
+        const detail::Problem problem = detail::makeProblem(model, seed, info.k);
+        // Static RRT shares the problem: the model treats the clutter as obstacles.
+        model->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
 
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
         benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.k));
-        std::map<const ob::Planner *, PlannerKind> kinds;
-        for (const PlannerKind kind : options.planners)
-        {
-            const ob::PlannerPtr planner = detail::makePlanner(kind, problem, options.seed, info.goal_bias, false);
-            kinds[planner.get()] = kind;
-            benchmark.addPlanner(planner);
-        }
+        benchmark.addPlanner(detail::makePlanner(options.planner, problem, seed, info.goal_bias, false));
 
-        std::uint64_t run = 0, steps_before = 0;
-        benchmark.setPreRunEvent([&](const ob::PlannerPtr &planner) {
-            if (auto rrt = std::dynamic_pointer_cast<detail::SeededRRT>(planner))
-                rrt->reseed(detail::subSeed(options.seed, 100 + run));
-            if (auto darrt = std::dynamic_pointer_cast<detail::Darrt>(planner))
-                darrt->reseed(detail::subSeed(options.seed, 100 + run));
-            // Static RRT shares the problem: the model treats the clutter as obstacles.
-            model->model().set_static_clutter(kinds.at(planner.get()) == PlannerKind::StaticRrt);
-            ++run;
-            steps_before = model->model().propagation_steps();
-        });
+        std::uint64_t steps_before = 0;
+        benchmark.setPreRunEvent([&](const ob::PlannerPtr &) { steps_before = model->model().propagation_steps(); });
         benchmark.setPostRunEvent([&](const ob::PlannerPtr &, ompl::tools::Benchmark::RunProperties &props) {
+            props["run INTEGER"] = std::to_string(options.run);
             // Only the planners that propagate controls through the model have a rate.
             const double propagated = static_cast<double>(model->model().propagation_steps() - steps_before);
             const double time = std::stod(props["time REAL"]);
@@ -92,14 +82,14 @@ namespace pushplan::bridge
             // problem the planner searched (Static RRT's clutter stays put).
             const auto found = model->readPath(*pdef->getSolutionPath()->as<oc::PathControl>());
             const FinishedPath s =
-                model->finish(found, true, FinishSettings{options.shortcut, options.seed + run, 0, 0.0});
+                model->finish(found, true, FinishSettings{options.shortcut, seed, 0, 0.0});
             props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
             props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);
             measured(s.before, "");
             measured(s.after, " shortcut");
         });
 
-        ompl::tools::Benchmark::Request request(options.time_limit, 8192.0, options.runs, 0.5, false, false, false);
+        ompl::tools::Benchmark::Request request(options.time_limit, 8192.0, 1, 0.5, false, false, false);
         benchmark.benchmark(request);
         if (!benchmark.saveResultsToFile(std::string(options.log).c_str()))
             throw Error("cannot write " + std::string(options.log));

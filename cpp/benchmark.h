@@ -7,6 +7,6 @@ namespace pushplan::bridge
 {
     struct BenchOptions;
 
-    /// Runs ompl::tools::Benchmark on a scene with the given planners and writes its log.
+    /// Runs one run of ompl::tools::Benchmark (a planner on a scene) and writes its log.
     void benchmark_scene(rust::Str scene_path, const BenchOptions &options);
 }  // namespace pushplan::bridge

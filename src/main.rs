@@ -2,8 +2,9 @@
 //! [`pushplan::cli`].
 
 use clap::{Parser, Subcommand};
+use pushplan::benchmark::grid::{Grid, Shard};
 use pushplan::cli::{
-    bench, check, draw, execute, generate_scenes, install, plan, plots, BenchSettings, PlanOptions,
+    bench, bench_merge, check, draw, execute, generate_scenes, install, plan, plots, PlanOptions,
 };
 use pushplan::ffi::{benchmark_scene, BenchOptions};
 use pushplan::planner::PlannerKind;
@@ -101,10 +102,14 @@ enum Command {
         #[arg(long)]
         render: Option<PathBuf>,
     },
-    /// Benchmark planners on scenes with OMPL's benchmark tooling: one OMPL log per scene
-    /// (scenes run in parallel processes), merged into DIR/results.db by
-    /// ompl_benchmark_statistics (Planner Arena's format).
+    /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,
+    /// run) in a process of its own, the logs merged into DIR/results.db (Planner Arena's
+    /// format) with plots in DIR/plots. With --shard K/N, only every N-th run from the K-th
+    /// on, to merge later with `bench merge`.
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Bench {
+        #[command(subcommand)]
+        action: Option<BenchCommand>,
         /// Scene files.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
@@ -122,27 +127,31 @@ enum Command {
         #[arg(long, default_value_t = 30.0)]
         time: f64,
         /// Output folder (logs and results.db).
-        #[arg(long)]
-        out: PathBuf,
-        /// Scenes benchmarked at once (default: the number of cores).
+        #[arg(long, required = true)]
+        out: Option<PathBuf>,
+        /// Runs at once (default: the number of cores).
         #[arg(long)]
         jobs: Option<usize>,
         /// Shortcutting budget measured after each solved run (s of work).
         #[arg(long, default_value_t = 3.0)]
         shortcut: f64,
+        /// Every run's seeds derive from this seed and the run's index.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Run only shard K of N (1 <= K <= N) of the runs, e.g. a Slurm array task's.
+        #[arg(long, default_value = "1/1")]
+        shard: Shard,
     },
     /// Draw the benchmark plots from the OMPL logs in DIR (written by `bench`) into DIR/plots.
     Plots { dir: PathBuf },
-    /// One scene of `bench`, in its own process (used by `bench`).
+    /// One run of one planner on one scene, in its own process (used by `bench`).
     #[command(hide = true)]
     BenchScene {
         scene: PathBuf,
-        #[arg(long, value_delimiter = ',')]
-        planners: Vec<PlannerKind>,
         #[arg(long)]
-        runs: u32,
+        planner: PlannerKind,
+        #[arg(long)]
+        run: u32,
         #[arg(long)]
         time: f64,
         #[arg(long)]
@@ -173,6 +182,20 @@ enum Command {
         /// Installation prefix (e.g. ~/.local or /usr/local).
         #[arg(long)]
         prefix: PathBuf,
+    },
+}
+
+#[derive(Subcommand)]
+enum BenchCommand {
+    /// Merge the folders of a benchmark's shards (`bench --shard K/N`) into one database
+    /// and one set of plots.
+    Merge {
+        /// The shards' output folders.
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long)]
+        out: PathBuf,
     },
 }
 
@@ -261,6 +284,11 @@ fn main() -> ExitCode {
                 },
         } => generate_scenes(count, &objects, seed, &out),
         Command::Bench {
+            action: Some(BenchCommand::Merge { dirs, out }),
+            ..
+        } => bench_merge(&dirs, &out),
+        Command::Bench {
+            action: None,
             scenes,
             planners,
             runs,
@@ -269,30 +297,33 @@ fn main() -> ExitCode {
             jobs,
             shortcut,
             seed,
+            shard,
         } => {
-            let settings = BenchSettings {
+            let grid = Grid {
+                scenes,
                 planners,
                 runs,
                 time,
                 shortcut,
                 seed,
             };
-            bench(&scenes, &settings, &out, jobs)
+            let out = out.expect("clap requires --out without a subcommand");
+            bench(&grid, shard, &out, jobs)
         }
         Command::Plots { dir } => plots(&dir),
         Command::Install { prefix } => install(&prefix),
         Command::BenchScene {
             scene,
-            planners,
-            runs,
+            planner,
+            run,
             time,
             shortcut,
             seed,
             log,
         } => {
             let options = BenchOptions {
-                planners,
-                runs,
+                planner,
+                run,
                 time_limit: time,
                 seed,
                 shortcut,

@@ -1,8 +1,152 @@
 //! The benchmark pipeline in one command: OMPL's benchmark tooling on a few generated
 //! scenes, logs merged by ompl_benchmark_statistics into a Planner Arena database with
-//! the expected planners, runs and pushplan's own columns.
+//! the expected planners, runs and pushplan's own columns; and the same grid run in
+//! shards and merged.
 
+mod common;
+
+use pushplan::benchmark::grid::{Grid, Shard};
+use pushplan::planner::PlannerKind;
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
 use std::process::Command;
+
+fn pushplan(args: &[&str], dirs: &[&Path]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .args(args)
+        .args(dirs)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn shards_partition_the_grid() {
+    let grid = Grid {
+        scenes: vec![
+            PathBuf::from("a.yaml"),
+            PathBuf::from("b.yaml"),
+            PathBuf::from("c.yaml"),
+        ],
+        planners: vec![PlannerKind::PcRrt, PlannerKind::Kpiece],
+        runs: 5,
+        time: 1.0,
+        shortcut: 0.0,
+        seed: 1,
+    };
+    let all: Vec<_> = grid.cells().collect();
+    assert_eq!(all.len(), 30);
+    for count in [1, 2, 7, 30, 31] {
+        let mut seen = HashSet::new();
+        for index in 1..=count {
+            for cell in grid.shard(Shard { index, count }) {
+                assert!(seen.insert(cell), "{cell:?} in two shards of {count}");
+            }
+        }
+        assert_eq!(seen.len(), all.len(), "{count} shards miss cells");
+    }
+    // Every shard of a few gets a share of every scene.
+    for index in 1..=3 {
+        let scenes: HashSet<usize> = grid
+            .shard(Shard { index, count: 3 })
+            .iter()
+            .map(|c| c.scene)
+            .collect();
+        assert_eq!(scenes.len(), 3);
+    }
+    for bad in ["0/3", "4/3", "1/0", "3", "a/b", "-1/2"] {
+        let err = bad.parse::<Shard>().unwrap_err();
+        assert!(err.contains("K/N"), "{bad}: {err}");
+    }
+    assert_eq!("2/8".parse::<Shard>(), Ok(Shard { index: 2, count: 8 }));
+}
+
+#[test]
+fn shards_merged_hold_the_runs_of_the_unsharded_benchmark() {
+    let base = std::env::temp_dir().join(format!("pushplan-shards-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&base);
+    let grid = [
+        "scenes/benchmark/scene_00.yaml",
+        "scenes/benchmark/scene_05.yaml",
+        "--planners",
+        "pcrrt,kpiece",
+        "--runs",
+        "3",
+        "--time",
+        "1",
+        "--shortcut",
+        "0",
+        "--seed",
+        "7",
+    ];
+    let whole = base.join("whole");
+    let mut args = vec!["bench"];
+    args.extend(grid);
+    args.push("--out");
+    let run = pushplan(&args, &[&whole]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let shards: Vec<PathBuf> = (1..=3).map(|k| base.join(format!("shard{k}"))).collect();
+    for (k, dir) in shards.iter().enumerate() {
+        let shard = format!("{}/3", k + 1);
+        let mut args = args.clone();
+        args.splice(args.len() - 1..args.len() - 1, ["--shard", shard.as_str()]);
+        let run = pushplan(&args, &[dir]);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        assert!(
+            !dir.join("results.db").exists(),
+            "a shard alone is not merged"
+        );
+    }
+    let merged = base.join("merged");
+    let dirs: Vec<&Path> = shards.iter().map(PathBuf::as_path).collect();
+    let run = pushplan(
+        &["bench", "merge", "--out", merged.to_str().unwrap()],
+        &dirs,
+    );
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let (a, b) = (
+        common::benchmark_runs(&whole.join("results.db")),
+        common::benchmark_runs(&merged.join("results.db")),
+    );
+    assert_eq!(a.len(), 2 * 2 * 3, "{a:?}");
+    assert_eq!(a, b, "the merged shards hold the unsharded runs");
+    assert!(
+        a[0].starts_with("benchmark-00 7 3 control_KPIECE1 0"),
+        "{a:?}"
+    );
+    assert!(merged.join("plots").join("success_vs_time.svg").is_file());
+
+    // Merging refuses an incomplete, a doubled or a foreign set of shards.
+    let out = base.join("refused");
+    let run = pushplan(
+        &["bench", "merge", "--out", out.to_str().unwrap()],
+        &dirs[..2],
+    );
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("shard 3/3 is missing"));
+    let run = pushplan(
+        &["bench", "merge", "--out", out.to_str().unwrap()],
+        &[dirs[0], dirs[1], dirs[1]],
+    );
+    assert!(String::from_utf8_lossy(&run.stderr).contains("are the same shard 2/3"));
+    let run = pushplan(
+        &["bench", "merge", "--out", out.to_str().unwrap()],
+        &[dirs[0], dirs[1], dirs[2], &whole],
+    );
+    assert!(String::from_utf8_lossy(&run.stderr).contains("is of 3 shards"));
+    let _ = std::fs::remove_dir_all(&base);
+}
 
 #[test]
 fn bench_runs_planners_on_scenes_and_merges_a_database() {
@@ -31,7 +175,7 @@ fn bench_runs_planners_on_scenes_and_merges_a_database() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{stderr}");
-    assert!(stderr.contains("[3/3]"), "progress is shown: {stderr}");
+    assert!(stderr.contains("[24/24]"), "progress is shown: {stderr}");
     let db = out.join("results.db");
     assert!(db.is_file());
     // The plots, one curve or bar per planner.

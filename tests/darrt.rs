@@ -223,8 +223,8 @@ fn paths_that_break_a_primitive_are_refused() {
 /// stands on the goal, DARRT pushes it away before it pushes the goal object in, and the
 /// solution passed the model's primitive check. DARRT's success here depends much on the
 /// seed (a goal-object sample must meet a node whose clutter has left the disc); with
-/// seed 3 it solves in 28 nodes, a few seconds, the same every time (RRT-Connect
-/// and DARRT are seeded, and neither reaches a time limit).
+/// seed 3 (run 0) it solves in 61 nodes, in about a second, the same every time
+/// (RRT-Connect and DARRT are seeded, and neither reaches a time limit).
 #[test]
 fn darrt_clears_the_goal_before_pushing_the_goal_object_in() {
     let out = std::env::temp_dir().join(format!("pushplan-darrt-{}", std::process::id()));
@@ -255,7 +255,7 @@ for row in c.execute("select solved, correct_solution, objects_moved, graph_stat
     let runs: Vec<&str> = text.lines().collect();
     assert_eq!(
         runs,
-        ["1 1 2 28"],
+        ["1 1 2 61"],
         "solved, correct, objects moved, tree size"
     );
     let _ = std::fs::remove_dir_all(&out);

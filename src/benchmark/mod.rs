@@ -1,7 +1,10 @@
 //! Reading OMPL benchmark logs (the files `ompl::tools::Benchmark` writes and
 //! `ompl_benchmark_statistics` merges), and drawing the paper's plots from them.
 
+pub mod grid;
+pub mod merge;
 pub mod plots;
+pub mod run;
 
 use std::path::Path;
 

@@ -8,7 +8,7 @@ mod execute;
 mod files;
 mod plan;
 
-pub use bench::{bench, plots, BenchSettings};
+pub use bench::{bench, bench_merge, plots};
 pub use check::check;
 pub use execute::execute;
 pub use files::{draw, generate_scenes, install};

@@ -33,14 +33,15 @@ pub mod bridge {
         pub states: Vec<f64>,
     }
 
-    /// A benchmark of one scene (`ompl::tools::Benchmark`); the OMPL log goes to `log`.
+    /// One run of one planner on one scene (`ompl::tools::Benchmark`), seeded from
+    /// `seed` and `run` only; the OMPL log goes to `log`.
     #[derive(Debug, Clone)]
     pub struct BenchOptions {
-        pub planners: Vec<PlannerKind>,
-        pub runs: u32,
+        pub planner: PlannerKind,
+        pub run: u32,
         pub time_limit: f64,
         pub seed: u64,
-        /// Shortcutting budget (s of work) measured after each solved run.
+        /// Shortcutting budget (s of work) measured after a solved run.
         pub shortcut: f64,
         pub log: String,
     }
@@ -53,11 +54,9 @@ pub mod bridge {
         /// Searches the scene file with OMPL (the CLI's entry point).
         fn solve(scene_path: &str, options: &SolveOptions) -> Result<SolveOutput>;
         include!("pushplan/cpp/benchmark.h");
-        /// Benchmarks a scene with ompl::tools::Benchmark and writes the log.
+        /// Runs one benchmark run with ompl::tools::Benchmark and writes its log.
         fn benchmark_scene(scene_path: &str, options: &BenchOptions) -> Result<()>;
     }
-
-    impl Vec<PlannerKind> {}
 }
 
 pub use bridge::{BenchOptions, SolveOptions, SolveOutput};

@@ -108,3 +108,30 @@ goal: {{object: {name}, center: [0.9, 0.3], radius: 0.1}}
     );
     Scene::from_yaml(&yaml, Path::new("scenes/thin-hand-test.yaml")).unwrap()
 }
+
+/// Every run of a benchmark database (`results.db`), one line each: experiment, its seed
+/// and run count, planner, run index.
+pub fn benchmark_runs(db: &Path) -> Vec<String> {
+    let query = r#"
+import sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+for row in c.execute("""select e.name, e.seed, e.runcount, p.name, r.run from runs r
+        join experiments e on e.id = r.experimentid join plannerConfigs p on p.id = r.plannerid
+        order by 1, 4, 5"""):
+    print(*row)
+"#;
+    let answer = std::process::Command::new("python3")
+        .args(["-c", query])
+        .arg(db)
+        .output()
+        .unwrap();
+    assert!(
+        answer.status.success(),
+        "{}",
+        String::from_utf8_lossy(&answer.stderr)
+    );
+    String::from_utf8_lossy(&answer.stdout)
+        .lines()
+        .map(str::to_string)
+        .collect()
+}

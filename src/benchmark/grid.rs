@@ -1,0 +1,142 @@
+//! The benchmark grid: every (scene, planner, run) cell of an experiment, and the share
+//! of it a shard runs. Each cell runs in a process of its own, seeded from the grid's seed
+//! and its run index only, so a cell is the same run whichever shard or machine runs it.
+
+use crate::planner::PlannerKind;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// The file in a benchmark folder that says which grid and which shard it holds.
+pub const MANIFEST: &str = "grid.json";
+
+/// What a benchmark runs: every planner on every scene, `runs` times.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Grid {
+    /// Scene files, as given.
+    pub scenes: Vec<PathBuf>,
+    pub planners: Vec<PlannerKind>,
+    pub runs: u32,
+    /// Time limit per run (s).
+    pub time: f64,
+    /// Shortcutting budget measured after each solved run (s of work).
+    pub shortcut: f64,
+    /// Every run's seeds derive from it and the run's index.
+    pub seed: u64,
+}
+
+/// One run of one planner on one scene (indices into the grid's lists).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Cell {
+    pub scene: usize,
+    pub planner: usize,
+    pub run: u32,
+}
+
+/// Shard `index` of `count` (1-based, as Slurm's array task ids usually are).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Shard {
+    pub index: usize,
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole grid.
+    pub const ALL: Shard = Shard { index: 1, count: 1 };
+}
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+
+    /// `K/N` with 1 <= K <= N.
+    fn from_str(text: &str) -> Result<Shard, String> {
+        let parsed = text
+            .split_once('/')
+            .and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
+        match parsed {
+            Some((index, count)) if count >= 1 && (1..=count).contains(&index) => {
+                Ok(Shard { index, count })
+            }
+            _ => Err(format!(
+                "a shard is K/N with 1 <= K <= N (e.g. 2/8), got '{text}'"
+            )),
+        }
+    }
+}
+
+impl Grid {
+    /// Every cell, scene by scene, planner by planner, run by run.
+    pub fn cells(&self) -> impl Iterator<Item = Cell> + '_ {
+        (0..self.scenes.len()).flat_map(move |scene| {
+            (0..self.planners.len()).flat_map(move |planner| {
+                (0..self.runs).map(move |run| Cell {
+                    scene,
+                    planner,
+                    run,
+                })
+            })
+        })
+    }
+
+    /// The cells of `shard`: every `count`-th cell, from the `index`-th on, so that each
+    /// shard gets a share of every scene and planner.
+    pub fn shard(&self, shard: Shard) -> Vec<Cell> {
+        self.cells()
+            .enumerate()
+            .filter(|(i, _)| i % shard.count == shard.index - 1)
+            .map(|(_, c)| c)
+            .collect()
+    }
+
+    /// The log of a scene's merged runs in the output folder.
+    pub fn scene_log(&self, out: &Path, scene: usize) -> PathBuf {
+        out.join(format!("{scene:03}_{}.log", self.scene_stem(scene)))
+    }
+
+    /// The log of one cell, under `out/cells/`.
+    pub fn cell_log(&self, out: &Path, cell: Cell) -> PathBuf {
+        out.join("cells")
+            .join(format!("{:03}_{}", cell.scene, self.scene_stem(cell.scene)))
+            .join(format!(
+                "{}_{:04}.log",
+                self.planners[cell.planner].name(),
+                cell.run
+            ))
+    }
+
+    fn scene_stem(&self, scene: usize) -> String {
+        self.scenes[scene]
+            .file_stem()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned()
+    }
+}
+
+/// A benchmark folder's manifest: the grid and the shard whose cells it holds.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    pub grid: Grid,
+    pub shard: Shard,
+}
+
+impl Manifest {
+    pub fn write(&self, dir: &Path) -> Result<(), String> {
+        let path = dir.join(MANIFEST);
+        let text = serde_json::to_string_pretty(self).expect("a manifest serialises") + "\n";
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    pub fn read(dir: &Path) -> Result<Manifest, String> {
+        let path = dir.join(MANIFEST);
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            format!(
+                "{}: {e} (not a folder written by `pushplan bench`)",
+                path.display()
+            )
+        })?;
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
