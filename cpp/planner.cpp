@@ -97,6 +97,8 @@ namespace pushplan
             const unsigned k = checked("k", options.k.value_or(info.k), options.k.value_or(info.k) >= 1);
             const double goal_bias = options.goal_bias.value_or(info.goal_bias);
             checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
+            checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
+            checked("shortcut", options.shortcut, std::isfinite(options.shortcut) && options.shortcut >= 0.0);
 
             // OMPL's log level is process-wide: quiet below warnings while planning, then put
             // back as the application had it.
@@ -145,7 +147,6 @@ namespace pushplan
                 if (setup.haveSolutionPath())
                     found = model->readPath(setup.getSolutionPath());
             };
-            checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
 
             Plan plan;
             bool solved = setup.haveExactSolutionPath();
@@ -197,7 +198,6 @@ namespace pushplan
 
             // Every plan is checked (re-simulating it reproduces its states) and finished
             // (shortcut, kept robust) by the model, the same way as the CLI's and bench's.
-            checked("shortcut", options.shortcut, std::isfinite(options.shortcut) && options.shortcut >= 0.0);
             const bridge::FinishedPath path = model->finish(
                 found, solved, bridge::FinishSettings{options.shortcut, seed, options.robust_trials, options.robust_rate});
             const auto metrics = [](const bridge::PathMetrics &m) {

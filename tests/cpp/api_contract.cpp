@@ -1,8 +1,9 @@
 // The C++ API's contract beyond planning (run by tests/cpp_api.rs):
 // - every planner kind has the CLI's name, and a name gives the kind back;
 // - OMPL's process-wide log level is as the application left it after solve();
-// - every failure crosses as pushplan::Error: an unknown name, a bad option, a planner
-//   whose paths are not controls, a bad scene;
+// - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
+//   whose paths are not controls, a bad scene, the model failing inside solve() and
+//   makeSetup();
 // - the public OMPL layer (pushplan/ompl.h): the state space passes OMPL's own sanity
 //   checks, and StateAccess reads what it wrote.
 // Prints one line per check; exits non-zero at the first failure.
@@ -13,7 +14,12 @@
 
 #include <ompl/util/Console.h>
 
+#include <unistd.h>
+
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -82,6 +88,35 @@ int main()
     expect(throwsError([&] { planner.solve(options); }, "DARRT"), "DARRT through solve() throws pushplan::Error");
     expect(throwsError([] { pushplan::Planner("scenes/none.yaml"); }, "none.yaml"),
            "a missing scene throws pushplan::Error");
+    // Every option is checked before the search, a bad one named.
+    const auto bad_option = [&](const std::string &field, const std::function<void(pushplan::Options &)> &set) {
+        pushplan::Options o;
+        o.time_limit = 1.0;
+        set(o);
+        expect(throwsError([&] { planner.solve(o); }, field), "a bad " + field + " throws pushplan::Error");
+    };
+    bad_option("k", [](pushplan::Options &o) { o.k = 0u; });
+    bad_option("goal_bias", [](pushplan::Options &o) { o.goal_bias = 1.5; });
+    bad_option("robust_rate", [](pushplan::Options &o) { o.robust_rate = 2.0; });
+    bad_option("shortcut", [](pushplan::Options &o) { o.shortcut = std::nan(""); });
+    // A failure of the model inside solve() and makeSetup(): the scene file is gone by then.
+    {
+        std::ifstream in("scenes/herb_single_object.yaml");
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string relative = "../robots/wam7.urdf";
+        text.replace(text.find(relative), relative.size(), (std::filesystem::current_path() / "robots/wam7.urdf").string());
+        const std::filesystem::path file =
+            std::filesystem::temp_directory_path() / ("pushplan-contract-" + std::to_string(::getpid()) + ".yaml");
+        std::ofstream(file) << text;
+        const pushplan::Planner vanishing(file.string());
+        std::filesystem::remove(file);
+        pushplan::Options o;
+        o.time_limit = 1.0;
+        expect(throwsError([&] { vanishing.solve(o); }, file.filename().string()),
+               "a model error inside solve() throws pushplan::Error naming the file");
+        expect(throwsError([&] { pushplan::makeSetup(vanishing); }, file.filename().string()),
+               "a model error inside makeSetup() throws pushplan::Error naming the file");
+    }
 
     // The public OMPL layer.
     const ompl::control::SimpleSetupPtr setup = pushplan::makeSetup(pushplan::Planner("scenes/herb_fig1_clutter.yaml"));
