@@ -33,7 +33,7 @@ namespace pushplan::bridge
         rust::Box<Model> loaded = [&] {
             try
             {
-                return Model::load(scene_path, false);
+                return Model::load(scene_path);
             }
             catch (const rust::Error &e)
             {

@@ -43,7 +43,7 @@ namespace pushplan
 
     Planner::Planner(std::unique_ptr<Source> source) : source_(std::move(source))
     {
-        source_->name = std::string(bridge::scene_info(*source_->load(false)).name);  // validates now
+        source_->name = std::string(bridge::scene_info(*source_->load()).name);  // validates now
     }
 
     Planner::~Planner() = default;
@@ -88,8 +88,9 @@ namespace pushplan
             if (options.planner == PlannerKind::Darrt)
                 throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
                             "(measure DARRT with `pushplan bench`)");
-            const bool static_clutter = options.planner == PlannerKind::StaticRrt;
-            auto model = std::make_shared<detail::ModelHandle>(source_->load(static_clutter));
+            auto model = std::make_shared<detail::ModelHandle>(source_->load());
+            // Static RRT's problem: the same states, the clutter pinned where it starts.
+            model->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
             const bridge::SceneInfo &info = model->info();
             const double time_limit = options.time_limit.value_or(info.time_limit);
             checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);

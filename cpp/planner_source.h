@@ -43,12 +43,12 @@ namespace pushplan
         bool from_yaml = false;
         std::string name;
 
-        rust::Box<bridge::Model> load(bool static_clutter) const
+        rust::Box<bridge::Model> load() const
         {
             try
             {
-                return from_yaml ? bridge::Model::from_yaml(yaml, path, static_clutter) :
-                                   bridge::Model::load(path, static_clutter);
+                return from_yaml ? bridge::Model::from_yaml(yaml, path) :
+                                   bridge::Model::load(path);
             }
             catch (const rust::Error &e)
             {

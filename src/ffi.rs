@@ -118,9 +118,9 @@ pub mod bridge {
     extern "Rust" {
         type Model;
         #[Self = "Model"]
-        fn load(path: &str, static_clutter: bool) -> Result<Box<Model>>;
+        fn load(path: &str) -> Result<Box<Model>>;
         #[Self = "Model"]
-        fn from_yaml(yaml: &str, source: &str, static_clutter: bool) -> Result<Box<Model>>;
+        fn from_yaml(yaml: &str, source: &str) -> Result<Box<Model>>;
         fn scene_info(model: &Model) -> SceneInfo;
         fn propagate(
             self: &mut Model,

@@ -5,9 +5,8 @@
 //! count, the state it reaches and the pushes during its steps. Nothing in it depends on
 //! the machine or the clock, so the same scene, parameters and seed give the same bytes.
 
-use crate::path::{simulate, PathControl, PathMetrics};
-use crate::planner::PlannerKind;
-use crate::propagate::Propagator;
+use crate::path::{PathControl, PathMetrics};
+use crate::planner::{PlannerKind, Problem};
 use crate::scene::Scene;
 use crate::state::State;
 pub use crate::trajectory::TRAJECTORY_RATE;
@@ -192,9 +191,9 @@ impl PlanFile {
         plan_path.parent().unwrap_or(Path::new(".")).join(&recorded)
     }
 
-    /// Builds a plan file by simulating `controls` in `scene` (its Static RRT variant for
-    /// that planner): states, per-step contacts, metrics and the executable trajectory.
-    /// `before` are the metrics before shortcutting (default: the same as after).
+    /// Builds a plan file by simulating `controls` in the planner's problem of `scene`:
+    /// states, per-step contacts, metrics and the executable trajectory. `before` are the
+    /// metrics before shortcutting (default: the same as after).
     pub fn build(
         scene_ref: &str,
         scene: Scene,
@@ -202,10 +201,9 @@ impl PlanFile {
         controls: &[PathControl],
         before: Option<PathMetrics>,
     ) -> Result<PlanFile, String> {
-        let scene = scene.planned_by(settings.planner);
-        let mut propagator = Propagator::new(scene);
-        let scene = propagator.shared_scene();
-        let path = simulate(&mut propagator, &scene.start, controls, true);
+        let problem = Problem::new(scene, settings.planner);
+        let scene = problem.scene();
+        let path = problem.simulate(controls, true);
         if let Some((i, reason)) = &path.stopped_by {
             return Err(format!("the plan does not simulate: control {i}: {reason}"));
         }
@@ -269,7 +267,7 @@ impl PlanFile {
             objects: scene.objects.iter().map(|o| o.name.clone()).collect(),
             start: StateRecord::from_state(&scene.start),
             controls: records,
-            trajectory: executable(&scene, controls, &path.step_states),
+            trajectory: executable(scene, controls, &path.step_states),
             robustness: None,
         })
     }
@@ -291,9 +289,9 @@ impl PlanFile {
     /// Re-simulates the plan with the model from the scene's start, independently of the
     /// planner: every state valid, the recorded states reproduced, the goal reached.
     pub fn check(&self, plan_path: &Path) -> Result<CheckReport, String> {
-        let scene = Scene::load(self.scene_path(plan_path))
-            .map_err(|e| e.to_string())?
-            .planned_by(self.planner);
+        let scene = Scene::load(self.scene_path(plan_path)).map_err(|e| e.to_string())?;
+        let problem = Problem::new(scene, self.planner);
+        let scene = problem.scene();
         let dof = scene.robot.dof();
         let mut problems = Vec::new();
         if self.start.flat() != scene.start.to_flat() {
@@ -307,9 +305,7 @@ impl PlanFile {
                 ));
             }
         }
-        let mut propagator = Propagator::new(scene);
-        let scene = propagator.shared_scene();
-        let sim = simulate(&mut propagator, &scene.start, &self.path_controls(), false);
+        let sim = problem.simulate(&self.path_controls(), false);
         if let Some((i, reason)) = &sim.stopped_by {
             problems.push(format!(
                 "control {i} stops after {} of {} steps: {reason}",

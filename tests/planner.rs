@@ -81,7 +81,12 @@ fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_awa
     let stuck = solve(Path::new(scene), &options("static", 5, 1.0)).unwrap();
     assert!(!stuck.exact);
     let static_plan = plan_file(scene, "static", 5, &stuck);
-    assert_eq!(static_plan.objects, vec!["goal_box".to_string()]);
+    // Its plan holds the whole scene, the clutter pinned where it starts.
+    assert_eq!(static_plan.objects, ["goal_box", "clutter"]);
+    assert!(static_plan
+        .controls
+        .iter()
+        .all(|c| c.state.objects[1] == static_plan.start.objects[1]));
     assert!(
         !static_plan
             .check(Path::new("plan.json"))
@@ -181,8 +186,10 @@ fn a_robot_configuration_goal_is_planned_for_too() {
 fn the_static_mode_of_the_full_problem_is_the_static_clutter_scene() {
     use pushplan::planner::Model;
     let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
-    let mut reduced = Model::new(scene.clone(), true);
-    let mut full = Model::new(scene.clone(), false);
+    // The scene with the clutter as obstacles, pushed in: the physics Static RRT's mode
+    // must have while it keeps every object in the state.
+    let mut reduced = Model::new(scene.with_static_clutter());
+    let mut full = Model::new(scene.clone());
     full.set_static_clutter(true);
     // Push forward into the clutter: in the static problem the first contact is invalid.
     let control = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];

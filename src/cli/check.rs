@@ -1,7 +1,8 @@
 //! `pushplan check`: re-simulate a plan file, optionally under parameter noise.
 
 use crate::plan::PlanFile;
-use crate::robustness::{robustness, Noise};
+use crate::planner::Problem;
+use crate::robustness::Noise;
 use crate::Scene;
 use std::path::Path;
 use std::process::ExitCode;
@@ -10,11 +11,8 @@ pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
     let plan = PlanFile::read(path)?;
     let report = plan.check(path)?;
     if noise > 0 {
-        let scene = Scene::load(plan.scene_path(path))
-            .map_err(|e| e.to_string())?
-            .planned_by(plan.planner);
-        let r = robustness(
-            &scene,
+        let scene = Scene::load(plan.scene_path(path)).map_err(|e| e.to_string())?;
+        let r = Problem::new(scene, plan.planner).robustness(
             &plan.path_controls(),
             &Noise::default(),
             noise,

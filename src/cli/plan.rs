@@ -3,7 +3,7 @@
 use crate::ffi::{solve, SolveOptions};
 use crate::path::PathControl;
 use crate::plan::{PlanFile, PlanSettings, RobustnessRecord};
-use crate::planner::{finish, FinishSettings, PlannerKind, RobustRequirement};
+use crate::planner::{FinishSettings, PlannerKind, Problem, RobustRequirement};
 use crate::state::State;
 use crate::Scene;
 use std::path::Path;
@@ -70,13 +70,10 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         );
     }
     let solution = solve(scene_path, &options)?;
-    let searched = scene.clone().planned_by(planner);
-    let found = PathControl::from_flat(&solution.controls, &solution.steps, searched.robot.dof())?;
-    let found_states = State::many_from_flat(
-        &solution.states,
-        searched.robot.dof(),
-        searched.objects.len(),
-    )?;
+    let problem = Problem::new(scene.clone(), planner);
+    let dof = scene.robot.dof();
+    let found = PathControl::from_flat(&solution.controls, &solution.steps, dof)?;
+    let found_states = State::many_from_flat(&solution.states, dof, scene.objects.len())?;
     let finish_settings = FinishSettings {
         shortcut: run.shortcut,
         seed,
@@ -85,13 +82,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             rate: run.robust_rate,
         }),
     };
-    let path = finish(
-        &searched,
-        &found,
-        &found_states,
-        solution.exact,
-        &finish_settings,
-    )?;
+    let path = problem.finish(&found, &found_states, solution.exact, &finish_settings)?;
     if !quiet && path.shortcut.attempts > 0 {
         eprintln!(
             "shortcutting: {} of {} attempts accepted",

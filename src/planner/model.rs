@@ -3,14 +3,15 @@
 //! the arrays' lengths and turns a panic into an error message, because its caller is
 //! C++ (nothing may unwind across the bridge).
 
-use super::finish::{finish, FinishSettings, FinishedPath, RobustRequirement};
-use super::PlannerKind;
+use super::finish::{FinishSettings, FinishedPath};
+use super::{PlannerKind, Problem};
 use crate::darrt;
 use crate::distance::DistanceMetric;
 use crate::math::Pose2;
-use crate::path::{PathControl, SimulatedPath};
+use crate::path::PathControl;
 use crate::propagate::Propagator;
 use crate::robot::EeAction;
+use crate::robustness::Noise;
 use crate::scene::{Goal, Scene};
 use crate::state::State;
 use crate::static_clutter::StaticClutter;
@@ -47,14 +48,8 @@ pub fn guarded<T>(what: &str, f: impl FnOnce() -> Result<T, String>) -> Result<T
 }
 
 impl Model {
-    /// The model of `scene`; with `static_clutter`, of its Static RRT variant (the
-    /// clutter as obstacles, the state only the robot and the goal object).
-    pub fn new(scene: Scene, static_clutter: bool) -> Model {
-        let scene = scene.planned_by(if static_clutter {
-            PlannerKind::StaticRrt
-        } else {
-            PlannerKind::PcRrt
-        });
+    /// The model of `scene`, in the pushing problem (see [`Model::set_static_clutter`]).
+    pub fn new(scene: Scene) -> Model {
         Model {
             metric: DistanceMetric::from_scene(&scene),
             static_view: StaticClutter::new(&scene),
@@ -66,20 +61,20 @@ impl Model {
     }
 
     /// Loads a scene file into a model (boxed for C++).
-    pub fn load(path: &str, static_clutter: bool) -> Result<Box<Model>, String> {
+    pub fn load(path: &str) -> Result<Box<Model>, String> {
         guarded("loading a scene", || {
             let scene = Scene::load(path).map_err(|e| e.to_string())?;
-            Ok(Box::new(Model::new(scene, static_clutter)))
+            Ok(Box::new(Model::new(scene)))
         })
     }
 
     /// A model from a scene's YAML text; `source` names it in messages and anchors its
     /// relative paths.
-    pub fn from_yaml(yaml: &str, source: &str, static_clutter: bool) -> Result<Box<Model>, String> {
+    pub fn from_yaml(yaml: &str, source: &str) -> Result<Box<Model>, String> {
         guarded("reading a scene", || {
             let scene =
                 Scene::from_yaml(yaml, std::path::Path::new(source)).map_err(|e| e.to_string())?;
-            Ok(Box::new(Model::new(scene, static_clutter)))
+            Ok(Box::new(Model::new(scene)))
         })
     }
 
@@ -88,13 +83,14 @@ impl Model {
         self.propagator.scene()
     }
 
-    /// The scene the planner searches: in Static RRT's mode, the clutter is obstacles.
-    fn searched_scene(&self) -> &Scene {
-        if self.static_mode {
-            self.static_view.propagator.scene()
+    /// The problem of the current mode (for finishing, robustness, trajectories).
+    fn problem(&self) -> Problem {
+        let kind = if self.static_mode {
+            PlannerKind::StaticRrt
         } else {
-            self.scene()
-        }
+            PlannerKind::PcRrt
+        };
+        Problem::new(self.scene().clone(), kind)
     }
 
     fn state_len(&self) -> usize {
@@ -267,14 +263,15 @@ impl Model {
     ) -> Result<f64, String> {
         guarded("robustness", || {
             let controls = self.path_controls(controls, steps)?;
-            let requirement = RobustRequirement { trials, rate: 0.0 };
-            Ok(requirement.success_rate(self.searched_scene(), &controls, seed))
+            let report = self
+                .problem()
+                .robustness(&controls, &Noise::default(), trials, seed);
+            Ok(report.success_rate)
         })
     }
 
-    /// Finishes a found path ([`finish`]): `controls` and `steps` as found, `states` the
-    /// planner's states at the control boundaries. The result is in the terms of the
-    /// states OMPL holds (in Static RRT's mode, every object, the clutter at rest).
+    /// Finishes a found path ([`super::finish`]): `controls` and `steps` as found,
+    /// `states` the planner's states at the control boundaries.
     pub fn finish(
         &mut self,
         controls: &[f64],
@@ -286,67 +283,15 @@ impl Model {
         guarded("finish", || {
             let controls = self.path_controls(controls, steps)?;
             let states = self.states(states)?;
-            let searched: Vec<State> = if self.static_mode {
-                states.iter().map(|s| self.static_view.reduce(s)).collect()
-            } else {
-                states
-            };
-            let mut finished = finish(
-                self.searched_scene(),
-                &controls,
-                &searched,
-                solved,
-                settings,
-            )?;
-            if self.static_mode {
-                finished.simulation = self.full_path(finished.simulation);
-            }
-            Ok(finished)
+            self.problem().finish(&controls, &states, solved, settings)
         })
     }
 
-    /// A path of Static RRT's mode in the full state: every object, clutter at rest.
-    fn full_path(&self, mut path: SimulatedPath) -> SimulatedPath {
-        let view = &self.static_view;
-        for states in [&mut path.states, &mut path.step_states] {
-            for state in states.iter_mut() {
-                *state = view.expand(state);
-            }
-        }
-        for push in path.pushes.iter_mut().flatten().flatten() {
-            push.object = view.full_object(push.object);
-        }
-        path
-    }
-
-    /// The executable trajectory of a plan, as plan files hold it (every object of the
-    /// scene OMPL holds).
+    /// The executable trajectory of a plan, as plan files hold it.
     pub fn trajectory(&mut self, controls: &[f64], steps: &[usize]) -> Result<Trajectory, String> {
         guarded("trajectory", || {
             let controls = self.path_controls(controls, steps)?;
-            let scene = self.searched_scene().clone();
-            let mut propagator = Propagator::new(scene);
-            let scene = propagator.shared_scene();
-            let path = crate::path::simulate(&mut propagator, &scene.start, &controls, true);
-            if let Some((i, reason)) = &path.stopped_by {
-                return Err(format!("the plan does not simulate: control {i}: {reason}"));
-            }
-            let mut trajectory =
-                crate::trajectory::executable(&scene, &controls, &path.step_states);
-            if self.static_mode {
-                for sample in &mut trajectory.objects {
-                    let reduced = State {
-                        q: nalgebra::DVector::zeros(0),
-                        objects: sample
-                            .iter()
-                            .map(|p| Pose2::new(p[0], p[1], p[2]))
-                            .collect(),
-                    };
-                    let full = self.static_view.expand(&reduced);
-                    *sample = full.objects.iter().map(|p| [p.x, p.y, p.theta]).collect();
-                }
-            }
-            Ok(trajectory)
+            self.problem().trajectory(&controls)
         })
     }
 

@@ -8,9 +8,8 @@ mod html;
 pub mod outline;
 mod svg;
 
-use crate::path::simulate;
 use crate::plan::PlanFile;
-use crate::propagate::Propagator;
+use crate::planner::Problem;
 use crate::scene::{Goal, Scene};
 use crate::state::State;
 use nalgebra::Vector2;
@@ -45,11 +44,8 @@ pub struct Frame {
 impl Film {
     /// Simulates the plan in the file (its scene resolved as `check` does).
     pub fn of(plan: &PlanFile, plan_path: &Path) -> Result<Film, String> {
-        let scene = Scene::load(plan.scene_path(plan_path))
-            .map_err(|e| e.to_string())?
-            .planned_by(plan.planner);
-        let mut propagator = Propagator::new(scene.clone());
-        let path = simulate(&mut propagator, &scene.start, &plan.path_controls(), true);
+        let scene = Scene::load(plan.scene_path(plan_path)).map_err(|e| e.to_string())?;
+        let path = Problem::new(scene.clone(), plan.planner).simulate(&plan.path_controls(), true);
         if let Some((i, reason)) = path.stopped_by {
             return Err(format!("the plan does not simulate: control {i}: {reason}"));
         }

@@ -10,7 +10,6 @@ mod load;
 use crate::collision::Geometry;
 use crate::math::Pose2;
 use crate::physics::{Footprint, LimitSurface};
-use crate::planner::PlannerKind;
 use crate::robot::Robot;
 use crate::state::State;
 use crate::validity::Clearances;
@@ -167,16 +166,6 @@ impl Goal {
 }
 
 impl Scene {
-    /// The scene a planner searches: Static RRT holds the clutter as static obstacles
-    /// ([`Scene::with_static_clutter`]); the others push it.
-    pub fn planned_by(self, planner: PlannerKind) -> Scene {
-        if planner.pins_clutter() {
-            self.with_static_clutter()
-        } else {
-            self
-        }
-    }
-
     /// The scene of the Static RRT baseline: every movable object except the goal object
     /// becomes a static obstacle where it starts.
     pub fn with_static_clutter(&self) -> Scene {
