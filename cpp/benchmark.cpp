@@ -42,14 +42,14 @@ namespace pushplan::bridge
         }();
         auto model = std::make_shared<detail::ModelHandle>(std::move(loaded));
         const SceneInfo &info = model->info();
-        const detail::Problem problem = detail::makeProblem(model, seed, info.k);
+        const detail::Problem problem = detail::makeProblem(model, seed, info.planner.k);
         // Static RRT shares the problem: the model treats the clutter as obstacles.
         model->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
 
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
-        benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.k));
-        benchmark.addPlanner(detail::makePlanner(options.planner, problem, seed, info.goal_bias, false));
+        benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.planner.k));
+        benchmark.addPlanner(detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false));
 
         std::uint64_t steps_before = 0;
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &) { steps_before = model->model().propagation_steps(); });

@@ -10,16 +10,16 @@ namespace pushplan::detail
     {
         auto controls = std::make_shared<oc::RealVectorControlSpace>(space, 3 + info.dof);
         ob::RealVectorBounds bounds(3 + info.dof);
-        bounds.setLow(0, -info.max_ee_speed);
-        bounds.setHigh(0, info.max_ee_speed);
-        bounds.setLow(1, -info.max_ee_speed);
-        bounds.setHigh(1, info.max_ee_speed);
-        bounds.setLow(2, -info.max_ee_turn_rate);
-        bounds.setHigh(2, info.max_ee_turn_rate);
+        bounds.setLow(0, -info.planner.max_ee_speed);
+        bounds.setHigh(0, info.planner.max_ee_speed);
+        bounds.setLow(1, -info.planner.max_ee_speed);
+        bounds.setHigh(1, info.planner.max_ee_speed);
+        bounds.setLow(2, -info.planner.max_ee_turn_rate);
+        bounds.setHigh(2, info.planner.max_ee_turn_rate);
         for (std::size_t i = 0; i < info.dof; ++i)
         {
-            bounds.setLow(3 + i, -info.max_nullspace_speed);
-            bounds.setHigh(3 + i, info.max_nullspace_speed);
+            bounds.setLow(3 + i, -info.planner.max_nullspace_speed);
+            bounds.setHigh(3 + i, info.planner.max_nullspace_speed);
         }
         controls->setBounds(bounds);
         return controls;

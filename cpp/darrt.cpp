@@ -1,6 +1,7 @@
 #include "darrt.h"
 
 #include "problem.h"
+#include "sampling.h"
 #include "pushplan/pushplan.h"
 
 #include <ompl/base/MotionValidator.h>
@@ -208,7 +209,7 @@ namespace pushplan::detail
       : ob::Planner(si, "DARRT"), model_(std::move(model)), transit_(model_, 15.0)
     {
         rng_.setLocalSeed(seed);
-        goal_bias_ = model_->info().goal_bias;
+        goal_bias_ = model_->info().planner.goal_bias;
         specs_.approximateSolutions = false;
         specs_.directed = true;
         declareParam<double>("goal_bias", this, &Darrt::setGoalBias, &Darrt::getGoalBias, "0.:.05:1.");
@@ -256,8 +257,7 @@ namespace pushplan::detail
     {
         const bridge::SceneInfo &info = model_->info();
         FlatState q(info.dof);
-        for (std::size_t i = 0; i < info.dof; ++i)
-            q[i] = rng_.uniformReal(info.joint_lower[i], info.joint_upper[i]);
+        sampleJoints(info, rng_, q.data());
         int nearest = 0;
         double best = std::numeric_limits<double>::infinity();
         for (std::size_t n = 0; n < nodes_.size(); ++n)
@@ -284,18 +284,9 @@ namespace pushplan::detail
     int Darrt::extendObject(int object, const ob::PlannerTerminationCondition &ptc)
     {
         const bridge::SceneInfo &info = model_->info();
-        std::array<double, 3> target{};
-        if (object == info.goal_object && rng_.uniform01() < goal_bias_)
-        {
-            // Uniform in the goal disc: radius ~ R sqrt(u).
-            const double r = info.goal_radius * std::sqrt(rng_.uniform01());
-            const double a = rng_.uniformReal(-M_PI, M_PI);
-            target = {info.goal_center[0] + r * std::cos(a), info.goal_center[1] + r * std::sin(a), 0.0};
-        }
-        else
-            target = {rng_.uniformReal(info.table[0], info.table[1]),
-                      rng_.uniformReal(info.table[2], info.table[3]), 0.0};
-        target[2] = rng_.uniformReal(-M_PI, M_PI);
+        const bool toward_goal = object == info.goal_object && rng_.uniform01() < goal_bias_;
+        const auto [x, y] = toward_goal ? sampleInGoalDisc(info, rng_) : sampleOnTable(info, rng_);
+        const std::array<double, 3> target{x, y, sampleYaw(rng_)};
 
         // The node whose copy of the object is nearest (centre distance). Many nodes share
         // an object pose (every arm motion keeps it); ties are broken uniformly, so that

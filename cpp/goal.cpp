@@ -1,4 +1,6 @@
 #include "goal.h"
+
+#include "sampling.h"
 #include "state_space.h"
 
 #include <algorithm>
@@ -29,12 +31,10 @@ namespace pushplan::detail
             PushStateSampler::sampleRaw(info, rng_, buffer_);
             if (info.goal_object >= 0)
             {
-                // Uniform in the disc: radius ~ R sqrt(u).
-                const double r = info.goal_radius * std::sqrt(rng_.uniform01());
-                const double a = rng_.uniformReal(-M_PI, M_PI);
                 const std::size_t at = info.dof + 3 * static_cast<std::size_t>(info.goal_object);
-                buffer_[at] = info.goal_center[0] + r * std::cos(a);
-                buffer_[at + 1] = info.goal_center[1] + r * std::sin(a);
+                const auto [x, y] = sampleInGoalDisc(info, rng_);
+                buffer_[at] = x;
+                buffer_[at + 1] = y;
             }
             else
             {

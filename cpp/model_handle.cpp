@@ -110,7 +110,7 @@ namespace pushplan::detail
         {
             readControl(path.getControl(i), control_);
             flat.controls.insert(flat.controls.end(), control_.begin(), control_.end());
-            flat.steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info_.step)));
+            flat.steps.push_back(static_cast<std::size_t>(std::round(path.getControlDuration(i) / info_.planner.step)));
         }
         for (std::size_t i = 0; i < path.getStateCount(); ++i)
         {

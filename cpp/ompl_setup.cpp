@@ -22,10 +22,10 @@ namespace pushplan
             auto model = std::make_shared<detail::ModelHandle>(planner.source_->load());
             model->model().set_static_clutter(options.static_clutter);
             const bridge::SceneInfo &info = model->info();
-            const unsigned k = options.k.value_or(info.k);
+            const unsigned k = options.k.value_or(info.planner.k);
             if (k < 1)
                 throw Error("SetupOptions::k must be at least 1");
-            return detail::makeProblem(model, options.seed.value_or(info.seed), k).setup;
+            return detail::makeProblem(model, options.seed.value_or(info.planner.seed), k).setup;
         });
     }
 

@@ -92,11 +92,11 @@ namespace pushplan
             // Static RRT's problem: the same states, the clutter pinned where it starts.
             model->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
             const bridge::SceneInfo &info = model->info();
-            const double time_limit = options.time_limit.value_or(info.time_limit);
+            const double time_limit = options.time_limit.value_or(info.planner.time_limit);
             checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
-            const std::uint64_t seed = options.seed.value_or(info.seed);
-            const unsigned k = checked("k", options.k.value_or(info.k), options.k.value_or(info.k) >= 1);
-            const double goal_bias = options.goal_bias.value_or(info.goal_bias);
+            const std::uint64_t seed = options.seed.value_or(info.planner.seed);
+            const unsigned k = checked("k", options.k.value_or(info.planner.k), options.k.value_or(info.planner.k) >= 1);
+            const double goal_bias = options.goal_bias.value_or(info.planner.goal_bias);
             checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
             checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
             checked("shortcut", options.shortcut, std::isfinite(options.shortcut) && options.shortcut >= 0.0);
@@ -185,7 +185,7 @@ namespace pushplan
 
             plan.planning_time = elapsed();
             plan.propagation_steps = model->model().propagation_steps();
-            plan.step = info.step;
+            plan.step = info.planner.step;
             ob::PlannerData data(si);
             planner->getPlannerData(data);
             plan.tree_size = data.numVertices();
@@ -201,12 +201,8 @@ namespace pushplan
             // (shortcut, kept robust) by the model, the same way as the CLI's and bench's.
             const bridge::FinishedPath path = model->finish(
                 found, solved, bridge::FinishSettings{options.shortcut, seed, options.robust_trials, options.robust_rate});
-            const auto metrics = [](const bridge::PathMetrics &m) {
-                return PathMetrics{m.joint_length, m.ee_length, m.object_displacement, m.objects_moved,
-                                   m.links_in_contact, m.duration};
-            };
-            plan.before_shortcut = metrics(path.before);
-            plan.after_shortcut = metrics(path.after);
+            plan.before_shortcut = path.before;
+            plan.after_shortcut = path.after;
             if (path.robustness >= 0.0)
                 plan.robustness = path.robustness;
 
@@ -226,7 +222,7 @@ namespace pushplan
                 const double *c = path.controls.data() + i * cwidth;
                 plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
                                                 Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
-                                                static_cast<double>(path.steps[i]) * info.step, path.steps[i]});
+                                                static_cast<double>(path.steps[i]) * info.planner.step, path.steps[i]});
             }
             const bridge::Trajectory trajectory =
                 bridge::trajectory(model->model(), rust::Slice<const double>(path.controls.data(), path.controls.size()),

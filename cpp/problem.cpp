@@ -79,9 +79,9 @@ namespace pushplan::detail
         const oc::SpaceInformationPtr &si = setup->getSpaceInformation();
         setup->setStateValidityChecker(std::make_shared<PushValidityChecker>(si, model));
         setup->setStatePropagator(std::make_shared<PushStatePropagator>(si, model));
-        si->setPropagationStepSize(info.step);
-        const auto min_steps = static_cast<unsigned>(std::max(1.0, std::round(info.min_duration / info.step)));
-        const auto max_steps = std::max(min_steps, static_cast<unsigned>(std::round(info.max_duration / info.step)));
+        si->setPropagationStepSize(info.planner.step);
+        const auto min_steps = static_cast<unsigned>(std::max(1.0, std::round(info.planner.min_duration / info.planner.step)));
+        const auto max_steps = std::max(min_steps, static_cast<unsigned>(std::round(info.planner.max_duration / info.planner.step)));
         si->setMinMaxControlDuration(min_steps, max_steps);
         // Alg. 1 lines 5-8: the best of k sampled actions, by the model's distance.
         si->setDirectedControlSamplerAllocator(

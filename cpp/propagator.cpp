@@ -12,7 +12,7 @@ namespace pushplan::detail
     void PushStatePropagator::propagate(const ompl::base::State *state, const ompl::control::Control *control,
                                         double duration, ompl::base::State *result) const
     {
-        const double steps = std::round(duration / model_->info().step);
+        const double steps = std::round(duration / model_->info().planner.step);
         model_->propagate(state, control, steps > 0.0 ? static_cast<std::size_t>(steps) : 0, result);
     }
 }  // namespace pushplan::detail

@@ -1,9 +1,10 @@
 #include "state_space.h"
 
+#include "sampling.h"
+
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
-#include <boost/math/constants/constants.hpp>
 #include <new>
 
 namespace ob = ompl::base;
@@ -110,15 +111,12 @@ namespace pushplan::detail
 
     void PushStateSampler::sampleRaw(const bridge::SceneInfo &info, ompl::RNG &rng, std::vector<double> &out)
     {
-        out.clear();
-        for (std::size_t i = 0; i < info.dof; ++i)
-            out.push_back(rng.uniformReal(info.joint_lower[i], info.joint_upper[i]));
-        const double pi = boost::math::constants::pi<double>();
+        out.resize(info.dof);
+        sampleJoints(info, rng, out.data());
         for (std::size_t i = 0; i < info.objects; ++i)
         {
-            out.push_back(rng.uniformReal(info.table[0], info.table[1]));
-            out.push_back(rng.uniformReal(info.table[2], info.table[3]));
-            out.push_back(rng.uniformReal(-pi, pi));
+            const auto [x, y] = sampleOnTable(info, rng);
+            out.insert(out.end(), {x, y, sampleYaw(rng)});
         }
     }
 

@@ -12,11 +12,24 @@ pub use entry::{benchmark_scene, solve, BenchOptions, SolveOptions, SolveOutput}
 use crate::planner::{Model, PlannerKind};
 use convert::{darrt_check, finish, scene_info, trajectory};
 
-// SAFETY: `PlannerKind` is `#[repr(u8)]` with the values of C++'s `enum class
-// PlannerKind : std::uint8_t`, a trivial type (tests/cpp/api_contract.cpp sends every
-// kind through the bridge and back).
+// SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
+// twin, a trivial type. `PlannerKind`: the values of `enum class PlannerKind :
+// std::uint8_t` (tests/cpp/api_contract.cpp sends every kind through the bridge and
+// back); `PathMetrics` (include/pushplan/pushplan.h) and `PlannerParams`
+// (cpp/bridge_types.h): the same fields in the same order, checked there by
+// static_assert on their offsets.
 unsafe impl cxx::ExternType for PlannerKind {
     type Id = cxx::type_id!("pushplan::PlannerKind");
+    type Kind = cxx::kind::Trivial;
+}
+
+unsafe impl cxx::ExternType for crate::path::PathMetrics {
+    type Id = cxx::type_id!("pushplan::PathMetrics");
+    type Kind = cxx::kind::Trivial;
+}
+
+unsafe impl cxx::ExternType for crate::scene::PlannerParams {
+    type Id = cxx::type_id!("pushplan::detail::PlannerParams");
     type Kind = cxx::kind::Trivial;
 }
 
@@ -34,17 +47,8 @@ pub mod bridge {
         pub link_names: Vec<String>,
         /// The table's extent: min x, max x, min y, max y.
         pub table: [f64; 4],
-        /// The scene's planner parameters (`scene::PlannerParams`).
-        pub step: f64,
-        pub min_duration: f64,
-        pub max_duration: f64,
-        pub max_ee_speed: f64,
-        pub max_ee_turn_rate: f64,
-        pub max_nullspace_speed: f64,
-        pub k: u32,
-        pub goal_bias: f64,
-        pub time_limit: f64,
-        pub seed: u64,
+        /// The scene's planner parameters.
+        pub planner: PlannerParams,
         /// The goal object's index, or -1 for a configuration goal.
         pub goal_object: i64,
         /// The disc the goal object's centre must reach (margin taken off), or the
@@ -70,17 +74,6 @@ pub mod bridge {
         pub times: Vec<f64>,
         pub q: Vec<f64>,
         pub objects: Vec<f64>,
-    }
-
-    /// `path::PathMetrics`.
-    #[derive(Default)]
-    pub struct PathMetrics {
-        pub joint_length: f64,
-        pub ee_length: f64,
-        pub object_displacement: f64,
-        pub objects_moved: usize,
-        pub links_in_contact: usize,
-        pub duration: f64,
     }
 
     /// `planner::FinishSettings`; `robust_trials` 0 for no robustness requirement.
@@ -171,6 +164,11 @@ pub mod bridge {
         include!("pushplan/pushplan.h");
         #[namespace = "pushplan"]
         type PlannerKind = crate::planner::PlannerKind;
+        #[namespace = "pushplan"]
+        type PathMetrics = crate::path::PathMetrics;
+        include!("pushplan/cpp/bridge_types.h");
+        #[namespace = "pushplan::detail"]
+        type PlannerParams = crate::scene::PlannerParams;
     }
 }
 

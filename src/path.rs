@@ -48,9 +48,11 @@ impl PathControl {
     }
 }
 
-/// How long and how disruptive a path is.
+/// How long and how disruptive a path is. C++'s `pushplan::PathMetrics` is the same type
+/// (same fields, same order): the bridge passes it as is.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
+#[repr(C)]
 pub struct PathMetrics {
     /// Joint-space path length: sum over steps of |q_{k+1} - q_k| (rad, or m for prismatic joints).
     pub joint_length: f64,

@@ -16,8 +16,9 @@ use std::path::{Path, PathBuf};
 
 pub const FORMAT: &str = "pushplan-plan/1";
 
-/// How a plan was made.
-#[derive(Clone, Debug, PartialEq)]
+/// How a plan was made (in the plan file, among its top-level fields).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PlanSettings {
     pub planner: PlannerKind,
     pub seed: u64,
@@ -28,21 +29,17 @@ pub struct PlanSettings {
     pub shortcut: f64,
 }
 
+/// A plan file. Unknown fields are refused ([`PlanFile::read`]): serde cannot deny them
+/// on a struct with a flattened part, so they are gathered in `unknown` and checked.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct PlanFile {
     /// Always "pushplan-plan/1".
     pub format: String,
     /// The scene file, as given to the planner.
     pub scene: String,
     pub scene_name: String,
-    pub planner: PlannerKind,
-    pub seed: u64,
-    pub k: u32,
-    pub goal_bias: f64,
-    pub time_limit: f64,
-    /// Shortcutting budget (s of work; 0 = none).
-    pub shortcut: f64,
+    #[serde(flatten)]
+    pub settings: PlanSettings,
     /// Propagation step (s).
     pub step: f64,
     /// The reserves the plan was made with (absent in files from before they existed).
@@ -62,6 +59,9 @@ pub struct PlanFile {
     /// Robust planning's check of the plan (only when it was asked for).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub robustness: Option<RobustnessRecord>,
+    /// Fields this format does not have (an error when read).
+    #[serde(flatten, skip_serializing)]
+    unknown: std::collections::BTreeMap<String, serde::de::IgnoredAny>,
 }
 
 /// The reserves of the validity rules a plan keeps (see the scene's `goal.margin`,
@@ -168,6 +168,9 @@ impl PlanFile {
             .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
         let plan: PlanFile =
             serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        if let Some(field) = plan.unknown.keys().next() {
+            return Err(format!("{}: unknown field `{field}`", path.display()));
+        }
         if plan.format != FORMAT {
             return Err(format!(
                 "{}: format is '{}', expected '{FORMAT}'",
@@ -241,12 +244,7 @@ impl PlanFile {
             format: FORMAT.into(),
             scene: scene_ref.into(),
             scene_name: scene.name.clone(),
-            planner: settings.planner,
-            seed: settings.seed,
-            k: settings.k,
-            goal_bias: settings.goal_bias,
-            time_limit: settings.time_limit,
-            shortcut: settings.shortcut,
+            settings: settings.clone(),
             step: scene.planner.step,
             margins: Some(Margins {
                 goal: match scene.goal {
@@ -269,6 +267,7 @@ impl PlanFile {
             controls: records,
             trajectory: executable(scene, controls, &path.step_states),
             robustness: None,
+            unknown: Default::default(),
         })
     }
 
@@ -290,7 +289,7 @@ impl PlanFile {
     /// planner: every state valid, the recorded states reproduced, the goal reached.
     pub fn check(&self, plan_path: &Path) -> Result<CheckReport, String> {
         let scene = Scene::load(self.scene_path(plan_path)).map_err(|e| e.to_string())?;
-        let problem = Problem::new(scene, self.planner);
+        let problem = Problem::new(scene, self.settings.planner);
         let scene = problem.scene();
         let dof = scene.robot.dof();
         let mut problems = Vec::new();

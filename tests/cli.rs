@@ -66,6 +66,19 @@ fn plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes
     let (code, stdout, _) = pushplan(&["check", tampered.to_str().unwrap()]);
     assert_eq!(code, 1, "{stdout}");
     assert!(stdout.contains("plan FAILED"), "{stdout}");
+
+    // A field the format does not have, at the top or inside: refused, named.
+    for (field, pointer) in [("colour", ""), ("speed", "/controls/0")] {
+        let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+        value.pointer_mut(pointer).unwrap()[field] = serde_json::json!(1);
+        std::fs::write(&tampered, serde_json::to_string_pretty(&value).unwrap()).unwrap();
+        let (code, _, stderr) = pushplan(&["check", tampered.to_str().unwrap()]);
+        assert_eq!(code, 2, "{stderr}");
+        assert!(
+            stderr.contains(&format!("unknown field `{field}`")),
+            "{stderr}"
+        );
+    }
 }
 
 #[test]

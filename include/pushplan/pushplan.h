@@ -97,6 +97,7 @@ namespace pushplan
     };
 
     /// How long and how disruptive a path is.
+    /// Laid out as Rust's path::PathMetrics, which the bridge passes as is: keep the order.
     struct PathMetrics
     {
         double joint_length = 0.0;         ///< joint-space path length (rad)

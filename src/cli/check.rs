@@ -12,7 +12,7 @@ pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
     let report = plan.check(path)?;
     if noise > 0 {
         let scene = Scene::load(plan.scene_path(path)).map_err(|e| e.to_string())?;
-        let r = Problem::new(scene, plan.planner).robustness(
+        let r = Problem::new(scene, plan.settings.planner).robustness(
             &plan.path_controls(),
             &Noise::default(),
             noise,

@@ -24,7 +24,7 @@ pub struct PlanOptions {
 
 pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode, String> {
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
-    let p = scene.planner.clone();
+    let p = scene.planner;
     let (planner, quiet) = (run.planner, run.quiet);
     let seed = run.seed.unwrap_or(p.seed);
     let options = SolveOptions {

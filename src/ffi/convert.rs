@@ -60,7 +60,6 @@ impl From<&Scene> for bridge::SceneInfo {
                 (-1, [0.0; 2], *tolerance, q.as_slice().to_vec())
             }
         };
-        let p = &scene.planner;
         bridge::SceneInfo {
             name: scene.name.clone(),
             dof: scene.robot.dof(),
@@ -78,34 +77,12 @@ impl From<&Scene> for bridge::SceneInfo {
                 scene.table.y.0,
                 scene.table.y.1,
             ],
-            step: p.step,
-            min_duration: p.min_duration,
-            max_duration: p.max_duration,
-            max_ee_speed: p.max_ee_speed,
-            max_ee_turn_rate: p.max_ee_turn_rate,
-            max_nullspace_speed: p.max_nullspace_speed,
-            k: p.k,
-            goal_bias: p.goal_bias,
-            time_limit: p.time_limit,
-            seed: p.seed,
+            planner: scene.planner,
             goal_object,
             goal_center: center,
             goal_radius: radius,
             goal_configuration: configuration,
             start: scene.start.to_flat(),
-        }
-    }
-}
-
-impl From<&PathMetrics> for bridge::PathMetrics {
-    fn from(m: &PathMetrics) -> Self {
-        bridge::PathMetrics {
-            joint_length: m.joint_length,
-            ee_length: m.ee_length,
-            object_displacement: m.object_displacement,
-            objects_moved: m.objects_moved,
-            links_in_contact: m.links_in_contact,
-            duration: m.duration,
         }
     }
 }
@@ -151,8 +128,8 @@ impl From<FinishedPath> for bridge::FinishedPath {
             steps,
             states: sim.states.iter().flat_map(|s| s.to_flat()).collect(),
             contacts: contacts.collect(),
-            before: (&path.before).into(),
-            after: (&sim.metrics).into(),
+            before: path.before,
+            after: sim.metrics,
             shortcut_attempts: path.shortcut.attempts,
             shortcut_accepted: path.shortcut.accepted,
             shortcut_dropped_as_less_robust: path.shortcut.dropped_as_less_robust,
@@ -179,14 +156,14 @@ impl From<Result<PrimitivePath, String>> for bridge::PrimitiveCheck {
                 valid: true,
                 goal_reached: path.goal_reached,
                 message: String::new(),
-                metrics: (&path.metrics).into(),
+                metrics: path.metrics,
                 durations: path.durations,
             },
             Err(message) => bridge::PrimitiveCheck {
                 valid: false,
                 goal_reached: false,
                 message,
-                metrics: bridge::PathMetrics::default(),
+                metrics: PathMetrics::default(),
                 durations: vec![],
             },
         }

@@ -45,7 +45,8 @@ impl Film {
     /// Simulates the plan in the file (its scene resolved as `check` does).
     pub fn of(plan: &PlanFile, plan_path: &Path) -> Result<Film, String> {
         let scene = Scene::load(plan.scene_path(plan_path)).map_err(|e| e.to_string())?;
-        let path = Problem::new(scene.clone(), plan.planner).simulate(&plan.path_controls(), true);
+        let path = Problem::new(scene.clone(), plan.settings.planner)
+            .simulate(&plan.path_controls(), true);
         if let Some((i, reason)) = path.stopped_by {
             return Err(format!("the plan does not simulate: control {i}: {reason}"));
         }

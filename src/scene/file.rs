@@ -173,9 +173,12 @@ pub struct GoalSpec {
     pub tolerance: Option<f64>,
 }
 
-/// Planner parameters; every field has a default (see [`PlannerSpec::default`]).
-#[derive(Debug, Deserialize, Clone, PartialEq)]
+/// Planner parameters; every field has a default (see [`PlannerSpec::default`]). C++'s
+/// `pushplan::detail::PlannerParams` (`cpp/bridge_types.h`) is the same type: the bridge
+/// passes it as is.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq)]
 #[serde(default, deny_unknown_fields)]
+#[repr(C)]
 pub struct PlannerSpec {
     /// Search time limit (s).
     pub time_limit: f64,

@@ -631,7 +631,7 @@ impl Loader<'_> {
                 "must be at least one propagation step (planner.step)",
             ));
         }
-        Ok(p.clone())
+        Ok(*p)
     }
 
     fn physics(&self, p: &PhysicsSpec) -> Result<PhysicsSpec> {
