@@ -8,6 +8,7 @@ use pushplan::cli::{
 };
 use pushplan::ffi::{benchmark_scene, BenchOptions};
 use pushplan::planner::PlannerKind;
+use pushplan::scene::generate::Design;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -201,14 +202,20 @@ enum BenchCommand {
 
 #[derive(Subcommand)]
 enum ScenesCommand {
-    /// Generate the paper's benchmark dataset: HERB's table, the same goal object and goal
-    /// disc in every scene, 1..7 movable objects, valid start states.
+    /// Generate a benchmark scene set on HERB's table: the same goal object and goal disc
+    /// in every scene, valid start states. Designs: `paper` (the whole-arm paper's: objects
+    /// anywhere in reach, up to 12) and `dense` (up to 20 objects placed one by one, in
+    /// turn scattered, covering part of the goal disc, and walling off the straight route).
     Generate {
+        #[arg(long, default_value = "paper")]
+        design: Design,
+        /// Number of scenes.
         #[arg(long, default_value_t = 35)]
         count: usize,
         /// Range of object counts, e.g. 1..7 (spread evenly over the scenes).
         #[arg(long, default_value = "1..7")]
         objects: String,
+        /// Seed of the random layouts.
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Output folder.
@@ -277,12 +284,13 @@ fn main() -> ExitCode {
         Command::Scenes {
             action:
                 ScenesCommand::Generate {
+                    design,
                     count,
                     objects,
                     seed,
                     out,
                 },
-        } => generate_scenes(count, &objects, seed, &out),
+        } => generate_scenes(design, count, &objects, seed, &out),
         Command::Bench {
             action: Some(BenchCommand::Merge { dirs, out }),
             ..

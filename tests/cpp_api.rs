@@ -198,7 +198,7 @@ fn the_cpp_api_keeps_its_contract() {
     );
     assert_eq!(
         stdout.lines().filter(|l| l.starts_with("ok: ")).count(),
-        32,
+        33,
         "{stdout}"
     );
 }

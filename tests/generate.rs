@@ -1,6 +1,6 @@
 //! The benchmark scene generator (the paper's dataset design).
 
-use pushplan::scene::generate::{generate, GOAL_CENTER, GOAL_RADIUS};
+use pushplan::scene::generate::{generate, Design, GOAL_CENTER, GOAL_RADIUS};
 use pushplan::scene::Goal;
 use pushplan::Scene;
 
@@ -21,7 +21,7 @@ fn temp(name: &str) -> std::path::PathBuf {
 #[test]
 fn generated_scenes_follow_the_dataset_design() {
     let dir = temp("seven");
-    let files = generate(7, (1, 7), 3, &dir).unwrap();
+    let files = generate(Design::Paper, 7, (1, 7), 3, &dir).unwrap();
     let mut counts = Vec::new();
     let mut goal_starts = Vec::new();
     for file in &files {
@@ -58,8 +58,8 @@ fn generated_scenes_follow_the_dataset_design() {
     );
 
     // Deterministic under the seed; another seed gives other scenes.
-    let again = generate(7, (1, 7), 3, &temp("again")).unwrap();
-    let other = generate(7, (1, 7), 4, &temp("other")).unwrap();
+    let again = generate(Design::Paper, 7, (1, 7), 3, &temp("again")).unwrap();
+    let other = generate(Design::Paper, 7, (1, 7), 4, &temp("other")).unwrap();
     assert!(files
         .iter()
         .zip(&again)
@@ -72,7 +72,7 @@ fn generated_scenes_follow_the_dataset_design() {
 
 #[test]
 fn the_committed_benchmark_set_is_what_the_command_generates() {
-    let files = generate(35, (1, 7), 1, &temp("committed")).unwrap();
+    let files = generate(Design::Paper, 35, (1, 7), 1, &temp("committed")).unwrap();
     for (i, file) in files.iter().enumerate() {
         let committed = std::path::PathBuf::from(format!("scenes/benchmark/scene_{i:02}.yaml"));
         assert_eq!(without_urdf(file), without_urdf(&committed), "{} differs: regenerate with `pushplan scenes generate --count 35 --objects 1..7 --seed 1 --out scenes/benchmark`", committed.display());
@@ -82,8 +82,69 @@ fn the_committed_benchmark_set_is_what_the_command_generates() {
 
 #[test]
 fn bad_ranges_are_errors() {
-    assert!(generate(3, (0, 2), 1, &temp("bad"))
+    assert!(generate(Design::Paper, 3, (0, 2), 1, &temp("bad"))
         .unwrap_err()
         .contains("range"));
-    assert!(generate(3, (4, 2), 1, &temp("bad")).is_err());
+    assert!(generate(Design::Paper, 3, (4, 2), 1, &temp("bad")).is_err());
+}
+
+#[test]
+fn the_committed_dense_set_is_what_the_command_generates() {
+    let files = generate(Design::Dense, 20, (8, 20), 1, &temp("dense")).unwrap();
+    for (i, file) in files.iter().enumerate() {
+        let committed = std::path::PathBuf::from(format!("scenes/dense/scene_{i:02}.yaml"));
+        assert_eq!(without_urdf(file), without_urdf(&committed), "{} differs: regenerate with `pushplan scenes generate --design dense --count 20 --objects 8..20 --seed 1 --out scenes/dense`", committed.display());
+    }
+}
+
+/// Distance (m) from `p` to the segment `a`-`b`.
+fn to_segment(
+    p: nalgebra::Vector2<f64>,
+    a: nalgebra::Vector2<f64>,
+    b: nalgebra::Vector2<f64>,
+) -> f64 {
+    let t = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+    (a + t * (b - a) - p).norm()
+}
+
+#[test]
+fn dense_scenes_are_dense_and_take_their_layouts_in_turn() {
+    let files = generate(Design::Dense, 9, (8, 20), 5, &temp("dense-design")).unwrap();
+    let mut counts = Vec::new();
+    for (i, file) in files.iter().enumerate() {
+        let scene = Scene::load(file).unwrap(); // valid, start state included
+        counts.push(scene.objects.len());
+        let goal_start = scene.start.objects[0].translation();
+        let center = nalgebra::Vector2::new(GOAL_CENTER[0], GOAL_CENTER[1]);
+        assert!((goal_start - center).norm() > GOAL_RADIUS + 0.15);
+        let clutter = || {
+            scene.objects[1..]
+                .iter()
+                .zip(&scene.start.objects[1..])
+                .map(|(o, p)| (o.bounding_radius, p.translation()))
+        };
+        let text = std::fs::read_to_string(file).unwrap();
+        match i % 3 {
+            0 => assert!(text.contains("Scattered layout"), "{text}"),
+            1 => {
+                // Clutter overlaps the goal disc: it has to go before the goal object fits.
+                assert!(text.contains("GoalCovered layout"));
+                assert!(clutter().any(|(r, p)| (p - center).norm() < GOAL_RADIUS + r));
+            }
+            _ => {
+                // The straight route of the goal box (half-width 0.051 m) is blocked.
+                assert!(text.contains("Walled layout"));
+                let blocked =
+                    clutter().filter(|(r, p)| to_segment(*p, goal_start, center) < r + 0.051);
+                assert!(blocked.count() >= 1, "{}", file.display());
+            }
+        }
+    }
+    assert_eq!(counts, vec![8, 9, 10, 12, 13, 15, 16, 18, 19]);
+    assert!(generate(Design::Dense, 2, (8, 21), 1, &temp("bad"))
+        .unwrap_err()
+        .contains("1..20"));
+    assert!(generate(Design::Paper, 2, (8, 13), 1, &temp("bad"))
+        .unwrap_err()
+        .contains("dense design"));
 }

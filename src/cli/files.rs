@@ -14,6 +14,7 @@ pub fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, Str
 }
 
 pub fn generate_scenes(
+    design: crate::scene::generate::Design,
     count: usize,
     objects: &str,
     seed: u64,
@@ -23,7 +24,7 @@ pub fn generate_scenes(
         .split_once("..")
         .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)))
         .ok_or_else(|| format!("--objects must look like 1..7, got '{objects}'"))?;
-    let files = crate::scene::generate::generate(count, range, seed, out)?;
+    let files = crate::scene::generate::generate(design, count, range, seed, out)?;
     println!("wrote {} scenes to {}", files.len(), out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -132,6 +132,16 @@ int main()
         sane = false;
     }
     expect(sane, "the state space passes OMPL's sanityChecks()");
+    try
+    {
+        pushplan::makeSetup(pushplan::Planner("scenes/dense/scene_00.yaml"))->getStateSpace()->sanityChecks();
+    }
+    catch (const std::exception &e)
+    {
+        std::cout << e.what() << "\n";
+        sane = false;
+    }
+    expect(sane, "... and so does a dense scene's (8 objects)");
     const pushplan::StateAccess states(space);
     expect(states.dof() == 7 && states.objectCount() == 4 && states.objectNames()[0] == "green_box",
            "StateAccess knows the scene's joints and objects");
