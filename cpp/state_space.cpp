@@ -122,14 +122,12 @@ namespace pushplan::detail
 
     void PushStateSampler::sampleUniform(ob::State *state)
     {
-        for (int attempt = 0; attempt < kRejectionTries; ++attempt)
-        {
-            sampleRaw(model_->info(), rng_, buffer_);
-            model_->pinClutter(buffer_);
-            model_->write(buffer_, state);
-            if (model_->isValid(state))
-                return;
-        }
+        // Uniform over the space, valid or not, as the paper's RRT draws its targets: a
+        // target only attracts the tree, the propagation keeps every state valid. (Drawing
+        // until valid cost 97 % of the time with 20 objects: see BENCHMARKS.md.)
+        sampleRaw(model_->info(), rng_, buffer_);
+        model_->pinClutter(buffer_);
+        model_->write(buffer_, state);
     }
 
     void PushStateSampler::sampleUniformNear(ob::State *state, const ob::State *, double)

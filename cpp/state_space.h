@@ -40,7 +40,7 @@ namespace pushplan::detail
     };
 
     /// Samples the robot and every object uniformly (joint limits, table extent, any
-    /// yaw) and rejects invalid states (object overlap, arm penetration, ...).
+    /// yaw), valid or not; in Static RRT's problem the clutter stays where it starts.
     class PushStateSampler : public ompl::base::StateSampler
     {
     public:
@@ -59,6 +59,7 @@ namespace pushplan::detail
         std::vector<double> buffer_;
     };
 
-    /// Tries before a sampler gives up rejecting and returns its last (invalid) sample.
+    /// Tries before the goal sampler gives up rejecting and returns its last (invalid)
+    /// sample.
     constexpr int kRejectionTries = 1000;
 }  // namespace pushplan::detail
