@@ -9,5 +9,5 @@ mod problem;
 
 pub use finish::{finish, FinishSettings, FinishedPath, RobustRequirement, ShortcutReport};
 pub use kind::PlannerKind;
-pub use model::{guarded, Model};
+pub use model::Model;
 pub use problem::Problem;
