@@ -107,20 +107,24 @@ pub fn finish(
         finished.shortcut.attempts = outcome.attempts;
         finished.shortcut.accepted = outcome.accepted;
         if outcome.accepted > 0 {
-            let robust_enough = settings
+            let rate = settings
                 .robust
-                .is_none_or(|r| r.success_rate(scene, &outcome.controls, settings.seed) >= r.rate);
-            if robust_enough {
+                .map(|r| (r, r.success_rate(scene, &outcome.controls, settings.seed)));
+            if rate.is_none_or(|(r, rate)| rate >= r.rate) {
                 finished.simulation =
                     simulate(&mut propagator, &scene.start, &outcome.controls, false);
                 finished.controls = outcome.controls;
+                finished.robustness = rate.map(|(_, rate)| rate);
             } else {
                 finished.shortcut.dropped_as_less_robust = true;
             }
         }
     }
-    finished.robustness = settings
-        .robust
-        .map(|r| r.success_rate(scene, &finished.controls, settings.seed));
+    // The rate of the finished controls, unless the shortcut's check already measured it.
+    if finished.robustness.is_none() {
+        finished.robustness = settings
+            .robust
+            .map(|r| r.success_rate(scene, &finished.controls, settings.seed));
+    }
     Ok(finished)
 }
