@@ -50,7 +50,7 @@ fn in_contact(scene: &Scene, action: &EeAction) -> State {
     for _ in 0..200 {
         let run = p.propagate_steps(&state, action, 1);
         state = run.state;
-        if run.pushes.first().is_some_and(|s| !s.is_empty()) {
+        if run.contacts.first().is_some_and(|s| !s.is_empty()) {
             return state;
         }
     }
@@ -83,9 +83,9 @@ fn propagation(c: &mut Criterion) {
         let check = p.propagate_steps(&start, &push, STEPS);
         assert!(check.stopped_by.is_none(), "{:?}", check.stopped_by);
         assert!(
-            check.pushes.iter().all(|s| !s.is_empty()),
+            check.contacts.iter().all(|s| !s.is_empty()),
             "contact lost: {:?}",
-            check.pushes
+            check.contacts
         );
         group.bench_with_input(BenchmarkId::new("pushing", count), &start, |b, start| {
             b.iter(|| p.propagate_steps(start, &push, STEPS))

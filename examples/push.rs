@@ -66,7 +66,7 @@ fn main() -> ExitCode {
         from.x, from.y, from.z, to.x, to.y, to.z
     );
     let mut pairs: Vec<(usize, usize, usize)> = Vec::new(); // link, object, steps
-    for push in run.pushes.iter().flatten() {
+    for push in run.contacts.iter().flatten() {
         match pairs
             .iter_mut()
             .find(|(l, o, _)| *l == push.link && *o == push.object)

@@ -59,7 +59,7 @@ pub mod bridge {
         pub start: Vec<f64>,
     }
 
-    /// A link pushing an object during one step of a plan (force in N).
+    /// `propagate::Contact` with its control and step (force in N).
     pub struct Contact {
         pub control: usize,
         pub step: usize,

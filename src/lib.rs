@@ -42,7 +42,7 @@ pub mod validity;
 pub use distance::DistanceMetric;
 pub use error::{Error, Result};
 pub use math::Pose2;
-pub use propagate::{Propagation, Propagator, Push};
+pub use propagate::{Contact, Propagation, Propagator};
 pub use robot::EeAction;
 pub use scene::Scene;
 pub use state::State;

@@ -4,9 +4,9 @@
 use clap::{Parser, Subcommand};
 use pushplan::benchmark::grid::{Grid, Shard};
 use pushplan::cli::{
-    bench, bench_merge, check, draw, execute, generate_scenes, install, plan, plots, PlanOptions,
+    bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, plan, plots,
+    BenchOptions, PlanOptions,
 };
-use pushplan::ffi::{benchmark_scene, BenchOptions};
 use pushplan::planner::PlannerKind;
 use pushplan::scene::generate::Design;
 use std::path::PathBuf;
@@ -337,7 +337,7 @@ fn main() -> ExitCode {
                 shortcut,
                 log: log.to_string_lossy().into_owned(),
             };
-            benchmark_scene(&scene, &options).map(|_| ExitCode::SUCCESS)
+            bench_scene(&scene, &options)
         }
     };
     match result {

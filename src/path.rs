@@ -1,7 +1,7 @@
 //! Paths: a start state and a sequence of controls, simulated step by step, with the
 //! metrics of Sec. V-B (manipulator path length, object displacement).
 
-use crate::propagate::{Propagator, Push};
+use crate::propagate::{Contact, Propagator};
 use crate::robot::EeAction;
 use crate::state::State;
 use crate::validity::Invalid;
@@ -77,8 +77,8 @@ pub struct SimulatedPath {
     pub joint_length_at: Vec<f64>,
     /// Every step's state, starting with the start state (when recorded).
     pub step_states: Vec<State>,
-    /// Per control, per step, the pushes.
-    pub pushes: Vec<Vec<Vec<Push>>>,
+    /// Per control, per step, the links pushing objects.
+    pub contacts: Vec<Vec<Vec<Contact>>>,
     /// Why a control stopped early, if one did (the path is then invalid).
     pub stopped_by: Option<(usize, Invalid)>,
     pub metrics: PathMetrics,
@@ -91,7 +91,7 @@ impl SimulatedPath {
 
     /// Total number of steps taken.
     pub fn steps(&self) -> usize {
-        self.pushes.iter().map(Vec::len).sum()
+        self.contacts.iter().map(Vec::len).sum()
     }
 
     pub fn final_state(&self) -> &State {
@@ -123,7 +123,7 @@ pub fn simulate(
         } else {
             vec![]
         },
-        pushes: Vec::with_capacity(controls.len()),
+        contacts: Vec::with_capacity(controls.len()),
         stopped_by: None,
         metrics: PathMetrics::default(),
     };
@@ -143,7 +143,7 @@ pub fn simulate(
             for (k, (a, b)) in state.objects.iter().zip(&run.state.objects).enumerate() {
                 travelled[k] += (b.translation() - a.translation()).norm();
             }
-            let pushes = run.pushes.into_iter().next().unwrap_or_default();
+            let pushes = run.contacts.into_iter().next().unwrap_or_default();
             for p in &pushes {
                 if !links.contains(&p.link) {
                     links.push(p.link);
@@ -156,7 +156,7 @@ pub fn simulate(
                 path.step_states.push(state.clone());
             }
         }
-        path.pushes.push(control_pushes);
+        path.contacts.push(control_pushes);
         path.states.push(state.clone());
         path.joint_length_at.push(path.metrics.joint_length);
         if path.stopped_by.is_some() {

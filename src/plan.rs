@@ -115,12 +115,13 @@ pub struct ControlRecord {
     /// The state reached at the end of the control.
     pub state: StateRecord,
     /// Links pushing objects during the control's steps.
-    pub contacts: Vec<ContactRecord>,
+    pub contacts: Vec<Contact>,
 }
 
+/// A [`crate::propagate::Contact`] as the plan file records it: by step and by names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ContactRecord {
+pub struct Contact {
     /// Step within the control.
     pub step: usize,
     pub link: String,
@@ -226,11 +227,11 @@ impl PlanFile {
                 steps: c.steps,
                 duration: c.steps as f64 * scene.planner.step,
                 state: StateRecord::from_state(&path.states[i + 1]),
-                contacts: path.pushes[i]
+                contacts: path.contacts[i]
                     .iter()
                     .enumerate()
                     .flat_map(|(step, pushes)| pushes.iter().map(move |p| (step, p)))
-                    .map(|(step, p)| ContactRecord {
+                    .map(|(step, p)| Contact {
                         step,
                         link: link_names[p.link].to_string(),
                         object: scene.objects[p.object].name.clone(),
@@ -308,7 +309,7 @@ impl PlanFile {
         if let Some((i, reason)) = &sim.stopped_by {
             problems.push(format!(
                 "control {i} stops after {} of {} steps: {reason}",
-                sim.pushes[*i].len(),
+                sim.contacts[*i].len(),
                 self.controls[*i].steps
             ));
         }

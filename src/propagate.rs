@@ -26,7 +26,7 @@ use std::sync::Arc;
 
 /// A link pushing an object during one step, with the force it applies.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Push {
+pub struct Contact {
     pub link: usize,
     pub object: usize,
     /// Total normal force of the link's contacts on the object (N).
@@ -43,7 +43,7 @@ pub struct Propagation {
     /// Valid duration (s).
     pub duration: f64,
     /// For each valid step, the links that pushed objects.
-    pub pushes: Vec<Vec<Push>>,
+    pub contacts: Vec<Vec<Contact>>,
     /// Why the propagation stopped early (`None` when the full duration was valid).
     pub stopped_by: Option<Invalid>,
 }
@@ -136,12 +136,12 @@ impl Propagator {
         steps: usize,
     ) -> Propagation {
         let mut state = start.clone();
-        let mut pushes = Vec::with_capacity(steps);
+        let mut contacts = Vec::with_capacity(steps);
         let mut stopped_by = self.prepare(start).err();
         if stopped_by.is_none() {
             for _ in 0..steps {
                 match self.step(&mut state, action) {
-                    Ok(step_pushes) => pushes.push(step_pushes),
+                    Ok(step_contacts) => contacts.push(step_contacts),
                     Err(e) => {
                         stopped_by = Some(e);
                         break;
@@ -150,12 +150,12 @@ impl Propagator {
             }
             self.prepared = Some(state.clone());
         }
-        let steps = pushes.len();
+        let steps = contacts.len();
         Propagation {
             state,
             steps,
             duration: steps as f64 * self.dt,
-            pushes,
+            contacts,
             stopped_by,
         }
     }
@@ -187,7 +187,7 @@ impl Propagator {
 
     /// One step from `state` (whose link poses and contacts are cached). On success the
     /// state, poses and contacts advance; on failure nothing changes.
-    fn step(&mut self, state: &mut State, action: &EeAction) -> Result<Vec<Push>, Invalid> {
+    fn step(&mut self, state: &mut State, action: &EeAction) -> Result<Vec<Contact>, Invalid> {
         let scene = &*self.scene;
         let dt = self.dt;
         scene
@@ -257,10 +257,10 @@ impl Propagator {
                 if force > 0.0 {
                     match pushes
                         .iter_mut()
-                        .find(|p: &&mut Push| p.link == link && p.object == object)
+                        .find(|p: &&mut Contact| p.link == link && p.object == object)
                     {
                         Some(p) => p.force += force,
-                        None => pushes.push(Push {
+                        None => pushes.push(Contact {
                             link,
                             object,
                             force,

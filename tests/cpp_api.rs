@@ -2,7 +2,7 @@
 //! the crate against include/ and libpushplan.a with the documented pkg-config command,
 //! plans a scene, and catches pushplan::Error for a bad one.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// target/<profile>/, where cargo put libpushplan.a and build.rs put pushplan.pc.
@@ -17,6 +17,11 @@ fn profile_dir() -> PathBuf {
 /// Builds `source` the way a user does (after `cargo build --lib`, with the documented
 /// pkg-config command) into a binary in the temporary folder.
 fn compile(source: &str, name: &str) -> PathBuf {
+    compile_with(source, name, &[])
+}
+
+/// [`compile`] with extra compiler arguments.
+fn compile_with(source: &str, name: &str, extra: &[String]) -> PathBuf {
     let dir = profile_dir();
     // What a user does first: build the library (cargo copies libpushplan.a into place
     // only for a direct build of the library; it is up to date, so this is quick).
@@ -53,6 +58,7 @@ fn compile(source: &str, name: &str) -> PathBuf {
         .args(["-o"])
         .arg(&binary)
         .arg(source)
+        .args(extra)
         .args(flags.split_whitespace())
         .output()
         .expect("g++ runs");
@@ -187,9 +193,15 @@ fn the_cpp_api_keeps_its_contract() {
     // Planner kinds and names, OMPL's log level left as found, every failure as
     // pushplan::Error: tests/cpp/api_contract.cpp checks each and prints what it checked.
     let binary = compile("tests/cpp/api_contract.cpp", "api-contract");
-    let run = Command::new(&binary).output().unwrap();
+    run_checks(&binary, 33);
+}
+
+/// Runs a C++ test program (tests/cpp/expect.h) and checks that it passed exactly
+/// `checks` checks and failed none.
+fn run_checks(binary: &Path, checks: usize) {
+    let run = Command::new(binary).output().unwrap();
     let stdout = String::from_utf8_lossy(&run.stdout);
-    let _ = std::fs::remove_file(&binary);
+    let _ = std::fs::remove_file(binary);
     assert_eq!(
         run.status.code(),
         Some(0),
@@ -198,7 +210,21 @@ fn the_cpp_api_keeps_its_contract() {
     );
     assert_eq!(
         stdout.lines().filter(|l| l.starts_with("ok: ")).count(),
-        33,
+        checks,
         "{stdout}"
     );
+}
+
+#[test]
+fn every_failure_leaves_the_cpp_api_as_pushplan_error() {
+    // The library's internal headers: cxx's generated ones and the crate's, which the
+    // build script put under OUT_DIR.
+    let bridge = PathBuf::from(env!("OUT_DIR")).join("cxxbridge");
+    let includes = ["include", "crate"].map(|d| format!("-I{}", bridge.join(d).display()));
+    let binary = compile_with(
+        "tests/cpp/error_conversion.cpp",
+        "error-conversion",
+        &includes,
+    );
+    run_checks(&binary, 4);
 }

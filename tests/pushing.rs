@@ -42,7 +42,7 @@ fn the_hand_pushes_a_box_along_the_analytic_steady_push() {
         );
         state = run.state;
         let pose = state.objects[1];
-        if contact_at.is_none() && !run.pushes[0].is_empty() {
+        if contact_at.is_none() && !run.contacts[0].is_empty() {
             contact_at = Some((step, pose.x));
         }
         if let Some((first, x0)) = contact_at {
@@ -93,7 +93,7 @@ fn a_forearm_sweep_moves_two_objects_in_one_propagation() {
         .norm();
         assert!(moved > 0.05, "object {object} moved {moved} m");
         assert!(
-            run.pushes
+            run.contacts
                 .iter()
                 .flatten()
                 .any(|p| p.link == forearm && p.object == object),
@@ -101,12 +101,12 @@ fn a_forearm_sweep_moves_two_objects_in_one_propagation() {
         );
     }
     // Both in contact with the forearm at the same time at some step.
-    assert!(run.pushes.iter().any(|step| [1, 2]
+    assert!(run.contacts.iter().any(|step| [1, 2]
         .iter()
         .all(|o| step.iter().any(|p| p.link == forearm && p.object == *o))));
     // The hand never touched them.
     let hand = scene.robot.ee_link;
-    assert!(run.pushes.iter().flatten().all(|p| p.link != hand));
+    assert!(run.contacts.iter().flatten().all(|p| p.link != hand));
 }
 
 #[test]
@@ -148,7 +148,7 @@ fn propagation_is_deterministic_and_resumable() {
     let b = Propagator::new(&scene).propagate_steps(&scene.start, &action, 150);
     assert_eq!(a, b);
     assert!(
-        a.pushes.iter().any(|s| !s.is_empty()),
+        a.contacts.iter().any(|s| !s.is_empty()),
         "the run should push the box"
     );
     // Stopping half way and resuming from the stored state gives the same bits: OMPL
@@ -156,7 +156,7 @@ fn propagation_is_deterministic_and_resumable() {
     let half = p.propagate_steps(&scene.start, &action, 75);
     let rest = p.propagate_steps(&half.state, &action, 75);
     assert_eq!(rest.state, a.state);
-    assert_eq!([half.pushes, rest.pushes].concat(), a.pushes);
+    assert_eq!([half.contacts, rest.contacts].concat(), a.contacts);
 }
 
 #[test]
@@ -165,7 +165,7 @@ fn objects_stop_when_the_push_stops() {
     let scene = herb_scene(HAND_NEAR, &objects, "").unwrap();
     let mut p = Propagator::new(&scene);
     let pushed = p.propagate(&scene.start, &EeAction::planar(0.2, 0.0, 0.0), 1.0);
-    assert!(pushed.pushes.last().is_some_and(|s| !s.is_empty()));
+    assert!(pushed.contacts.last().is_some_and(|s| !s.is_empty()));
     // Hold still, then pull back: the box stays where it was left.
     for action in [
         EeAction::planar(0.0, 0.0, 0.0),

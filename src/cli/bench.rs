@@ -4,6 +4,7 @@
 
 use crate::benchmark::grid::{Grid, Shard};
 use crate::benchmark::run::{merge, run_shard};
+pub use crate::ffi::BenchOptions;
 use crate::Scene;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -48,6 +49,13 @@ pub fn bench(
     } else {
         ExitCode::FAILURE
     })
+}
+
+/// `bench-scene`: one cell of the grid, run in a process of its own by [`bench`]: one
+/// run of one planner on one scene with OMPL's benchmark tooling, its log written to
+/// `options.log`.
+pub fn bench_scene(scene: &Path, options: &BenchOptions) -> Result<ExitCode, String> {
+    crate::ffi::benchmark_scene(scene, options).map(|_| ExitCode::SUCCESS)
 }
 
 /// `bench merge`: the shards in `dirs` into `out` (logs, database, plots).

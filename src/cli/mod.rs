@@ -8,7 +8,7 @@ mod execute;
 mod files;
 mod plan;
 
-pub use bench::{bench, bench_merge, plots};
+pub use bench::{bench, bench_merge, bench_scene, plots, BenchOptions};
 pub use check::check;
 pub use execute::execute;
 pub use files::{draw, generate_scenes, install};

@@ -112,17 +112,21 @@ impl From<FinishedPath> for bridge::FinishedPath {
     fn from(path: FinishedPath) -> Self {
         let (controls, steps) = PathControl::to_flat(&path.controls);
         let sim = &path.simulation;
-        let contacts = sim.pushes.iter().enumerate().flat_map(|(control, steps)| {
-            steps.iter().enumerate().flat_map(move |(step, pushes)| {
-                pushes.iter().map(move |p| bridge::Contact {
-                    control,
-                    step,
-                    link: p.link,
-                    object: p.object,
-                    force: p.force,
+        let contacts = sim
+            .contacts
+            .iter()
+            .enumerate()
+            .flat_map(|(control, steps)| {
+                steps.iter().enumerate().flat_map(move |(step, pushes)| {
+                    pushes.iter().map(move |p| bridge::Contact {
+                        control,
+                        step,
+                        link: p.link,
+                        object: p.object,
+                        force: p.force,
+                    })
                 })
-            })
-        });
+            });
         bridge::FinishedPath {
             controls,
             steps,

@@ -65,7 +65,7 @@ impl Problem {
                     *state = view.expand(state);
                 }
             }
-            for push in path.pushes.iter_mut().flatten().flatten() {
+            for push in path.contacts.iter_mut().flatten().flatten() {
                 push.object = view.full_object(push.object);
             }
         }

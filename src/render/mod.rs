@@ -22,7 +22,7 @@ pub struct Film {
     /// Every step's state, from the start.
     pub states: Vec<State>,
     /// Per step (from state k to k+1), the (link, object) pairs pushing.
-    pub pushes: Vec<Vec<(usize, usize)>>,
+    pub contacts: Vec<Vec<(usize, usize)>>,
     /// Step indices where each control starts, and the last step.
     pub control_starts: Vec<usize>,
     pub dt: f64,
@@ -56,8 +56,8 @@ impl Film {
         }
         Ok(Film {
             dt: scene.planner.step,
-            pushes: path
-                .pushes
+            contacts: path
+                .contacts
                 .iter()
                 .flatten()
                 .map(|s| s.iter().map(|p| (p.link, p.object)).collect())
@@ -99,7 +99,7 @@ impl Film {
         let n = states.len();
         Ok(Film {
             dt: 1.0 / trajectory.rate,
-            pushes: vec![Vec::new(); n.saturating_sub(1)],
+            contacts: vec![Vec::new(); n.saturating_sub(1)],
             control_starts: vec![0, n - 1],
             executed: executed
                 .iter()
@@ -131,7 +131,7 @@ impl Film {
         let touching = |link: usize| {
             let around = [k.checked_sub(1), Some(k)];
             around.iter().flatten().any(|&s| {
-                self.pushes
+                self.contacts
                     .get(s)
                     .is_some_and(|p| p.iter().any(|&(l, _)| l == link))
             })

@@ -181,7 +181,7 @@ pub fn snapshots(film: &Film, times: &[f64]) -> String {
 
 /// Which link touches which object when (Fig. 2, top): one row per link-object pair.
 pub fn timeline(film: &Film) -> String {
-    let mut pairs: Vec<(usize, usize)> = film.pushes.iter().flatten().copied().collect();
+    let mut pairs: Vec<(usize, usize)> = film.contacts.iter().flatten().copied().collect();
     pairs.sort_unstable();
     pairs.dedup();
     let (label_width, row, px_per_s) =
@@ -219,10 +219,10 @@ pub fn timeline(film: &Film) -> String {
         );
         // Contiguous runs of steps with this contact.
         let mut k = 0;
-        while k < film.pushes.len() {
-            if film.pushes[k].contains(&(link, object)) {
+        while k < film.contacts.len() {
+            if film.contacts[k].contains(&(link, object)) {
                 let start = k;
-                while k < film.pushes.len() && film.pushes[k].contains(&(link, object)) {
+                while k < film.contacts.len() && film.contacts[k].contains(&(link, object)) {
                     k += 1;
                 }
                 let _ = writeln!(

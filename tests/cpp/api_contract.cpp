@@ -21,19 +21,15 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include "expect.h"
+
 #include <iostream>
 #include <string>
 
 namespace
 {
-    int failures = 0;
-
-    void expect(bool ok, const std::string &what)
-    {
-        std::cout << (ok ? "ok: " : "FAILED: ") << what << "\n";
-        if (!ok)
-            ++failures;
-    }
+    using test::expect;
+    using test::failures;
 
     /// Runs `f`; true if it threw pushplan::Error whose message contains `text`.
     bool throwsError(const std::function<void()> &f, const std::string &text)
