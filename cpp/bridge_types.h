@@ -23,6 +23,7 @@ namespace pushplan::detail
         double time_limit;           ///< search time limit (s)
         std::uint64_t seed;          ///< random seed
         std::uint32_t k;             ///< control samples per extension
+        std::uint32_t nearest_checks;  ///< states a nearest-neighbour query compares (0: all it must)
         double goal_bias;            ///< probability of sampling the goal
         double step;                 ///< propagation step (s)
         double min_duration;         ///< shortest control (s)
@@ -35,7 +36,7 @@ namespace pushplan::detail
         double goal_object_weight;
         double rotation_length;  ///< m per radian of object yaw in the distance
     };
-    static_assert(offsetof(PlannerParams, k) == 16 && offsetof(PlannerParams, goal_bias) == 24 &&
+    static_assert(offsetof(PlannerParams, k) == 16 && offsetof(PlannerParams, nearest_checks) == 20 && offsetof(PlannerParams, goal_bias) == 24 &&
                       offsetof(PlannerParams, rotation_length) == 104 && sizeof(PlannerParams) == 112,
                   "PlannerParams must have the layout of Rust's #[repr(C)] scene::PlannerSpec");
 }  // namespace pushplan::detail

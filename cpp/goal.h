@@ -11,8 +11,8 @@ namespace pushplan::detail
 {
     /// X_G = states whose goal object's centre is in the disc (or whose robot is within
     /// tolerance of the goal configuration). distanceGoal is the model's signed distance
-    /// to the region (m or rad), negative inside. Samples are valid states in the region, found
-    /// by rejection.
+    /// to the region (m or rad), negative inside. Samples are targets in the region: the goal
+    /// object in its disc, the rest uniform, valid or not (isValid tells).
     class PushGoal : public ompl::base::GoalSampleableRegion
     {
     public:

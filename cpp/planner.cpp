@@ -122,13 +122,25 @@ namespace pushplan
             const auto elapsed = [&] {
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             };
-            double next_report = 1.0;
+            // Each report: totals, then the rate since the last one and the share of that
+            // time spent propagating (the rest is the planner: nearest neighbours, sampling).
+            double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
+            std::uint64_t last_steps = 0;
+            const auto *rrt = dynamic_cast<const detail::SeededRRT *>(planner.get());
             ob::PlannerTerminationCondition done([&] {
                 const double t = elapsed();
                 if (options.progress && t >= next_report)
                 {
-                    std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps\n", t,
-                                 static_cast<unsigned long long>(model->model().propagation_steps()));
+                    const std::uint64_t steps = model->model().propagation_steps();
+                    const double propagating = model->model().propagation_seconds();
+                    std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps, %.0f steps/s, %.0f %% propagating",
+                                 t, static_cast<unsigned long long>(steps),
+                                 static_cast<double>(steps - last_steps) / (t - last_t),
+                                 100.0 * (propagating - last_propagating) / (t - last_t));
+                    if (rrt != nullptr)
+                        std::fprintf(stderr, ", tree of %zu states", rrt->treeSize());
+                    std::fputc('\n', stderr);
+                    last_t = t, last_steps = steps, last_propagating = propagating;
                     next_report += 1.0;
                 }
                 return t >= time_limit;

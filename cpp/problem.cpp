@@ -3,6 +3,7 @@
 #include "control.h"
 #include "darrt.h"
 #include "goal.h"
+#include "nearest.h"
 #include "propagator.h"
 #include "validity.h"
 
@@ -30,11 +31,13 @@ namespace pushplan::detail
         return static_cast<std::uint_fast32_t>((z ^ (z >> 31)) & 0xFFFFFFFFULL);
     }
 
-    SeededRRT::SeededRRT(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed, const std::string &name)
+    SeededRRT::SeededRRT(const oc::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed,
+                         const std::string &name)
       : oc::RRT(si)
     {
         rng_.setLocalSeed(seed);
         setName(name);
+        nn_ = std::make_shared<ModelNearestNeighbors<Motion>>(std::move(model));
     }
 
     PushProjection::PushProjection(const ob::StateSpace *space, ModelHandlePtr model)
@@ -105,7 +108,7 @@ namespace pushplan::detail
             case PlannerKind::PcRrt:
             case PlannerKind::StaticRrt:
             {
-                auto rrt = std::make_shared<SeededRRT>(si, subSeed(seed, 3),
+                auto rrt = std::make_shared<SeededRRT>(si, problem.model, subSeed(seed, 3),
                                                        kind == PlannerKind::StaticRrt ? "StaticRRT" : "PCRRT");
                 rrt->setGoalBias(goal_bias);
                 rrt->setIntermediateStates(intermediate_states);

@@ -18,12 +18,15 @@ namespace pushplan::detail
     /// Independent 32-bit seeds for the random sources of one plan.
     std::uint_fast32_t subSeed(std::uint64_t seed, std::uint64_t stream);
 
-    /// oc::RRT whose own random numbers (goal bias) come from a given seed.
+    /// oc::RRT whose own random numbers (goal bias) come from a given seed, and whose
+    /// nearest neighbours are the model's (ModelNearestNeighbors).
     class SeededRRT : public ompl::control::RRT
     {
     public:
-        SeededRRT(const ompl::control::SpaceInformationPtr &si, std::uint_fast32_t seed, const std::string &name);
+        SeededRRT(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed,
+                  const std::string &name);
         void reseed(std::uint_fast32_t seed) { rng_.setLocalSeed(seed); }
+        std::size_t treeSize() const { return nn_ ? nn_->size() : 0; }
     };
 
     /// Projection for OMPL's projection-based planners (KPIECE1, EST, PDST): the

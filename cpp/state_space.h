@@ -58,8 +58,4 @@ namespace pushplan::detail
         ModelHandlePtr model_;
         std::vector<double> buffer_;
     };
-
-    /// Tries before the goal sampler gives up rejecting and returns its last (invalid)
-    /// sample.
-    constexpr int kRejectionTries = 1000;
 }  // namespace pushplan::detail

@@ -8,6 +8,7 @@
 use crate::math::{wrap_angle, Pose2};
 use crate::scene::{Goal, Scene};
 use crate::state::State;
+use std::f64::consts::PI;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct DistanceMetric {
@@ -92,6 +93,43 @@ impl DistanceMetric {
         self.combine(robot, objects)
     }
 
+    /// A lower bound of [`Self::distance_flat`] from `a` to every flat state whose numbers
+    /// lie within `[lo, hi]` (per number; yaws as raw angles in (-pi, pi]): each block of
+    /// the sum (joints, each object's pose) takes its own smallest value over the box.
+    /// Nearest-neighbour search skips a box whose bound already exceeds the best distance.
+    pub fn lower_bound_flat(&self, a: &[f64], lo: &[f64], hi: &[f64]) -> f64 {
+        let gap = |x: f64, lo: f64, hi: f64| (lo - x).max(x - hi).max(0.0);
+        let dof = a.len() - 3 * self.object_weights.len();
+        let robot = (0..dof)
+            .map(|j| gap(a[j], lo[j], hi[j]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let objects: f64 = self
+            .object_weights
+            .iter()
+            .enumerate()
+            .map(|(i, w)| {
+                let k = dof + 3 * i;
+                let dx = gap(a[k], lo[k], hi[k]);
+                let dy = gap(a[k + 1], lo[k + 1], hi[k + 1]);
+                let dtheta = arc_gap(a[k + 2], lo[k + 2], hi[k + 2]) * self.rotation_length;
+                w * (dx * dx + dy * dy + dtheta * dtheta).sqrt()
+            })
+            .sum();
+        self.robot_weight * robot + objects
+    }
+
+    /// How much one unit of each flat number counts in the metric (1/rad for joints, 1/m
+    /// for positions, 1/rad for yaws): the nearest-neighbour tree splits its boxes along
+    /// the number whose spread counts most.
+    pub fn flat_weights(&self, dof: usize) -> Vec<f64> {
+        let mut weights = vec![self.robot_weight; dof];
+        for w in &self.object_weights {
+            weights.extend([*w, *w, w * self.rotation_length]);
+        }
+        weights
+    }
+
     fn combine(&self, robot: f64, objects: impl Iterator<Item = (Pose2, Pose2)>) -> f64 {
         let objects: f64 = self
             .object_weights
@@ -100,5 +138,24 @@ impl DistanceMetric {
             .map(|(w, (pa, pb))| w * self.object_distance(&pa, &pb))
             .sum();
         self.robot_weight * robot + objects
+    }
+}
+
+/// The angle (rad) from `theta` to the nearest angle of the arc swept counterclockwise
+/// from `lo` to `hi` (raw angles, `lo <= hi`; a span of a turn or more is the whole circle).
+fn arc_gap(theta: f64, lo: f64, hi: f64) -> f64 {
+    if (lo..=hi).contains(&theta) {
+        return 0.0;
+    }
+    let span = hi - lo;
+    let mut from_lo = wrap_angle(theta - lo - PI) + PI; // in (0, 2 pi]
+    if from_lo >= 2.0 * PI {
+        from_lo -= 2.0 * PI;
+    }
+    if span >= 2.0 * PI || from_lo <= span {
+        0.0
+    } else {
+        // Outside the arc: back to its end, or on to its start.
+        (from_lo - span).min(2.0 * PI - from_lo)
     }
 }

@@ -9,8 +9,12 @@ pub mod entry;
 
 pub use entry::{benchmark_scene, solve, BenchOptions, SolveOptions, SolveOutput};
 
+use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
-use convert::{darrt_check, finish, scene_info, trajectory};
+use convert::{
+    darrt_check, finish, nearest_tree, scene_info, trajectory, tree_add, tree_nearest,
+    tree_nearest_k, tree_nearest_r,
+};
 
 // SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
 // twin, a trivial type. `PlannerKind`: the values of `enum class PlannerKind :
@@ -128,6 +132,7 @@ pub mod bridge {
         fn goal_distance(self: &Model, state: &[f64]) -> Result<f64>;
         fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
         fn propagation_steps(self: &Model) -> u64;
+        fn propagation_seconds(self: &Model) -> f64;
         fn set_static_clutter(self: &mut Model, on: bool);
         fn static_clutter(self: &Model) -> bool;
         fn robustness(
@@ -156,6 +161,15 @@ pub mod bridge {
         ) -> Result<bool>;
         fn darrt_carry(self: &Model, x: &[f64], object: usize, target: &[f64]) -> Result<Vec<f64>>;
         fn darrt_check(model: &Model, states: &[f64]) -> Result<PrimitiveCheck>;
+        type NearestTree;
+        fn nearest_tree(model: &Model) -> Box<NearestTree>;
+        fn tree_add(tree: &mut NearestTree, state: &[f64]) -> Result<usize>;
+        fn remove(self: &mut NearestTree, id: usize) -> bool;
+        fn clear(self: &mut NearestTree);
+        fn len(self: &NearestTree) -> usize;
+        fn tree_nearest(tree: &NearestTree, state: &[f64]) -> Result<i64>;
+        fn tree_nearest_k(tree: &NearestTree, state: &[f64], k: usize) -> Result<Vec<usize>>;
+        fn tree_nearest_r(tree: &NearestTree, state: &[f64], radius: f64) -> Result<Vec<usize>>;
         fn planner_name(kind: PlannerKind) -> &'static str;
         fn planner_kind(name: &str) -> Result<PlannerKind>;
     }

@@ -6,8 +6,8 @@ use super::bridge::{
 };
 use crate::darrt::PrimitivePath;
 use crate::path::{PathControl, PathMetrics};
-use crate::planner::Model;
 use crate::planner::{FinishSettings, FinishedPath, RobustRequirement};
+use crate::planner::{Model, NearestTree};
 use crate::scene::{Goal, Scene};
 
 pub(super) fn scene_info(model: &Model) -> SceneInfo {
@@ -38,6 +38,41 @@ pub(super) fn trajectory(
 
 pub(super) fn darrt_check(model: &Model, states: &[f64]) -> Result<PrimitiveCheck, String> {
     model.darrt_check(states).map(PrimitiveCheck::from)
+}
+
+pub(super) fn nearest_tree(model: &Model) -> Box<NearestTree> {
+    Box::new(model.nearest_tree())
+}
+
+pub(super) fn tree_add(tree: &mut NearestTree, state: &[f64]) -> Result<usize, String> {
+    tree.checked(state)?;
+    Ok(tree.add(state))
+}
+
+/// The nearest state's index, or -1 for an empty tree.
+pub(super) fn tree_nearest(tree: &NearestTree, state: &[f64]) -> Result<i64, String> {
+    let nearest = tree.nearest(tree.checked(state)?);
+    Ok(nearest.map_or(-1, |(id, _)| id as i64))
+}
+
+pub(super) fn tree_nearest_k(
+    tree: &NearestTree,
+    state: &[f64],
+    k: usize,
+) -> Result<Vec<usize>, String> {
+    Ok(indices(tree.nearest_k(tree.checked(state)?, k)))
+}
+
+pub(super) fn tree_nearest_r(
+    tree: &NearestTree,
+    state: &[f64],
+    radius: f64,
+) -> Result<Vec<usize>, String> {
+    Ok(indices(tree.nearest_r(tree.checked(state)?, radius)))
+}
+
+fn indices(found: Vec<(usize, f64)>) -> Vec<usize> {
+    found.into_iter().map(|(id, _)| id).collect()
 }
 
 impl From<&Scene> for bridge::SceneInfo {

@@ -4,7 +4,7 @@
 //! C++ (nothing may unwind across the bridge).
 
 use super::finish::{FinishSettings, FinishedPath};
-use super::{PlannerKind, Problem};
+use super::{NearestTree, PlannerKind, Problem};
 use crate::darrt;
 use crate::distance::DistanceMetric;
 use crate::math::Pose2;
@@ -18,6 +18,7 @@ use crate::static_clutter::StaticClutter;
 use crate::trajectory::Trajectory;
 use crate::validity::check_state;
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::time::{Duration, Instant};
 
 /// A scene with its propagator and metric, in pushing mode or in Static RRT's mode.
 pub struct Model {
@@ -30,6 +31,8 @@ pub struct Model {
     /// `isValid` of exactly that state next, and the propagation already knows.
     last_result: Option<(Vec<f64>, bool)>,
     steps_taken: u64,
+    /// Wall time spent in `propagate` (progress reports: the rest is the planner's).
+    propagating: Duration,
 }
 
 /// Runs `f`, turning a panic into an error message.
@@ -57,6 +60,7 @@ impl Model {
             propagator: Propagator::new(scene),
             last_result: None,
             steps_taken: 0,
+            propagating: Duration::ZERO,
         }
     }
 
@@ -140,7 +144,8 @@ impl Model {
         steps: usize,
         result: &mut [f64],
     ) -> Result<bool, String> {
-        guarded("propagate", || {
+        let started = Instant::now();
+        let outcome = guarded("propagate", || {
             let start = self.state(state)?;
             let action = self.action(control)?;
             if result.len() != state.len() {
@@ -172,7 +177,9 @@ impl Model {
             reached.write_flat(result);
             self.last_result = Some((result.to_vec(), valid));
             Ok(valid)
-        })
+        });
+        self.propagating += started.elapsed();
+        outcome
     }
 
     pub fn is_valid(&mut self, state: &[f64]) -> Result<bool, String> {
@@ -209,6 +216,13 @@ impl Model {
             }
             Ok(self.metric.distance_flat(a, b))
         })
+    }
+
+    /// An empty nearest-neighbour tree in this model's metric.
+    pub fn nearest_tree(&self) -> NearestTree {
+        let scene = self.scene();
+        let checks = scene.planner.nearest_checks as usize;
+        NearestTree::new(self.metric.clone(), scene.robot.dof(), checks)
     }
 
     /// The largest distance between two states within the bounds.
@@ -250,6 +264,11 @@ impl Model {
 
     pub fn propagation_steps(&self) -> u64 {
         self.steps_taken
+    }
+
+    /// Wall time (s) spent propagating so far.
+    pub fn propagation_seconds(&self) -> f64 {
+        self.propagating.as_secs_f64()
     }
 
     /// Fraction of `trials` perturbed re-simulations of a plan that reach the goal

@@ -186,6 +186,9 @@ pub struct PlannerSpec {
     pub seed: u64,
     /// Control samples per extension (Alg. 1).
     pub k: u32,
+    /// Tree states a nearest-neighbour query compares at most, nearest boxes first; 0
+    /// for exact answers (slower as the tree grows; see `planner::NearestTree`).
+    pub nearest_checks: u32,
     /// Probability of sampling the goal.
     pub goal_bias: f64,
     /// Propagation step dt (s).
@@ -213,6 +216,7 @@ impl Default for PlannerSpec {
             time_limit: 30.0,
             seed: 1,
             k: 3,
+            nearest_checks: 128,
             goal_bias: 0.05,
             step: 0.01,
             min_duration: 0.1,
