@@ -14,6 +14,7 @@
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/Console.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -22,6 +23,22 @@ namespace oc = ompl::control;
 
 namespace pushplan::bridge
 {
+    /// Why the run's propagations stopped, as run properties (`benches/stops.sh` sums them
+    /// per scene class): counts, one column per reason seen.
+    static void recordSearch(const SearchStats &stats, ompl::tools::Benchmark::RunProperties &props)
+    {
+        props["propagations INTEGER"] = std::to_string(stats.propagations);
+        props["propagation steps INTEGER"] = std::to_string(stats.steps);
+        props["propagations moving the goal object INTEGER"] = std::to_string(stats.moved_goal_object);
+        props["propagations moving other objects INTEGER"] = std::to_string(stats.moved_clutter);
+        for (std::size_t i = 0; i < stats.stop_reasons.size(); ++i)
+        {
+            std::string reason(stats.stop_reasons[i]);
+            std::replace(reason.begin(), reason.end(), '-', ' ');  // a database column name
+            props["stopped by " + reason + " INTEGER"] = std::to_string(stats.stop_counts[i]);
+        }
+    }
+
     void benchmark_scene(rust::Str scene_path, const BenchOptions &options)
     {
         // One run per process, seeded from the grid's seed and the run's index only: the
@@ -59,7 +76,10 @@ namespace pushplan::bridge
             const double propagated = static_cast<double>(model->model().propagation_steps() - steps_before);
             const double time = std::stod(props["time REAL"]);
             if (propagated > 0)
+            {
                 props["propagation steps per second REAL"] = std::to_string(propagated / std::max(time, 1e-9));
+                recordSearch(bridge::search_stats(model->model()), props);
+            }
             const auto &pdef = problem.setup->getProblemDefinition();
             if (!pdef->hasExactSolution())
                 return;

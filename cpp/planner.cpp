@@ -197,6 +197,13 @@ namespace pushplan
 
             plan.planning_time = elapsed();
             plan.propagation_steps = model->model().propagation_steps();
+            const bridge::SearchStats stats = bridge::search_stats(model->model());
+            plan.search.propagations = stats.propagations;
+            plan.search.steps = stats.steps;
+            plan.search.moved_goal_object = stats.moved_goal_object;
+            plan.search.moved_clutter = stats.moved_clutter;
+            for (std::size_t i = 0; i < stats.stop_reasons.size(); ++i)
+                plan.search.stopped.emplace_back(std::string(stats.stop_reasons[i]), stats.stop_counts[i]);
             plan.step = info.planner.step;
             ob::PlannerData data(si);
             planner->getPlannerData(data);

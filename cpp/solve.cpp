@@ -26,6 +26,15 @@ namespace pushplan::bridge
         out.planning_time = plan.planning_time;
         out.tree_size = plan.tree_size;
         out.propagation_steps = plan.propagation_steps;
+        out.search.propagations = plan.search.propagations;
+        out.search.steps = plan.search.steps;
+        out.search.moved_goal_object = plan.search.moved_goal_object;
+        out.search.moved_clutter = plan.search.moved_clutter;
+        for (const auto &[reason, count] : plan.search.stopped)
+        {
+            out.search.stop_reasons.emplace_back(reason);
+            out.search.stop_counts.push_back(count);
+        }
         for (std::size_t i = 0; i < plan.joint_trajectory.size(); ++i)
         {
             for (double v : plan.joint_trajectory[i])

@@ -12,8 +12,8 @@ pub use entry::{benchmark_scene, solve, BenchOptions, SolveOptions, SolveOutput}
 use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
 use convert::{
-    darrt_check, finish, nearest_tree, scene_info, trajectory, tree_add, tree_nearest,
-    tree_nearest_k, tree_nearest_r,
+    darrt_check, finish, nearest_tree, planner_kind, planner_name, scene_info, search_stats,
+    trajectory, tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
 };
 
 // SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
@@ -112,6 +112,17 @@ pub mod bridge {
         pub durations: Vec<f64>,
     }
 
+    /// `planner::SearchStats`; the reasons and their counts in the same order.
+    #[derive(Debug, Clone)]
+    pub struct SearchStats {
+        pub propagations: u64,
+        pub steps: u64,
+        pub moved_goal_object: u64,
+        pub moved_clutter: u64,
+        pub stop_reasons: Vec<String>,
+        pub stop_counts: Vec<u64>,
+    }
+
     extern "Rust" {
         type Model;
         #[Self = "Model"]
@@ -133,6 +144,7 @@ pub mod bridge {
         fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
         fn propagation_steps(self: &Model) -> u64;
         fn propagation_seconds(self: &Model) -> f64;
+        fn search_stats(model: &Model) -> SearchStats;
         fn set_static_clutter(self: &mut Model, on: bool);
         fn static_clutter(self: &Model) -> bool;
         fn robustness(
@@ -184,12 +196,4 @@ pub mod bridge {
         #[namespace = "pushplan::detail"]
         type PlannerParams = crate::scene::PlannerParams;
     }
-}
-
-fn planner_name(kind: PlannerKind) -> &'static str {
-    kind.name()
-}
-
-fn planner_kind(name: &str) -> Result<PlannerKind, String> {
-    name.parse()
 }

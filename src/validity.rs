@@ -75,6 +75,29 @@ pub enum Invalid {
     },
 }
 
+impl Invalid {
+    /// The rule broken, without the names and numbers (to count reasons).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Invalid::JointLimit { .. } => "joint limit",
+            Invalid::Projection(ProjectionFailure::JointStepTooLarge { .. }) => "singular step",
+            Invalid::Projection(ProjectionFailure::OffPlane { .. }) => "tool off its plane",
+            Invalid::Projection(ProjectionFailure::NotFinite) => "not finite",
+            Invalid::SelfCollision { .. } => "self-collision",
+            Invalid::ArmHitsTable { .. } => "arm hits table",
+            Invalid::ArmHitsObstacle { .. } => "arm hits obstacle",
+            Invalid::ArmPenetratesObject { .. } => "arm penetrates object",
+            Invalid::PressesOnTop { .. } => "presses on top",
+            Invalid::ObjectsOverlap { .. } => "objects overlap",
+            Invalid::TooClose { .. } => "objects too close",
+            Invalid::ObjectHitsObstacle { .. } => "object hits obstacle",
+            Invalid::ObjectOffTable { .. } => "object off table",
+            Invalid::Jammed { .. } => "jammed",
+            Invalid::Tips { .. } => "tips",
+        }
+    }
+}
+
 impl fmt::Display for Invalid {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -24,6 +24,7 @@ fn temp(name: &str) -> PathBuf {
 #[test]
 fn plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes() {
     let (a, b) = (temp("a.json"), temp("b.json"));
+    let mut searches = Vec::new();
     for out in [&a, &b] {
         let (code, stdout, stderr) = pushplan(&[
             "plan",
@@ -42,7 +43,11 @@ fn plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes
             stderr.contains("planning 'herb-single-object' with pcrrt"),
             "{stderr}"
         );
+        let search = stdout.lines().find(|l| l.starts_with("search: "));
+        searches.push(search.expect("a search line").to_string());
     }
+    assert!(searches[0].contains(" propagations of "), "{}", searches[0]);
+    assert_eq!(searches[0], searches[1], "the same seed, the same search");
     assert_eq!(
         std::fs::read(&a).unwrap(),
         std::fs::read(&b).unwrap(),

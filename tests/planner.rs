@@ -215,3 +215,43 @@ fn the_static_mode_of_the_full_problem_is_the_static_clutter_scene() {
     full.set_static_clutter(false);
     assert!(full.is_valid(&moved).unwrap());
 }
+
+#[test]
+fn search_statistics_count_propagations_as_ompl_runs_them() {
+    use pushplan::planner::Model;
+    // OMPL holds a control one step at a time, each from the last result, and stops at
+    // the first invalid step. Counted here from the states themselves.
+    let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
+    let mut model = Model::new(scene.clone());
+    let start = scene.start.to_flat();
+    let goal_object = 7..10; // the goal object (green box) is the first object
+    let forward = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let sideways = [0.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let (mut steps, mut stopped, mut moved_goal, mut moved_other) = (0, 0, 0, 0);
+    for (control, limit) in [(&forward, 150), (&sideways, 5), (&forward, 400)] {
+        let mut state = start.clone();
+        let (mut goal_moved, mut other_moved) = (false, false);
+        for _ in 0..limit {
+            let mut next = vec![0.0; state.len()];
+            steps += 1;
+            if !model.propagate(&state, control, 1, &mut next).unwrap() {
+                stopped += 1;
+                break;
+            }
+            goal_moved |= next[goal_object.clone()] != state[goal_object.clone()];
+            other_moved |= next[10..] != state[10..];
+            state = next;
+        }
+        moved_goal += u64::from(goal_moved);
+        moved_other += u64::from(other_moved);
+    }
+    let stats = model.search_stats();
+    assert_eq!(stats.propagations, 3);
+    assert_eq!(stats.steps, steps);
+    assert_eq!(stats.stopped.values().sum::<u64>(), stopped);
+    assert_eq!(stats.moved_goal_object, moved_goal);
+    assert_eq!(stats.moved_clutter, moved_other);
+    assert!(moved_goal >= 1, "the forward push reaches the goal object");
+    assert!(stopped >= 1, "the long push ends invalid");
+    assert!(stats.report().starts_with("3 propagations of "));
+}

@@ -21,6 +21,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ompl::control
@@ -129,12 +130,25 @@ namespace pushplan
         std::vector<std::vector<Eigen::Vector3d>> objects;   ///< (x, y, yaw) per object
     };
 
+    /// What a search's propagations did: diagnostics, not part of the plan.
+    struct SearchStats
+    {
+        std::uint64_t propagations = 0;       ///< runs of steps from a tree state
+        std::uint64_t steps = 0;              ///< propagation steps in all
+        std::uint64_t moved_goal_object = 0;  ///< propagations that moved the goal object
+        std::uint64_t moved_clutter = 0;      ///< ... that moved another object
+        /// Propagations stopped early, by the rule a step broke ("objects too close",
+        /// "jammed", "joint limit", ...).
+        std::vector<std::pair<std::string, std::uint64_t>> stopped;
+    };
+
     struct Plan
     {
         bool solved = false;          ///< an exact solution: the goal is reached
         double planning_time = 0.0;   ///< s
         std::size_t tree_size = 0;    ///< RRT nodes
         std::uint64_t propagation_steps = 0;
+        SearchStats search;
         double step = 0.0;            ///< propagation step (s)
         std::vector<std::string> joint_names;
         std::vector<std::string> object_names;

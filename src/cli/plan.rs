@@ -130,6 +130,10 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         solution.propagation_steps,
         solution.propagation_steps as f64 / solution.planning_time.max(1e-9)
     );
+    println!(
+        "search: {}",
+        crate::planner::SearchStats::from(&solution.search).report()
+    );
     if let Some(r) = &file.robustness {
         println!(
             "robust: {:.0} % of {} perturbed re-simulations reach the goal (at least {:.0} % required)",

@@ -7,7 +7,7 @@ use super::bridge::{
 use crate::darrt::PrimitivePath;
 use crate::path::{PathControl, PathMetrics};
 use crate::planner::{FinishSettings, FinishedPath, RobustRequirement};
-use crate::planner::{Model, NearestTree};
+use crate::planner::{Model, NearestTree, PlannerKind, SearchStats};
 use crate::scene::{Goal, Scene};
 
 pub(super) fn scene_info(model: &Model) -> SceneInfo {
@@ -38,6 +38,49 @@ pub(super) fn trajectory(
 
 pub(super) fn darrt_check(model: &Model, states: &[f64]) -> Result<PrimitiveCheck, String> {
     model.darrt_check(states).map(PrimitiveCheck::from)
+}
+
+pub(super) fn planner_name(kind: PlannerKind) -> &'static str {
+    kind.name()
+}
+
+pub(super) fn planner_kind(name: &str) -> Result<PlannerKind, String> {
+    name.parse()
+}
+
+pub(super) fn search_stats(model: &Model) -> bridge::SearchStats {
+    bridge::SearchStats::from(model.search_stats())
+}
+
+impl From<&SearchStats> for bridge::SearchStats {
+    fn from(stats: &SearchStats) -> Self {
+        bridge::SearchStats {
+            propagations: stats.propagations,
+            steps: stats.steps,
+            moved_goal_object: stats.moved_goal_object,
+            moved_clutter: stats.moved_clutter,
+            stop_reasons: stats.stopped.keys().cloned().collect(),
+            stop_counts: stats.stopped.values().copied().collect(),
+        }
+    }
+}
+
+impl From<&bridge::SearchStats> for SearchStats {
+    fn from(stats: &bridge::SearchStats) -> Self {
+        SearchStats {
+            propagations: stats.propagations,
+            steps: stats.steps,
+            moved_goal_object: stats.moved_goal_object,
+            moved_clutter: stats.moved_clutter,
+            stopped: stats
+                .stop_reasons
+                .iter()
+                .cloned()
+                .zip(stats.stop_counts.iter().copied())
+                .collect(),
+            ..SearchStats::default()
+        }
+    }
 }
 
 pub(super) fn nearest_tree(model: &Model) -> Box<NearestTree> {

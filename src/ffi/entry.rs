@@ -28,6 +28,7 @@ pub mod bridge {
         pub planning_time: f64,
         pub tree_size: usize,
         pub propagation_steps: u64,
+        pub search: SearchStats,
         pub controls: Vec<f64>,
         pub steps: Vec<usize>,
         pub states: Vec<f64>,
@@ -50,6 +51,8 @@ pub mod bridge {
         include!("pushplan/pushplan.h");
         #[namespace = "pushplan"]
         type PlannerKind = crate::planner::PlannerKind;
+        include!("pushplan/src/ffi.rs.h");
+        type SearchStats = crate::ffi::bridge::SearchStats;
         include!("pushplan/cpp/solve.h");
         /// Searches the scene file with OMPL (the CLI's entry point).
         fn solve(scene_path: &str, options: &SolveOptions) -> Result<SolveOutput>;

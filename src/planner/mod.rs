@@ -8,9 +8,11 @@ mod kind;
 mod model;
 mod nearest;
 mod problem;
+mod stats;
 
 pub use finish::{finish, FinishSettings, FinishedPath, RobustRequirement, ShortcutReport};
 pub use kind::PlannerKind;
 pub use model::Model;
 pub use nearest::NearestTree;
 pub use problem::Problem;
+pub use stats::SearchStats;

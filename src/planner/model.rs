@@ -4,7 +4,7 @@
 //! C++ (nothing may unwind across the bridge).
 
 use super::finish::{FinishSettings, FinishedPath};
-use super::{NearestTree, PlannerKind, Problem};
+use super::{NearestTree, PlannerKind, Problem, SearchStats};
 use crate::darrt;
 use crate::distance::DistanceMetric;
 use crate::math::Pose2;
@@ -33,6 +33,7 @@ pub struct Model {
     steps_taken: u64,
     /// Wall time spent in `propagate` (progress reports: the rest is the planner's).
     propagating: Duration,
+    search: SearchStats,
 }
 
 /// Runs `f`, turning a panic into an error message.
@@ -61,6 +62,7 @@ impl Model {
             last_result: None,
             steps_taken: 0,
             propagating: Duration::ZERO,
+            search: SearchStats::default(),
         }
     }
 
@@ -146,33 +148,48 @@ impl Model {
     ) -> Result<bool, String> {
         let started = Instant::now();
         let outcome = guarded("propagate", || {
+            // OMPL propagates one step at a time: a step from the last valid result
+            // continues the same propagation.
+            let continues = self.last_result_validity(state) == Some(true);
             let start = self.state(state)?;
             let action = self.action(control)?;
             if result.len() != state.len() {
                 return Err("the result state has the wrong length".into());
             }
-            let (valid, taken, reached) = if self.static_mode {
+            // The valid part's end, and the state to write: the end, or the invalid state
+            // the last step tried to reach.
+            let (run, end, reached) = if self.static_mode {
                 let view = &mut self.static_view;
                 let run = view
                     .propagator
                     .propagate_steps(&view.reduce(&start), &action, steps);
-                let valid = run.stopped_by.is_none();
-                let reached = if valid {
-                    run.state
-                } else {
-                    view.propagator.attempted_state()
+                let end = view.expand(&run.state);
+                let reached = match run.stopped_by {
+                    None => end.clone(),
+                    Some(_) => view.expand(&view.propagator.attempted_state()),
                 };
-                (valid, run.steps, view.expand(&reached))
+                (run, end, reached)
             } else {
                 let run = self.propagator.propagate_steps(&start, &action, steps);
-                let valid = run.stopped_by.is_none();
-                let reached = if valid {
-                    run.state
-                } else {
-                    self.propagator.attempted_state()
+                let reached = match run.stopped_by {
+                    None => run.state.clone(),
+                    Some(_) => self.propagator.attempted_state(),
                 };
-                (valid, run.steps, reached)
+                let end = run.state.clone();
+                (run, end, reached)
             };
+            let (valid, taken) = (run.stopped_by.is_none(), run.steps);
+            let goal_object = match self.scene().goal {
+                Goal::ObjectInDisc { object, .. } => Some(object),
+                Goal::Configuration { .. } => None,
+            };
+            self.search.record(
+                &start,
+                &end,
+                run.stopped_by.as_ref(),
+                goal_object,
+                continues,
+            );
             self.steps_taken += taken as u64 + u64::from(!valid);
             reached.write_flat(result);
             self.last_result = Some((result.to_vec(), valid));
@@ -182,17 +199,22 @@ impl Model {
         outcome
     }
 
+    /// Whether `state` is, bit for bit, the last propagation's result, and if so, its
+    /// validity (OMPL asks right after propagating).
+    fn last_result_validity(&self, state: &[f64]) -> Option<bool> {
+        let (last, valid) = self.last_result.as_ref()?;
+        let same = last.len() == state.len()
+            && last
+                .iter()
+                .zip(state)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        same.then_some(*valid)
+    }
+
     pub fn is_valid(&mut self, state: &[f64]) -> Result<bool, String> {
         guarded("is_valid", || {
-            if let Some((last, valid)) = &self.last_result {
-                if last.len() == state.len()
-                    && last
-                        .iter()
-                        .zip(state)
-                        .all(|(a, b)| a.to_bits() == b.to_bits())
-                {
-                    return Ok(*valid);
-                }
+            if let Some(valid) = self.last_result_validity(state) {
+                return Ok(valid);
             }
             let state = self.state(state)?;
             if self.static_mode {
@@ -264,6 +286,11 @@ impl Model {
 
     pub fn propagation_steps(&self) -> u64 {
         self.steps_taken
+    }
+
+    /// What the propagations so far did.
+    pub fn search_stats(&self) -> &SearchStats {
+        &self.search
     }
 
     /// Wall time (s) spent propagating so far.

@@ -1,0 +1,85 @@
+//! What a search's propagations did: how many there were, why they stopped early, and
+//! whether they moved the goal object or the clutter. Diagnostics for the planner's user
+//! and for benchmarks (`benches/stops.sh`), not part of the plan.
+
+use crate::state::State;
+use crate::validity::Invalid;
+use std::collections::BTreeMap;
+
+/// Counts over a search. OMPL propagates a control one step at a time and stops at the
+/// first invalid step; a *propagation* is one such run of steps from a tree state.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SearchStats {
+    pub propagations: u64,
+    pub steps: u64,
+    /// Propagations in which some step moved the goal object / any other object.
+    pub moved_goal_object: u64,
+    pub moved_clutter: u64,
+    /// Propagations stopped by an invalid step, by [`Invalid::kind`].
+    pub stopped: BTreeMap<String, u64>,
+    /// Whether the current propagation has already been counted as moving them.
+    pub(crate) counted_goal_move: bool,
+    pub(crate) counted_clutter_move: bool,
+}
+
+impl SearchStats {
+    /// Counts one step from `start` whose valid part ended at `end`, stopped by
+    /// `stopped_by` if so; `continues` says it extends the previous step's propagation.
+    /// `goal_object` is the object the goal names.
+    pub fn record(
+        &mut self,
+        start: &State,
+        end: &State,
+        stopped_by: Option<&Invalid>,
+        goal_object: Option<usize>,
+        continues: bool,
+    ) {
+        self.steps += 1;
+        if !continues {
+            self.propagations += 1;
+            self.counted_goal_move = false;
+            self.counted_clutter_move = false;
+        }
+        let moved = |i: usize| start.objects[i] != end.objects[i];
+        if !self.counted_goal_move && goal_object.is_some_and(moved) {
+            self.counted_goal_move = true;
+            self.moved_goal_object += 1;
+        }
+        let objects = start.objects.len();
+        if !self.counted_clutter_move && (0..objects).any(|i| Some(i) != goal_object && moved(i)) {
+            self.counted_clutter_move = true;
+            self.moved_clutter += 1;
+        }
+        if let Some(reason) = stopped_by {
+            // No allocation once a reason has been seen.
+            match self.stopped.get_mut(reason.kind()) {
+                Some(n) => *n += 1,
+                None => {
+                    self.stopped.insert(reason.kind().to_string(), 1);
+                }
+            }
+        }
+    }
+
+    /// One line: "N propagations of S steps on average, P % stopped early (reason P %,
+    /// ...); the goal object moved in G %, other objects in C %" (reasons most frequent
+    /// first, shares of all propagations).
+    pub fn report(&self) -> String {
+        let share = |n: u64| 100.0 * n as f64 / self.propagations.max(1) as f64;
+        let mut reasons: Vec<(&String, &u64)> = self.stopped.iter().collect();
+        reasons.sort_by(|a, b| b.1.cmp(a.1).then(a.0.cmp(b.0)));
+        let reasons: Vec<String> = reasons
+            .iter()
+            .map(|(reason, n)| format!("{reason} {:.1} %", share(**n)))
+            .collect();
+        format!(
+            "{} propagations of {:.1} steps on average, {:.1} % stopped early ({}); the goal object moved in {:.1} %, other objects in {:.1} %",
+            self.propagations,
+            self.steps as f64 / self.propagations.max(1) as f64,
+            share(self.stopped.values().sum()),
+            reasons.join(", "),
+            share(self.moved_goal_object),
+            share(self.moved_clutter)
+        )
+    }
+}
