@@ -5,6 +5,7 @@
 
 #include "model_handle.h"
 #include "planner_source.h"
+#include "portfolio.h"
 #include "problem.h"
 
 #include <ompl/base/PlannerData.h>
@@ -15,6 +16,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <map>
+#include <thread>
 
 namespace ob = ompl::base;
 namespace oc = ompl::control;
@@ -29,6 +33,31 @@ namespace pushplan
             if (!ok)
                 throw Error(std::string("option ") + name + " is out of range: " + std::to_string(value));
             return value;
+        }
+
+        /// One search per core (at least one).
+        unsigned defaultThreads()
+        {
+            return std::max(1u, std::thread::hardware_concurrency());
+        }
+
+        /// The searches' statistics, summed (reasons in name order).
+        SearchStats searchStats(const std::vector<ModelHandlePtr> &models)
+        {
+            SearchStats total;
+            std::map<std::string, std::uint64_t> stopped;
+            for (const ModelHandlePtr &model : models)
+            {
+                const bridge::SearchStats stats = bridge::search_stats(model->model());
+                total.propagations += stats.propagations;
+                total.steps += stats.steps;
+                total.moved_goal_object += stats.moved_goal_object;
+                total.moved_clutter += stats.moved_clutter;
+                for (std::size_t i = 0; i < stats.stop_reasons.size(); ++i)
+                    stopped[std::string(stats.stop_reasons[i])] += stats.stop_counts[i];
+            }
+            total.stopped.assign(stopped.begin(), stopped.end());
+            return total;
         }
     }  // namespace detail
 
@@ -88,10 +117,18 @@ namespace pushplan
             if (options.planner == PlannerKind::Darrt)
                 throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
                             "(measure DARRT with `pushplan bench`)");
-            auto model = std::make_shared<detail::ModelHandle>(source_->load());
-            // Static RRT's problem: the same states, the clutter pinned where it starts.
-            model->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
-            const bridge::SceneInfo &info = model->info();
+            // One search per thread, each with its own model and seed (detail::Portfolio).
+            const unsigned threads = checked("threads", options.threads.value_or(detail::defaultThreads()),
+                                             options.threads.value_or(detail::defaultThreads()) >= 1 &&
+                                                 options.threads.value_or(detail::defaultThreads()) <= 256);
+            std::vector<detail::ModelHandlePtr> models;
+            for (unsigned i = 0; i < threads; ++i)
+            {
+                models.push_back(std::make_shared<detail::ModelHandle>(source_->load()));
+                // Static RRT's problem: the same states, the clutter pinned where it starts.
+                models.back()->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
+            }
+            const bridge::SceneInfo &info = models[0]->info();
             const double time_limit = options.time_limit.value_or(info.planner.time_limit);
             checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
             const std::uint64_t seed = options.seed.value_or(info.planner.seed);
@@ -109,105 +146,109 @@ namespace pushplan
                 LogLevelGuard() { ompl::msg::setLogLevel(std::max(saved, ompl::msg::LOG_WARN)); }
                 ~LogLevelGuard() { ompl::msg::setLogLevel(saved); }
             } log_level;
-            const detail::Problem problem = detail::makeProblem(model, seed, k);
-            oc::SimpleSetup &setup = *problem.setup;
-            const oc::SpaceInformationPtr &si = setup.getSpaceInformation();
-            const ob::PlannerPtr planner =
-                detail::makePlanner(options.planner, problem, seed, goal_bias, options.intermediate_states);
-            setup.setPlanner(planner);
-            setup.setup();
+            // Set up on this thread, in order: OMPL's planners draw their seeds as they are made.
+            std::vector<detail::Search> searches;
+            for (unsigned i = 0; i < threads; ++i)
+            {
+                const std::uint64_t search_seed = detail::searchSeed(seed, i);
+                detail::Problem problem = detail::makeProblem(models[i], search_seed, k);
+                ob::PlannerPtr planner =
+                    detail::makePlanner(options.planner, problem, search_seed, goal_bias, options.intermediate_states);
+                problem.setup->setPlanner(planner);
+                problem.setup->setup();
+                searches.push_back(detail::Search{std::move(problem), std::move(planner)});
+            }
+            detail::Portfolio portfolio(std::move(searches));
 
             // Search until an exact solution or the time limit; progress once a second.
             const auto started = std::chrono::steady_clock::now();
             const auto elapsed = [&] {
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             };
+            const std::function<bool()> out_of_time = [&] { return elapsed() >= time_limit; };
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
             std::uint64_t last_steps = 0;
-            const auto *rrt = dynamic_cast<const detail::SeededRRT *>(planner.get());
-            ob::PlannerTerminationCondition done([&] {
+            const std::function<void()> report = [&] {
                 const double t = elapsed();
-                if (options.progress && t >= next_report)
-                {
-                    const std::uint64_t steps = model->model().propagation_steps();
-                    const double propagating = model->model().propagation_seconds();
-                    std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps, %.0f steps/s, %.0f %% propagating",
-                                 t, static_cast<unsigned long long>(steps),
-                                 static_cast<double>(steps - last_steps) / (t - last_t),
-                                 100.0 * (propagating - last_propagating) / (t - last_t));
-                    if (rrt != nullptr)
-                        std::fprintf(stderr, ", tree of %zu states", rrt->treeSize());
-                    std::fputc('\n', stderr);
-                    last_t = t, last_steps = steps, last_propagating = propagating;
-                    next_report += 1.0;
-                }
-                return t >= time_limit;
-            });
-            try
-            {
-                setup.solve(done);
-            }
-            catch (const rust::Error &e)
-            {
-                throw Error(std::string("planning failed: ") + e.what());
-            }
-
-            // The path as found: controls with their step counts, and the states OMPL reached.
-            detail::ModelHandle::FlatPath found;
-            const auto read_path = [&] {
-                if (setup.haveSolutionPath())
-                    found = model->readPath(setup.getSolutionPath());
+                if (!options.progress || t < next_report)
+                    return;
+                const std::uint64_t steps = portfolio.propagationSteps();
+                const double propagating = portfolio.propagationSeconds() / threads;
+                std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps, %.0f steps/s, %.0f %% propagating",
+                             t, static_cast<unsigned long long>(steps),
+                             static_cast<double>(steps - last_steps) / (t - last_t),
+                             100.0 * (propagating - last_propagating) / (t - last_t));
+                if (const std::optional<std::size_t> states = portfolio.treeStates())
+                    std::fprintf(stderr, ", tree of %zu states", *states);
+                if (threads > 1)
+                    std::fprintf(stderr, " in %u searches", threads);
+                std::fputc('\n', stderr);
+                last_t = t, last_steps = steps, last_propagating = propagating;
+                next_report = std::floor(t) + 1.0;
             };
-
-            Plan plan;
-            bool solved = setup.haveExactSolutionPath();
-            read_path();
-            // Robust planning: a solution that too few perturbed re-simulations carry to the
-            // goal is dropped, and the search starts over with a new tree (the old tree's
-            // next solutions would mostly extend the dropped one, past its goal node).
-            while (solved && options.robust_trials > 0)
-            {
-                plan.robustness = model->model().robustness(detail::slice(found.controls), detail::slice(found.steps),
-                                                            options.robust_trials, seed);
-                if (plan.robustness >= options.robust_rate)
-                    break;
-                if (options.progress)
-                    std::fprintf(stderr, "  a solution reaches the goal in %.0f %% of %u perturbed re-simulations: searching on\n",
-                                 100.0 * plan.robustness, options.robust_trials);
-                if (done())
-                {
-                    solved = false;  // the last path is kept, as an approximate solution
-                    break;
-                }
-                setup.getProblemDefinition()->clearSolutionPaths();
-                planner->clear();
+            const auto search = [&] {
                 try
                 {
-                    setup.solve(done);
+                    return portfolio.solve(out_of_time, report);
                 }
                 catch (const rust::Error &e)
                 {
                     throw Error(std::string("planning failed: ") + e.what());
                 }
-                solved = setup.haveExactSolutionPath();
+            };
+
+            // The path as found: controls with their step counts, and the states OMPL reached.
+            detail::ModelHandle::FlatPath found;
+            std::optional<std::size_t> winner = search();
+            const auto read_path = [&] {
+                found = {};
+                if (const std::optional<std::size_t> best = winner ? winner : portfolio.best())
+                {
+                    const oc::SimpleSetup &setup = *portfolio[*best].problem.setup;
+                    found = portfolio[*best].problem.model->readPath(setup.getSolutionPath());
+                }
+            };
+
+            Plan plan;
+            read_path();
+            // Robust planning: a solution that too few perturbed re-simulations carry to the
+            // goal is dropped, and its search starts over with a new tree (the old tree's
+            // next solutions would mostly extend the dropped one, past its goal node).
+            while (winner && options.robust_trials > 0)
+            {
+                plan.robustness = models[*winner]->model().robustness(
+                    detail::slice(found.controls), detail::slice(found.steps), options.robust_trials, seed);
+                if (plan.robustness >= options.robust_rate)
+                    break;
+                if (options.progress)
+                    std::fprintf(stderr, "  a solution reaches the goal in %.0f %% of %u perturbed re-simulations: searching on\n",
+                                 100.0 * plan.robustness, options.robust_trials);
+                if (out_of_time())
+                {
+                    winner.reset();  // the last path is kept, as an approximate solution
+                    break;
+                }
+                portfolio.restart(*winner);
+                winner = search();
                 read_path();
             }
+            const bool solved = winner.has_value();
+            const detail::ModelHandlePtr &model = models[winner.value_or(portfolio.best().value_or(0))];
 
             plan.planning_time = elapsed();
-            plan.propagation_steps = model->model().propagation_steps();
-            const bridge::SearchStats stats = bridge::search_stats(model->model());
-            plan.search.propagations = stats.propagations;
-            plan.search.steps = stats.steps;
-            plan.search.moved_goal_object = stats.moved_goal_object;
-            plan.search.moved_clutter = stats.moved_clutter;
-            for (std::size_t i = 0; i < stats.stop_reasons.size(); ++i)
-                plan.search.stopped.emplace_back(std::string(stats.stop_reasons[i]), stats.stop_counts[i]);
+            plan.propagation_steps = portfolio.propagationSteps();
+            plan.search = detail::searchStats(models);
+            plan.threads = threads;
             plan.step = info.planner.step;
-            ob::PlannerData data(si);
-            planner->getPlannerData(data);
-            plan.tree_size = data.numVertices();
+            for (std::size_t i = 0; i < portfolio.size(); ++i)
+            {
+                const detail::Search &s = portfolio[i];
+                ob::PlannerData data(s.problem.setup->getSpaceInformation());
+                s.planner->getPlannerData(data);
+                plan.tree_size += data.numVertices();
+            }
             plan.solved = solved;
             for (const auto &n : info.joint_names)
                 plan.joint_names.emplace_back(n);

@@ -68,6 +68,10 @@ enum Command {
         /// The fraction of --robust re-simulations that must reach the goal.
         #[arg(long, default_value_t = 0.9)]
         robust_rate: f64,
+        /// Searches in parallel, one per thread, advancing in rounds of propagation steps
+        /// (the same seed and thread count give the same plan); default: one per core.
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
+        threads: Option<u32>,
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is
     /// reached; with --noise, also how often perturbed re-simulations still reach it.
@@ -246,11 +250,13 @@ fn main() -> ExitCode {
             quiet,
             robust,
             robust_rate,
+            threads,
         } => {
             let scene = scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
             let options = PlanOptions {
                 robust,
                 robust_rate,
+                threads: threads.unwrap_or_else(pushplan::cli::cores),
                 time,
                 seed,
                 k,

@@ -27,6 +27,13 @@ pub struct PlanSettings {
     pub time_limit: f64,
     /// Shortcutting budget (s of work; 0 = none).
     pub shortcut: f64,
+    /// Searches run in parallel (absent in files from before there were several: 1).
+    #[serde(default = "one_search")]
+    pub threads: u32,
+}
+
+fn one_search() -> u32 {
+    1
 }
 
 /// A plan file. Unknown fields are refused ([`PlanFile::read`]): serde cannot deny them

@@ -21,6 +21,7 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
         progress: false,
         robust_trials: 0,
         robust_rate: 0.9,
+        threads: 1,
     }
 }
 
@@ -121,6 +122,34 @@ fn the_same_seed_gives_the_same_plan() {
         a.controls, c.controls,
         "a different seed should give a different plan"
     );
+}
+
+#[test]
+fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
+    let scene = "scenes/herb_fig1_clutter.yaml";
+    let threads = |n: u32| SolveOptions {
+        threads: n,
+        ..options("pcrrt", 1, 60.0)
+    };
+    let a = solve(Path::new(scene), &threads(3)).unwrap();
+    // Again, while another search competes for the cores: other thread timings.
+    let b = std::thread::scope(|s| {
+        let noise = s.spawn(|| solve(Path::new(scene), &options("pcrrt", 9, 60.0)));
+        let b = solve(Path::new(scene), &threads(3)).unwrap();
+        noise.join().unwrap().unwrap();
+        b
+    });
+    assert!(a.exact);
+    assert_eq!(
+        (&a.states, &a.controls, &a.steps, a.tree_size),
+        (&b.states, &b.controls, &b.steps, b.tree_size)
+    );
+    assert_eq!(a.propagation_steps, b.propagation_steps);
+    assert!(plan_file(scene, "pcrrt", 1, &a)
+        .check(Path::new("plan.json"))
+        .unwrap()
+        .passed());
+    assert!(solve(Path::new(scene), &threads(0)).is_err());
 }
 
 #[test]

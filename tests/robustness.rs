@@ -67,6 +67,7 @@ fn the_plan_executed_in_3d_reaches_the_goal_and_matches_the_prediction() {
         goal_bias: 0.05,
         time_limit: 1.0,
         shortcut: 0.0,
+        threads: 1,
     };
     let plan = PlanFile::build(SCENE, scene.clone(), &settings, &controls(), None).unwrap();
     assert!(plan.solved);

@@ -86,6 +86,10 @@ namespace pushplan
         /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on. 0: no check.
         unsigned robust_trials = 0;
         double robust_rate = 0.9;
+        /// Searches run in parallel, one per thread, in lock-step rounds counted in
+        /// propagation steps: the same scene, seed and thread count give the same plan.
+        /// Default: one per core.
+        std::optional<unsigned> threads;
     };
 
     /// A link pushing an object during one propagation step.
@@ -146,9 +150,10 @@ namespace pushplan
     {
         bool solved = false;          ///< an exact solution: the goal is reached
         double planning_time = 0.0;   ///< s
-        std::size_t tree_size = 0;    ///< RRT nodes
+        std::size_t tree_size = 0;    ///< tree nodes, all searches
         std::uint64_t propagation_steps = 0;
-        SearchStats search;
+        SearchStats search;           ///< summed over the searches
+        unsigned threads = 1;         ///< searches run in parallel
         double step = 0.0;            ///< propagation step (s)
         std::vector<std::string> joint_names;
         std::vector<std::string> object_names;

@@ -29,9 +29,7 @@ pub fn bench(
     for scene in &grid.scenes {
         Scene::load(scene).map_err(|e| e.to_string())?; // bad scenes fail before anything runs
     }
-    let jobs = jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
-        .max(1);
+    let jobs = jobs.unwrap_or_else(|| super::cores() as usize).max(1);
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     let failed = run_shard(&exe, grid, shard, out, jobs)?;
     if shard != Shard::ALL {

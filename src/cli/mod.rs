@@ -13,3 +13,9 @@ pub use check::check;
 pub use execute::execute;
 pub use files::{draw, generate_scenes, install};
 pub use plan::{plan, PlanOptions};
+
+/// The cores this process may use (at least 1): the default of `plan --threads` and
+/// `bench --jobs`.
+pub fn cores() -> u32 {
+    std::thread::available_parallelism().map_or(1, |n| n.get() as u32)
+}

@@ -20,6 +20,8 @@ pub struct PlanOptions {
     pub shortcut: f64,
     pub intermediate_states: bool,
     pub quiet: bool,
+    /// Searches in parallel, one per thread.
+    pub threads: u32,
 }
 
 pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode, String> {
@@ -37,6 +39,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         progress: !quiet,
         robust_trials: run.robust,
         robust_rate: run.robust_rate,
+        threads: run.threads,
     };
     if !(0.0..=1.0).contains(&run.robust_rate) {
         return Err(format!(
@@ -61,12 +64,18 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     }
     if !quiet {
         eprintln!(
-            "planning '{}' with {} (k = {}, seed = {}, up to {} s)",
+            "planning '{}' with {} (k = {}, seed = {}, up to {} s, {} {})",
             scene.name,
             planner.name(),
             options.k,
             options.seed,
-            options.time_limit
+            options.time_limit,
+            options.threads,
+            if options.threads == 1 {
+                "search"
+            } else {
+                "searches in parallel"
+            }
         );
     }
     let solution = solve(scene_path, &options)?;
@@ -99,6 +108,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         goal_bias: options.goal_bias,
         time_limit: options.time_limit,
         shortcut: run.shortcut,
+        threads: options.threads,
     };
     let reference = scene_path.to_string_lossy().into_owned();
     let mut file = PlanFile::build(

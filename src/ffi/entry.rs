@@ -17,6 +17,8 @@ pub mod bridge {
         /// Robust planning: the search goes on until a solution keeps this robustness.
         pub robust_trials: usize,
         pub robust_rate: f64,
+        /// Searches in parallel (pushplan::Options::threads); at least 1.
+        pub threads: u32,
     }
 
     /// The outcome of one search and the path found: controls, their step counts and the

@@ -60,6 +60,7 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>
         progress: false,
         robust_trials: 0,
         robust_rate: 0.9,
+        threads: 1,
     };
     let scene_file = "scenes/herb_fig1_clutter.yaml";
     let out = pushplan::ffi::solve(Path::new(scene_file), &options).unwrap();
@@ -80,6 +81,7 @@ pub fn plan_settings(planner: &str, seed: u64, shortcut: f64) -> pushplan::plan:
         goal_bias: 0.05,
         time_limit: 30.0,
         shortcut,
+        threads: 1,
     }
 }
 

@@ -1,0 +1,63 @@
+// Several independent searches of one problem, one per thread, advancing in lock-step
+// rounds of a fixed number of propagation steps: which search finds the plan, and the
+// plan, depend on the seeds and the number of searches, never on thread scheduling.
+#pragma once
+
+#include "problem.h"
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace pushplan::detail
+{
+    /// One search: its own model, OMPL problem and planner.
+    struct Search
+    {
+        Problem problem;
+        ompl::base::PlannerPtr planner;
+    };
+
+    /// The seed of search `index` of a plan seeded with `seed`: search 0 keeps the plan's
+    /// seed, so one search is the single-threaded planner exactly.
+    std::uint64_t searchSeed(std::uint64_t seed, std::size_t index);
+
+    class Portfolio
+    {
+    public:
+        /// Propagation steps each search takes per round: about 20 ms of work. A round
+        /// ends when every search has taken them (or solved), so a search that solves
+        /// waits for the rest of the round: short rounds waste little.
+        static constexpr std::uint64_t kRoundSteps = 5000;
+
+        explicit Portfolio(std::vector<Search> searches);
+
+        /// Runs rounds until one ends with an exact solution or `out_of_time` (asked from
+        /// every thread) says stop; `after_round` runs on the calling thread after each
+        /// round. Returns the lowest-numbered search holding an exact solution.
+        std::optional<std::size_t> solve(const std::function<bool()> &out_of_time,
+                                         const std::function<void()> &after_round);
+
+        /// Drops search `i`'s tree and solutions: it starts over in the next round.
+        void restart(std::size_t i);
+
+        /// The search whose best path is best: exact, else closest to the goal (lowest
+        /// number on ties); nullopt if none has a path.
+        std::optional<std::size_t> best() const;
+
+        std::size_t size() const { return searches_.size(); }
+        const Search &operator[](std::size_t i) const { return searches_[i]; }
+
+        /// Totals over the searches.
+        std::uint64_t propagationSteps() const;
+        double propagationSeconds() const;
+        /// States in the searches' trees, for the planners that report it cheaply (RRT).
+        std::optional<std::size_t> treeStates() const;
+
+    private:
+        void advance(std::size_t i, const std::function<bool()> &out_of_time);
+
+        std::vector<Search> searches_;
+    };
+}  // namespace pushplan::detail
