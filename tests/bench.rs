@@ -150,7 +150,8 @@ fn shards_merged_hold_the_runs_of_the_unsharded_benchmark() {
 
 #[test]
 fn bench_runs_planners_on_scenes_and_merges_a_database() {
-    let out = std::env::temp_dir().join(format!("pushplan-bench-{}", std::process::id()));
+    let scratch = common::Scratch::new("bench");
+    let out = scratch.path().to_path_buf();
     let scenes = [
         "scenes/benchmark/scene_00.yaml",
         "scenes/benchmark/scene_10.yaml",
@@ -247,7 +248,8 @@ print(*c.execute(f"""select count(*), sum(correct_solution), sum(objects_moved >
 
 #[test]
 fn bench_rejects_unknown_planners_and_bad_scenes() {
-    let out = std::env::temp_dir().join(format!("pushplan-bench-bad-{}", std::process::id()));
+    let scratch = common::Scratch::new("bench-bad");
+    let out = scratch.path().to_path_buf();
     let run = Command::new(env!("CARGO_BIN_EXE_pushplan"))
         .args([
             "bench",

@@ -1,6 +1,7 @@
 //! The `pushplan` command end to end.
 
-use std::path::PathBuf;
+mod common;
+
 use std::process::Command;
 
 fn pushplan(args: &[&str]) -> (i32, String, String) {
@@ -15,14 +16,12 @@ fn pushplan(args: &[&str]) -> (i32, String, String) {
     )
 }
 
-fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("pushplan-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
 #[test]
 fn plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes() {
+    let scratch = common::Scratch::new(
+        "cli-plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes",
+    );
+    let temp = |name: &str| scratch.join(name);
     let (a, b) = (temp("a.json"), temp("b.json"));
     let mut searches = Vec::new();
     for out in [&a, &b] {
@@ -88,6 +87,8 @@ fn plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes
 
 #[test]
 fn no_exact_solution_exits_non_zero() {
+    let scratch = common::Scratch::new("cli-no_exact_solution_exits_non_zero");
+    let temp = |name: &str| scratch.join(name);
     let out = temp("static.json");
     let (code, stdout, _) = pushplan(&[
         "plan",
@@ -132,6 +133,8 @@ fn no_exact_solution_exits_non_zero() {
 
 #[test]
 fn invalid_scenes_give_clear_errors() {
+    let scratch = common::Scratch::new("cli-invalid_scenes_give_clear_errors");
+    let temp = |name: &str| scratch.join(name);
     let bad = temp("bad.yaml");
     let text = std::fs::read_to_string("scenes/herb_single_object.yaml")
         .unwrap()
@@ -155,6 +158,8 @@ fn invalid_scenes_give_clear_errors() {
 
 #[test]
 fn plan_with_render_writes_the_plan_and_its_pictures() {
+    let scratch = common::Scratch::new("cli-plan_with_render_writes_the_plan_and_its_pictures");
+    let temp = |name: &str| scratch.join(name);
     let out = temp("rendered.json");
     let dir = temp("pictures");
     let (code, stdout, stderr) = pushplan(&[
@@ -207,6 +212,9 @@ fn plan_with_render_writes_the_plan_and_its_pictures() {
 
 #[test]
 fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
+    let scratch =
+        common::Scratch::new("cli-robust_plans_survive_perturbed_re_simulation_and_execute_in_3d");
+    let temp = |name: &str| scratch.join(name);
     let out = temp("robust.json");
     let out_str = out.to_str().unwrap();
     let (code, stdout, stderr) = pushplan(&[
@@ -272,6 +280,8 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
 
 #[test]
 fn every_planner_kind_is_chosen_by_its_name() {
+    let scratch = common::Scratch::new("cli-every_planner_kind_is_chosen_by_its_name");
+    let temp = |name: &str| scratch.join(name);
     // OMPL's control planners plan the same problem from the CLI; the plan file names
     // the planner, and `check` re-simulates it like any other.
     let out = temp("kpiece.json");

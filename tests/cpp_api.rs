@@ -121,6 +121,7 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
     assert_eq!(cli.status.code(), Some(0));
     let plan: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&plan_file).unwrap()).unwrap();
+    let _ = std::fs::remove_file(&plan_file);
     let times = plan["trajectory"]["times"].as_array().unwrap();
     let last_q0 = plan["trajectory"]["q"].as_array().unwrap().last().unwrap()[0]
         .as_f64()
@@ -179,6 +180,7 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
     )
     .unwrap();
     let run = Command::new(&binary).arg(&bad).output().unwrap();
+    let _ = std::fs::remove_file(&bad);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(2), "{stderr}");
     assert!(

@@ -227,7 +227,8 @@ fn paths_that_break_a_primitive_are_refused() {
 /// (RRT-Connect and DARRT are seeded, and neither reaches a time limit).
 #[test]
 fn darrt_clears_the_goal_before_pushing_the_goal_object_in() {
-    let out = std::env::temp_dir().join(format!("pushplan-darrt-{}", std::process::id()));
+    let scratch = common::Scratch::new("darrt");
+    let out = scratch.path().to_path_buf();
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
         .args(["bench", "tests/data/clutter_on_goal.yaml"])
         .args(["--planners", "darrt", "--runs", "1", "--seed", "3"])

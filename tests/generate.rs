@@ -1,5 +1,7 @@
 //! The benchmark scene generator (the paper's dataset design).
 
+mod common;
+
 use pushplan::scene::generate::{generate, Design, GOAL_CENTER, GOAL_RADIUS};
 use pushplan::scene::Goal;
 use pushplan::Scene;
@@ -14,12 +16,10 @@ fn without_urdf(path: &std::path::Path) -> String {
         .join("\n")
 }
 
-fn temp(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("pushplan-generate-{name}-{}", std::process::id()))
-}
-
 #[test]
 fn generated_scenes_follow_the_dataset_design() {
+    let scratch = common::Scratch::new("generate-generated_scenes_follow_the_dataset_design");
+    let temp = |name: &str| scratch.join(name);
     let dir = temp("seven");
     let files = generate(Design::Paper, 7, (1, 7), 3, &dir).unwrap();
     let mut counts = Vec::new();
@@ -72,6 +72,9 @@ fn generated_scenes_follow_the_dataset_design() {
 
 #[test]
 fn the_committed_benchmark_set_is_what_the_command_generates() {
+    let scratch =
+        common::Scratch::new("generate-the_committed_benchmark_set_is_what_the_command_generates");
+    let temp = |name: &str| scratch.join(name);
     let files = generate(Design::Paper, 35, (1, 7), 1, &temp("committed")).unwrap();
     for (i, file) in files.iter().enumerate() {
         let committed = std::path::PathBuf::from(format!("scenes/benchmark/scene_{i:02}.yaml"));
@@ -82,6 +85,8 @@ fn the_committed_benchmark_set_is_what_the_command_generates() {
 
 #[test]
 fn bad_ranges_are_errors() {
+    let scratch = common::Scratch::new("generate-bad_ranges_are_errors");
+    let temp = |name: &str| scratch.join(name);
     assert!(generate(Design::Paper, 3, (0, 2), 1, &temp("bad"))
         .unwrap_err()
         .contains("range"));
@@ -90,6 +95,9 @@ fn bad_ranges_are_errors() {
 
 #[test]
 fn the_committed_dense_set_is_what_the_command_generates() {
+    let scratch =
+        common::Scratch::new("generate-the_committed_dense_set_is_what_the_command_generates");
+    let temp = |name: &str| scratch.join(name);
     let files = generate(Design::Dense, 20, (8, 20), 1, &temp("dense")).unwrap();
     for (i, file) in files.iter().enumerate() {
         let committed = std::path::PathBuf::from(format!("scenes/dense/scene_{i:02}.yaml"));
@@ -109,6 +117,9 @@ fn to_segment(
 
 #[test]
 fn dense_scenes_are_dense_and_take_their_layouts_in_turn() {
+    let scratch =
+        common::Scratch::new("generate-dense_scenes_are_dense_and_take_their_layouts_in_turn");
+    let temp = |name: &str| scratch.join(name);
     let files = generate(Design::Dense, 9, (8, 20), 5, &temp("dense-design")).unwrap();
     let mut counts = Vec::new();
     for (i, file) in files.iter().enumerate() {

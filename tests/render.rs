@@ -6,17 +6,18 @@ use pushplan::render::render;
 
 mod common;
 use pushplan::Scene;
-use std::path::PathBuf;
 
 const SCENE: &str = "scenes/herb_fig1_clutter.yaml";
 
-/// The default scene's plan for seed 2, written to a temporary folder.
-fn plan() -> (PlanFile, PathBuf) {
+/// The default scene's plan for seed 2, written to a temporary folder (removed with it).
+fn plan() -> (PlanFile, common::Scratch) {
     let (scene, controls) = common::default_scene_plan(2);
     let settings = common::plan_settings("pcrrt", 2, 0.0);
     let plan = PlanFile::build(SCENE, scene, &settings, &controls, None).unwrap();
-    let dir = std::env::temp_dir().join(format!("pushplan-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    // One folder per call: the tests run at once.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = common::Scratch::new(&format!("render-{call}"));
     let path = dir.join("plan.json");
     std::fs::write(&path, plan.to_json()).unwrap();
     (plan, dir)

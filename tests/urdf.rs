@@ -1,18 +1,12 @@
 //! Robots from URDF: joint kinds, limits, meshes (STL, convex hull) and path resolution.
 
+mod common;
+
 use nalgebra::{Isometry3, Vector3};
 use pushplan::robot::urdf::load_urdf;
 use pushplan::robot::JointKind;
 use pushplan::Error;
-use std::path::{Path, PathBuf};
-
-/// A fresh folder under the system temp dir.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("pushplan-test-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use std::path::Path;
 
 /// Writes a binary STL of an axis-aligned box with the given half extents.
 fn write_box_stl(path: &Path, h: [f32; 3]) {
@@ -70,7 +64,8 @@ fn urdf_with_mesh(filename: &str, scale: &str) -> String {
 
 #[test]
 fn package_paths_resolve_without_ros_and_meshes_become_convex_hulls() {
-    let root = temp_dir("package");
+    let scratch = common::Scratch::new("test-package");
+    let root = scratch.path().to_path_buf();
     write_box_stl(
         &root.join("my_robot_description/meshes/arm.stl"),
         [0.05, 0.1, 0.2],
@@ -116,7 +111,8 @@ fn package_paths_resolve_without_ros_and_meshes_become_convex_hulls() {
 
 #[test]
 fn relative_mesh_paths_resolve_against_the_urdf() {
-    let root = temp_dir("relative");
+    let scratch = common::Scratch::new("test-relative");
+    let root = scratch.path().to_path_buf();
     write_box_stl(&root.join("meshes/arm.stl"), [0.05, 0.05, 0.05]);
     let urdf = root.join("r.urdf");
     std::fs::write(&urdf, urdf_with_mesh("meshes/arm.stl", "")).unwrap();
@@ -125,7 +121,8 @@ fn relative_mesh_paths_resolve_against_the_urdf() {
 
 #[test]
 fn a_missing_mesh_names_the_urdf_and_the_mesh() {
-    let root = temp_dir("missing-mesh");
+    let scratch = common::Scratch::new("test-missing-mesh");
+    let root = scratch.path().to_path_buf();
     let urdf = root.join("r.urdf");
     std::fs::write(&urdf, urdf_with_mesh("package://nowhere/arm.stl", "")).unwrap();
     let err = load_urdf(&urdf, "finger", Isometry3::identity()).unwrap_err();
@@ -141,7 +138,8 @@ fn a_missing_mesh_names_the_urdf_and_the_mesh() {
 
 #[test]
 fn a_garbage_mesh_is_an_error_not_a_panic() {
-    let root = temp_dir("garbage-mesh");
+    let scratch = common::Scratch::new("test-garbage-mesh");
+    let root = scratch.path().to_path_buf();
     std::fs::write(
         root.join("arm.stl"),
         b"solid nonsense\nthis is not an stl\n",
@@ -155,7 +153,8 @@ fn a_garbage_mesh_is_an_error_not_a_panic() {
 
 #[test]
 fn broken_urdfs_are_errors() {
-    let root = temp_dir("broken");
+    let scratch = common::Scratch::new("test-broken");
+    let root = scratch.path().to_path_buf();
     let write = |name: &str, text: &str| {
         let path = root.join(name);
         std::fs::write(&path, text).unwrap();
@@ -198,7 +197,8 @@ fn broken_urdfs_are_errors() {
 #[test]
 fn scene_obstacles_can_be_stl_meshes() {
     use pushplan::{validity::check_state, Invalid, Scene};
-    let root = temp_dir("scene-mesh");
+    let scratch = common::Scratch::new("test-scene-mesh");
+    let root = scratch.path().to_path_buf();
     write_box_stl(&root.join("meshes/crate.stl"), [0.05, 0.05, 0.05]);
     let scene_text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml")
         .unwrap()

@@ -137,3 +137,30 @@ for row in c.execute("""select e.name, e.seed, e.runcount, p.name, r.run from ru
         .map(str::to_string)
         .collect()
 }
+
+/// A fresh folder `pushplan-{name}-{pid}` under the system temp dir, removed when dropped
+/// (tests leave nothing behind, passed or failed).
+pub struct Scratch(std::path::PathBuf);
+
+impl Scratch {
+    pub fn new(name: &str) -> Scratch {
+        let dir = std::env::temp_dir().join(format!("pushplan-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.0
+    }
+
+    pub fn join(&self, name: &str) -> std::path::PathBuf {
+        self.0.join(name)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
