@@ -156,43 +156,49 @@ impl Model {
             if result.len() != state.len() {
                 return Err("the result state has the wrong length".into());
             }
-            // The valid part's end, and the state to write: the end, or the invalid state
-            // the last step tried to reach.
-            let (run, end, reached) = if self.static_mode {
+            let goal_object = match self.scene().goal {
+                Goal::ObjectInDisc { object, .. } => Some(object),
+                Goal::Configuration { .. } => None,
+            };
+            // Count the propagation, then write the state reached: the valid part's end,
+            // or the invalid state the last step tried to reach.
+            let (valid, taken) = if self.static_mode {
                 let view = &mut self.static_view;
                 let run = view
                     .propagator
                     .propagate_steps(&view.reduce(&start), &action, steps);
                 let end = view.expand(&run.state);
-                let reached = match run.stopped_by {
-                    None => end.clone(),
-                    Some(_) => view.expand(&view.propagator.attempted_state()),
-                };
-                (run, end, reached)
+                let stopped = run.stopped_by.as_ref();
+                self.search
+                    .record(&start, &end, stopped, goal_object, continues);
+                match stopped {
+                    None => end.write_flat(result),
+                    Some(_) => view
+                        .expand(&view.propagator.attempted_state())
+                        .write_flat(result),
+                }
+                (stopped.is_none(), run.steps)
             } else {
                 let run = self.propagator.propagate_steps(&start, &action, steps);
-                let reached = match run.stopped_by {
-                    None => run.state.clone(),
-                    Some(_) => self.propagator.attempted_state(),
-                };
-                let end = run.state.clone();
-                (run, end, reached)
+                let stopped = run.stopped_by.as_ref();
+                self.search
+                    .record(&start, &run.state, stopped, goal_object, continues);
+                match stopped {
+                    None => run.state.write_flat(result),
+                    Some(_) => self.propagator.attempted_state().write_flat(result),
+                }
+                (stopped.is_none(), run.steps)
             };
-            let (valid, taken) = (run.stopped_by.is_none(), run.steps);
-            let goal_object = match self.scene().goal {
-                Goal::ObjectInDisc { object, .. } => Some(object),
-                Goal::Configuration { .. } => None,
-            };
-            self.search.record(
-                &start,
-                &end,
-                run.stopped_by.as_ref(),
-                goal_object,
-                continues,
-            );
             self.steps_taken += taken as u64 + u64::from(!valid);
-            reached.write_flat(result);
-            self.last_result = Some((result.to_vec(), valid));
+            // Kept in the same buffer: OMPL propagates one step at a time.
+            match &mut self.last_result {
+                Some((last, last_valid)) => {
+                    last.clear();
+                    last.extend_from_slice(result);
+                    *last_valid = valid;
+                }
+                None => self.last_result = Some((result.to_vec(), valid)),
+            }
             Ok(valid)
         });
         self.propagating += started.elapsed();
