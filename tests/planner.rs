@@ -190,8 +190,8 @@ fn a_robot_configuration_goal_is_planned_for_too() {
             "goal: {object: box, center: [0.85, 0.1], radius: 0.1}",
             "goal: {configuration: [0.8, 0.3, 1.0], tolerance: 0.05}",
         );
-    let path =
-        std::env::temp_dir().join(format!("pushplan-config-goal-{}.yaml", std::process::id()));
+    let scratch = common::Scratch::new("config-goal");
+    let path = scratch.join("scene.yaml");
     std::fs::write(&path, text.replace("../robots", "robots")).unwrap();
     let out = solve(&path, &options("pcrrt", 1, 30.0)).unwrap();
     assert!(out.exact);
