@@ -118,9 +118,8 @@ namespace pushplan
                 throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
                             "(measure DARRT with `pushplan bench`)");
             // One search per thread, each with its own model and seed (detail::Portfolio).
-            const unsigned threads = checked("threads", options.threads.value_or(detail::defaultThreads()),
-                                             options.threads.value_or(detail::defaultThreads()) >= 1 &&
-                                                 options.threads.value_or(detail::defaultThreads()) <= 256);
+            const unsigned threads = options.threads.value_or(detail::defaultThreads());
+            checked("threads", threads, threads >= 1 && threads <= 256);
             std::vector<detail::ModelHandlePtr> models;
             for (unsigned i = 0; i < threads; ++i)
             {
