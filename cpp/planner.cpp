@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <map>
 #include <thread>
 
 namespace ob = ompl::base;
@@ -41,22 +40,15 @@ namespace pushplan
             return std::max(1u, std::thread::hardware_concurrency());
         }
 
-        /// The searches' statistics, summed (reasons in name order).
+        /// The searches' statistics, summed by the model (reasons in name order).
         SearchStats searchStats(const std::vector<ModelHandlePtr> &models)
         {
-            SearchStats total;
-            std::map<std::string, std::uint64_t> stopped;
-            for (const ModelHandlePtr &model : models)
-            {
-                const bridge::SearchStats stats = bridge::search_stats(model->model());
-                total.propagations += stats.propagations;
-                total.steps += stats.steps;
-                total.moved_goal_object += stats.moved_goal_object;
-                total.moved_clutter += stats.moved_clutter;
-                for (std::size_t i = 0; i < stats.stop_reasons.size(); ++i)
-                    stopped[std::string(stats.stop_reasons[i])] += stats.stop_counts[i];
-            }
-            total.stopped.assign(stopped.begin(), stopped.end());
+            bridge::SearchStats sum = bridge::search_stats(models[0]->model());
+            for (std::size_t i = 1; i < models.size(); ++i)
+                sum = bridge::add_search_stats(sum, bridge::search_stats(models[i]->model()));
+            SearchStats total{sum.propagations, sum.steps, sum.moved_goal_object, sum.moved_clutter, {}};
+            for (std::size_t i = 0; i < sum.stop_reasons.size(); ++i)
+                total.stopped.emplace_back(std::string(sum.stop_reasons[i]), sum.stop_counts[i]);
             return total;
         }
     }  // namespace detail

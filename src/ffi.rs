@@ -12,8 +12,8 @@ pub use entry::{benchmark_scene, solve, BenchOptions, SolveOptions, SolveOutput}
 use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
 use convert::{
-    darrt_check, finish, nearest_tree, planner_kind, planner_name, scene_info, search_stats,
-    trajectory, tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
+    add_search_stats, darrt_check, finish, nearest_tree, planner_kind, planner_name, scene_info,
+    search_stats, trajectory, tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
 };
 
 // SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
@@ -145,6 +145,7 @@ pub mod bridge {
         fn propagation_steps(self: &Model) -> u64;
         fn propagation_seconds(self: &Model) -> f64;
         fn search_stats(model: &Model) -> SearchStats;
+        fn add_search_stats(a: &SearchStats, b: &SearchStats) -> SearchStats;
         fn set_static_clutter(self: &mut Model, on: bool);
         fn static_clutter(self: &Model) -> bool;
         fn robustness(

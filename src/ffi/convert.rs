@@ -52,6 +52,15 @@ pub(super) fn search_stats(model: &Model) -> bridge::SearchStats {
     bridge::SearchStats::from(model.search_stats())
 }
 
+pub(super) fn add_search_stats(
+    a: &bridge::SearchStats,
+    b: &bridge::SearchStats,
+) -> bridge::SearchStats {
+    let mut sum = SearchStats::from(a);
+    sum.add(&SearchStats::from(b));
+    bridge::SearchStats::from(&sum)
+}
+
 impl From<&SearchStats> for bridge::SearchStats {
     fn from(stats: &SearchStats) -> Self {
         bridge::SearchStats {
@@ -78,7 +87,6 @@ impl From<&bridge::SearchStats> for SearchStats {
                 .cloned()
                 .zip(stats.stop_counts.iter().copied())
                 .collect(),
-            ..SearchStats::default()
         }
     }
 }

@@ -15,4 +15,4 @@ pub use kind::PlannerKind;
 pub use model::Model;
 pub use nearest::NearestTree;
 pub use problem::Problem;
-pub use stats::SearchStats;
+pub use stats::{SearchCounter, SearchStats};

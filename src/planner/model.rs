@@ -4,7 +4,7 @@
 //! C++ (nothing may unwind across the bridge).
 
 use super::finish::{FinishSettings, FinishedPath};
-use super::{NearestTree, PlannerKind, Problem, SearchStats};
+use super::{NearestTree, PlannerKind, Problem, SearchCounter, SearchStats};
 use crate::darrt;
 use crate::distance::DistanceMetric;
 use crate::math::Pose2;
@@ -33,7 +33,7 @@ pub struct Model {
     steps_taken: u64,
     /// Wall time spent in `propagate` (progress reports: the rest is the planner's).
     propagating: Duration,
-    search: SearchStats,
+    search: SearchCounter,
 }
 
 /// Runs `f`, turning a panic into an error message.
@@ -56,13 +56,13 @@ impl Model {
     pub fn new(scene: Scene) -> Model {
         Model {
             metric: DistanceMetric::from_scene(&scene),
+            search: SearchCounter::new(&scene),
             static_view: StaticClutter::new(&scene),
             static_mode: false,
             propagator: Propagator::new(scene),
             last_result: None,
             steps_taken: 0,
             propagating: Duration::ZERO,
-            search: SearchStats::default(),
         }
     }
 
@@ -156,10 +156,6 @@ impl Model {
             if result.len() != state.len() {
                 return Err("the result state has the wrong length".into());
             }
-            let goal_object = match self.scene().goal {
-                Goal::ObjectInDisc { object, .. } => Some(object),
-                Goal::Configuration { .. } => None,
-            };
             // Count the propagation, then write the state reached: the valid part's end,
             // or the invalid state the last step tried to reach.
             let (valid, taken) = if self.static_mode {
@@ -169,8 +165,7 @@ impl Model {
                     .propagate_steps(&view.reduce(&start), &action, steps);
                 let end = view.expand(&run.state);
                 let stopped = run.stopped_by.as_ref();
-                self.search
-                    .record(&start, &end, stopped, goal_object, continues);
+                self.search.record(&start, &end, stopped, continues);
                 match stopped {
                     None => end.write_flat(result),
                     Some(_) => view
@@ -181,8 +176,7 @@ impl Model {
             } else {
                 let run = self.propagator.propagate_steps(&start, &action, steps);
                 let stopped = run.stopped_by.as_ref();
-                self.search
-                    .record(&start, &run.state, stopped, goal_object, continues);
+                self.search.record(&start, &run.state, stopped, continues);
                 match stopped {
                     None => run.state.write_flat(result),
                     Some(_) => self.propagator.attempted_state().write_flat(result),
@@ -296,7 +290,7 @@ impl Model {
 
     /// What the propagations so far did.
     pub fn search_stats(&self) -> &SearchStats {
-        &self.search
+        self.search.stats()
     }
 
     /// Wall time (s) spent propagating so far.

@@ -2,6 +2,7 @@
 //! whether they moved the goal object or the clutter. Diagnostics for the planner's user
 //! and for benchmarks (`benches/stops.sh`), not part of the plan.
 
+use crate::scene::{Goal, Scene};
 use crate::state::State;
 use crate::validity::Invalid;
 use std::collections::BTreeMap;
@@ -17,47 +18,17 @@ pub struct SearchStats {
     pub moved_clutter: u64,
     /// Propagations stopped by an invalid step, by [`Invalid::kind`].
     pub stopped: BTreeMap<String, u64>,
-    /// Whether the current propagation has already been counted as moving them.
-    pub(crate) counted_goal_move: bool,
-    pub(crate) counted_clutter_move: bool,
 }
 
 impl SearchStats {
-    /// Counts one step from `start` whose valid part ended at `end`, stopped by
-    /// `stopped_by` if so; `continues` says it extends the previous step's propagation.
-    /// `goal_object` is the object the goal names.
-    pub fn record(
-        &mut self,
-        start: &State,
-        end: &State,
-        stopped_by: Option<&Invalid>,
-        goal_object: Option<usize>,
-        continues: bool,
-    ) {
-        self.steps += 1;
-        if !continues {
-            self.propagations += 1;
-            self.counted_goal_move = false;
-            self.counted_clutter_move = false;
-        }
-        let moved = |i: usize| start.objects[i] != end.objects[i];
-        if !self.counted_goal_move && goal_object.is_some_and(moved) {
-            self.counted_goal_move = true;
-            self.moved_goal_object += 1;
-        }
-        let objects = start.objects.len();
-        if !self.counted_clutter_move && (0..objects).any(|i| Some(i) != goal_object && moved(i)) {
-            self.counted_clutter_move = true;
-            self.moved_clutter += 1;
-        }
-        if let Some(reason) = stopped_by {
-            // No allocation once a reason has been seen.
-            match self.stopped.get_mut(reason.kind()) {
-                Some(n) => *n += 1,
-                None => {
-                    self.stopped.insert(reason.kind().to_string(), 1);
-                }
-            }
+    /// Adds another search's counts (parallel searches report their sum).
+    pub fn add(&mut self, other: &SearchStats) {
+        self.propagations += other.propagations;
+        self.steps += other.steps;
+        self.moved_goal_object += other.moved_goal_object;
+        self.moved_clutter += other.moved_clutter;
+        for (reason, n) in &other.stopped {
+            *self.stopped.entry(reason.clone()).or_insert(0) += n;
         }
     }
 
@@ -81,5 +52,74 @@ impl SearchStats {
             share(self.moved_goal_object),
             share(self.moved_clutter)
         )
+    }
+}
+
+/// Counts a search's steps into [`SearchStats`], step by step as OMPL propagates.
+#[derive(Clone, Debug)]
+pub struct SearchCounter {
+    stats: SearchStats,
+    /// The object the goal names, if any.
+    goal_object: Option<usize>,
+    /// Whether the current propagation has already been counted as moving them.
+    goal_move_counted: bool,
+    clutter_move_counted: bool,
+}
+
+impl SearchCounter {
+    pub fn new(scene: &Scene) -> Self {
+        let goal_object = match scene.goal {
+            Goal::ObjectInDisc { object, .. } => Some(object),
+            Goal::Configuration { .. } => None,
+        };
+        Self {
+            stats: SearchStats::default(),
+            goal_object,
+            goal_move_counted: false,
+            clutter_move_counted: false,
+        }
+    }
+
+    pub fn stats(&self) -> &SearchStats {
+        &self.stats
+    }
+
+    /// Counts one step from `start` whose valid part ended at `end`, stopped by
+    /// `stopped_by` if so; `continues` says it extends the previous step's propagation.
+    pub fn record(
+        &mut self,
+        start: &State,
+        end: &State,
+        stopped_by: Option<&Invalid>,
+        continues: bool,
+    ) {
+        let stats = &mut self.stats;
+        stats.steps += 1;
+        if !continues {
+            stats.propagations += 1;
+            self.goal_move_counted = false;
+            self.clutter_move_counted = false;
+        }
+        let moved = |i: usize| start.objects[i] != end.objects[i];
+        if !self.goal_move_counted && self.goal_object.is_some_and(moved) {
+            self.goal_move_counted = true;
+            stats.moved_goal_object += 1;
+        }
+        let objects = start.objects.len();
+        if !self.clutter_move_counted
+            && (0..objects).any(|i| Some(i) != self.goal_object && moved(i))
+        {
+            self.clutter_move_counted = true;
+            stats.moved_clutter += 1;
+        }
+        if let Some(reason) = stopped_by {
+            // No allocation once a reason has been seen.
+            match stats.stopped.get_mut(reason.kind()) {
+                Some(n) => *n += 1,
+                None => {
+                    stats.stopped.insert(reason.kind().to_string(), 1);
+                }
+            }
+        }
     }
 }
