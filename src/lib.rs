@@ -21,6 +21,7 @@ pub mod distance;
 pub mod error;
 pub mod execute;
 pub mod ffi;
+pub mod input;
 pub mod install;
 pub mod math;
 pub mod path;

@@ -250,3 +250,88 @@ fn non_convex_or_off_centre_polygons_are_rejected() {
     let ok = poly("[[0.06, 0.0], [-0.03, -0.05], [-0.03, 0.05]]");
     assert!(Scene::from_yaml(&ok, Path::new("scenes/ok.yaml")).is_ok());
 }
+
+#[test]
+fn values_beyond_the_stated_input_limits_name_the_field() {
+    // Each value passed the old checks and then broke the time limit or the numbers.
+    let cases = [
+        (
+            "planner.step",
+            format!("{}\nplanner: {{step: 1.0e-7}}\n", base()),
+        ),
+        ("planner.k", format!("{}\nplanner: {{k: 100000}}\n", base())),
+        (
+            "planner.max_duration",
+            format!("{}\nplanner: {{step: 0.0001, max_duration: 5.0}}\n", base()),
+        ),
+        ("objects[0].mass", edited("mass: 1.0", "mass: 1.0e306")),
+        ("objects[0].mu_g", edited("mu_g: 0.4", "mu_g: 1.0e306")),
+        ("objects[0].mu_c", edited("mu_c: 0.3", "mu_c: 50")),
+        ("objects[0].name", edited("name: green_box", "name: ''")),
+        (
+            "objects[0].name",
+            edited("name: green_box", "name: \"a\\tb\""),
+        ),
+        ("objects[0].name", edited("name: green_box", "name: null")),
+    ];
+    for (field, text) in cases {
+        let (_, message) = error_of(&text);
+        assert!(message.contains(field), "{field}: {message}");
+    }
+    // Numbers in messages stay short.
+    let (_, message) = error_of(&edited("mass: 1.0", "mass: 1.0e306"));
+    assert!(
+        message.contains("1e306") && message.len() < 200,
+        "{message}"
+    );
+}
+
+#[test]
+fn a_goal_configuration_outside_the_joint_limits_is_refused() {
+    // The planar hand's x joint spans the table: 5 m is off it.
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml")
+        .unwrap()
+        .replace(
+            "goal: {object: box, center: [0.85, 0.1], radius: 0.1}",
+            "goal: {configuration: [5.0, 0.0, 0.0]}",
+        );
+    let (_, message) = error_of(&text);
+    assert!(
+        message.contains("goal.configuration[0]") && message.contains("limits"),
+        "{message}"
+    );
+}
+
+#[test]
+fn deep_nesting_and_files_that_never_end_are_refused_quickly() {
+    // 100 000 nested brackets took the YAML parser over 20 s.
+    let deep = format!("name: {}{}\n", "[".repeat(100_000), "]".repeat(100_000));
+    let (_, message) = error_of(&deep);
+    assert!(message.contains("nested more than 32 levels"), "{message}");
+    // /dev/zero is endless: not a regular file, refused before reading.
+    let message = Scene::load("/dev/zero").unwrap_err().to_string();
+    assert!(
+        message.starts_with("/dev/zero: ") && message.contains("not a regular file"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_scene_with_too_many_objects_is_refused() {
+    let mut text = base().replace(
+        "table: {height: 0.76, x: [0.27, 1.03], y: [-0.93, 0.93]}",
+        "table: {height: 0.76, x: [0.0, 10.0], y: [-10.0, 10.0]}",
+    );
+    for i in 0..pushplan::scene::MAX_OBJECTS {
+        let (x, y) = (1.0 + (i % 8) as f64, -8.0 + 2.0 * (i / 8) as f64);
+        text = text.replace(
+            "goal:",
+            &format!("  - {{name: o{i}, shape: {{type: cylinder, radius: 0.03, height: 0.1}}, pose: [{x}, {y}, 0], mass: 0.2, mu_g: 0.4, mu_c: 0.3}}\ngoal:"),
+        );
+    }
+    let (_, message) = error_of(&text);
+    assert!(
+        message.contains("objects:") && message.contains("at most 64"),
+        "{message}"
+    );
+}

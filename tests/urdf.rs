@@ -195,6 +195,129 @@ fn broken_urdfs_are_errors() {
 }
 
 #[test]
+fn urdfs_that_are_not_one_tree_are_errors_naming_the_links() {
+    let scratch = common::Scratch::new("test-urdf-tree");
+    let write = |name: &str, text: &str| {
+        let path = scratch.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let joint = |name: &str, parent: &str, child: &str| {
+        format!("<joint name='{name}' type='fixed'><parent link='{parent}'/><child link='{child}'/></joint>")
+    };
+    let links = |names: &[&str]| -> String {
+        names
+            .iter()
+            .map(|n| format!("<link name='{n}'/>"))
+            .collect()
+    };
+    // The reproducer: the first joint's parent is the hand, so the arm is a cycle cut off
+    // from the base. It panicked while loading the scene.
+    let cycle = write(
+        "cycle.urdf",
+        &format!(
+            "<robot name='r'>{}{}{}{}</robot>",
+            links(&["base", "l1", "hand"]),
+            joint("j1", "hand", "l1"),
+            joint("j2", "l1", "hand"),
+            ""
+        ),
+    );
+    let message = load_urdf(&cycle, "hand", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("cycle.urdf")
+            && message.contains("'l1', 'hand' are not connected to the root link 'base'"),
+        "{message}"
+    );
+    let twice = write(
+        "twice.urdf",
+        &format!(
+            "<robot name='r'>{}{}</robot>",
+            links(&["a", "b", "a"]),
+            joint("j", "a", "b")
+        ),
+    );
+    let message = load_urdf(&twice, "b", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("two links are named 'a'"), "{message}");
+    let joints_twice = write(
+        "joints_twice.urdf",
+        &format!(
+            "<robot name='r'>{}{}{}</robot>",
+            links(&["a", "b", "c"]),
+            joint("j", "a", "b"),
+            joint("j", "b", "c")
+        ),
+    );
+    let message = load_urdf(&joints_twice, "c", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("two joints are named 'j'"), "{message}");
+    let chain = write(
+        "chain.urdf",
+        &format!(
+            "<robot name='r'>{}{}{}</robot>",
+            links(&["a", "b", "c"]),
+            joint("j1", "a", "b"),
+            joint("j2", "b", "c")
+        ),
+    );
+    let message = load_urdf(&chain, "hand", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("no link named 'hand'") && message.contains("'a', 'b', 'c'"),
+        "the links there are are listed: {message}"
+    );
+}
+
+#[test]
+fn a_long_chain_of_links_loads_and_too_many_links_are_refused() {
+    // 20 000 fixed links took more than 20 s (quadratic); a chain at the limit loads.
+    let scratch = common::Scratch::new("test-urdf-chain");
+    let chain = |n: usize| {
+        let mut text = String::from("<robot name='r'><link name='l0'/>");
+        for i in 1..n {
+            text += &format!(
+                "<link name='l{i}'/><joint name='j{i}' type='fixed'><parent link='l{}'/><child link='l{i}'/></joint>",
+                i - 1
+            );
+        }
+        text + "</robot>"
+    };
+    let limit = pushplan::robot::urdf::MAX_LINKS;
+    let at_limit = scratch.join("at_limit.urdf");
+    std::fs::write(&at_limit, chain(limit)).unwrap();
+    let loaded = load_urdf(&at_limit, &format!("l{}", limit - 1), Isometry3::identity()).unwrap();
+    assert_eq!(loaded.links.len(), limit);
+    let beyond = scratch.join("beyond.urdf");
+    std::fs::write(&beyond, chain(20_000)).unwrap();
+    let message = load_urdf(&beyond, "l1", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("20000 links; a robot has at most 1000"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_flat_mesh_is_an_error() {
+    let scratch = common::Scratch::new("test-flat-mesh");
+    // A box squashed to zero height: every vertex on one plane.
+    write_box_stl(&scratch.join("flat.stl"), [0.05, 0.05, 0.0]);
+    let urdf = scratch.join("r.urdf");
+    std::fs::write(&urdf, urdf_with_mesh("flat.stl", "")).unwrap();
+    let message = load_urdf(&urdf, "finger", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("flat"), "{message}");
+}
+
+#[test]
 fn scene_obstacles_can_be_stl_meshes() {
     use pushplan::{validity::check_state, Invalid, Scene};
     let scratch = common::Scratch::new("test-scene-mesh");

@@ -9,6 +9,9 @@ use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::shape::SharedShape;
 use std::f64::consts::FRAC_PI_2;
 
+/// Smallest volume of a convex hull (m^3, a 0.1 mm cube): thinner hulls are flat.
+const MIN_HULL_VOLUME: f64 = 1e-12;
+
 /// A primitive solid, dimensions in metres.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Primitive {
@@ -68,7 +71,15 @@ impl Geometry {
             Primitive::Capsule { radius, length } => {
                 (SharedShape::capsule_z(length / 2.0, *radius), local)
             }
-            Primitive::ConvexHull { points } => (SharedShape::convex_hull(points)?, local),
+            Primitive::ConvexHull { points } => {
+                let hull = SharedShape::convex_hull(points)?;
+                // parry builds a hull of coplanar points too; it has no volume to collide
+                // with (m^3: a hull thinner than a 0.1 mm cube's volume is flat).
+                if hull.mass_properties(1.0).mass() <= MIN_HULL_VOLUME {
+                    return None;
+                }
+                (hull, local)
+            }
         };
         Some(Geometry { local, shape })
     }

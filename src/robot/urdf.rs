@@ -6,7 +6,11 @@ use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
 use crate::math::isometry_from_xyz_rpy;
 use nalgebra::{Isometry3, Unit, Vector3};
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
+
+/// Most links in a URDF (every link's shapes are checked at every propagation step).
+pub const MAX_LINKS: usize = 1000;
 
 /// Loads the URDF at `path` as a kinematic chain whose configuration is the movable
 /// joints on the path from the root link to `end_effector`, in order.
@@ -19,90 +23,54 @@ pub fn load_urdf(path: &Path, end_effector: &str, base: Isometry3<f64>) -> Resul
         file: path.to_path_buf(),
         message,
     };
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-        file: path.to_path_buf(),
-        message: e.to_string(),
+    let text = crate::input::read_text(path, crate::input::MAX_URDF_BYTES).map_err(|message| {
+        Error::Io {
+            file: path.to_path_buf(),
+            message,
+        }
     })?;
     let robot = urdf_rs::read_from_string(&text).map_err(|e| urdf_error(e.to_string()))?;
 
-    // The root is the one link that is no joint's child.
-    let is_child = |name: &str| robot.joints.iter().any(|j| j.child.link == name);
-    let roots: Vec<&str> = robot
-        .links
-        .iter()
-        .map(|l| l.name.as_str())
-        .filter(|n| !is_child(n))
-        .collect();
-    let root = match roots.as_slice() {
-        [root] => *root,
-        [] => return Err(urdf_error("no root link (the joints form a cycle)".into())),
-        many => {
-            return Err(urdf_error(format!(
-                "several root links ({}): the links must form one tree",
-                many.join(", ")
-            )))
-        }
-    };
-    if !robot.links.iter().any(|l| l.name == end_effector) {
+    let order = tree_order(&robot).map_err(urdf_error)?;
+    if !order.iter().any(|(name, _)| name == end_effector) {
         return Err(urdf_error(format!(
-            "no link named '{end_effector}' (the end-effector link)"
+            "no link named '{end_effector}' (the end-effector link); the links are {}",
+            list(robot.links.iter().map(|l| l.name.as_str()))
         )));
-    }
-    for j in &robot.joints {
-        for name in [&j.parent.link, &j.child.link] {
-            if !robot.links.iter().any(|l| &l.name == name) {
-                return Err(urdf_error(format!(
-                    "joint '{}' names the missing link '{name}'",
-                    j.name
-                )));
-            }
-        }
-    }
-
-    // Breadth-first from the root gives a topological order (parents first).
-    let mut order: Vec<(String, Option<usize>)> = vec![(root.to_string(), None)];
-    let mut next = 0;
-    while next < order.len() {
-        let parent_name = order[next].0.clone();
-        for (ji, j) in robot.joints.iter().enumerate() {
-            if j.parent.link == parent_name {
-                if order.iter().any(|(n, _)| *n == j.child.link) {
-                    return Err(urdf_error(format!(
-                        "link '{}' has more than one parent",
-                        j.child.link
-                    )));
-                }
-                order.push((j.child.link.clone(), Some(ji)));
-            }
-        }
-        next += 1;
     }
 
     // The planning chain: joints from the end effector up to the root.
+    let position: HashMap<&str, usize> = order
+        .iter()
+        .enumerate()
+        .map(|(i, (name, _))| (name.as_str(), i))
+        .collect();
     let mut chain_joints = Vec::new();
-    let mut current = end_effector.to_string();
-    while let Some(pos) = order.iter().position(|(n, _)| *n == current) {
-        let Some(ji) = order[pos].1 else { break };
+    let mut current = end_effector;
+    while let Some(ji) = order[position[current]].1 {
         chain_joints.push(ji);
-        current = robot.joints[ji].parent.link.clone();
+        current = robot.joints[ji].parent.link.as_str();
     }
-    chain_joints.reverse();
+    let chain_joints: HashSet<usize> = chain_joints.into_iter().collect();
 
+    let link_index: HashMap<&str, usize> = robot
+        .links
+        .iter()
+        .enumerate()
+        .map(|(i, l)| (l.name.as_str(), i))
+        .collect();
     let mut links: Vec<Link> = Vec::with_capacity(order.len());
     let mut dof_links = Vec::new();
     for (name, joint_index) in &order {
-        let urdf_link = robot
-            .links
-            .iter()
-            .find(|l| &l.name == name)
-            .expect("ordered links exist");
+        let urdf_link = &robot.links[link_index[name.as_str()]];
         let geometry = link_geometry(path, urdf_link)?;
         let joint = match joint_index {
             None => None,
             Some(ji) => {
                 let j = &robot.joints[*ji];
                 let on_chain = chain_joints.contains(ji);
-                let joint = convert_joint(path, j, &links)?;
+                let parent = position[j.parent.link.as_str()];
+                let joint = convert_joint(path, j, parent)?;
                 let joint = if on_chain && joint.kind != JointKind::Fixed {
                     dof_links.push(links.len());
                     Joint {
@@ -128,15 +96,106 @@ pub fn load_urdf(path: &Path, end_effector: &str, base: Isometry3<f64>) -> Resul
     })
 }
 
-fn convert_joint(path: &Path, j: &urdf_rs::Joint, links: &[Link]) -> Result<Joint> {
+/// The URDF's links in breadth-first order from the root (parents first), each with the
+/// index of the joint that attaches it to its parent (`None` for the root). Refuses
+/// anything but one tree: duplicate names, joints naming missing links, links with two
+/// parents, cycles, several roots and links cut off from the root. Linear in the number
+/// of links and joints.
+fn tree_order(robot: &urdf_rs::Robot) -> std::result::Result<Vec<(String, Option<usize>)>, String> {
+    if robot.links.len() > MAX_LINKS {
+        return Err(format!(
+            "{} links; a robot has at most {MAX_LINKS}",
+            robot.links.len()
+        ));
+    }
+    let mut links = HashSet::new();
+    for l in &robot.links {
+        if l.name.is_empty() {
+            return Err("a link has an empty name".into());
+        }
+        if !links.insert(l.name.as_str()) {
+            return Err(format!("two links are named '{}'", l.name));
+        }
+    }
+    let mut joints = HashSet::new();
+    let mut parent_joint: HashMap<&str, usize> = HashMap::new();
+    let mut children: HashMap<&str, Vec<usize>> = HashMap::new();
+    for (ji, j) in robot.joints.iter().enumerate() {
+        if !joints.insert(j.name.as_str()) {
+            return Err(format!("two joints are named '{}'", j.name));
+        }
+        for name in [&j.parent.link, &j.child.link] {
+            if !links.contains(name.as_str()) {
+                return Err(format!(
+                    "joint '{}' names the missing link '{name}'",
+                    j.name
+                ));
+            }
+        }
+        if parent_joint.insert(j.child.link.as_str(), ji).is_some() {
+            return Err(format!("link '{}' has more than one parent", j.child.link));
+        }
+        children.entry(j.parent.link.as_str()).or_default().push(ji);
+    }
+    let roots: Vec<&str> = robot
+        .links
+        .iter()
+        .map(|l| l.name.as_str())
+        .filter(|n| !parent_joint.contains_key(n))
+        .collect();
+    let root = match roots.as_slice() {
+        [root] => *root,
+        [] => return Err("no root link (the joints form a cycle)".into()),
+        many => {
+            return Err(format!(
+                "several root links ({}): the links must form one tree",
+                list(many.iter().copied())
+            ))
+        }
+    };
+    let mut order: Vec<(String, Option<usize>)> = vec![(root.to_string(), None)];
+    let mut next = 0;
+    while next < order.len() {
+        if let Some(joints) = children.get(order[next].0.as_str()) {
+            order.extend(
+                joints
+                    .iter()
+                    .map(|&ji| (robot.joints[ji].child.link.clone(), Some(ji))),
+            );
+        }
+        next += 1;
+    }
+    if order.len() < robot.links.len() {
+        let reached: HashSet<&str> = order.iter().map(|(n, _)| n.as_str()).collect();
+        return Err(format!(
+            "links {} are not connected to the root link '{root}' (their joints form a cycle)",
+            list(
+                robot
+                    .links
+                    .iter()
+                    .map(|l| l.name.as_str())
+                    .filter(|n| !reached.contains(n))
+            )
+        ));
+    }
+    Ok(order)
+}
+
+/// Names for a message: the first ten, quoted, and how many more.
+fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<&str> = names.collect();
+    let mut text: Vec<String> = names.iter().take(10).map(|n| format!("'{n}'")).collect();
+    if names.len() > 10 {
+        text.push(format!("and {} more", names.len() - 10));
+    }
+    text.join(", ")
+}
+
+fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize) -> Result<Joint> {
     let urdf_error = |message: String| Error::Urdf {
         file: path.to_path_buf(),
         message: format!("joint '{}': {message}", j.name),
     };
-    let parent = links
-        .iter()
-        .position(|l| l.name == j.parent.link)
-        .expect("parents come first in breadth-first order");
     let (kind, lower, upper) = match j.joint_type {
         urdf_rs::JointType::Revolute => (JointKind::Revolute, j.limit.lower, j.limit.upper),
         urdf_rs::JointType::Continuous => (

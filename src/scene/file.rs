@@ -4,6 +4,12 @@
 use serde::Deserialize;
 use std::path::PathBuf;
 
+/// A name: a string, not YAML's null (which would otherwise become the name "null").
+fn name<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<String, D::Error> {
+    Option::<String>::deserialize(deserializer)?
+        .ok_or_else(|| serde::de::Error::custom("a name is needed, not null"))
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
@@ -120,6 +126,7 @@ fn unit_scale() -> [f64; 3] {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObstacleSpec {
+    #[serde(deserialize_with = "name")]
     pub name: String,
     pub shape: ShapeSpec,
     /// World pose of the shape's frame.
@@ -129,6 +136,7 @@ pub struct ObstacleSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
+    #[serde(deserialize_with = "name")]
     pub name: String,
     /// box, cylinder or polygon; it rests on the table.
     pub shape: ShapeSpec,

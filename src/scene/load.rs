@@ -25,20 +25,32 @@ impl Scene {
     /// Loads and validates the scene file at `path`.
     pub fn load(path: impl AsRef<Path>) -> Result<Scene> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-            file: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
+        let text =
+            crate::input::read_text(path, crate::input::MAX_SCENE_BYTES).map_err(|message| {
+                Error::Io {
+                    file: path.to_path_buf(),
+                    message,
+                }
+            })?;
         Scene::from_yaml(&text, path)
     }
 
     /// Parses scene YAML. `source` names the scene in errors, and relative file
     /// references (URDF, meshes) are resolved against its folder.
     pub fn from_yaml(text: &str, source: &Path) -> Result<Scene> {
+        if let Some(line) = too_deep(text) {
+            return Err(Error::Parse {
+                file: source.to_path_buf(),
+                field: String::new(),
+                message: format!(
+                    "line {line}: nested more than {MAX_NESTING} levels deep (a scene needs a few)"
+                ),
+            });
+        }
         let deserializer = serde_yaml::Deserializer::from_str(text);
         let spec: SceneFile = serde_path_to_error::deserialize(deserializer).map_err(|e| {
             let field = e.path().to_string();
-            let message = e.inner().to_string();
+            let message = crate::input::shorten_quoted(&e.inner().to_string());
             let message = message
                 .strip_prefix(&format!("{field}: "))
                 .map(str::to_string)
@@ -51,6 +63,47 @@ impl Scene {
         })?;
         Loader { file: source }.scene(spec)
     }
+}
+
+/// Most movable objects in a scene.
+pub const MAX_OBJECTS: usize = 64;
+/// Heaviest object (kg).
+pub const MAX_MASS: f64 = 1000.0;
+/// Largest friction coefficient (`mu_g`, `mu_c`).
+pub const MAX_FRICTION: f64 = 10.0;
+/// Most control samples per extension (`planner.k`).
+pub const MAX_K: u32 = 10_000;
+/// Shortest and longest propagation step (s): shorter steps make paths of millions of
+/// steps, longer ones let a link pass through an object within one step.
+pub const MIN_STEP: f64 = 1e-4;
+pub const MAX_STEP: f64 = 0.1;
+/// Most propagation steps in one control (`planner.max_duration / planner.step`).
+pub const MAX_CONTROL_STEPS: usize = 10_000;
+
+/// Deepest nesting of flow collections (`[`, `{`) a scene file may have.
+const MAX_NESTING: usize = 32;
+
+/// The line where the flow collections of `text` nest deeper than [`MAX_NESTING`], if
+/// they do. The YAML parser's time grows with the square of the depth; a scene needs
+/// four or five levels. Brackets inside quotes and comments count too: no real scene
+/// has 32 of them open at once.
+fn too_deep(text: &str) -> Option<usize> {
+    let mut depth = 0usize;
+    let mut line = 1;
+    for c in text.chars() {
+        match c {
+            '[' | '{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Some(line);
+                }
+            }
+            ']' | '}' => depth = depth.saturating_sub(1),
+            '\n' => line += 1,
+            _ => {}
+        }
+    }
+    None
 }
 
 struct Loader<'a> {
@@ -79,8 +132,31 @@ impl Loader<'_> {
         if value.is_finite() && value > 0.0 {
             Ok(())
         } else {
-            Err(self.invalid(field, format!("must be positive and finite, got {value}")))
+            Err(self.invalid(field, format!("must be positive and finite, got {value:?}")))
         }
+    }
+
+    /// `value` within `[low, high]`; `what` says why the bound exists.
+    fn within(&self, field: &str, value: f64, low: f64, high: f64, what: &str) -> Result<()> {
+        if value.is_finite() && (low..=high).contains(&value) {
+            Ok(())
+        } else {
+            Err(self.invalid(
+                field,
+                format!("must be in [{low}, {high}] ({what}), got {value:?}"),
+            ))
+        }
+    }
+
+    /// A name: not empty, no control characters.
+    fn name(&self, field: &str, name: &str) -> Result<()> {
+        if name.trim().is_empty() || name.chars().any(char::is_control) {
+            return Err(self.invalid(
+                field,
+                format!("{name:?} is not a name (empty, or with control characters)"),
+            ));
+        }
+        Ok(())
     }
 
     fn relative(&self, path: &Path) -> PathBuf {
@@ -95,6 +171,7 @@ impl Loader<'_> {
             .enumerate()
             .map(|(i, o)| {
                 let field = format!("obstacles[{i}]");
+                self.name(&format!("{field}.name"), &o.name)?;
                 self.finite(&format!("{field}.pose.xyz"), &o.pose.xyz)?;
                 self.finite(&format!("{field}.pose.rpy"), &o.pose.rpy)?;
                 let (primitive, _) = self.shape(&format!("{field}.shape"), &o.shape, true)?;
@@ -107,9 +184,19 @@ impl Loader<'_> {
                 })
             })
             .collect::<Result<Vec<_>>>()?;
+        if spec.objects.len() > MAX_OBJECTS {
+            return Err(self.invalid(
+                "objects",
+                format!(
+                    "{} objects; a scene has at most {MAX_OBJECTS}",
+                    spec.objects.len()
+                ),
+            ));
+        }
         let mut objects = Vec::new();
         let mut poses = Vec::new();
         for (i, o) in spec.objects.iter().enumerate() {
+            self.name(&format!("objects[{i}].name"), &o.name)?;
             if spec.objects[..i].iter().any(|p| p.name == o.name) {
                 return Err(self.invalid(
                     format!("objects[{i}].name"),
@@ -142,6 +229,18 @@ impl Loader<'_> {
         };
         let (robot, q) = self.robot(&spec.robot, &table, &planner, &settings)?;
         let goal = self.goal(&spec.goal, &objects, &table, robot.dof())?;
+        if let Goal::Configuration { q, .. } = &goal {
+            if let Err(i) = robot.chain.within_limits(q) {
+                let j = robot.chain.dof_joint(i);
+                return Err(self.invalid(
+                    format!("goal.configuration[{i}]"),
+                    format!(
+                        "{} is outside joint '{}' limits [{}, {}]",
+                        q[i], j.name, j.lower, j.upper
+                    ),
+                ));
+            }
+        }
         let name = spec.name.clone().unwrap_or_else(|| {
             self.file
                 .file_stem()
@@ -345,6 +444,22 @@ impl Loader<'_> {
         self.positive(&format!("{field}.mass"), o.mass)?;
         self.positive(&format!("{field}.mu_g"), o.mu_g)?;
         self.positive(&format!("{field}.mu_c"), o.mu_c)?;
+        self.within(
+            &format!("{field}.mass"),
+            o.mass,
+            0.0,
+            MAX_MASS,
+            "kg, a tabletop object",
+        )?;
+        for (key, mu) in [("mu_g", o.mu_g), ("mu_c", o.mu_c)] {
+            self.within(
+                &format!("{field}.{key}"),
+                mu,
+                0.0,
+                MAX_FRICTION,
+                "a friction coefficient",
+            )?;
+        }
         let c = match o.pressure {
             PressureSpec::Uniform => footprint.characteristic_length(),
             PressureSpec::CharacteristicLength { c } => {
@@ -616,8 +731,25 @@ impl Loader<'_> {
                 format!("must be in [0, 1], got {}", p.goal_bias),
             ));
         }
-        if p.k == 0 {
-            return Err(self.invalid("planner.k", "must be at least 1"));
+        if p.k == 0 || p.k > MAX_K {
+            return Err(self.invalid("planner.k", format!("must be in [1, {MAX_K}], got {}", p.k)));
+        }
+        self.within(
+            "planner.step",
+            p.step,
+            MIN_STEP,
+            MAX_STEP,
+            "s per propagation step",
+        )?;
+        if p.max_duration / p.step > MAX_CONTROL_STEPS as f64 {
+            return Err(self.invalid(
+                "planner.max_duration",
+                format!(
+                    "{} s is {:.0} steps of planner.step; a control has at most {MAX_CONTROL_STEPS}",
+                    p.max_duration,
+                    p.max_duration / p.step
+                ),
+            ));
         }
         if p.min_duration > p.max_duration {
             return Err(self.invalid(

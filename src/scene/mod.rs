@@ -7,6 +7,8 @@ pub mod file;
 pub mod generate;
 mod load;
 
+pub use load::{MAX_CONTROL_STEPS, MAX_FRICTION, MAX_K, MAX_MASS, MAX_OBJECTS, MAX_STEP, MIN_STEP};
+
 use crate::collision::Geometry;
 use crate::math::Pose2;
 use crate::physics::{Footprint, LimitSurface};

@@ -1,0 +1,74 @@
+//! Reading input files within stated limits: regular files only (not `/dev/zero`, not a
+//! folder, not a pipe), of bounded size, so that no input makes pushplan read until
+//! memory runs out. The limits are documented in the README ("Input limits").
+
+use std::io::Read;
+use std::path::Path;
+
+/// Largest scene file (bytes).
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+/// Largest URDF (bytes).
+pub const MAX_URDF_BYTES: u64 = 16 << 20;
+/// Largest mesh file (bytes).
+pub const MAX_MESH_BYTES: u64 = 64 << 20;
+/// Largest plan file (bytes).
+pub const MAX_PLAN_BYTES: u64 = 256 << 20;
+
+/// The bytes of the regular file at `path`, if it has at most `max_bytes`. The error
+/// says why, without the path (callers name the file).
+pub fn read_bytes(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let metadata = file.metadata().map_err(|e| e.to_string())?;
+    if !metadata.is_file() {
+        return Err("not a regular file".into());
+    }
+    if metadata.len() > max_bytes {
+        return Err(format!(
+            "{} bytes; at most {max_bytes} are read",
+            metadata.len()
+        ));
+    }
+    // The size can change between the check and the read: read at most one byte more
+    // than allowed, and refuse if that byte came.
+    let mut bytes = Vec::with_capacity(metadata.len() as usize);
+    file.take(max_bytes + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(format!("more than {max_bytes} bytes"));
+    }
+    Ok(bytes)
+}
+
+/// As [`read_bytes`], as UTF-8 text.
+pub fn read_text(path: &Path, max_bytes: u64) -> Result<String, String> {
+    String::from_utf8(read_bytes(path, max_bytes)?).map_err(|_| "not UTF-8 text".into())
+}
+
+/// `message` with every double-quoted value longer than a few words cut short: parse
+/// errors quote the offending value, and a file that is not what it claims to be (a
+/// plan naming `/etc/passwd` as its scene) must not be printed in an error.
+pub fn shorten_quoted(message: &str) -> String {
+    const KEEP: usize = 40;
+    let mut out = String::with_capacity(message.len().min(4 * KEEP));
+    let mut rest = message;
+    while let Some(open) = rest.find('"') {
+        out.push_str(&rest[..=open]);
+        rest = &rest[open + 1..];
+        let close = rest.find('"').unwrap_or(rest.len());
+        let quoted = &rest[..close];
+        if quoted.chars().count() > KEEP {
+            out.extend(quoted.chars().take(KEEP));
+            out.push_str("...");
+        } else {
+            out.push_str(quoted);
+        }
+        rest = &rest[close..];
+        if let Some(stripped) = rest.strip_prefix('"') {
+            out.push('"');
+            rest = stripped;
+        }
+    }
+    out.push_str(rest);
+    out
+}
