@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace ob = ompl::base;
@@ -69,7 +70,11 @@ namespace pushplan::bridge
         benchmark.addPlanner(detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false));
 
         std::uint64_t steps_before = 0;
-        benchmark.setPreRunEvent([&](const ob::PlannerPtr &) { steps_before = model->model().propagation_steps(); });
+        benchmark.setPreRunEvent([&](const ob::PlannerPtr &) {
+            steps_before = model->model().propagation_steps();
+            // As in Planner::solve: no propagation past the run's time limit.
+            model->model().set_time_limit(options.time_limit);
+        });
         benchmark.setPostRunEvent([&](const ob::PlannerPtr &, ompl::tools::Benchmark::RunProperties &props) {
             props["run INTEGER"] = std::to_string(options.run);
             // Only the planners that propagate controls through the model have a rate.
@@ -102,7 +107,7 @@ namespace pushplan::bridge
             // problem the planner searched (Static RRT's clutter stays put).
             const auto found = model->readPath(*pdef->getSolutionPath()->as<oc::PathControl>());
             const FinishedPath s =
-                model->finish(found, true, FinishSettings{options.shortcut, seed, 0, 0.0});
+                model->finish(found, true, FinishSettings{options.shortcut, seed, 0, 0.0, std::numeric_limits<double>::infinity()});
             props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
             props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);
             measured(s.before, "");

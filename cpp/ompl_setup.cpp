@@ -19,7 +19,7 @@ namespace pushplan
     std::shared_ptr<oc::SimpleSetup> makeSetup(const Planner &planner, const SetupOptions &options)
     {
         return detail::asPushplanError([&] {
-            auto model = std::make_shared<detail::ModelHandle>(planner.source_->load());
+            auto model = std::make_shared<detail::ModelHandle>(planner.source().load());
             model->model().set_static_clutter(options.static_clutter);
             const bridge::SceneInfo &info = model->info();
             const unsigned k = options.k.value_or(info.planner.k);

@@ -34,6 +34,15 @@ namespace pushplan
             return value;
         }
 
+        /// `kind` if it is one of PlannerKind's values: an integer cast to the enum must not
+        /// reach Rust, where an unknown discriminant is undefined behaviour.
+        PlannerKind checkedKind(PlannerKind kind)
+        {
+            if (static_cast<unsigned>(kind) > static_cast<unsigned>(PlannerKind::Sst))
+                throw Error("unknown planner kind " + std::to_string(static_cast<unsigned>(kind)));
+            return kind;
+        }
+
         /// One search per core (at least one).
         unsigned defaultThreads()
         {
@@ -73,12 +82,19 @@ namespace pushplan
 
     std::string Planner::sceneName() const
     {
-        return source_->name;
+        return source().name;
+    }
+
+    const Planner::Source &Planner::source() const
+    {
+        if (!source_)
+            throw Error("this pushplan::Planner was moved from: it has no scene");
+        return *source_;
     }
 
     std::string plannerName(PlannerKind kind)
     {
-        return std::string(bridge::planner_name(kind));
+        return std::string(bridge::planner_name(detail::checkedKind(kind)));
     }
 
     PlannerKind plannerKind(const std::string &name)
@@ -106,6 +122,8 @@ namespace pushplan
         // Every failure inside, the model's or OMPL's, leaves as pushplan::Error.
         return detail::asPushplanError([&]() -> Plan {
             using detail::checked;
+            const Source &source = this->source();
+            detail::checkedKind(options.planner);
             if (options.planner == PlannerKind::Darrt)
                 throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
                             "(measure DARRT with `pushplan bench`)");
@@ -115,7 +133,7 @@ namespace pushplan
             std::vector<detail::ModelHandlePtr> models;
             for (unsigned i = 0; i < threads; ++i)
             {
-                models.push_back(std::make_shared<detail::ModelHandle>(source_->load()));
+                models.push_back(std::make_shared<detail::ModelHandle>(source.load()));
                 // Static RRT's problem: the same states, the clutter pinned where it starts.
                 models.back()->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
             }
@@ -157,6 +175,10 @@ namespace pushplan
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             };
             const std::function<bool()> out_of_time = [&] { return elapsed() >= time_limit; };
+            // The models refuse to propagate past the limit: an extension of k long controls
+            // (OMPL checks the limit only between extensions) ends on time.
+            for (const detail::ModelHandlePtr &m : models)
+                m->model().set_time_limit(time_limit);
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
@@ -251,7 +273,8 @@ namespace pushplan
             // Every plan is checked (re-simulating it reproduces its states) and finished
             // (shortcut, kept robust) by the model, the same way as the CLI's and bench's.
             const bridge::FinishedPath path = model->finish(
-                found, solved, bridge::FinishSettings{options.shortcut, seed, options.robust_trials, options.robust_rate});
+                found, solved, bridge::FinishSettings{options.shortcut, seed, options.robust_trials, options.robust_rate,
+                                              time_limit - elapsed()});
             plan.before_shortcut = path.before;
             plan.after_shortcut = path.after;
             if (path.robustness >= 0.0)

@@ -86,6 +86,8 @@ pub mod bridge {
         pub seed: u64,
         pub robust_trials: usize,
         pub robust_rate: f64,
+        /// Seconds from now at which shortcutting stops, budget left or not (infinite: never).
+        pub time_left: f64,
     }
 
     /// `planner::FinishedPath`, flat; `robustness` -1 if not measured.
@@ -147,6 +149,7 @@ pub mod bridge {
         fn search_stats(model: &Model) -> SearchStats;
         fn add_search_stats(a: &SearchStats, b: &SearchStats) -> SearchStats;
         fn set_static_clutter(self: &mut Model, on: bool);
+        fn set_time_limit(self: &mut Model, seconds: f64);
         fn static_clutter(self: &Model) -> bool;
         fn robustness(
             self: &Model,

@@ -16,6 +16,11 @@ use std::path::{Path, PathBuf};
 
 pub const FORMAT: &str = "pushplan-plan/1";
 
+/// Most propagation steps a plan file may hold over all its controls (at the default
+/// 0.01 s step, 2 000 s of motion): re-simulating, checking and drawing a plan take time
+/// and memory in proportion.
+pub const MAX_PLAN_STEPS: usize = 200_000;
+
 /// How a plan was made (in the plan file, among its top-level fields).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -160,22 +165,90 @@ pub struct CheckReport {
     /// The re-simulated states equal the plan's, bit for bit.
     pub states_match: bool,
     pub goal_reached: bool,
+    /// Everything else the file records about the path agrees with the re-simulation.
+    pub record_matches: bool,
     /// Human-readable details of any failure.
     pub problems: Vec<String>,
 }
 
 impl CheckReport {
     pub fn passed(&self) -> bool {
-        self.all_valid && self.states_match && self.goal_reached
+        self.all_valid && self.states_match && self.goal_reached && self.record_matches
     }
 }
 
+/// The first field (a path such as `trajectory.q[10][0]`) where two plan files differ.
+fn first_difference(a: &PlanFile, b: &PlanFile) -> Option<String> {
+    use serde_json::Value;
+    fn walk(a: &Value, b: &Value, field: String) -> Option<String> {
+        match (a, b) {
+            (Value::Object(x), Value::Object(y)) => {
+                let keys: std::collections::BTreeSet<&String> = x.keys().chain(y.keys()).collect();
+                keys.into_iter().find_map(|k| {
+                    let name = if field.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{field}.{k}")
+                    };
+                    match (x.get(k), y.get(k)) {
+                        (Some(u), Some(v)) => walk(u, v, name),
+                        _ => Some(name),
+                    }
+                })
+            }
+            (Value::Array(x), Value::Array(y)) if x.len() == y.len() => x
+                .iter()
+                .zip(y)
+                .enumerate()
+                .find_map(|(i, (u, v))| walk(u, v, format!("{field}[{i}]"))),
+            _ if a == b => None,
+            _ => Some(field),
+        }
+    }
+    let value = |p: &PlanFile| serde_json::to_value(p).expect("plan files serialise");
+    walk(&value(a), &value(b), String::new())
+}
+
+/// Every value of `values` finite, or an error naming `field`.
+fn finite<'a>(field: &str, values: impl IntoIterator<Item = &'a f64>) -> Result<(), String> {
+    match values.into_iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(format!("{field}: value {i} is not a finite number")),
+    }
+}
+
+/// The components of an absolute path with `.` and `..` resolved lexically.
+fn normal(path: &Path) -> Vec<std::ffi::OsString> {
+    use std::path::Component;
+    let mut parts: Vec<std::ffi::OsString> = Vec::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                if parts.len() > 1 {
+                    parts.pop();
+                }
+            }
+            other => parts.push(other.as_os_str().to_owned()),
+        }
+    }
+    parts
+}
+
 impl PlanFile {
+    /// Reads a plan file and checks its shape: the format, no unknown fields, step counts
+    /// within [`MAX_PLAN_STEPS`], one value per joint and object everywhere, finite
+    /// numbers. Errors name the file and the field.
     pub fn read(path: &Path) -> Result<PlanFile, String> {
-        let text = std::fs::read_to_string(path)
+        let text = crate::input::read_text(path, crate::input::MAX_PLAN_BYTES)
             .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-        let plan: PlanFile =
-            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let plan: PlanFile = serde_json::from_str(&text).map_err(|e| {
+            format!(
+                "{}: {}",
+                path.display(),
+                crate::input::shorten_quoted(&e.to_string())
+            )
+        })?;
         if let Some(field) = plan.unknown.keys().next() {
             return Err(format!("{}: unknown field `{field}`", path.display()));
         }
@@ -186,20 +259,143 @@ impl PlanFile {
                 plan.format
             ));
         }
+        plan.check_shape()
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         Ok(plan)
+    }
+
+    /// The checks of [`PlanFile::read`] after parsing.
+    fn check_shape(&self) -> Result<(), String> {
+        let (dof, objects) = (self.joints.len(), self.objects.len());
+        let state = |field: &str, s: &StateRecord| -> Result<(), String> {
+            if s.q.len() != dof || s.objects.len() != objects {
+                return Err(format!(
+                    "{field}: {} joint values and {} object poses for {dof} joints and {objects} objects",
+                    s.q.len(),
+                    s.objects.len()
+                ));
+            }
+            finite(field, s.q.iter().chain(s.objects.iter().flatten()))
+        };
+        finite("step", [&self.step])?;
+        state("start", &self.start)?;
+        let mut total = 0usize;
+        for (i, c) in self.controls.iter().enumerate() {
+            let field = |name: &str| format!("controls[{i}].{name}");
+            total = total.saturating_add(c.steps);
+            if c.steps == 0 || total > MAX_PLAN_STEPS {
+                return Err(format!(
+                    "{}: {} steps; a control has at least 1 and a plan at most {MAX_PLAN_STEPS} in all",
+                    field("steps"),
+                    c.steps
+                ));
+            }
+            if c.nullspace.len() != dof {
+                return Err(format!(
+                    "{}: {} values for {dof} joints",
+                    field("nullspace"),
+                    c.nullspace.len()
+                ));
+            }
+            finite(&field("ee_velocity"), &c.ee_velocity)?;
+            finite(&field("nullspace"), &c.nullspace)?;
+            state(&field("state"), &c.state)?;
+        }
+        let t = &self.trajectory;
+        if t.q.len() != t.times.len() || t.objects.len() != t.times.len() {
+            return Err(format!(
+                "trajectory: {} times, {} joint samples and {} object samples",
+                t.times.len(),
+                t.q.len(),
+                t.objects.len()
+            ));
+        }
+        for (k, (q, o)) in t.q.iter().zip(&t.objects).enumerate() {
+            state(
+                &format!("trajectory sample {k}"),
+                &StateRecord {
+                    q: q.clone(),
+                    objects: o.clone(),
+                },
+            )?;
+        }
+        finite("trajectory.times", &t.times)
+    }
+
+    /// Loads the scene the plan names (relative to the plan file's folder) and checks
+    /// that the plan's joints and objects are the scene's, by name and in order.
+    pub fn load_scene(&self, plan_path: &Path) -> Result<Scene, String> {
+        let path = self.scene_path(plan_path);
+        let is_yaml = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("yaml") || e.eq_ignore_ascii_case("yml"));
+        if !is_yaml {
+            return Err(format!(
+                "{}: scene: '{}' is not a scene file (.yaml or .yml)",
+                plan_path.display(),
+                crate::input::shorten_quoted(&self.scene)
+            ));
+        }
+        let scene = Scene::load(&path).map_err(|e| e.to_string())?;
+        let joints: Vec<&str> = (0..scene.robot.dof())
+            .map(|i| scene.robot.chain.dof_joint(i).name.as_str())
+            .collect();
+        let objects: Vec<&str> = scene.objects.iter().map(|o| o.name.as_str()).collect();
+        if self.joints != joints {
+            return Err(format!(
+                "{}: joints: {:?} are not the scene's joints {joints:?}",
+                plan_path.display(),
+                self.joints
+            ));
+        }
+        if self.objects != objects {
+            return Err(format!(
+                "{}: objects: {:?} are not the scene's objects {objects:?}",
+                plan_path.display(),
+                self.objects
+            ));
+        }
+        Ok(scene)
     }
 
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("plan files serialise") + "\n"
     }
 
-    /// The scene file: as recorded, or relative to the plan file's folder.
+    /// The scene file: the recorded path, relative to the plan file's folder.
     pub fn scene_path(&self, plan_path: &Path) -> PathBuf {
-        let recorded = PathBuf::from(&self.scene);
-        if recorded.is_file() {
-            return recorded;
+        plan_path
+            .parent()
+            .unwrap_or(Path::new("."))
+            .join(&self.scene)
+    }
+
+    /// How a plan file written to `plan_path` names `scene_path`: relative to the plan
+    /// file's folder, so the pair can be moved together and read from any folder.
+    pub fn scene_reference(scene_path: &Path, plan_path: &Path) -> String {
+        let folder = plan_path.parent().filter(|p| !p.as_os_str().is_empty());
+        let absolute = |p: &Path| std::path::absolute(p).ok();
+        let (Some(scene), Some(folder)) = (
+            absolute(scene_path),
+            absolute(folder.unwrap_or(Path::new("."))),
+        ) else {
+            return scene_path.to_string_lossy().into_owned();
+        };
+        let (scene, folder) = (normal(&scene), normal(&folder));
+        let common = scene
+            .iter()
+            .zip(&folder)
+            .take_while(|(a, b)| a == b)
+            .count();
+        let mut relative = PathBuf::new();
+        for _ in common..folder.len() {
+            relative.push("..");
         }
-        plan_path.parent().unwrap_or(Path::new(".")).join(&recorded)
+        for part in &scene[common..] {
+            relative.push(part);
+        }
+        relative.to_string_lossy().into_owned()
     }
 
     /// Builds a plan file by simulating `controls` in the planner's problem of `scene`:
@@ -294,23 +490,18 @@ impl PlanFile {
     }
 
     /// Re-simulates the plan with the model from the scene's start, independently of the
-    /// planner: every state valid, the recorded states reproduced, the goal reached.
+    /// planner: every state valid, the recorded states reproduced, the goal reached, and
+    /// everything else the file records about the path (start, contacts, durations,
+    /// metrics after shortcutting, `solved`, margins, `step`, the trajectory) equal to
+    /// what the re-simulation gives. Not checkable here: how the plan was made (planner
+    /// settings, seed, robustness) and the metrics of the path before shortcutting, which
+    /// the file does not hold.
     pub fn check(&self, plan_path: &Path) -> Result<CheckReport, String> {
-        let scene = Scene::load(self.scene_path(plan_path)).map_err(|e| e.to_string())?;
-        let problem = Problem::new(scene, self.settings.planner);
-        let scene = problem.scene();
-        let dof = scene.robot.dof();
+        let scene = self.load_scene(plan_path)?;
+        let problem = Problem::new(scene.clone(), self.settings.planner);
         let mut problems = Vec::new();
-        if self.start.flat() != scene.start.to_flat() {
-            problems.push("the plan's start state is not the scene's".to_string());
-        }
-        for (i, c) in self.controls.iter().enumerate() {
-            if c.nullspace.len() != dof {
-                return Err(format!(
-                    "control {i}: null-space sample has {} values, the robot {dof} joints",
-                    c.nullspace.len()
-                ));
-            }
+        if self.start.flat() != problem.scene().start.to_flat() {
+            problems.push("start: the plan's start state is not the scene's".to_string());
         }
         let sim = problem.simulate(&self.path_controls(), false);
         if let Some((i, reason)) = &sim.stopped_by {
@@ -336,14 +527,30 @@ impl PlanFile {
                 break;
             }
         }
-        let goal_reached = scene.goal.is_satisfied(sim.final_state());
+        let goal_reached = problem.scene().goal.is_satisfied(sim.final_state());
         if !goal_reached {
             problems.push("the goal is not reached".to_string());
+        }
+        let mut record_matches = problems.is_empty();
+        if record_matches {
+            let mut rebuilt = PlanFile::build(
+                &self.scene,
+                scene,
+                &self.settings,
+                &self.path_controls(),
+                Some(self.metrics.before_shortcut),
+            )?;
+            rebuilt.robustness.clone_from(&self.robustness);
+            if let Some(field) = first_difference(self, &rebuilt) {
+                record_matches = false;
+                problems.push(format!("{field}: differs from the re-simulation"));
+            }
         }
         Ok(CheckReport {
             all_valid: sim.valid(),
             states_match,
             goal_reached,
+            record_matches,
             problems,
         })
     }

@@ -17,6 +17,7 @@ use crate::random::SplitMix64;
 use crate::robot::EeAction;
 use crate::state::State;
 use nalgebra::DVector;
+use std::time::Instant;
 
 /// Propagation steps one second of shortcutting buys (about what this machine does:
 /// see BENCHMARKS.md).
@@ -27,6 +28,9 @@ pub struct ShortcutSettings {
     /// Work budget in propagation steps.
     pub budget_steps: u64,
     pub seed: u64,
+    /// Wall-clock time at which shortcutting stops even if budget is left (the plan's
+    /// time limit). Only then does the outcome depend on the machine's speed.
+    pub deadline: Option<Instant>,
 }
 
 impl ShortcutSettings {
@@ -35,6 +39,7 @@ impl ShortcutSettings {
         Self {
             budget_steps: (seconds.max(0.0) * STEPS_PER_SECOND) as u64,
             seed,
+            deadline: None,
         }
     }
 }
@@ -46,6 +51,8 @@ pub struct ShortcutOutcome {
     pub after: PathMetrics,
     pub attempts: usize,
     pub accepted: usize,
+    /// Shortcutting stopped at the deadline, with budget left.
+    pub stopped_at_deadline: bool,
 }
 
 /// Shortcuts a valid path from `start` that reaches the scene's goal.
@@ -65,6 +72,7 @@ pub fn shortcut(
         after: before,
         attempts: 0,
         accepted: 0,
+        stopped_at_deadline: false,
     };
     if !path.valid() || !scene.goal.is_satisfied(path.final_state()) {
         outcome.controls = current;
@@ -73,6 +81,10 @@ pub fn shortcut(
     let mut rng = SplitMix64::new(settings.seed ^ 0x5EED_5407_C0DE);
     let mut work = path.steps() as u64;
     while work < settings.budget_steps && current.len() >= 2 {
+        if settings.deadline.is_some_and(|d| Instant::now() >= d) {
+            outcome.stopped_at_deadline = true;
+            break;
+        }
         outcome.attempts += 1;
         // Two states i < j at least two controls apart; controls i..j are replaced.
         let n = current.len();

@@ -284,3 +284,24 @@ fn search_statistics_count_propagations_as_ompl_runs_them() {
     assert!(stopped >= 1, "the long push ends invalid");
     assert!(stats.report().starts_with("3 propagations of "));
 }
+
+#[test]
+fn past_its_time_limit_the_model_refuses_to_propagate() {
+    use pushplan::planner::Model;
+    // OMPL checks its time limit only between extensions; an extension of k controls of
+    // many steps each would overrun it. Past the limit every step is refused at once.
+    let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
+    let mut model = Model::new(scene.clone());
+    let start = scene.start.to_flat();
+    let forward = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let mut next = vec![f64::NAN; start.len()];
+    model.set_time_limit(0.0);
+    assert!(!model.propagate(&start, &forward, 1, &mut next).unwrap());
+    assert_eq!(next, start, "a refused step stays at its start");
+    assert_eq!(model.propagation_steps(), 0);
+    assert_eq!(model.search_stats().propagations, 0, "nothing counted");
+    model.set_time_limit(f64::INFINITY);
+    assert!(model.propagate(&start, &forward, 1, &mut next).unwrap());
+    assert_ne!(next, start);
+    assert_eq!(model.propagation_steps(), 1);
+}

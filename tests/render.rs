@@ -13,12 +13,13 @@ const SCENE: &str = "scenes/herb_fig1_clutter.yaml";
 fn plan() -> (PlanFile, common::Scratch) {
     let (scene, controls) = common::default_scene_plan(2);
     let settings = common::plan_settings("pcrrt", 2, 0.0);
-    let plan = PlanFile::build(SCENE, scene, &settings, &controls, None).unwrap();
     // One folder per call: the tests run at once.
     static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let dir = common::Scratch::new(&format!("render-{call}"));
     let path = dir.join("plan.json");
+    let reference = PlanFile::scene_reference(SCENE.as_ref(), &path);
+    let plan = PlanFile::build(&reference, scene, &settings, &controls, None).unwrap();
     std::fs::write(&path, plan.to_json()).unwrap();
     (plan, dir)
 }
@@ -40,7 +41,7 @@ fn number(element: &str, name: &str) -> f64 {
 #[test]
 fn snapshots_draw_the_objects_where_the_plan_puts_them() {
     let (plan, dir) = plan();
-    let files = render(&plan, SCENE.as_ref(), &dir.join("pictures"), &[]).unwrap();
+    let files = render(&plan, &dir.join("plan.json"), &dir.join("pictures"), &[]).unwrap();
     let svg = std::fs::read_to_string(&files.snapshots).unwrap();
     let root = &svg[..svg.find('>').unwrap()];
     let (scale, x_top, y_left, margin) = (
@@ -123,7 +124,13 @@ fn snapshots_draw_the_objects_where_the_plan_puts_them() {
 #[test]
 fn the_animation_draws_the_arm_and_the_objects_in_a_browser() {
     let (plan, dir) = plan();
-    let files = render(&plan, SCENE.as_ref(), &dir.join("pictures"), &[0.5, 1.0]).unwrap();
+    let files = render(
+        &plan,
+        &dir.join("plan.json"),
+        &dir.join("pictures"),
+        &[0.5, 1.0],
+    )
+    .unwrap();
     let html = std::fs::read_to_string(&files.animation).unwrap();
     assert!(
         !html.contains("<script src") && !html.contains("<link"),
@@ -173,7 +180,7 @@ fn the_animation_draws_the_arm_and_the_objects_in_a_browser() {
 #[test]
 fn snapshot_times_outside_the_plan_are_errors() {
     let (plan, dir) = plan();
-    let err = render(&plan, SCENE.as_ref(), &dir.join("bad"), &[1e6])
+    let err = render(&plan, &dir.join("plan.json"), &dir.join("bad"), &[1e6])
         .err()
         .unwrap();
     assert!(err.contains("outside the plan"), "{err}");

@@ -59,6 +59,36 @@ fn shortcutting_shortens_the_manipulator_path_and_keeps_the_plan_valid() {
 }
 
 #[test]
+fn shortcutting_stops_at_its_deadline_and_before_it_is_unchanged() {
+    use std::time::{Duration, Instant};
+    let (scene, controls) = found_plan();
+    let budget = ShortcutSettings::from_seconds(0.2, 2);
+    let run = |settings: &ShortcutSettings| {
+        shortcut(
+            &mut Propagator::new(&scene),
+            &scene.start,
+            &controls,
+            settings,
+        )
+    };
+    // A deadline already passed: the plan's time limit is used up.
+    let passed = run(&ShortcutSettings {
+        deadline: Some(Instant::now()),
+        ..budget
+    });
+    assert!(passed.stopped_at_deadline && passed.attempts == 0);
+    assert_eq!(passed.controls, controls);
+    // A deadline the budget runs out before: the same as none, bit for bit.
+    let far = run(&ShortcutSettings {
+        deadline: Some(Instant::now() + Duration::from_secs(3600)),
+        ..budget
+    });
+    let unlimited = run(&budget);
+    assert!(!far.stopped_at_deadline && far.accepted > 0);
+    assert_eq!(far, unlimited);
+}
+
+#[test]
 fn a_zero_budget_changes_nothing() {
     let (scene, controls) = found_plan();
     let outcome = shortcut(

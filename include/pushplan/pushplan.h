@@ -199,6 +199,7 @@ namespace pushplan
         /// A scene from YAML text; relative paths resolve against `source`'s folder.
         static Planner fromYaml(const std::string &yaml, const std::string &source);
         ~Planner();
+        /// A moved-from planner has no scene: solve() and sceneName() throw pushplan::Error.
         Planner(Planner &&) noexcept;
         Planner &operator=(Planner &&) noexcept;
 
@@ -215,6 +216,8 @@ namespace pushplan
                                                                      const SetupOptions &options);
         struct Source;
         explicit Planner(std::unique_ptr<Source> source);
+        /// The scene's source; throws pushplan::Error for a moved-from planner.
+        const Source &source() const;
         std::unique_ptr<Source> source_;
     };
 }  // namespace pushplan

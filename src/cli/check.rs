@@ -3,7 +3,6 @@
 use crate::plan::PlanFile;
 use crate::planner::Problem;
 use crate::robustness::Noise;
-use crate::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -11,7 +10,7 @@ pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
     let plan = PlanFile::read(path)?;
     let report = plan.check(path)?;
     if noise > 0 {
-        let scene = Scene::load(plan.scene_path(path)).map_err(|e| e.to_string())?;
+        let scene = plan.load_scene(path)?;
         let r = Problem::new(scene, plan.settings.planner).robustness(
             &plan.path_controls(),
             &Noise::default(),

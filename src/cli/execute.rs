@@ -21,7 +21,7 @@ pub fn execute(
         return Err("--trials: must be at least 1".into());
     }
     let plan = PlanFile::read(path)?;
-    let scene = Scene::load(plan.scene_path(path)).map_err(|e| e.to_string())?;
+    let scene = plan.load_scene(path)?;
     let settings = ExecuteSettings {
         trials,
         speed,

@@ -25,6 +25,8 @@ pub struct PlanOptions {
 }
 
 pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode, String> {
+    // --time bounds the whole command: loading, search, shortcutting and writing.
+    let started = std::time::Instant::now();
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
     let p = scene.planner;
     let (planner, quiet) = (run.planner, run.quiet);
@@ -53,8 +55,12 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             options.time_limit
         ));
     }
-    if options.k == 0 {
-        return Err("--k must be at least 1".into());
+    if options.k == 0 || options.k > crate::scene::MAX_K {
+        return Err(format!(
+            "--k must be in [1, {}], got {}",
+            crate::scene::MAX_K,
+            options.k
+        ));
     }
     if !(run.shortcut.is_finite() && run.shortcut >= 0.0) {
         return Err(format!(
@@ -90,6 +96,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             trials: run.robust,
             rate: run.robust_rate,
         }),
+        deadline: crate::planner::deadline(started, options.time_limit),
     };
     let path = problem.finish(&found, &found_states, solution.exact, &finish_settings)?;
     if !quiet && path.shortcut.attempts > 0 {
@@ -97,6 +104,9 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             "shortcutting: {} of {} attempts accepted",
             path.shortcut.accepted, path.shortcut.attempts
         );
+        if path.shortcut.stopped_at_deadline {
+            eprintln!("shortcutting: stopped at the time limit (--time) with budget left");
+        }
         if path.shortcut.dropped_as_less_robust {
             eprintln!("shortcutting: the shortcut path is less robust; the path as found is kept");
         }
@@ -110,7 +120,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         shortcut: run.shortcut,
         threads: options.threads,
     };
-    let reference = scene_path.to_string_lossy().into_owned();
+    let reference = PlanFile::scene_reference(scene_path, out);
     let mut file = PlanFile::build(
         &reference,
         scene,

@@ -190,6 +190,7 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 trials: s.robust_trials,
                 rate: s.robust_rate,
             }),
+            deadline: crate::planner::deadline(std::time::Instant::now(), s.time_left),
         })
     }
 }

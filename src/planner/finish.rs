@@ -8,6 +8,7 @@ use crate::robustness::{robustness, Noise};
 use crate::scene::Scene;
 use crate::shortcut::{shortcut, ShortcutSettings};
 use crate::state::State;
+use std::time::Instant;
 
 /// How a found path is finished.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,6 +19,14 @@ pub struct FinishSettings {
     pub seed: u64,
     /// The robustness a solution must keep, if any.
     pub robust: Option<RobustRequirement>,
+    /// When shortcutting must stop, budget left or not (the plan's time limit).
+    pub deadline: Option<Instant>,
+}
+
+/// The instant `seconds` after `start`; `None` (no deadline) for an infinite or NaN span.
+pub fn deadline(start: Instant, seconds: f64) -> Option<Instant> {
+    let span = std::time::Duration::try_from_secs_f64(seconds.max(0.0)).ok()?;
+    start.checked_add(span)
 }
 
 /// Keep a path only if at least `rate` of `trials` perturbed re-simulations
@@ -42,6 +51,8 @@ pub struct ShortcutReport {
     pub accepted: usize,
     /// The shortcut path was dropped because it was less robust than required.
     pub dropped_as_less_robust: bool,
+    /// Shortcutting stopped at the deadline with budget left.
+    pub stopped_at_deadline: bool,
 }
 
 /// A finished path.
@@ -96,7 +107,10 @@ pub fn finish(
         return Ok(finished);
     }
     if settings.shortcut > 0.0 {
-        let budget = ShortcutSettings::from_seconds(settings.shortcut, settings.seed);
+        let budget = ShortcutSettings {
+            deadline: settings.deadline,
+            ..ShortcutSettings::from_seconds(settings.shortcut, settings.seed)
+        };
         // A propagator of its own: the outcome does not depend on what ran before.
         let outcome = shortcut(
             &mut Propagator::new(scene.clone()),
@@ -106,6 +120,7 @@ pub fn finish(
         );
         finished.shortcut.attempts = outcome.attempts;
         finished.shortcut.accepted = outcome.accepted;
+        finished.shortcut.stopped_at_deadline = outcome.stopped_at_deadline;
         if outcome.accepted > 0 {
             let rate = settings
                 .robust

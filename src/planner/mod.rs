@@ -10,7 +10,9 @@ mod nearest;
 mod problem;
 mod stats;
 
-pub use finish::{finish, FinishSettings, FinishedPath, RobustRequirement, ShortcutReport};
+pub use finish::{
+    deadline, finish, FinishSettings, FinishedPath, RobustRequirement, ShortcutReport,
+};
 pub use kind::PlannerKind;
 pub use model::Model;
 pub use nearest::NearestTree;

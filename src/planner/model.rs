@@ -34,6 +34,9 @@ pub struct Model {
     /// Wall time spent in `propagate` (progress reports: the rest is the planner's).
     propagating: Duration,
     search: SearchCounter,
+    /// After this instant propagation refuses to start (the search's time limit): a
+    /// search whose every extension holds k controls of many steps stops on time.
+    deadline: Option<Instant>,
 }
 
 /// Runs `f`, turning a panic into an error message.
@@ -63,6 +66,7 @@ impl Model {
             last_result: None,
             steps_taken: 0,
             propagating: Duration::ZERO,
+            deadline: None,
         }
     }
 
@@ -157,8 +161,12 @@ impl Model {
                 return Err("the result state has the wrong length".into());
             }
             // Count the propagation, then write the state reached: the valid part's end,
-            // or the invalid state the last step tried to reach.
-            let (valid, taken) = if self.static_mode {
+            // or the invalid state the last step tried to reach. Past the deadline: the
+            // start, invalid, nothing counted.
+            let (valid, taken) = if self.deadline.is_some_and(|d| started >= d) {
+                result.copy_from_slice(state);
+                (false, None)
+            } else if self.static_mode {
                 let view = &mut self.static_view;
                 let run = view
                     .propagator
@@ -172,7 +180,7 @@ impl Model {
                         .expand(&view.propagator.attempted_state())
                         .write_flat(result),
                 }
-                (stopped.is_none(), run.steps)
+                (stopped.is_none(), Some(run.steps))
             } else {
                 let run = self.propagator.propagate_steps(&start, &action, steps);
                 let stopped = run.stopped_by.as_ref();
@@ -181,9 +189,11 @@ impl Model {
                     None => run.state.write_flat(result),
                     Some(_) => self.propagator.attempted_state().write_flat(result),
                 }
-                (stopped.is_none(), run.steps)
+                (stopped.is_none(), Some(run.steps))
             };
-            self.steps_taken += taken as u64 + u64::from(!valid);
+            if let Some(taken) = taken {
+                self.steps_taken += taken as u64 + u64::from(!valid);
+            }
             // Kept in the same buffer: OMPL propagates one step at a time.
             match &mut self.last_result {
                 Some((last, last_valid)) => {
@@ -275,6 +285,12 @@ impl Model {
 
     /// Switches to (or from) the Static RRT baseline: clutter objects become static
     /// obstacles at their start poses.
+    /// From `seconds` from now on, every propagation is refused (invalid, no step taken):
+    /// the search's time limit. Infinite: no limit.
+    pub fn set_time_limit(&mut self, seconds: f64) {
+        self.deadline = super::deadline(Instant::now(), seconds);
+    }
+
     pub fn set_static_clutter(&mut self, on: bool) {
         self.static_mode = on;
         self.last_result = None;

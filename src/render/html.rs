@@ -1,7 +1,7 @@
 //! A self-contained HTML page that animates the plan: play / pause and a time slider, no
 //! network needed. Frames are precomputed (outlines in pixels) and embedded as JSON.
 
-use super::svg::{object_colour, View};
+use super::svg::{escape, object_colour, View};
 use super::Film;
 use nalgebra::Vector2;
 use std::fmt::Write;
@@ -11,6 +11,16 @@ const MAX_FRAMES: usize = 400;
 
 fn points(view: &View, polygon: &[Vector2<f64>]) -> String {
     format!("\"{}\"", view.points(polygon))
+}
+
+/// `s` as a JavaScript string literal inside a `<script>` block: JSON, with `<`, `>`
+/// and `&` written as escapes so that no name can close the block (`</script>`).
+fn js_string(s: &str) -> String {
+    serde_json::to_string(s)
+        .expect("strings serialise")
+        .replace('<', "\\u003c")
+        .replace('>', "\\u003e")
+        .replace('&', "\\u0026")
 }
 
 pub fn animation(film: &Film) -> String {
@@ -57,12 +67,12 @@ pub fn animation(film: &Film) -> String {
         .scene
         .objects
         .iter()
-        .map(|o| format!("{:?}", o.name))
+        .map(|o| js_string(&o.name))
         .collect();
     let colours: Vec<String> = (0..film.scene.objects.len())
-        .map(|i| format!("{:?}", object_colour(film, i)))
+        .map(|i| js_string(object_colour(film, i)))
         .collect();
-    let title = film.scene.name.replace('<', "&lt;");
+    let title = escape(&film.scene.name);
     format!(
         r##"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>{title}: plan</title>

@@ -44,7 +44,7 @@ pub struct Frame {
 impl Film {
     /// Simulates the plan in the file (its scene resolved as `check` does).
     pub fn of(plan: &PlanFile, plan_path: &Path) -> Result<Film, String> {
-        let scene = Scene::load(plan.scene_path(plan_path)).map_err(|e| e.to_string())?;
+        let scene = plan.load_scene(plan_path)?;
         let path = Problem::new(scene.clone(), plan.settings.planner)
             .simulate(&plan.path_controls(), true);
         if let Some((i, reason)) = path.stopped_by {
@@ -77,7 +77,7 @@ impl Film {
         plan_path: &Path,
         executed: &[Vec<[f64; 3]>],
     ) -> Result<Film, String> {
-        let scene = Scene::load(plan.scene_path(plan_path)).map_err(|e| e.to_string())?;
+        let scene = plan.load_scene(plan_path)?;
         let predicted = crate::execute::predicted_poses(&scene, plan)?;
         let trajectory = &plan.trajectory;
         if executed.len() != predicted.len() {

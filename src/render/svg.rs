@@ -72,7 +72,8 @@ pub const GOAL_COLOUR: &str = "#1e7b1e";
 /// Links in contact are highlighted (bright green, as in Fig. 2).
 pub const CONTACT_COLOUR: &str = "#7cfc00";
 
-fn escape(s: &str) -> String {
+/// `s` as HTML / XML text or attribute value.
+pub(super) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")

@@ -3,7 +3,7 @@
 // - OMPL's process-wide log level is as the application left it after solve();
 // - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
 //   whose paths are not controls, a bad scene, the model failing inside solve() and
-//   makeSetup();
+//   makeSetup(), an integer cast to PlannerKind, a moved-from planner;
 // - the public OMPL layer (pushplan/ompl.h): the state space passes OMPL's own sanity
 //   checks, and StateAccess reads what it wrote.
 // Prints one line per check; exits non-zero at the first failure.
@@ -95,6 +95,20 @@ int main()
     bad_option("goal_bias", [](pushplan::Options &o) { o.goal_bias = 1.5; });
     bad_option("robust_rate", [](pushplan::Options &o) { o.robust_rate = 2.0; });
     bad_option("shortcut", [](pushplan::Options &o) { o.shortcut = std::nan(""); });
+    // Hostile use: an integer that is no PlannerKind, a planner moved from.
+    const auto no_kind = static_cast<PlannerKind>(42);
+    expect(throwsError([&] { pushplan::plannerName(no_kind); }, "unknown planner kind 42"),
+           "plannerName of a value that is no PlannerKind throws pushplan::Error");
+    bad_option("planner kind", [&](pushplan::Options &o) { o.planner = no_kind; });
+    {
+        pushplan::Planner moved("scenes/herb_single_object.yaml");
+        const pushplan::Planner taker(std::move(moved));
+        expect(taker.sceneName() == "herb-single-object", "a planner moved into works");
+        expect(throwsError([&] { moved.solve(); }, "moved from"), "solve() on a moved-from planner throws");
+        expect(throwsError([&] { moved.sceneName(); }, "moved from"), "sceneName() on a moved-from planner throws");
+        expect(throwsError([&] { pushplan::makeSetup(moved); }, "moved from"),
+               "makeSetup() of a moved-from planner throws");
+    }
     // A failure of the model inside solve() and makeSetup(): the scene file is gone by then.
     {
         std::ifstream in("scenes/herb_single_object.yaml");
