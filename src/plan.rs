@@ -475,6 +475,26 @@ impl PlanFile {
         })
     }
 
+    /// Checks that the plan's trajectory is the one its controls give in `scene` (the
+    /// plan's scene, [`PlanFile::load_scene`]): what `execute` plays must be the plan, not
+    /// an arbitrary list of samples.
+    pub fn check_trajectory(&self, scene: &Scene) -> Result<(), String> {
+        let rebuilt = PlanFile::build(
+            &self.scene,
+            scene.clone(),
+            &self.settings,
+            &self.path_controls(),
+            None,
+        )?;
+        if rebuilt.trajectory != self.trajectory {
+            return Err(
+                "trajectory: not the one the plan's controls give (`pushplan check` names the difference)"
+                    .into(),
+            );
+        }
+        Ok(())
+    }
+
     /// The controls of the plan.
     pub fn path_controls(&self) -> Vec<PathControl> {
         self.controls

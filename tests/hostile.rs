@@ -172,6 +172,23 @@ fn check_compares_everything_a_plan_file_claims_with_the_re_simulation() {
             Box::new(|p| p["start"]["objects"][0][0] = Value::from(0.7)),
         ),
     ];
+    // execute plays only the trajectory the controls give (a file of millions of
+    // samples would run for hours).
+    let longer = tampered(scratch.path(), &plan, "longer.json", |p| {
+        for field in ["times", "q", "objects"] {
+            let samples = p["trajectory"][field].as_array().unwrap().clone();
+            p["trajectory"][field]
+                .as_array_mut()
+                .unwrap()
+                .extend(samples);
+        }
+    });
+    let (code, _, stderr) = pushplan(&["execute", longer.to_str().unwrap(), "--trials", "1"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("longer.json: trajectory: not the one"),
+        "{stderr}"
+    );
     for (name, field, edit) in cases {
         let path = tampered(scratch.path(), &plan, name, edit);
         let (code, stdout, stderr) = pushplan(&["check", path.to_str().unwrap()]);

@@ -22,6 +22,8 @@ pub fn execute(
     }
     let plan = PlanFile::read(path)?;
     let scene = plan.load_scene(path)?;
+    plan.check_trajectory(&scene)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     let settings = ExecuteSettings {
         trials,
         speed,
