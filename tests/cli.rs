@@ -2,18 +2,8 @@
 
 mod common;
 
-use std::process::Command;
-
 fn pushplan(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_pushplan"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::pushplan_in(std::path::Path::new("."), args)
 }
 
 #[test]

@@ -194,25 +194,7 @@ fn mutated_urdfs_load_or_fail_naming_the_file_and_never_panic() {
 fn mutated_plan_files_are_read_and_checked_without_panics() {
     let scratch = common::Scratch::new("fuzz-plans");
     let base = scratch.join("base.json");
-    let out = Command::new(env!("CARGO_BIN_EXE_pushplan"))
-        .args([
-            "plan",
-            "scenes/herb_single_object.yaml",
-            "--seed",
-            "2",
-            "--time",
-            "30",
-        ])
-        .args([
-            "--shortcut",
-            "0",
-            "--quiet",
-            "--out",
-            base.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "{out:?}");
+    common::plan_solved("scenes/herb_single_object.yaml", &base, &[]);
     let text = std::fs::read_to_string(&base).unwrap();
     let path = scratch.join("fuzzed.json");
     let mut rng = SplitMix64::new(3000);

@@ -8,42 +8,15 @@ mod common;
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn pushplan_in(dir: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_pushplan"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 fn pushplan(args: &[&str]) -> (i32, String, String) {
-    pushplan_in(Path::new("."), args)
+    common::pushplan_in(Path::new("."), args)
 }
 
 /// Plans the single-object scene into `dir/base.json` (solved, 2 s, no shortcutting).
 fn base_plan(dir: &Path) -> (PathBuf, Value) {
     let path = dir.join("base.json");
-    let (code, stdout, stderr) = pushplan(&[
-        "plan",
-        "scenes/herb_single_object.yaml",
-        "--seed",
-        "2",
-        "--time",
-        "30",
-        "--shortcut",
-        "0",
-        "--quiet",
-        "--out",
-        path.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{stdout}{stderr}");
+    common::plan_solved("scenes/herb_single_object.yaml", &path, &[]);
     let plan = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
     (path, plan)
 }
@@ -209,7 +182,8 @@ fn a_plan_reads_its_scene_relative_to_itself_and_no_other_file() {
     // Stored relative to the plan's folder, so it checks from any folder.
     let scene = plan["scene"].as_str().unwrap();
     assert!(scene.ends_with("scenes/herb_single_object.yaml") && !scene.starts_with('/'));
-    let (code, stdout, stderr) = pushplan_in(scratch.path(), &["check", path.to_str().unwrap()]);
+    let (code, stdout, stderr) =
+        common::pushplan_in(scratch.path(), &["check", path.to_str().unwrap()]);
     assert_eq!(code, 0, "checked from another folder: {stdout}{stderr}");
     // A plan naming another file as its scene: refused, and the file is not printed.
     let passwd = tampered(&folder, &plan, "passwd.json", |p| {
@@ -250,22 +224,11 @@ fn object_names_cannot_script_the_animation() {
     std::fs::write(&scene_path, scene).unwrap();
     let out = scratch.join("plan.json");
     let pictures = scratch.join("pictures");
-    let (code, stdout, stderr) = pushplan(&[
-        "plan",
+    common::plan_solved(
         scene_path.to_str().unwrap(),
-        "--seed",
-        "2",
-        "--time",
-        "30",
-        "--shortcut",
-        "0",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-        "--render",
-        pictures.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{stdout}{stderr}");
+        &out,
+        &["--render", pictures.to_str().unwrap()],
+    );
     let page = std::fs::read_to_string(pictures.join("animation.html")).unwrap();
     assert_eq!(
         page.matches("</script>").count(),

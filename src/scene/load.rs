@@ -148,6 +148,30 @@ impl Loader<'_> {
         }
     }
 
+    /// Every value of `q` within its joint's limits, or an error naming `field[i]`;
+    /// `note` follows the value in the message.
+    fn within_joint_limits(
+        &self,
+        field: &str,
+        note: &str,
+        robot: &Robot,
+        q: &DVector<f64>,
+    ) -> Result<()> {
+        match robot.chain.within_limits(q) {
+            Ok(()) => Ok(()),
+            Err(i) => {
+                let j = robot.chain.dof_joint(i);
+                Err(self.invalid(
+                    format!("{field}[{i}]"),
+                    format!(
+                        "{:.4}{note} is outside joint '{}' limits [{}, {}]",
+                        q[i], j.name, j.lower, j.upper
+                    ),
+                ))
+            }
+        }
+    }
+
     /// A name: not empty, no control characters.
     fn name(&self, field: &str, name: &str) -> Result<()> {
         if name.trim().is_empty() || name.chars().any(char::is_control) {
@@ -230,16 +254,7 @@ impl Loader<'_> {
         let (robot, q) = self.robot(&spec.robot, &table, &planner, &settings)?;
         let goal = self.goal(&spec.goal, &objects, &table, robot.dof())?;
         if let Goal::Configuration { q, .. } = &goal {
-            if let Err(i) = robot.chain.within_limits(q) {
-                let j = robot.chain.dof_joint(i);
-                return Err(self.invalid(
-                    format!("goal.configuration[{i}]"),
-                    format!(
-                        "{} is outside joint '{}' limits [{}, {}]",
-                        q[i], j.name, j.lower, j.upper
-                    ),
-                ));
-            }
+            self.within_joint_limits("goal.configuration", "", &robot, q)?;
         }
         let name = spec.name.clone().unwrap_or_else(|| {
             self.file
@@ -572,16 +587,7 @@ impl Loader<'_> {
                 robot.restore_plane(&mut q, &mut poses, &tight).map_err(|failure| {
                     self.invalid("robot.start_joints", format!("the tool cannot be brought onto its pushing plane from here: {failure}"))
                 })?;
-                if let Err(i) = robot.chain.within_limits(&q) {
-                    let j = robot.chain.dof_joint(i);
-                    return Err(self.invalid(
-                        format!("robot.start_joints[{i}]"),
-                        format!(
-                            "{:.4} (on the plane) is outside joint '{}' limits [{}, {}]",
-                            q[i], j.name, j.lower, j.upper
-                        ),
-                    ));
-                }
+                self.within_joint_limits("robot.start_joints", " (on the plane)", &robot, &q)?;
                 Ok((robot, q))
             }
             RobotSpec::PlanarHand {

@@ -164,3 +164,37 @@ impl Drop for Scratch {
         let _ = std::fs::remove_dir_all(&self.0);
     }
 }
+
+/// Runs the `pushplan` command in `dir`: its exit code (-1 when a signal ended it),
+/// stdout and stderr.
+pub fn pushplan_in(dir: &Path, args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Plans `scene` (seed 2, no shortcutting, up to 30 s) into `out` with `pushplan plan`;
+/// the search must solve it.
+pub fn plan_solved(scene: &str, out: &Path, extra: &[&str]) {
+    let mut args = vec![
+        "plan",
+        scene,
+        "--seed",
+        "2",
+        "--time",
+        "30",
+        "--shortcut",
+        "0",
+    ];
+    args.extend(["--quiet", "--out", out.to_str().unwrap()]);
+    args.extend(extra);
+    let (code, stdout, stderr) = pushplan_in(Path::new("."), &args);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+}
