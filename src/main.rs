@@ -76,6 +76,7 @@ enum Command {
     /// Re-simulate a plan file and report whether every state is valid and the goal is
     /// reached; with --noise, also how often perturbed re-simulations still reach it.
     Check {
+        /// Plan file (JSON, written by `plan`).
         plan: PathBuf,
         /// Re-simulate the plan this many times with perturbed object start poses and
         /// parameters (±5 mm, ±0.05 rad; mass, mu_g, mu_c, c x U(0.8, 1.2)).
@@ -89,6 +90,7 @@ enum Command {
     /// links follow the trajectory, the objects slide, turn and tip freely. Reports how
     /// often the goal is reached, each object's final error and the first divergence.
     Execute {
+        /// Plan file (JSON, written by `plan`).
         plan: PathBuf,
         /// Trials; the first is unperturbed, the others perturbed as `check --noise`.
         #[arg(long, default_value_t = 10)]
@@ -148,7 +150,10 @@ enum Command {
         shard: Shard,
     },
     /// Draw the benchmark plots from the OMPL logs in DIR (written by `bench`) into DIR/plots.
-    Plots { dir: PathBuf },
+    Plots {
+        /// A `bench` output folder (its OMPL logs, *.log).
+        dir: PathBuf,
+    },
     /// One run of one planner on one scene, in its own process (used by `bench`).
     #[command(hide = true)]
     BenchScene {
@@ -173,6 +178,7 @@ enum Command {
     },
     /// Draw a plan: snapshots.svg, timeline.svg and animation.html.
     Render {
+        /// Plan file (JSON, written by `plan`).
         plan: PathBuf,
         /// Output folder.
         #[arg(long, default_value = "render")]
@@ -211,6 +217,7 @@ enum ScenesCommand {
     /// anywhere in reach, up to 12) and `dense` (up to 20 objects placed one by one, in
     /// turn scattered, covering part of the goal disc, and walling off the straight route).
     Generate {
+        /// paper or dense (see above).
         #[arg(long, default_value = "paper")]
         design: Design,
         /// Number of scenes.

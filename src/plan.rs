@@ -372,8 +372,12 @@ impl PlanFile {
     }
 
     /// How a plan file written to `plan_path` names `scene_path`: relative to the plan
-    /// file's folder, so the pair can be moved together and read from any folder.
+    /// file's folder, so the pair can be moved together and read from any folder; an
+    /// absolute path stays absolute.
     pub fn scene_reference(scene_path: &Path, plan_path: &Path) -> String {
+        if scene_path.is_absolute() {
+            return scene_path.to_string_lossy().into_owned();
+        }
         let folder = plan_path.parent().filter(|p| !p.as_os_str().is_empty());
         let absolute = |p: &Path| std::path::absolute(p).ok();
         let (Some(scene), Some(folder)) = (
