@@ -1,4 +1,4 @@
-//! Reading input files within stated limits: regular files only (not `/dev/zero`, not a
+//! Reading input files within stated limits, and how one file refers to another: regular files only (not `/dev/zero`, not a
 //! folder, not a pipe), of bounded size, so that no input makes pushplan read until
 //! memory runs out. The limits are documented in the README ("Input limits").
 
@@ -71,4 +71,29 @@ pub fn shorten_quoted(message: &str) -> String {
     }
     out.push_str(rest);
     out
+}
+
+/// How a file in the folder `from` refers to `to`: the relative path between them (both
+/// made absolute, `.` and `..` resolved by name), `/`-separated.
+pub fn relative_path(from: &Path, to: &Path) -> Result<String, String> {
+    use std::path::Component;
+    let absolute = |p: &Path| std::path::absolute(p).map_err(|e| format!("{}: {e}", p.display()));
+    let normal = |p: std::path::PathBuf| -> Vec<String> {
+        let mut parts: Vec<String> = Vec::new();
+        for c in p.components() {
+            match c {
+                Component::ParentDir => {
+                    parts.pop();
+                }
+                Component::Normal(s) => parts.push(s.to_string_lossy().into_owned()),
+                _ => {}
+            }
+        }
+        parts
+    };
+    let (from, to) = (normal(absolute(from)?), normal(absolute(to)?));
+    let common = from.iter().zip(&to).take_while(|(a, b)| a == b).count();
+    let mut parts: Vec<String> = vec!["..".into(); from.len() - common];
+    parts.extend(to[common..].iter().cloned());
+    Ok(parts.join("/"))
 }

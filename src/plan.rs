@@ -217,24 +217,6 @@ fn finite<'a>(field: &str, values: impl IntoIterator<Item = &'a f64>) -> Result<
     }
 }
 
-/// The components of an absolute path with `.` and `..` resolved lexically.
-fn normal(path: &Path) -> Vec<std::ffi::OsString> {
-    use std::path::Component;
-    let mut parts: Vec<std::ffi::OsString> = Vec::new();
-    for c in path.components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir => {
-                if parts.len() > 1 {
-                    parts.pop();
-                }
-            }
-            other => parts.push(other.as_os_str().to_owned()),
-        }
-    }
-    parts
-}
-
 impl PlanFile {
     /// Reads a plan file and checks its shape: the format, no unknown fields, step counts
     /// within [`MAX_PLAN_STEPS`], one value per joint and object everywhere, finite
@@ -378,28 +360,12 @@ impl PlanFile {
         if scene_path.is_absolute() {
             return scene_path.to_string_lossy().into_owned();
         }
-        let folder = plan_path.parent().filter(|p| !p.as_os_str().is_empty());
-        let absolute = |p: &Path| std::path::absolute(p).ok();
-        let (Some(scene), Some(folder)) = (
-            absolute(scene_path),
-            absolute(folder.unwrap_or(Path::new("."))),
-        ) else {
-            return scene_path.to_string_lossy().into_owned();
-        };
-        let (scene, folder) = (normal(&scene), normal(&folder));
-        let common = scene
-            .iter()
-            .zip(&folder)
-            .take_while(|(a, b)| a == b)
-            .count();
-        let mut relative = PathBuf::new();
-        for _ in common..folder.len() {
-            relative.push("..");
-        }
-        for part in &scene[common..] {
-            relative.push(part);
-        }
-        relative.to_string_lossy().into_owned()
+        let folder = plan_path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        crate::input::relative_path(folder, scene_path)
+            .unwrap_or_else(|_| scene_path.to_string_lossy().into_owned())
     }
 
     /// Builds a plan file by simulating `controls` in the planner's problem of `scene`:

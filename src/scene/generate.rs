@@ -9,7 +9,7 @@
 
 use super::Scene;
 use crate::random::SplitMix64;
-use std::path::{Component, Path, PathBuf};
+use std::path::{Path, PathBuf};
 
 /// Where the goal disc is, in every scene (m): in reach of HERB's other arm.
 pub const GOAL_CENTER: [f64; 2] = [0.85, -0.3];
@@ -100,7 +100,7 @@ pub fn generate(
         ));
     }
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let urdf = relative_path(
+    let urdf = crate::input::relative_path(
         dir,
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("robots/wam7.urdf"),
     )?;
@@ -269,27 +269,4 @@ objects:
         );
         yaml
     }
-}
-
-/// `to` relative to the folder `from` (both made absolute).
-fn relative_path(from: &Path, to: &Path) -> Result<String, String> {
-    let absolute = |p: &Path| std::path::absolute(p).map_err(|e| format!("{}: {e}", p.display()));
-    let normal = |p: PathBuf| -> Vec<String> {
-        let mut parts: Vec<String> = Vec::new();
-        for c in p.components() {
-            match c {
-                Component::ParentDir => {
-                    parts.pop();
-                }
-                Component::Normal(s) => parts.push(s.to_string_lossy().into_owned()),
-                _ => {}
-            }
-        }
-        parts
-    };
-    let (from, to) = (normal(absolute(from)?), normal(absolute(to)?));
-    let common = from.iter().zip(&to).take_while(|(a, b)| a == b).count();
-    let mut parts: Vec<String> = vec!["..".into(); from.len() - common];
-    parts.extend(to[common..].iter().cloned());
-    Ok(parts.join("/"))
 }
