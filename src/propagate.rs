@@ -236,7 +236,6 @@ impl Propagator {
                     &contacts.planar,
                     &contacts.elevations,
                     &motion,
-                    body.mu_c,
                     &mut self.forces,
                 );
                 let balance = support_balance(body.mass, body.footprint.centroid(), &self.forces);

@@ -10,6 +10,7 @@ fn surface(c: f64) -> LimitSurface {
     LimitSurface {
         c,
         f_max: 0.4 * 1.0 * 9.81,
+        centre: Vector2::zeros(),
     }
 }
 
@@ -38,6 +39,51 @@ fn assert_twist(got: &pushplan::math::Twist2, want: [f64; 3], tol: f64) {
             "twist {g:?} != expected {want:?}"
         );
     }
+}
+
+#[test]
+fn a_push_through_the_centroid_turns_a_box_whose_centre_of_friction_is_off_it() {
+    // The support pressure loaded towards +y moves the centre of friction to (0, d): a
+    // push through the centroid along +x passes below it and turns the box
+    // counter-clockwise. Sticking, in the frame of the centre of friction the contact is
+    // at (-b, -d); the origin then moves with the pusher (it lies on the push line).
+    let (b, c, d) = (0.05, 0.038, 0.01);
+    let surface = LimitSurface {
+        centre: Vector2::new(0.0, d),
+        ..surface(c)
+    };
+    let m = object_motion(
+        &[contact([-b, 0.0], [1.0, 0.0], [0.1, 0.0])],
+        &surface,
+        0.6,
+        DT,
+    )
+    .unwrap();
+    let about_centre = sticking_twist(c, -b, -d, 0.1, 0.0);
+    let omega = about_centre[2];
+    assert!(omega > 0.0);
+    // v_origin = v_centre + omega z x (origin - centre) = v_centre + omega (d, 0).
+    assert_twist(
+        &m.twist,
+        [about_centre[0] + omega * d, about_centre[1], omega],
+        1e-12,
+    );
+    assert!(
+        (m.twist.vx - 0.1).abs() < 1e-12,
+        "the origin keeps up with the pusher"
+    );
+    // Mirrored: the centre of friction at (0, -d) turns it the other way.
+    let mirrored = object_motion(
+        &[contact([-b, 0.0], [1.0, 0.0], [0.1, 0.0])],
+        &LimitSurface {
+            centre: Vector2::new(0.0, -d),
+            ..surface
+        },
+        0.6,
+        DT,
+    )
+    .unwrap();
+    assert!((mirrored.twist.omega + omega).abs() < 1e-12);
 }
 
 #[test]

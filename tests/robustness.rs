@@ -35,6 +35,7 @@ fn without_noise_every_trial_is_the_plan_and_more_noise_reaches_the_goal_less_of
         mu_g: 0.0,
         mu_c: 0.0,
         c: 0.0,
+        friction_centre: 0.0,
     };
     let exact = robustness(&scene, &controls(), &none, 5, 1);
     assert_eq!(exact.success_rate, 1.0, "{:?}", exact.trials[0]);
@@ -81,4 +82,27 @@ fn the_plan_executed_in_3d_reaches_the_goal_and_matches_the_prediction() {
         "{:?}",
         report.trials[0]
     );
+}
+
+#[test]
+fn an_unknown_pressure_distribution_makes_a_point_push_fragile_and_leaves_a_flat_push_robust() {
+    // The model's noise shifts the centre of friction (the support pressure is not known
+    // to be uniform); the world's does not. A flat face pushing the box straight holds
+    // it whatever the pressure; a small round pusher through the centroid turns it one
+    // way or the other.
+    let base = std::fs::read_to_string(SCENE).unwrap();
+    let point = base.replace(
+        "shape: {type: box, size: [0.04, 0.12, 0.08]}",
+        "shape: {type: cylinder, radius: 0.02, height: 0.08}",
+    );
+    let rates = |yaml: &str| {
+        let scene = Scene::from_yaml(yaml, std::path::Path::new(SCENE)).unwrap();
+        let world = robustness(&scene, &controls(), &Noise::world(), 40, 3).success_rate;
+        let model = robustness(&scene, &controls(), &Noise::default(), 40, 3).success_rate;
+        (world, model)
+    };
+    assert_eq!(rates(&base), (1.0, 1.0), "the flat push");
+    let (world, model) = rates(&point);
+    assert_eq!(world, 1.0, "the point push in the world's noise");
+    assert!(model < 0.8, "the point push in the model's noise: {model}");
 }

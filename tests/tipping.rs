@@ -40,11 +40,12 @@ fn push(
     let surface = LimitSurface {
         c,
         f_max: MU_G * MASS * GRAVITY,
+        centre: Vector2::zeros(),
     };
     let motion = object_motion(&[contact], &surface, mu_c, 0.01).unwrap();
     let mut forces = Vec::new();
     let elevation = ContactElevation { height, slope: 0.0 };
-    pusher_forces(&[contact], &[elevation], &motion, mu_c, &mut forces);
+    pusher_forces(&[contact], &[elevation], &motion, &mut forces);
     let balance = support_balance(MASS, footprint.centroid(), &forces);
     (
         motion.normal_forces[0],
@@ -107,15 +108,16 @@ fn friction_at_a_sliding_contact_raises_the_tipping_height() {
 }
 
 #[test]
-fn pressing_down_steeper_than_the_friction_angle_keeps_an_object_flat_and_lifting_tips_it() {
-    // A downward push pulls the centre of pressure toward its point, but friction in the
-    // contact may cancel the part within the friction angle; a contact that lifts the
-    // whole weight leaves no support (N <= 0).
+fn pressing_down_is_not_counted_on_and_lifting_tips() {
+    // A downward push would pull the centre of pressure toward its point, but friction
+    // in the 3D contact may cancel it: the model does not count on it. A contact that
+    // lifts the whole weight leaves no support (N <= 0).
     let (b, mu_c) = (0.051, 0.3);
     let contact = flat_on([-b, 0.0], [0.1, 0.0]);
     let surface = LimitSurface {
         c: square_c(b),
         f_max: MU_G * MASS * GRAVITY,
+        centre: Vector2::zeros(),
     };
     let motion = object_motion(&[contact], &surface, mu_c, 0.01).unwrap();
     let balance = |slope: f64, height: f64| {
@@ -124,26 +126,23 @@ fn pressing_down_steeper_than_the_friction_angle_keeps_an_object_flat_and_liftin
             &[contact],
             &[ContactElevation { height, slope }],
             &motion,
-            mu_c,
             &mut forces,
         );
         support_balance(MASS, Vector2::zeros(), &forces)
     };
     let h = 1.2 * b / MU_G;
     assert!(!balance(0.0, h).stays_flat(&square(b), 0.0));
-    // Pressing down at 11 degrees, within the friction angle (16.7 degrees): no help.
-    assert_eq!(balance(0.2, h), balance(0.0, h));
-    // At alpha = atan(2) (63 degrees) the force may lean up by the friction angle:
-    // fz = -fn tan(alpha - atan(mu_c)), N = m g + fn tan(...), N x_P = fn h - fz x_C.
-    let lean = (2f64.atan() - mu_c.atan()).tan();
-    let fn_ = MU_G * MASS * GRAVITY;
-    let pressed = balance(2.0, h);
-    let n = MASS * GRAVITY + fn_ * lean;
-    assert!((pressed.normal - n).abs() < 1e-9);
-    let x = (fn_ * h - fn_ * lean * b) / n;
-    assert!((pressed.p_OP.x - x).abs() < 1e-12);
-    assert!(pressed.stays_flat(&square(b), 0.0));
-    // Pushing up at a slope that lifts more than the weight.
+    // Pressing down, gently or steeply: no help.
+    for slope in [0.2, 2.0, 10.0] {
+        assert_eq!(balance(slope, h), balance(0.0, h));
+    }
+    // Pushing up at slope s lifts s fn at x = -b: N = m g - s fn, N x_P = fn h + s fn b;
+    let (s, fn_) = (0.5, MU_G * MASS * GRAVITY);
+    let lifted = balance(-s, 0.5 * h);
+    let n = MASS * GRAVITY - s * fn_;
+    assert!((lifted.normal - n).abs() < 1e-9);
+    assert!((lifted.p_OP.x - (fn_ * 0.5 * h + s * fn_ * b) / n).abs() < 1e-12);
+    // ... and a slope that lifts more than the weight leaves no support.
     assert!(!balance(-(1.0 / MU_G + 0.01), 0.0).stays_flat(&square(b), 0.0));
     assert_eq!(
         support_balance(MASS, Vector2::zeros(), &[]).p_OP,

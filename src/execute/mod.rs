@@ -3,7 +3,7 @@
 //! can slide, turn and tip. This checks the planar quasistatic model from outside: the
 //! engine knows nothing of limit surfaces, complementarity or tipping rules.
 //!
-//! Each trial perturbs the scene as [`crate::robustness::Noise`] says, plays the
+//! Each trial perturbs the scene as [`Noise::world`] says, plays the
 //! trajectory at `speed` times its planned pace, lets the objects settle, and compares
 //! with the plan's predicted object poses.
 
@@ -40,7 +40,7 @@ impl Default for ExecuteSettings {
             trials: 10,
             speed: 1.0,
             seed: 1,
-            noise: Noise::default(),
+            noise: Noise::world(),
             record: false,
             solver: SolverSettings::default(),
         }

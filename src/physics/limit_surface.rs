@@ -103,6 +103,9 @@ pub struct LimitSurface {
     pub c: f64,
     /// Largest friction force the table can exert, `mu_g m g` (N).
     pub f_max: f64,
+    /// Centre of friction, object frame (m): the footprint's centroid (the origin) under
+    /// a uniform pressure; elsewhere when the pressure is not (robustness perturbs it).
+    pub centre: Vector2<f64>,
 }
 
 impl LimitSurface {

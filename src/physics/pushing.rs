@@ -43,9 +43,11 @@ impl PlanarContact {
         Vector2::new(-self.normal.y, self.normal.x)
     }
 
-    /// Wrench of a unit force `f` at the contact point: (fx, fy, x fy - y fx).
-    fn wrench(&self, f: Vector2<f64>) -> Vector3<f64> {
-        Vector3::new(f.x, f.y, self.point.x * f.y - self.point.y * f.x)
+    /// Wrench of a unit force `f` at the contact point about `centre`:
+    /// (fx, fy, x fy - y fx) with (x, y) the point relative to the centre.
+    fn wrench(&self, f: Vector2<f64>, centre: Vector2<f64>) -> Vector3<f64> {
+        let r = self.point - centre;
+        Vector3::new(f.x, f.y, r.x * f.y - r.y * f.x)
     }
 }
 
@@ -56,7 +58,7 @@ pub struct Jammed;
 /// The solved motion of a pushed object.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObjectMotion {
-    /// Body twist (m/s, rad/s) about the centre of friction.
+    /// Body twist (m/s, rad/s) of the object frame's origin.
     pub twist: Twist2,
     /// Normal force at each contact (N), scaled so the total wrench lies on the limit surface.
     pub normal_forces: Vec<f64>,
@@ -93,8 +95,15 @@ pub fn object_motion(
     }
 
     let a = surface.mobility();
-    let normals: Vec<Vector3<f64>> = contacts.iter().map(|c| c.wrench(c.normal)).collect();
-    let tangents: Vec<Vector3<f64>> = contacts.iter().map(|c| c.wrench(c.tangent())).collect();
+    let centre = surface.centre;
+    let normals: Vec<Vector3<f64>> = contacts
+        .iter()
+        .map(|c| c.wrench(c.normal, centre))
+        .collect();
+    let tangents: Vec<Vector3<f64>> = contacts
+        .iter()
+        .map(|c| c.wrench(c.tangent(), centre))
+        .collect();
 
     // Blocks of M: rows/cols ordered (fn, fl, fr, lambda), each of size m.
     let mut mat = DMatrix::<f64>::zeros(4 * m, 4 * m);
@@ -143,10 +152,12 @@ pub fn object_motion(
     } else {
         0.0
     };
+    // The limit surface gives the twist about the centre of friction c; the origin o
+    // moves at v_c + omega z x (o - c).
     Ok(ObjectMotion {
         twist: Twist2 {
-            vx: v.x,
-            vy: v.y,
+            vx: v.x + v.z * centre.y,
+            vy: v.y - v.z * centre.x,
             omega: v.z,
         },
         normal_forces: (0..m).map(|i| z[i] * scale).collect(),

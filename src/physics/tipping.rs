@@ -35,17 +35,14 @@ pub struct ContactElevation {
 }
 
 impl ContactElevation {
-    /// Vertical force on the object per newton of horizontal normal force (negative:
-    /// down). Friction in the 3D contact, which the planar model leaves open, may point
-    /// up the slope as far as the friction cone allows, so a pusher pressing down at
-    /// `alpha` is only counted on for `tan(alpha - atan(mu_c))`, and not at all within the
-    /// friction angle. A contact pushing up lifts by its own slope.
-    pub fn lift(&self, mu_c: f64) -> f64 {
-        if self.slope >= 0.0 {
-            ((mu_c - self.slope) / (1.0 + mu_c * self.slope)).min(0.0)
-        } else {
-            -self.slope
-        }
+    /// Vertical force on the object per newton of horizontal normal force (positive:
+    /// up). A contact that pushes up lifts by its own slope. A pusher pressing down (on a
+    /// rim, a top edge) is not counted on at all: friction in the 3D contact, which the
+    /// planar model leaves open, may cancel the press, and in the 3D engine boxes pressed
+    /// down by a sloping forearm tipped where counting on the press beyond the friction
+    /// angle said they would not (BENCHMARKS.md, "Plans that work in the world").
+    pub fn lift(&self) -> f64 {
+        (-self.slope).max(0.0)
     }
 }
 
@@ -101,13 +98,12 @@ impl SupportBalance {
     }
 }
 
-/// The pusher forces of a solved push with contact friction `mu_c`, object frame: each
-/// planar contact's force at its point and elevation.
+/// The pusher forces of a solved push, object frame: each planar contact's force at its
+/// point and elevation.
 pub fn pusher_forces(
     contacts: &[PlanarContact],
     elevations: &[ContactElevation],
     motion: &ObjectMotion,
-    mu_c: f64,
     out: &mut Vec<PusherForce>,
 ) {
     out.clear();
@@ -120,7 +116,7 @@ pub fn pusher_forces(
                 let f = motion.force(contacts, i);
                 PusherForce {
                     p_OC: Vector3::new(c.point.x, c.point.y, e.height),
-                    f: Vector3::new(f.x, f.y, e.lift(mu_c) * motion.normal_forces[i]),
+                    f: Vector3::new(f.x, f.y, e.lift() * motion.normal_forces[i]),
                 }
             }),
     );

@@ -500,6 +500,7 @@ impl Loader<'_> {
             limit_surface: LimitSurface {
                 c,
                 f_max: o.mu_g * o.mass * GRAVITY,
+                centre: Vector2::zeros(),
             },
         };
         Ok((object, pose))
