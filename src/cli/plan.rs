@@ -150,6 +150,23 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         solution.propagation_steps,
         solution.propagation_steps as f64 / solution.planning_time.max(1e-9)
     );
+    if !solution.exact && !found.is_empty() {
+        let goal = &problem.scene().goal;
+        let left = goal.distance(path.simulation.final_state());
+        println!(
+            "closest: {}",
+            match goal {
+                crate::scene::Goal::ObjectInDisc { margin, .. } => format!(
+                    "the goal object ends {:.0} mm from the goal region (the goal disc less its {:.0} mm margin)",
+                    1e3 * left,
+                    1e3 * margin
+                ),
+                crate::scene::Goal::Configuration { .. } => format!(
+                    "the arm ends {left:.3} rad (joint-space distance) beyond the goal configuration's tolerance"
+                ),
+            }
+        );
+    }
     println!(
         "search: {}",
         crate::planner::SearchStats::from(&solution.search).report()
