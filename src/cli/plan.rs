@@ -205,13 +205,24 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             moved.join(", ")
         }
     );
+    // The joint-space length sums |dq| over the joints: radians only if every joint
+    // turns (the planar hand's slide in metres and turn in radians).
+    let revolute = (0..dof).all(|i| {
+        problem.scene().robot.chain.dof_joint(i).kind == crate::robot::JointKind::Revolute
+    });
+    let manipulator = if revolute {
+        format!(
+            "{:.2} rad / {:.2} m of end-effector travel (before shortcutting {:.2} rad / {:.2} m)",
+            a.joint_length, a.ee_length, b.joint_length, b.ee_length
+        )
+    } else {
+        format!(
+            "{:.2} m of end-effector travel (before shortcutting {:.2} m)",
+            a.ee_length, b.ee_length
+        )
+    };
     println!(
-        "manipulator path: {:.2} rad / {:.2} m of end-effector travel (before shortcutting {:.2} rad / {:.2} m); \
-         object displacement {:.3} m (before {:.3} m); {} made contact",
-        a.joint_length,
-        a.ee_length,
-        b.joint_length,
-        b.ee_length,
+        "manipulator path: {manipulator}; object displacement {:.3} m (before {:.3} m); {} made contact",
         a.object_displacement,
         b.object_displacement,
         match a.links_in_contact {
