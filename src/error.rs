@@ -30,6 +30,14 @@ pub enum Error {
 }
 
 impl Error {
+    /// The file could not be read: `message` says why.
+    pub fn io(file: &Path, message: impl Into<String>) -> Self {
+        Error::Io {
+            file: file.to_path_buf(),
+            message: message.into(),
+        }
+    }
+
     pub fn invalid(file: &Path, field: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Invalid {
             file: file.to_path_buf(),

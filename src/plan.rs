@@ -249,18 +249,18 @@ impl PlanFile {
     /// The checks of [`PlanFile::read`] after parsing.
     fn check_shape(&self) -> Result<(), String> {
         let (dof, objects) = (self.joints.len(), self.objects.len());
-        let state = |field: &str, s: &StateRecord| -> Result<(), String> {
-            if s.q.len() != dof || s.objects.len() != objects {
+        let state = |field: &str, q: &[f64], poses: &[[f64; 3]]| -> Result<(), String> {
+            if q.len() != dof || poses.len() != objects {
                 return Err(format!(
                     "{field}: {} joint values and {} object poses for {dof} joints and {objects} objects",
-                    s.q.len(),
-                    s.objects.len()
+                    q.len(),
+                    poses.len()
                 ));
             }
-            finite(field, s.q.iter().chain(s.objects.iter().flatten()))
+            finite(field, q.iter().chain(poses.iter().flatten()))
         };
         finite("step", [&self.step])?;
-        state("start", &self.start)?;
+        state("start", &self.start.q, &self.start.objects)?;
         let mut total = 0usize;
         for (i, c) in self.controls.iter().enumerate() {
             let field = |name: &str| format!("controls[{i}].{name}");
@@ -281,7 +281,7 @@ impl PlanFile {
             }
             finite(&field("ee_velocity"), &c.ee_velocity)?;
             finite(&field("nullspace"), &c.nullspace)?;
-            state(&field("state"), &c.state)?;
+            state(&field("state"), &c.state.q, &c.state.objects)?;
         }
         let t = &self.trajectory;
         if t.q.len() != t.times.len() || t.objects.len() != t.times.len() {
@@ -292,14 +292,8 @@ impl PlanFile {
                 t.objects.len()
             ));
         }
-        for (k, (q, o)) in t.q.iter().zip(&t.objects).enumerate() {
-            state(
-                &format!("trajectory sample {k}"),
-                &StateRecord {
-                    q: q.clone(),
-                    objects: o.clone(),
-                },
-            )?;
+        for (k, (q, poses)) in t.q.iter().zip(&t.objects).enumerate() {
+            state(&format!("trajectory sample {k}"), q, poses)?;
         }
         finite("trajectory.times", &t.times)
     }
@@ -449,20 +443,27 @@ impl PlanFile {
     /// plan's scene, [`PlanFile::load_scene`]): what `execute` plays must be the plan, not
     /// an arbitrary list of samples.
     pub fn check_trajectory(&self, scene: &Scene) -> Result<(), String> {
-        let rebuilt = PlanFile::build(
-            &self.scene,
-            scene.clone(),
-            &self.settings,
-            &self.path_controls(),
-            None,
-        )?;
-        if rebuilt.trajectory != self.trajectory {
+        if self.rebuilt(scene.clone())?.trajectory != self.trajectory {
             return Err(
                 "trajectory: not the one the plan's controls give (`pushplan check` names the difference)"
                     .into(),
             );
         }
         Ok(())
+    }
+
+    /// The plan file its controls give in `scene` (the plan's scene), with what cannot
+    /// be re-derived from them (the metrics before shortcutting, robustness) copied over.
+    fn rebuilt(&self, scene: Scene) -> Result<PlanFile, String> {
+        let mut rebuilt = PlanFile::build(
+            &self.scene,
+            scene,
+            &self.settings,
+            &self.path_controls(),
+            Some(self.metrics.before_shortcut),
+        )?;
+        rebuilt.robustness.clone_from(&self.robustness);
+        Ok(rebuilt)
     }
 
     /// The controls of the plan.
@@ -523,15 +524,7 @@ impl PlanFile {
         }
         let mut record_matches = problems.is_empty();
         if record_matches {
-            let mut rebuilt = PlanFile::build(
-                &self.scene,
-                scene,
-                &self.settings,
-                &self.path_controls(),
-                Some(self.metrics.before_shortcut),
-            )?;
-            rebuilt.robustness.clone_from(&self.robustness);
-            if let Some(field) = first_difference(self, &rebuilt) {
+            if let Some(field) = first_difference(self, &self.rebuilt(scene)?) {
                 record_matches = false;
                 problems.push(format!("{field}: differs from the re-simulation"));
             }

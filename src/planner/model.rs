@@ -283,14 +283,14 @@ impl Model {
         })
     }
 
-    /// Switches to (or from) the Static RRT baseline: clutter objects become static
-    /// obstacles at their start poses.
     /// From `seconds` from now on, every propagation is refused (invalid, no step taken):
     /// the search's time limit. Infinite: no limit.
     pub fn set_time_limit(&mut self, seconds: f64) {
         self.deadline = super::deadline(Instant::now(), seconds);
     }
 
+    /// Switches to (or from) the Static RRT baseline: clutter objects become static
+    /// obstacles at their start poses.
     pub fn set_static_clutter(&mut self, on: bool) {
         self.static_mode = on;
         self.last_result = None;

@@ -50,13 +50,8 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
     if extension.as_deref() != Some("stl") {
         return Err(mesh_error("only STL meshes are supported".into()));
     }
-    let bytes =
-        crate::input::read_bytes(path, crate::input::MAX_MESH_BYTES).map_err(|message| {
-            Error::Io {
-                file: path.to_path_buf(),
-                message,
-            }
-        })?;
+    let bytes = crate::input::read_bytes(path, crate::input::MAX_MESH_BYTES)
+        .map_err(|message| Error::io(path, message))?;
     let mesh = stl_io::read_stl(&mut std::io::Cursor::new(bytes))
         .map_err(|e| mesh_error(e.to_string()))?;
     let points: Vec<Point3<f64>> = mesh

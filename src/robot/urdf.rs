@@ -23,12 +23,8 @@ pub fn load_urdf(path: &Path, end_effector: &str, base: Isometry3<f64>) -> Resul
         file: path.to_path_buf(),
         message,
     };
-    let text = crate::input::read_text(path, crate::input::MAX_URDF_BYTES).map_err(|message| {
-        Error::Io {
-            file: path.to_path_buf(),
-            message,
-        }
-    })?;
+    let text = crate::input::read_text(path, crate::input::MAX_URDF_BYTES)
+        .map_err(|message| Error::io(path, message))?;
     let robot = urdf_rs::read_from_string(&text).map_err(|e| urdf_error(e.to_string()))?;
 
     let order = tree_order(&robot).map_err(urdf_error)?;

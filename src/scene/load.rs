@@ -25,13 +25,8 @@ impl Scene {
     /// Loads and validates the scene file at `path`.
     pub fn load(path: impl AsRef<Path>) -> Result<Scene> {
         let path = path.as_ref();
-        let text =
-            crate::input::read_text(path, crate::input::MAX_SCENE_BYTES).map_err(|message| {
-                Error::Io {
-                    file: path.to_path_buf(),
-                    message,
-                }
-            })?;
+        let text = crate::input::read_text(path, crate::input::MAX_SCENE_BYTES)
+            .map_err(|message| Error::io(path, message))?;
         Scene::from_yaml(&text, path)
     }
 
