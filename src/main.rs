@@ -243,19 +243,7 @@ fn main() -> ExitCode {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
     let cli = Cli::parse();
-    // A panic is a bug in pushplan, never the user's input: report it in one line and
-    // exit with 3, apart from bad input (2) and an unsolved or failed plan (1).
-    std::panic::set_hook(Box::new(|info| {
-        eprintln!("internal error: {info} (a bug in pushplan: please report it)");
-    }));
-    match std::panic::catch_unwind(move || run(cli.command)) {
-        Ok(Ok(code)) => code,
-        Ok(Err(message)) => {
-            eprintln!("error: {message}");
-            ExitCode::from(2)
-        }
-        Err(_) => ExitCode::from(3),
-    }
+    pushplan::cli::exit_code(move || run(cli.command))
 }
 
 /// Runs one command: its exit code, or the message of bad input.

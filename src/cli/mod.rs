@@ -19,3 +19,22 @@ pub use plan::{plan, PlanOptions};
 pub fn cores() -> u32 {
     std::thread::available_parallelism().map_or(1, |n| n.get() as u32)
 }
+
+/// Runs a command and says how the process exits: its own code, 2 after bad input (the
+/// message printed), 3 after a panic. A panic is a bug in pushplan, never the user's
+/// input: it is reported in one line, not as a backtrace.
+pub fn exit_code(
+    command: impl FnOnce() -> Result<std::process::ExitCode, String>,
+) -> std::process::ExitCode {
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("internal error: {info} (a bug in pushplan: please report it)");
+    }));
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(command)) {
+        Ok(Ok(code)) => code,
+        Ok(Err(message)) => {
+            eprintln!("error: {message}");
+            std::process::ExitCode::from(2)
+        }
+        Err(_) => std::process::ExitCode::from(3),
+    }
+}
