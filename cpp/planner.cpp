@@ -145,6 +145,8 @@ namespace pushplan
             const double goal_bias = options.goal_bias.value_or(info.planner.goal_bias);
             checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
             checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
+            checked("robust_shortcut", options.robust_shortcut,
+                    std::isfinite(options.robust_shortcut) && options.robust_shortcut >= 0.0);
             checked("shortcut", options.shortcut, std::isfinite(options.shortcut) && options.shortcut >= 0.0);
 
             // OMPL's log level is process-wide: quiet below warnings while planning, then put
@@ -227,17 +229,29 @@ namespace pushplan
             Plan plan;
             read_path();
             // Robust planning: a solution that too few perturbed re-simulations carry to the
-            // goal is dropped, and its search starts over with a new tree (the old tree's
-            // next solutions would mostly extend the dropped one, past its goal node).
+            // goal is first shortcut toward the most robust path (`planner::finish`); if it is
+            // still not robust enough it is dropped, and its search starts over with a new tree
+            // (the old tree's next solutions would mostly extend the dropped one, past its goal
+            // node).
             while (winner && options.robust_trials > 0)
             {
-                plan.robustness = models[*winner]->model().robustness(
-                    detail::slice(found.controls), detail::slice(found.steps), options.robust_trials, seed);
+                const bridge::FinishedPath repaired = models[*winner]->finish(
+                    found, true, bridge::FinishSettings{options.robust_shortcut, seed, options.robust_trials,
+                                                        options.robust_rate, time_limit - elapsed()});
+                plan.robustness = repaired.robustness;
                 if (plan.robustness >= options.robust_rate)
+                {
+                    found = {std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
+                             std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
+                             std::vector<double>(repaired.states.begin(), repaired.states.end())};
                     break;
+                }
                 if (options.progress)
-                    std::fprintf(stderr, "  a solution reaches the goal in %.0f %% of %u perturbed re-simulations: searching on\n",
-                                 100.0 * plan.robustness, options.robust_trials);
+                    std::fprintf(stderr,
+                                 "  a solution reaches the goal in %.0f %% of %u perturbed re-simulations "
+                                 "(%zu of %zu controls kept shortcutting toward robustness): searching on\n",
+                                 100.0 * plan.robustness, options.robust_trials, repaired.steps.size(),
+                                 found.steps.size());
                 if (out_of_time())
                 {
                     winner.reset();  // the last path is kept, as an approximate solution

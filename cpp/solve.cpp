@@ -17,6 +17,7 @@ namespace pushplan::bridge
         o.progress = options.progress;
         o.robust_trials = static_cast<unsigned>(options.robust_trials);
         o.robust_rate = options.robust_rate;
+        o.robust_shortcut = options.robust_shortcut;
         o.threads = options.threads;
         o.shortcut = 0.0;  // the CLI finishes the path itself (planner::finish), to report on it
 

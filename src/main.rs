@@ -68,6 +68,11 @@ enum Command {
         /// The fraction of --robust re-simulations that must reach the goal.
         #[arg(long, default_value_t = 0.9)]
         robust_rate: f64,
+        /// Shortcutting budget (seconds of work) spent on each solution that is not robust
+        /// enough, toward the path that reaches the goal in the most perturbed scenes, before
+        /// it is dropped.
+        #[arg(long, default_value_t = 3.0)]
+        robust_shortcut: f64,
         /// Searches in parallel, one per thread, advancing in rounds of propagation steps
         /// (the same seed and thread count give the same plan); default: one per core.
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
@@ -262,12 +267,14 @@ fn run(command: Command) -> Result<ExitCode, String> {
             quiet,
             robust,
             robust_rate,
+            robust_shortcut,
             threads,
         } => {
             let scene = scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
             let options = PlanOptions {
                 robust,
                 robust_rate,
+                robust_shortcut,
                 threads: threads.unwrap_or_else(pushplan::cli::cores),
                 time,
                 seed,

@@ -6,10 +6,11 @@
 //! pushing plane from the arm alone), so re-simulating the controls is executing the
 //! plan open loop.
 
-use crate::path::{simulate, PathControl};
+use crate::path::{simulate, PathControl, SimulatedPath};
 use crate::propagate::Propagator;
 use crate::random::SplitMix64;
 use crate::scene::{Goal, Scene};
+use crate::state::State;
 use crate::validity::{check_state, Clearances, Invalid};
 use serde::Serialize;
 use std::sync::Arc;
@@ -133,6 +134,41 @@ pub struct RobustnessReport {
     pub std_xy_yaw: [f64; 3],
 }
 
+/// One possible real world: a perturbed copy of the scene ([`Noise::perturb`]) with its
+/// own propagator, ready to re-simulate controls in.
+pub struct PerturbedWorld {
+    propagator: Propagator,
+    start: State,
+}
+
+impl PerturbedWorld {
+    /// Draws a world from `rng`.
+    pub fn draw(noise: &Noise, scene: &Scene, rng: &mut SplitMix64) -> Result<Self, Invalid> {
+        let perturbed = noise.perturb(scene, rng)?;
+        Ok(Self {
+            start: perturbed.start.clone(),
+            propagator: Propagator::new(perturbed),
+        })
+    }
+
+    /// The perturbed start state.
+    pub fn start(&self) -> &State {
+        &self.start
+    }
+
+    /// `controls` simulated in this world from `from` (a state of this world).
+    pub fn simulate(&mut self, from: &State, controls: &[PathControl]) -> SimulatedPath {
+        simulate(&mut self.propagator, from, controls, false)
+    }
+}
+
+/// Whether a re-simulation reached `goal`: every state valid and the goal object's centre
+/// inside the disc at the end (the planner's margin not required: it is the reserve the
+/// perturbation spends).
+pub fn reaches(goal: &Goal, path: &SimulatedPath) -> bool {
+    path.valid() && goal.task_distance(path.final_state()) <= 0.0
+}
+
 /// Re-simulates `controls` from `trials` perturbations of `scene` (drawn from `seed`).
 pub fn robustness(
     scene: &Scene,
@@ -152,27 +188,25 @@ pub fn robustness(
     };
     let mut rng = SplitMix64::new(seed);
     let runs: Vec<Trial> = (0..trials)
-        .map(|_| match noise.perturb(scene, &mut rng) {
+        .map(|_| match PerturbedWorld::draw(noise, scene, &mut rng) {
             Err(e) => Trial {
                 reached: false,
                 failure: Some(format!("no valid perturbed start: {e}")),
                 goal_object: None,
                 goal_distance: f64::INFINITY,
             },
-            Ok(perturbed) => {
-                let start = perturbed.start.clone();
-                let mut propagator = Propagator::new(Arc::new(perturbed));
-                let path = simulate(&mut propagator, &start, controls, false);
+            Ok(mut world) => {
+                let start = world.start.clone();
+                let path = world.simulate(&start, controls);
                 let end = path.final_state();
-                let goal_distance = scene.goal.task_distance(end);
                 Trial {
-                    reached: path.stopped_by.is_none() && goal_distance <= 0.0,
+                    reached: reaches(&scene.goal, &path),
                     failure: path
                         .stopped_by
                         .as_ref()
                         .map(|(i, why)| format!("control {i}: {why}")),
                     goal_object: goal_object.map(|g| pose_array(&end.objects[g])),
-                    goal_distance,
+                    goal_distance: scene.goal.task_distance(end),
                 }
             }
         })

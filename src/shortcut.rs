@@ -15,6 +15,8 @@ use crate::path::{simulate, PathControl, PathMetrics, SimulatedPath};
 use crate::propagate::Propagator;
 use crate::random::SplitMix64;
 use crate::robot::EeAction;
+use crate::robustness::{reaches, PerturbedWorld};
+use crate::scene::Goal;
 use crate::state::State;
 use nalgebra::DVector;
 use std::time::Instant;
@@ -55,12 +57,40 @@ pub struct ShortcutOutcome {
     pub stopped_at_deadline: bool,
 }
 
-/// Shortcuts a valid path from `start` that reaches the scene's goal.
+/// What a shortcut must improve to be kept.
+pub enum Criterion {
+    /// The manipulator path in joint space (the paper's Sec. IV).
+    Shorter,
+    /// Reaching the goal in more of these perturbed worlds; in as many, a shorter path.
+    /// Robust planning shortcuts toward the most robust path with it.
+    MoreRobust(Vec<PerturbedWorld>),
+}
+
+/// Shortcuts a valid path from `start` that reaches the scene's goal, keeping shortcuts
+/// that make the manipulator path shorter.
 pub fn shortcut(
     propagator: &mut Propagator,
     start: &State,
     controls: &[PathControl],
     settings: &ShortcutSettings,
+) -> ShortcutOutcome {
+    shortcut_by(
+        propagator,
+        start,
+        controls,
+        settings,
+        &mut Criterion::Shorter,
+    )
+}
+
+/// Shortcuts a valid path from `start` that reaches the scene's goal, keeping shortcuts
+/// that improve it by `criterion`. Every kept path is valid and reaches the goal.
+pub fn shortcut_by(
+    propagator: &mut Propagator,
+    start: &State,
+    controls: &[PathControl],
+    settings: &ShortcutSettings,
+    criterion: &mut Criterion,
 ) -> ShortcutOutcome {
     let scene = propagator.shared_scene();
     let mut current = controls.to_vec();
@@ -80,6 +110,13 @@ pub fn shortcut(
     }
     let mut rng = SplitMix64::new(settings.seed ^ 0x5EED_5407_C0DE);
     let mut work = path.steps() as u64;
+    let mut worlds = match criterion {
+        Criterion::Shorter => None,
+        Criterion::MoreRobust(worlds) => Some(WorldRuns::new(worlds)),
+    };
+    if let Some(worlds) = &mut worlds {
+        work += worlds.run(&scene.goal, &current);
+    }
     while work < settings.budget_steps && current.len() >= 2 {
         if settings.deadline.is_some_and(|d| Instant::now() >= d) {
             outcome.stopped_at_deadline = true;
@@ -98,20 +135,100 @@ pub fn shortcut(
         candidate.extend_from_slice(&current[j..]);
         let tail = simulate(propagator, &path.states[i], &candidate[i..], false);
         work += tail.steps() as u64 + 1;
-        let length = path.joint_length_at[i] + tail.metrics.joint_length;
-        if tail.valid()
-            && scene.goal.is_satisfied(tail.final_state())
-            && length < path.metrics.joint_length - 1e-9
-        {
+        if !tail.valid() || !scene.goal.is_satisfied(tail.final_state()) {
+            continue;
+        }
+        let shorter =
+            path.joint_length_at[i] + tail.metrics.joint_length < path.metrics.joint_length - 1e-9;
+        let better = match &mut worlds {
+            None => shorter,
+            Some(worlds) => {
+                // As robust and shorter, or more robust.
+                let needed = worlds.reached + usize::from(!shorter);
+                let (reaches, spent) = worlds.candidate_reaches(&scene.goal, &candidate, i, needed);
+                work += spent;
+                reaches
+            }
+        };
+        if better {
             current = candidate;
             path = simulate(propagator, start, &current, false);
             work += path.steps() as u64;
+            if let Some(worlds) = &mut worlds {
+                work += worlds.run(&scene.goal, &current);
+            }
             outcome.accepted += 1;
         }
     }
     outcome.after = path.metrics;
     outcome.controls = current;
     outcome
+}
+
+/// The current path re-simulated in each perturbed world ([`Criterion::MoreRobust`]).
+struct WorldRuns<'a> {
+    worlds: &'a mut [PerturbedWorld],
+    runs: Vec<SimulatedPath>,
+    /// How many of the runs reach the goal.
+    reached: usize,
+}
+
+impl<'a> WorldRuns<'a> {
+    fn new(worlds: &'a mut [PerturbedWorld]) -> Self {
+        Self {
+            worlds,
+            runs: vec![],
+            reached: 0,
+        }
+    }
+
+    /// Re-simulates `controls`, the new current path, in every world; returns the
+    /// propagation steps spent.
+    fn run(&mut self, goal: &Goal, controls: &[PathControl]) -> u64 {
+        self.runs = self
+            .worlds
+            .iter_mut()
+            .map(|w| {
+                let start = w.start().clone();
+                w.simulate(&start, controls)
+            })
+            .collect();
+        self.reached = self.runs.iter().filter(|r| reaches(goal, r)).count();
+        self.runs.iter().map(|r| r.steps() as u64).sum()
+    }
+
+    /// Whether `candidate`, which differs from the current path from control `i` on,
+    /// reaches the goal in at least `needed` worlds, and the propagation steps spent
+    /// finding out. Only the differing part is re-simulated, and only until the answer
+    /// is known.
+    fn candidate_reaches(
+        &mut self,
+        goal: &Goal,
+        candidate: &[PathControl],
+        i: usize,
+        needed: usize,
+    ) -> (bool, u64) {
+        let n = self.worlds.len();
+        if needed > n {
+            return (false, 0);
+        }
+        let (mut reached, mut failed, mut work) = (0, 0, 0);
+        for (world, run) in self.worlds.iter_mut().zip(&self.runs) {
+            // A world whose run stopped before control i fails the same way.
+            let reaches_i = run.stopped_by.as_ref().is_none_or(|(k, _)| *k >= i);
+            let tail = reaches_i.then(|| world.simulate(&run.states[i], &candidate[i..]));
+            work += tail.as_ref().map_or(0, |t| t.steps() as u64);
+            if tail.is_some_and(|t| reaches(goal, &t)) {
+                reached += 1;
+            } else {
+                failed += 1;
+            }
+            if reached >= needed || n - failed < needed {
+                break;
+            }
+        }
+        (reached >= needed, work)
+    }
 }
 
 /// The action that moves the end effector in a straight line (and turns it) from its pose

@@ -200,6 +200,16 @@ fn plan_with_render_writes_the_plan_and_its_pictures() {
     assert!(stderr.contains("outside the plan"), "{stderr}");
 }
 
+/// How many of `check --noise`'s perturbed re-simulations reached the goal.
+fn perturbed_reached(stdout: &str) -> usize {
+    stdout
+        .split("perturbed re-simulations: ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{stdout}"))
+}
+
 #[test]
 fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
     let scratch =
@@ -235,12 +245,7 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
     // Fresh perturbations (another seed) mostly reach the goal too.
     let (code, stdout, _) = pushplan(&["check", out_str, "--noise", "20", "--seed", "5"]);
     assert_eq!(code, 0, "{stdout}");
-    let reached: usize = stdout
-        .split("perturbed re-simulations: ")
-        .nth(1)
-        .and_then(|rest| rest.split(' ').next())
-        .and_then(|n| n.parse().ok())
-        .unwrap_or_else(|| panic!("{stdout}"));
+    let reached = perturbed_reached(&stdout);
     assert!(reached >= 16, "{stdout}");
     // And the 3D engine runs it, reporting every trial.
     let pictures = temp("execution");
@@ -266,6 +271,63 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
     let (code, _, stderr) = pushplan(&["execute", out_str, "--speed=0"]);
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("--speed"), "{stderr}");
+}
+
+#[test]
+fn a_fragile_solution_is_shortcut_toward_robustness_before_the_search_goes_on() {
+    let scratch = common::Scratch::new(
+        "cli-a_fragile_solution_is_shortcut_toward_robustness_before_the_search_goes_on",
+    );
+    // Scene 21 (four objects): the search's first solution (36 controls) reaches the goal in
+    // 4 of 20 perturbed scenes. Shortcut toward robustness it is kept (it searched for two
+    // minutes without finding a robust one before); without that it is dropped.
+    let plan = |robust_shortcut: &str, time: &str, name: &str| {
+        let out = scratch.join(name);
+        let (code, stdout, stderr) = pushplan(&[
+            "plan",
+            "scenes/benchmark/scene_21.yaml",
+            "--seed",
+            "1",
+            "--threads",
+            "1",
+            "--robust",
+            "20",
+            robust_shortcut,
+            "--time",
+            time,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        (code, format!("{stdout}{stderr}"), out)
+    };
+    let (code, output, out) = plan("--robust-shortcut=3", "60", "robust.json");
+    assert_eq!(code, 0, "{output}");
+    assert!(!output.contains("searching on"), "{output}");
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert!(file["robustness"]["success_rate"].as_f64().unwrap() >= 0.9);
+    // Fresh perturbations (another seed) mostly reach the goal too.
+    let (code, stdout, _) = pushplan(&[
+        "check",
+        out.to_str().unwrap(),
+        "--noise",
+        "20",
+        "--seed",
+        "5",
+    ]);
+    assert_eq!(code, 0, "{stdout}");
+    let reached = perturbed_reached(&stdout);
+    assert!(reached >= 15, "{stdout}");
+    // Without it, the first solution is dropped and the search goes on.
+    let (_, output, _) = plan("--robust-shortcut=0", "2", "dropped.json");
+    assert!(
+        output.contains("a solution reaches the goal in 20 % of 20 perturbed re-simulations"),
+        "{output}"
+    );
+    // The budget is checked like every other.
+    let (code, output, _) = plan("--robust-shortcut=-1", "2", "refused.json");
+    assert_eq!(code, 2, "{output}");
+    assert!(output.contains("--robust-shortcut"), "{output}");
 }
 
 #[test]

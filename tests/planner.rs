@@ -21,6 +21,7 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
         progress: false,
         robust_trials: 0,
         robust_rate: 0.9,
+        robust_shortcut: 3.0,
         threads: 1,
     }
 }

@@ -86,6 +86,10 @@ namespace pushplan
         /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on. 0: no check.
         unsigned robust_trials = 0;
         double robust_rate = 0.9;
+        /// Shortcutting budget (seconds of work) spent on each solution that is not robust
+        /// enough, toward the path that reaches the goal in the most perturbed scenes (drawn
+        /// apart from the check's), before it is dropped.
+        double robust_shortcut = 3.0;
         /// Searches run in parallel, one per thread, in lock-step rounds counted in
         /// propagation steps: the same scene, seed and thread count give the same plan.
         /// Default: one per core.

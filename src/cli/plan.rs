@@ -13,6 +13,8 @@ use std::process::ExitCode;
 pub struct PlanOptions {
     pub robust: usize,
     pub robust_rate: f64,
+    /// Shortcutting toward robustness per solution not robust enough (s of work).
+    pub robust_shortcut: f64,
     pub time: Option<f64>,
     pub seed: Option<u64>,
     pub k: Option<u32>,
@@ -41,6 +43,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         progress: !quiet,
         robust_trials: run.robust,
         robust_rate: run.robust_rate,
+        robust_shortcut: run.robust_shortcut,
         threads: run.threads,
     };
     if !(0.0..=1.0).contains(&run.robust_rate) {
@@ -62,11 +65,13 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             options.k
         ));
     }
-    if !(run.shortcut.is_finite() && run.shortcut >= 0.0) {
-        return Err(format!(
-            "--shortcut must be zero or positive, got {}",
-            run.shortcut
-        ));
+    for (flag, seconds) in [
+        ("--shortcut", run.shortcut),
+        ("--robust-shortcut", run.robust_shortcut),
+    ] {
+        if !(seconds.is_finite() && seconds >= 0.0) {
+            return Err(format!("{flag} must be zero or positive, got {seconds}"));
+        }
     }
     if !quiet {
         eprintln!(

@@ -17,6 +17,9 @@ pub mod bridge {
         /// Robust planning: the search goes on until a solution keeps this robustness.
         pub robust_trials: usize,
         pub robust_rate: f64,
+        /// Shortcutting budget (s of work) toward robustness for each solution not robust
+        /// enough (pushplan::Options::robust_shortcut).
+        pub robust_shortcut: f64,
         /// Searches in parallel (pushplan::Options::threads); at least 1.
         pub threads: u32,
     }

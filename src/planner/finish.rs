@@ -1,12 +1,13 @@
 //! Finishing a found path, one way for the CLI, the C++ API and `bench`: re-simulate it
 //! (it must reproduce the planner's states and, if solved, reach the goal), shortcut it
-//! (Sec. IV) and, in robust planning, keep a shortcut only while it stays robust.
+//! (Sec. IV) and, in robust planning, shortcut toward the most robust path.
 
 use crate::path::{simulate, PathControl, PathMetrics, SimulatedPath};
 use crate::propagate::Propagator;
-use crate::robustness::{robustness, Noise};
+use crate::random::SplitMix64;
+use crate::robustness::{robustness, Noise, PerturbedWorld};
 use crate::scene::Scene;
-use crate::shortcut::{shortcut, ShortcutSettings};
+use crate::shortcut::{shortcut_by, Criterion, ShortcutSettings};
 use crate::state::State;
 use std::time::Instant;
 
@@ -41,6 +42,16 @@ impl RobustRequirement {
     /// The fraction of perturbed re-simulations of `controls` that reach the goal.
     pub fn success_rate(&self, scene: &Scene, controls: &[PathControl], seed: u64) -> f64 {
         robustness(scene, controls, &Noise::default(), self.trials, seed).success_rate
+    }
+
+    /// As many perturbed worlds as trials to shortcut toward robustness in, drawn apart
+    /// from [`Self::success_rate`]'s: the requirement is checked in worlds the path was
+    /// not fitted to.
+    pub fn shortcut_worlds(&self, scene: &Scene, seed: u64) -> Vec<PerturbedWorld> {
+        let mut rng = SplitMix64::new(seed ^ 0x0B57_AC1E_5EED);
+        (0..self.trials)
+            .filter_map(|_| PerturbedWorld::draw(&Noise::default(), scene, &mut rng).ok())
+            .collect()
     }
 }
 
@@ -111,25 +122,33 @@ pub fn finish(
             deadline: settings.deadline,
             ..ShortcutSettings::from_seconds(settings.shortcut, settings.seed)
         };
+        // Robust planning shortcuts toward the most robust path.
+        let mut criterion = match settings.robust {
+            None => Criterion::Shorter,
+            Some(r) => Criterion::MoreRobust(r.shortcut_worlds(scene, settings.seed)),
+        };
         // A propagator of its own: the outcome does not depend on what ran before.
-        let outcome = shortcut(
+        let outcome = shortcut_by(
             &mut Propagator::new(scene.clone()),
             &scene.start,
             found,
             &budget,
+            &mut criterion,
         );
         finished.shortcut.attempts = outcome.attempts;
         finished.shortcut.accepted = outcome.accepted;
         finished.shortcut.stopped_at_deadline = outcome.stopped_at_deadline;
         if outcome.accepted > 0 {
-            let rate = settings
-                .robust
-                .map(|r| (r, r.success_rate(scene, &outcome.controls, settings.seed)));
-            if rate.is_none_or(|(r, rate)| rate >= r.rate) {
+            // Kept if robust enough, or at least as robust as the path as found.
+            let rates = settings.robust.map(|r| {
+                let rate = |controls| r.success_rate(scene, controls, settings.seed);
+                (rate(&outcome.controls), rate(found).min(r.rate))
+            });
+            if rates.is_none_or(|(shortcut, bar)| shortcut >= bar) {
                 finished.simulation =
                     simulate(&mut propagator, &scene.start, &outcome.controls, false);
                 finished.controls = outcome.controls;
-                finished.robustness = rate.map(|(_, rate)| rate);
+                finished.robustness = rates.map(|(shortcut, _)| shortcut);
             } else {
                 finished.shortcut.dropped_as_less_robust = true;
             }

@@ -94,6 +94,7 @@ int main()
     bad_option("k", [](pushplan::Options &o) { o.k = 0u; });
     bad_option("goal_bias", [](pushplan::Options &o) { o.goal_bias = 1.5; });
     bad_option("robust_rate", [](pushplan::Options &o) { o.robust_rate = 2.0; });
+    bad_option("robust_shortcut", [](pushplan::Options &o) { o.robust_shortcut = -1.0; });
     bad_option("shortcut", [](pushplan::Options &o) { o.shortcut = std::nan(""); });
     // Hostile use: an integer that is no PlannerKind, a planner moved from.
     const auto no_kind = static_cast<PlannerKind>(42);
