@@ -88,7 +88,7 @@ pub fn time_parameterise(
     limits: &TrajectoryParams,
     rate: f64,
 ) -> Trajectory {
-    let profile = PathProfile::new(robot, object_radii, steps, stops, dt, limits);
+    let profile = PathProfile::new(robot, object_radii, steps, stops, dt, limits, rate);
     let end = *profile.knots.last().unwrap();
     let mut trajectory = Trajectory {
         rate,
@@ -153,6 +153,7 @@ impl PathProfile {
         stops: &[usize],
         dt: f64,
         limits: &TrajectoryParams,
+        rate: f64,
     ) -> PathProfile {
         let n = steps.len();
         if n < 2 {
@@ -190,9 +191,19 @@ impl PathProfile {
                 x_max[i] = x_max[i].min(limit);
             }
         }
+        // At a state the path bends: q' jumps by the curvature q'' (per step). Over many
+        // steps per sample that is an acceleration q'' s'^2; with a step longer than a
+        // sample (s' < rate) the samples see the whole jump s' q'' within one sample
+        // period: q'' s' max(s', rate) must stay within the curvature's share.
         for k in 1..n - 1 {
             let curvature = (&dq[k] - &dq[k - 1]).amax();
-            x_max[k] = x_max[k].min((1.0 - ALONG_PATH) * a_max / curvature);
+            let share = (1.0 - ALONG_PATH) * a_max / curvature;
+            let x = if share <= rate * rate {
+                (share / rate).powi(2)
+            } else {
+                share
+            };
+            x_max[k] = x_max[k].min(x);
         }
         x_max[0] = 0.0;
         x_max[n - 1] = 0.0;
