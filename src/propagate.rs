@@ -15,7 +15,7 @@
 use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact, ObjectContacts};
 use crate::math::Pose2;
 use crate::physics::tipping::{largest_tipping_moment, pusher_forces, support_balance};
-use crate::physics::{object_motion, PusherForce};
+use crate::physics::{object_motion, LimitSurface, PusherForce};
 use crate::robot::EeAction;
 use crate::scene::Scene;
 use crate::state::State;
@@ -227,18 +227,40 @@ impl Propagator {
             );
             let contacts = &self.object_contacts;
             let body = &scene.objects[object];
-            let motion = object_motion(&contacts.planar, &body.limit_surface, body.mu_c, dt)
-                .map_err(|_| Invalid::Jammed {
-                    object: body.name.clone(),
-                })?;
+            let jammed = |_| Invalid::Jammed {
+                object: body.name.clone(),
+            };
+            let mut motion = object_motion(&contacts.planar, &body.limit_surface, body.mu_c, dt)
+                .map_err(jammed)?;
             if !motion.twist.is_zero() {
+                let centroid = body.footprint.centroid();
                 pusher_forces(
                     &contacts.planar,
                     &contacts.elevations,
                     &motion,
                     &mut self.forces,
                 );
-                let balance = support_balance(body.mass, body.footprint.centroid(), &self.forces);
+                let mut balance = support_balance(body.mass, centroid, &self.forces);
+                if scene.physics.pressure_shift && balance.stays_flat(&body.footprint, 0.0) {
+                    // The pushes move the centre of pressure by p_OP - p_OG; the centre of
+                    // friction (the pressure-weighted centroid) moves with it. One
+                    // re-solve: the forces barely change with the centre.
+                    let (shift, c) = body.support.loaded(balance.p_OP - centroid);
+                    let surface = LimitSurface {
+                        centre: body.limit_surface.centre + shift,
+                        c: body.limit_surface.c * c,
+                        ..body.limit_surface
+                    };
+                    motion =
+                        object_motion(&contacts.planar, &surface, body.mu_c, dt).map_err(jammed)?;
+                    pusher_forces(
+                        &contacts.planar,
+                        &contacts.elevations,
+                        &motion,
+                        &mut self.forces,
+                    );
+                    balance = support_balance(body.mass, centroid, &self.forces);
+                }
                 if !balance.stays_flat(&body.footprint, scene.physics.tipping_margin) {
                     let pusher = largest_tipping_moment(&self.forces).unwrap_or(0);
                     return Err(Invalid::Tips {

@@ -57,6 +57,31 @@ pub struct ShortcutOutcome {
     pub stopped_at_deadline: bool,
 }
 
+impl ShortcutOutcome {
+    /// Nothing shortcut yet: `controls` with their metrics.
+    pub fn unchanged(controls: &[PathControl], metrics: PathMetrics) -> Self {
+        Self {
+            controls: controls.to_vec(),
+            before: metrics,
+            after: metrics,
+            attempts: 0,
+            accepted: 0,
+            stopped_at_deadline: false,
+        }
+    }
+
+    /// This outcome followed by `next`, which shortcut this one's path further.
+    pub fn then(self, next: ShortcutOutcome) -> Self {
+        Self {
+            before: self.before,
+            attempts: self.attempts + next.attempts,
+            accepted: self.accepted + next.accepted,
+            stopped_at_deadline: self.stopped_at_deadline || next.stopped_at_deadline,
+            ..next
+        }
+    }
+}
+
 /// What a shortcut must improve to be kept.
 pub enum Criterion {
     /// The manipulator path in joint space (the paper's Sec. IV).

@@ -100,7 +100,7 @@ fn an_installed_pushplan_builds_with_cmake_and_with_pkg_config() {
     let sst = ok(
         "ompl_sst",
         Command::new(cmake_build.join("ompl_sst"))
-            .args(["scenes/herb_single_object.yaml", "3"])
+            .args(["scenes/herb_single_object.yaml", "6"])
             .output(),
     );
     let stdout = String::from_utf8_lossy(&sst.stdout);

@@ -295,3 +295,56 @@ fn characteristic_lengths_match_their_integrals() {
     let numeric = sum / (n * n) as f64;
     assert!((rect.characteristic_length() - numeric).abs() < 1e-6);
 }
+
+#[test]
+fn a_support_pressure_loaded_toward_one_edge_has_the_closed_form_centre_and_c() {
+    use pushplan::physics::SupportGrid;
+    // A thin strip of length a along x: a planar pressure is linear in x. With its centre
+    // at d (at most a/6 from the middle) it is p = 1 + k x, k = 12 d / a^2; further out
+    // only the triangle p = x - x0 from x0 = 3 d - a carries the strip. Then
+    // c = int p |x - d| / int p, in closed form from the antiderivatives below.
+    let a = 0.1;
+    let grid = SupportGrid::new(&Footprint::Polygon {
+        vertices: [
+            [-0.05, -0.001],
+            [0.05, -0.001],
+            [0.05, 0.001],
+            [-0.05, 0.001],
+        ]
+        .iter()
+        .map(|v| Vector2::new(v[0], v[1]))
+        .collect(),
+    });
+    // int (alpha + beta x)(x - d) dx and int (alpha + beta x) dx.
+    let moment = |alpha: f64, beta: f64, d: f64, x: f64| {
+        alpha * (x * x / 2.0 - d * x) + beta * (x.powi(3) / 3.0 - d * x * x / 2.0)
+    };
+    let c_of = |alpha: f64, beta: f64, from: f64, d: f64| {
+        let m = |x| moment(alpha, beta, d, x);
+        let load = |x: f64| alpha * x + beta * x * x / 2.0;
+        ((m(a / 2.0) - m(d)) - (m(d) - m(from))) / (load(a / 2.0) - load(from))
+    };
+    let uniform_c = c_of(1.0, 0.0, -a / 2.0, 0.0);
+    assert!((uniform_c - a / 4.0).abs() < 1e-12);
+    for d in [0.0, a / 10.0, a / 6.0, a / 4.0, 0.4 * a] {
+        let want = if d <= a / 6.0 {
+            c_of(1.0, 12.0 * d / (a * a), -a / 2.0, d)
+        } else {
+            let x0 = 3.0 * d - a;
+            c_of(-x0, 1.0, x0, d)
+        };
+        let (centre, ratio) = grid.loaded(Vector2::new(d, 0.0));
+        assert!(
+            (centre - Vector2::new(d, 0.0)).norm() < 2e-4,
+            "d {d}: centre {centre:?}"
+        );
+        assert!(
+            (ratio - want / uniform_c).abs() < 0.02,
+            "d {d}: c ratio {ratio}, closed form {}",
+            want / uniform_c
+        );
+    }
+    // Loaded toward an edge, friction resists turning less.
+    let (_, ratio) = grid.loaded(Vector2::new(0.4 * a, 0.0));
+    assert!(ratio < 0.6, "{ratio}");
+}

@@ -8,8 +8,9 @@
 
 use crate::math::Pose2;
 use crate::physics::Footprint;
+use crate::robot::KinematicChain;
 use crate::scene::Scene;
-use nalgebra::{Isometry3, Vector2, Vector3};
+use nalgebra::{DVector, Isometry3, Vector2, Vector3};
 use rapier3d_f64::prelude::*;
 
 /// Simulation step (s): 1 kHz keeps a link from moving more than a millimetre per step.
@@ -279,6 +280,21 @@ impl World {
     pub fn move_arm(&mut self, link_poses: &[Isometry3<f64>]) {
         for (link, body) in &self.links {
             self.bodies[*body].set_next_kinematic_position(link_poses[*link]);
+        }
+    }
+
+    /// Drives the arm of `chain` through joint configurations `dt` seconds apart,
+    /// interpolated linearly at the engine's rate.
+    pub fn follow(&mut self, chain: &KinematicChain, path: &[DVector<f64>], dt: f64) {
+        let per_step = (dt / STEP).round().max(1.0) as usize;
+        let mut poses = Vec::new();
+        for pair in path.windows(2) {
+            for j in 1..=per_step {
+                let f = j as f64 / per_step as f64;
+                chain.forward_kinematics(&(&pair[0] * (1.0 - f) + &pair[1] * f), &mut poses);
+                self.move_arm(&poses);
+                self.step();
+            }
         }
     }
 

@@ -5,7 +5,7 @@
 //! `V ∝ A F` with `A = diag(1, 1, 1/c^2)`: only the characteristic length `c` shapes the
 //! motion. Mass and support friction set the force scale (reported in newtons).
 
-use nalgebra::{Matrix3, Vector2, Vector3};
+use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 /// Standard gravity (m/s^2).
 pub const GRAVITY: f64 = 9.81;
@@ -112,5 +112,109 @@ impl LimitSurface {
     /// The motion mapping `A = diag(1, 1, 1/c^2)` (twist ∝ A wrench).
     pub fn mobility(&self) -> Matrix3<f64> {
         Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 1.0 / (self.c * self.c)))
+    }
+}
+
+/// A footprint sampled on a grid of equal cells, for integrals over a support pressure
+/// that is not uniform.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SupportGrid {
+    /// Cell centres inside the footprint, object frame (m).
+    points: Vec<Vector2<f64>>,
+    /// Their mean (m): the centroid.
+    centroid: Vector2<f64>,
+    /// Inverse of their covariance (1/m^2).
+    inverse_spread: Matrix2<f64>,
+    /// Mean distance of the points from the centroid under uniform pressure (m).
+    uniform_c: f64,
+}
+
+/// Cells across the footprint's bounding box on a side.
+const GRID_CELLS: usize = 16;
+
+impl SupportGrid {
+    pub fn new(footprint: &Footprint) -> Self {
+        let (lo, hi) = match footprint {
+            Footprint::Circle { radius } => (Vector2::repeat(-radius), Vector2::repeat(*radius)),
+            Footprint::Polygon { vertices } => vertices.iter().fold(
+                (
+                    Vector2::repeat(f64::INFINITY),
+                    Vector2::repeat(f64::NEG_INFINITY),
+                ),
+                |(lo, hi), v| (lo.inf(v), hi.sup(v)),
+            ),
+        };
+        let cell = (hi - lo) / GRID_CELLS as f64;
+        let points: Vec<Vector2<f64>> = (0..GRID_CELLS * GRID_CELLS)
+            .map(|k| {
+                let (i, j) = (k % GRID_CELLS, k / GRID_CELLS);
+                lo + Vector2::new(cell.x * (i as f64 + 0.5), cell.y * (j as f64 + 0.5))
+            })
+            .filter(|&p| footprint.contains(p))
+            .collect();
+        let n = points.len() as f64;
+        let centroid = points.iter().sum::<Vector2<f64>>() / n;
+        let spread = points
+            .iter()
+            .map(|p| (p - centroid) * (p - centroid).transpose())
+            .sum::<Matrix2<f64>>()
+            / n;
+        let uniform_c = points.iter().map(|p| (p - centroid).norm()).sum::<f64>() / n;
+        Self {
+            inverse_spread: spread.try_inverse().unwrap_or_else(Matrix2::zeros),
+            points,
+            centroid,
+            uniform_c,
+        }
+    }
+
+    /// The planar (linear) pressure whose centre is the centroid moved by `shift` (m),
+    /// clipped where it would pull: its centre of friction relative to the uniform one
+    /// (m), and its characteristic length `c` relative to the uniform one. The table
+    /// carrying a push at height presses hardest under the leading edge; friction
+    /// concentrated there resists turning less.
+    pub fn loaded(&self, shift: Vector2<f64>) -> (Vector2<f64>, f64) {
+        let gradient = self.inverse_spread * shift;
+        // p = max(0, level + gradient . (r - r_G)): with level 1 its centre is the target,
+        // unless it would pull somewhere (beyond the kern). Clipped, its centre falls
+        // short; lowering the level moves the zero line toward the loaded edge and the
+        // centre out to it, monotonically: bisection.
+        let weight =
+            |level: f64, p: &Vector2<f64>| (level + gradient.dot(&(p - self.centroid))).max(0.0);
+        let centre_of = |level: f64| {
+            let (mut total, mut moment) = (0.0, Vector2::zeros());
+            for p in &self.points {
+                let w = weight(level, p);
+                total += w;
+                moment += (p - self.centroid) * w;
+            }
+            (moment / total, total)
+        };
+        let target = shift.norm();
+        let mut level = 1.0;
+        if centre_of(1.0).0.norm() < target * (1.0 - 1e-4) {
+            let peak = self
+                .points
+                .iter()
+                .map(|p| gradient.dot(&(p - self.centroid)))
+                .fold(f64::NEG_INFINITY, f64::max);
+            let (mut low, mut high) = (-peak * (1.0 - 1e-9), 1.0);
+            for _ in 0..14 {
+                level = 0.5 * (low + high);
+                if centre_of(level).0.norm() < target {
+                    high = level;
+                } else {
+                    low = level;
+                }
+            }
+        }
+        let (centre, total) = centre_of(level);
+        let c = self
+            .points
+            .iter()
+            .map(|p| weight(level, p) * (p - self.centroid - centre).norm())
+            .sum::<f64>()
+            / total;
+        (centre, c / self.uniform_c)
     }
 }

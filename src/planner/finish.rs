@@ -7,7 +7,7 @@ use crate::propagate::Propagator;
 use crate::random::SplitMix64;
 use crate::robustness::{robustness, Noise, PerturbedWorld};
 use crate::scene::Scene;
-use crate::shortcut::{shortcut_by, Criterion, ShortcutSettings};
+use crate::shortcut::{shortcut_by, Criterion, ShortcutOutcome, ShortcutSettings};
 use crate::state::State;
 use std::time::Instant;
 
@@ -122,19 +122,31 @@ pub fn finish(
             deadline: settings.deadline,
             ..ShortcutSettings::from_seconds(settings.shortcut, settings.seed)
         };
-        // Robust planning shortcuts toward the most robust path.
-        let mut criterion = match settings.robust {
-            None => Criterion::Shorter,
-            Some(r) => Criterion::MoreRobust(r.shortcut_worlds(scene, settings.seed)),
+        // Robust planning shortens first (fewer pushes: less to go wrong), then shortcuts
+        // toward the most robust path, half the budget each.
+        let stages = match settings.robust {
+            None => vec![Criterion::Shorter],
+            Some(r) => vec![
+                Criterion::Shorter,
+                Criterion::MoreRobust(r.shortcut_worlds(scene, settings.seed)),
+            ],
         };
-        // A propagator of its own: the outcome does not depend on what ran before.
-        let outcome = shortcut_by(
-            &mut Propagator::new(scene.clone()),
-            &scene.start,
-            found,
-            &budget,
-            &mut criterion,
-        );
+        let stage_budget = ShortcutSettings {
+            budget_steps: budget.budget_steps / stages.len() as u64,
+            ..budget
+        };
+        let mut outcome = ShortcutOutcome::unchanged(found, finished.before);
+        for mut criterion in stages {
+            // A propagator of its own: the outcome does not depend on what ran before.
+            let stage = shortcut_by(
+                &mut Propagator::new(scene.clone()),
+                &scene.start,
+                &outcome.controls,
+                &stage_budget,
+                &mut criterion,
+            );
+            outcome = outcome.then(stage);
+        }
         finished.shortcut.attempts = outcome.attempts;
         finished.shortcut.accepted = outcome.accepted;
         finished.shortcut.stopped_at_deadline = outcome.stopped_at_deadline;

@@ -262,6 +262,10 @@ pub struct PhysicsSpec {
     pub tipping_margin: f64,
     /// Smallest distance between a moving object and any other object or obstacle (m).
     pub object_clearance: f64,
+    /// A push at height loads the object's leading edge: the centre of friction follows
+    /// the support's centre of pressure (the tipping balance's), instead of staying where
+    /// a uniform pressure puts it.
+    pub pressure_shift: bool,
 }
 
 impl Default for PhysicsSpec {
@@ -276,6 +280,7 @@ impl Default for PhysicsSpec {
             tilt_tolerance: 0.01,
             tipping_margin: 0.2,
             object_clearance: 0.01,
+            pressure_shift: true,
         }
     }
 }

@@ -10,7 +10,7 @@ use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
 use crate::math::{isometry_from_xyz_rpy, Pose2};
 use crate::physics::limit_surface::GRAVITY;
-use crate::physics::{Footprint, LimitSurface};
+use crate::physics::{Footprint, LimitSurface, SupportGrid};
 use crate::robot::mesh::load_convex_mesh;
 use crate::robot::planar_hand::planar_hand_chain;
 use crate::robot::projection::ProjectionSettings;
@@ -485,7 +485,7 @@ impl Loader<'_> {
         };
         let object = MovableObject {
             name: o.name.clone(),
-            footprint,
+            footprint: footprint.clone(),
             height,
             geometry,
             bounding_radius,
@@ -497,6 +497,7 @@ impl Loader<'_> {
                 f_max: o.mu_g * o.mass * GRAVITY,
                 centre: Vector2::zeros(),
             },
+            support: SupportGrid::new(&footprint),
         };
         Ok((object, pose))
     }
