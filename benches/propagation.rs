@@ -1,5 +1,6 @@
 //! Propagation steps per second for the WAM with 1, 7 and 20 objects, in free space and
-//! while the hand pushes a box with a two-point (face) contact.
+//! while the hand pushes a box with a two-point (face) contact (with the support pressure
+//! the push loads, and with a uniform one).
 //!
 //! Run: `cargo bench --bench propagation`. Each measured iteration holds one action for 50
 //! steps from the same state; criterion reports time per step (throughput: steps/s).
@@ -74,22 +75,32 @@ fn propagation(c: &mut Criterion) {
             b.iter(|| p.propagate_steps(&scene.start, &free, STEPS))
         });
 
-        // Sustained contact: the hand's face pushes a box (two contact points).
-        let scene =
-            common::herb_scene(common::HAND_NEAR, &objects(pushed_box(), count), "").unwrap();
-        let push = EeAction::planar(0.1, 0.0, 0.0);
-        let start = in_contact(&scene, &push);
-        let mut p = Propagator::new(&scene);
-        let check = p.propagate_steps(&start, &push, STEPS);
-        assert!(check.stopped_by.is_none(), "{:?}", check.stopped_by);
-        assert!(
-            check.contacts.iter().all(|s| !s.is_empty()),
-            "contact lost: {:?}",
-            check.contacts
-        );
-        group.bench_with_input(BenchmarkId::new("pushing", count), &start, |b, start| {
-            b.iter(|| p.propagate_steps(start, &push, STEPS))
-        });
+        // Sustained contact: the hand's face pushes a box (two contact points), with the
+        // support pressure the push loads (the default) and with a uniform one.
+        for (name, physics) in [
+            ("pushing", ""),
+            (
+                "pushing_uniform_pressure",
+                "physics: {pressure_shift: false}",
+            ),
+        ] {
+            let scene =
+                common::herb_scene(common::HAND_NEAR, &objects(pushed_box(), count), physics)
+                    .unwrap();
+            let push = EeAction::planar(0.1, 0.0, 0.0);
+            let start = in_contact(&scene, &push);
+            let mut p = Propagator::new(&scene);
+            let check = p.propagate_steps(&start, &push, STEPS);
+            assert!(check.stopped_by.is_none(), "{:?}", check.stopped_by);
+            assert!(
+                check.contacts.iter().all(|s| !s.is_empty()),
+                "contact lost: {:?}",
+                check.contacts
+            );
+            group.bench_with_input(BenchmarkId::new(name, count), &start, |b, start| {
+                b.iter(|| p.propagate_steps(start, &push, STEPS))
+            });
+        }
     }
     group.finish();
 }

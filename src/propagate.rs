@@ -245,7 +245,8 @@ impl Propagator {
                     // The pushes move the centre of pressure by p_OP - p_OG; the centre of
                     // friction (the pressure-weighted centroid) moves with it. One
                     // re-solve: the forces barely change with the centre.
-                    let (shift, c) = body.support.loaded(balance.p_OP - centroid);
+                    let shift = balance.p_OP - centroid;
+                    let c = body.support.c_ratio(shift);
                     let surface = LimitSurface {
                         centre: body.limit_surface.centre + shift,
                         c: body.limit_surface.c * c,

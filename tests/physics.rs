@@ -298,13 +298,13 @@ fn characteristic_lengths_match_their_integrals() {
 
 #[test]
 fn a_support_pressure_loaded_toward_one_edge_has_the_closed_form_centre_and_c() {
-    use pushplan::physics::SupportGrid;
+    use pushplan::physics::{LoadedSupport, SupportGrid};
     // A thin strip of length a along x: a planar pressure is linear in x. With its centre
     // at d (at most a/6 from the middle) it is p = 1 + k x, k = 12 d / a^2; further out
     // only the triangle p = x - x0 from x0 = 3 d - a carries the strip. Then
     // c = int p |x - d| / int p, in closed form from the antiderivatives below.
     let a = 0.1;
-    let grid = SupportGrid::new(&Footprint::Polygon {
+    let strip = Footprint::Polygon {
         vertices: [
             [-0.05, -0.001],
             [0.05, -0.001],
@@ -314,7 +314,8 @@ fn a_support_pressure_loaded_toward_one_edge_has_the_closed_form_centre_and_c() 
         .iter()
         .map(|v| Vector2::new(v[0], v[1]))
         .collect(),
-    });
+    };
+    let (grid, table) = (SupportGrid::new(&strip), LoadedSupport::new(&strip));
     // int (alpha + beta x)(x - d) dx and int (alpha + beta x) dx.
     let moment = |alpha: f64, beta: f64, d: f64, x: f64| {
         alpha * (x * x / 2.0 - d * x) + beta * (x.powi(3) / 3.0 - d * x * x / 2.0)
@@ -343,6 +344,15 @@ fn a_support_pressure_loaded_toward_one_edge_has_the_closed_form_centre_and_c() 
             "d {d}: c ratio {ratio}, closed form {}",
             want / uniform_c
         );
+        // The propagator's table, interpolated, in either direction along the strip.
+        for sign in [1.0, -1.0] {
+            let tabled = table.c_ratio(Vector2::new(sign * d, 0.0));
+            assert!(
+                (tabled - want / uniform_c).abs() < 0.03,
+                "d {d}: tabled c ratio {tabled}, closed form {}",
+                want / uniform_c
+            );
+        }
     }
     // Loaded toward an edge, friction resists turning less.
     let (_, ratio) = grid.loaded(Vector2::new(0.4 * a, 0.0));

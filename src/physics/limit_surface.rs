@@ -218,3 +218,73 @@ impl SupportGrid {
         (centre, c / self.uniform_c)
     }
 }
+
+/// [`SupportGrid::loaded`]'s `c` ratio tabulated over the direction and size of the
+/// pressure centre's shift, for the propagator: a lookup instead of an integral per step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadedSupport {
+    /// Shift directions, evenly spaced from +x counter-clockwise (one for a disc).
+    directions: usize,
+    /// Per direction, how far the centre of pressure can move (m): the farthest grid point.
+    reach: Vec<f64>,
+    /// Per direction, the `c` ratio at `k / SHIFT_SAMPLES` of the reach, k = 0..=SHIFT_SAMPLES.
+    ratios: Vec<[f64; SHIFT_SAMPLES + 1]>,
+}
+
+const SHIFT_SAMPLES: usize = 16;
+
+impl LoadedSupport {
+    pub fn new(footprint: &Footprint) -> Self {
+        let grid = SupportGrid::new(footprint);
+        let directions = match footprint {
+            Footprint::Circle { .. } => 1,
+            Footprint::Polygon { .. } => 32,
+        };
+        let unit = |i: usize| {
+            let angle = std::f64::consts::TAU * i as f64 / directions as f64;
+            Vector2::new(angle.cos(), angle.sin())
+        };
+        let reach: Vec<f64> = (0..directions)
+            .map(|i| {
+                grid.points
+                    .iter()
+                    .map(|p| unit(i).dot(&(p - grid.centroid)))
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        let ratios = (0..directions)
+            .map(|i| {
+                std::array::from_fn(|k| {
+                    // Just short of the edge, where the pressure is still spread over cells.
+                    let fraction = (k as f64 / SHIFT_SAMPLES as f64).min(0.97);
+                    grid.loaded(unit(i) * fraction * reach[i]).1
+                })
+            })
+            .collect();
+        Self {
+            directions,
+            reach,
+            ratios,
+        }
+    }
+
+    /// `c` relative to the uniform pressure's when the centre of pressure (and so of
+    /// friction) has moved by `shift` (m) from the centroid; interpolated.
+    pub fn c_ratio(&self, shift: Vector2<f64>) -> f64 {
+        let size = shift.norm();
+        if size == 0.0 {
+            return 1.0;
+        }
+        let at = |i: usize| {
+            let f = (size / self.reach[i]).min(1.0) * SHIFT_SAMPLES as f64;
+            let k = (f.floor() as usize).min(SHIFT_SAMPLES - 1);
+            let r = &self.ratios[i];
+            r[k] + (f - k as f64) * (r[k + 1] - r[k])
+        };
+        let turn = shift.y.atan2(shift.x).rem_euclid(std::f64::consts::TAU);
+        let a = turn / std::f64::consts::TAU * self.directions as f64;
+        let i = (a.floor() as usize).min(self.directions - 1);
+        let t = a - i as f64;
+        (1.0 - t) * at(i) + t * at((i + 1) % self.directions)
+    }
+}

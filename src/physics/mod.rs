@@ -12,6 +12,6 @@ pub mod limit_surface;
 pub mod pushing;
 pub mod tipping;
 
-pub use limit_surface::{Footprint, LimitSurface, SupportGrid};
+pub use limit_surface::{Footprint, LimitSurface, LoadedSupport, SupportGrid};
 pub use pushing::{object_motion, Jammed, ObjectMotion, PlanarContact};
 pub use tipping::{ContactElevation, PusherForce, SupportBalance};

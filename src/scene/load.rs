@@ -10,7 +10,7 @@ use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
 use crate::math::{isometry_from_xyz_rpy, Pose2};
 use crate::physics::limit_surface::GRAVITY;
-use crate::physics::{Footprint, LimitSurface, SupportGrid};
+use crate::physics::{Footprint, LimitSurface, LoadedSupport};
 use crate::robot::mesh::load_convex_mesh;
 use crate::robot::planar_hand::planar_hand_chain;
 use crate::robot::projection::ProjectionSettings;
@@ -497,7 +497,7 @@ impl Loader<'_> {
                 f_max: o.mu_g * o.mass * GRAVITY,
                 centre: Vector2::zeros(),
             },
-            support: SupportGrid::new(&footprint),
+            support: LoadedSupport::new(&footprint),
         };
         Ok((object, pose))
     }

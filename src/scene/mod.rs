@@ -11,7 +11,7 @@ pub use load::{MAX_CONTROL_STEPS, MAX_FRICTION, MAX_K, MAX_MASS, MAX_OBJECTS, MA
 
 use crate::collision::Geometry;
 use crate::math::Pose2;
-use crate::physics::{Footprint, LimitSurface, SupportGrid};
+use crate::physics::{Footprint, LimitSurface, LoadedSupport};
 use crate::robot::Robot;
 use crate::state::State;
 use crate::validity::Clearances;
@@ -109,8 +109,8 @@ pub struct MovableObject {
     pub mu_g: f64,
     pub mu_c: f64,
     pub limit_surface: LimitSurface,
-    /// The footprint sampled for support pressures that are not uniform.
-    pub support: SupportGrid,
+    /// How `c` changes as a push at height loads the support toward an edge.
+    pub support: LoadedSupport,
 }
 
 impl MovableObject {
