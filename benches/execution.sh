@@ -2,7 +2,8 @@
 # The execution benchmark of BENCHMARKS.md ("Plans that work in the world"): for every
 # benchmark scene, plan once (seed 1), play the plan 10 times in the 3D engine and
 # re-simulate it 10 times with parameter noise. Extra `plan` options go in PLAN_ARGS
-# (e.g. PLAN_ARGS="--robust 20"); TIME sets the search time (default 10 s).
+# (e.g. PLAN_ARGS="--robust 20"); TIME sets the search time (default 10 s); SCENES the
+# folder of scene_*.yaml files (default scenes/benchmark).
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -13,7 +14,8 @@ out=${1:?usage: benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]}
 bin=${2:-target/release/pushplan}
 mkdir -p "$out"
 : > "$out/summary.txt"
-for scene in scenes/benchmark/scene_*.yaml; do
+scenes=${SCENES:-scenes/benchmark}
+for scene in "$scenes"/scene_*.yaml; do
   n=$(basename "$scene" .yaml)
   # shellcheck disable=SC2086
   "$bin" plan "$scene" --seed 1 --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
@@ -26,4 +28,4 @@ for scene in scenes/benchmark/scene_*.yaml; do
   fi
 done
 reached=$(cat "$out"/*.exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
-echo "trials reaching the goal: $reached of $(( $(ls scenes/benchmark/scene_*.yaml | wc -l) * 10 ))" | tee -a "$out/summary.txt"
+echo "trials reaching the goal: $reached of $(( $(ls "$scenes"/scene_*.yaml | wc -l) * 10 ))" | tee -a "$out/summary.txt"
