@@ -151,9 +151,9 @@ impl PerturbedWorld {
         })
     }
 
-    /// The perturbed start state.
-    pub fn start(&self) -> &State {
-        &self.start
+    /// `controls` simulated in this world from its perturbed start.
+    pub fn run(&mut self, controls: &[PathControl]) -> SimulatedPath {
+        simulate(&mut self.propagator, &self.start, controls, false)
     }
 
     /// `controls` simulated in this world from `from` (a state of this world).
@@ -196,8 +196,7 @@ pub fn robustness(
                 goal_distance: f64::INFINITY,
             },
             Ok(mut world) => {
-                let start = world.start.clone();
-                let path = world.simulate(&start, controls);
+                let path = world.run(controls);
                 let end = path.final_state();
                 Trial {
                     reached: reaches(&scene.goal, &path),

@@ -121,14 +121,7 @@ pub fn shortcut_by(
     let mut current = controls.to_vec();
     let mut path = simulate(propagator, start, &current, false);
     let before = path.metrics;
-    let mut outcome = ShortcutOutcome {
-        controls: vec![],
-        before,
-        after: before,
-        attempts: 0,
-        accepted: 0,
-        stopped_at_deadline: false,
-    };
+    let mut outcome = ShortcutOutcome::unchanged(&[], before);
     if !path.valid() || !scene.goal.is_satisfied(path.final_state()) {
         outcome.controls = current;
         return outcome;
@@ -210,14 +203,7 @@ impl<'a> WorldRuns<'a> {
     /// Re-simulates `controls`, the new current path, in every world; returns the
     /// propagation steps spent.
     fn run(&mut self, goal: &Goal, controls: &[PathControl]) -> u64 {
-        self.runs = self
-            .worlds
-            .iter_mut()
-            .map(|w| {
-                let start = w.start().clone();
-                w.simulate(&start, controls)
-            })
-            .collect();
+        self.runs = self.worlds.iter_mut().map(|w| w.run(controls)).collect();
         self.reached = self.runs.iter().filter(|r| reaches(goal, r)).count();
         self.runs.iter().map(|r| r.steps() as u64).sum()
     }

@@ -197,8 +197,7 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_beats_shorten
     let reached_in = |worlds: &mut [PerturbedWorld], controls: &[PathControl]| {
         let mut reached = 0;
         for w in worlds.iter_mut() {
-            let start = w.start().clone();
-            reached += usize::from(reaches(&scene.goal, &w.simulate(&start, controls)));
+            reached += usize::from(reaches(&scene.goal, &w.run(controls)));
         }
         reached
     };

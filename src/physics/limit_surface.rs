@@ -223,9 +223,7 @@ impl SupportGrid {
 /// pressure centre's shift, for the propagator: a lookup instead of an integral per step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LoadedSupport {
-    /// Shift directions, evenly spaced from +x counter-clockwise (one for a disc).
-    directions: usize,
-    /// Per direction, how far the centre of pressure can move (m): the farthest grid point.
+    /// Per shift direction (evenly spaced from +x counter-clockwise; one for a disc), how far the centre of pressure can move (m): the farthest grid point.
     reach: Vec<f64>,
     /// Per direction, the `c` ratio at `k / SHIFT_SAMPLES` of the reach, k = 0..=SHIFT_SAMPLES.
     ratios: Vec<[f64; SHIFT_SAMPLES + 1]>,
@@ -261,11 +259,7 @@ impl LoadedSupport {
                 })
             })
             .collect();
-        Self {
-            directions,
-            reach,
-            ratios,
-        }
+        Self { reach, ratios }
     }
 
     /// `c` relative to the uniform pressure's when the centre of pressure (and so of
@@ -282,9 +276,10 @@ impl LoadedSupport {
             r[k] + (f - k as f64) * (r[k + 1] - r[k])
         };
         let turn = shift.y.atan2(shift.x).rem_euclid(std::f64::consts::TAU);
-        let a = turn / std::f64::consts::TAU * self.directions as f64;
-        let i = (a.floor() as usize).min(self.directions - 1);
+        let directions = self.reach.len();
+        let a = turn / std::f64::consts::TAU * directions as f64;
+        let i = (a.floor() as usize).min(directions - 1);
         let t = a - i as f64;
-        (1.0 - t) * at(i) + t * at((i + 1) % self.directions)
+        (1.0 - t) * at(i) + t * at((i + 1) % directions)
     }
 }
