@@ -5,7 +5,8 @@
 use crate::collision::geometry::union_aabb;
 use crate::collision::query::{contact_points, ContactPoint};
 use crate::math::Pose2;
-use crate::physics::{ContactElevation, PlanarContact};
+use crate::physics::{sliding_push_tips, ContactElevation, PlanarContact};
+use crate::scene::MovableObject;
 use crate::scene::Scene;
 use nalgebra::{Isometry3, Vector2};
 use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
@@ -118,13 +119,33 @@ pub fn planar_contacts(
         let n = c.point.normal_a;
         let horizontal = Vector2::new(-n.x, -n.y);
         let length = horizontal.norm();
-        if length < 1e-6 {
-            continue; // vertical: outside the planar model (the validity check rejects it)
-        }
         let p = c.point.point_b;
         // p_W moved with the link: X_WL(q_new) X_WL(q)^-1 p_W.
         let moved = poses_new[c.link] * (poses[c.link].inverse() * p);
         let v = (moved - p) / dt;
+        let elevation = ContactElevation {
+            height: c.point.point_a.z - table_top,
+            slope: 0.0,
+        };
+        if length < 1e-6 {
+            // Vertical: outside the planar model (the validity check rejects a touch).
+            // A link passing over the top would push the way it moves, were the object
+            // a little elsewhere.
+            let speed = v.xy().norm();
+            if speed > 1e-9 {
+                out.passing_over.push((
+                    c.link,
+                    PlanarContact {
+                        point: pose.point_to_local(c.point.point_a.xy().coords),
+                        normal: pose.vector_to_local(v.xy() / speed),
+                        pusher_velocity: pose.vector_to_local(v.xy()),
+                        gap: c.point.distance,
+                    },
+                    elevation,
+                ));
+            }
+            continue;
+        }
         let contact = PlanarContact {
             point: pose.point_to_local(c.point.point_a.xy().coords),
             normal: pose.vector_to_local(horizontal / length),
@@ -132,8 +153,8 @@ pub fn planar_contacts(
             gap: c.point.distance,
         };
         let elevation = ContactElevation {
-            height: c.point.point_a.z - table_top,
             slope: n.z / length,
+            ..elevation
         };
         let duplicate = out.planar.iter().position(|o| {
             (o.point - contact.point).norm() < 1e-3 && o.normal.dot(&contact.normal) > 0.99
@@ -163,6 +184,9 @@ pub struct ObjectContacts {
     pub planar: Vec<PlanarContact>,
     pub links: Vec<usize>,
     pub elevations: Vec<ContactElevation>,
+    /// Links passing over the object's top (vertical normals): the link, a contact
+    /// whose normal is the way the link moves, and its height.
+    pub passing_over: Vec<(usize, PlanarContact, ContactElevation)>,
 }
 
 impl ObjectContacts {
@@ -170,5 +194,37 @@ impl ObjectContacts {
         self.planar.clear();
         self.links.clear();
         self.elevations.clear();
+        self.passing_over.clear();
+    }
+
+    /// The first link closer than `clearance` (m) that closes in on the object where a
+    /// push that slid it would tip it ([`sliding_push_tips`], `margin` as in the tipping
+    /// balance): a planar contact that does not push (`normal_forces[i] <= 0`) with the
+    /// link moving into the object, or a link passing over its top. Returns the link
+    /// and its distance (m).
+    pub fn closing_in_at_tipping_height(
+        &self,
+        object: &MovableObject,
+        normal_forces: &[f64],
+        clearance: f64,
+        margin: f64,
+    ) -> Option<(usize, f64)> {
+        let planar = self
+            .planar
+            .iter()
+            .zip(&self.links)
+            .zip(&self.elevations)
+            .zip(normal_forces)
+            .filter(|(((c, _), _), &force)| force <= 0.0 && c.pusher_velocity.dot(&c.normal) > 0.0)
+            .map(|(((c, &link), e), _)| (link, c, e));
+        let over = self.passing_over.iter().map(|(link, c, e)| (*link, c, e));
+        planar
+            .chain(over)
+            .find(|(_, c, e)| {
+                clearance > 0.0
+                    && c.gap < clearance
+                    && sliding_push_tips(object.mass, object.mu_g, &object.footprint, c, e, margin)
+            })
+            .map(|(link, c, _)| (link, c.gap))
     }
 }

@@ -77,7 +77,7 @@ pub struct PlanFile {
 }
 
 /// The reserves of the validity rules a plan keeps (see the scene's `goal.margin`,
-/// `physics.object_clearance` and `physics.tipping_margin`).
+/// `physics.object_clearance`, `physics.arm_clearance` and `physics.tipping_margin`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Margins {
@@ -87,6 +87,10 @@ pub struct Margins {
     pub object_clearance: f64,
     /// Fraction of the footprint kept free of the support's centre of pressure.
     pub tipping: f64,
+    /// Smallest distance a link closing in on an object keeps from it where a sliding
+    /// push would tip it (m; plans written before it existed read as 0).
+    #[serde(default)]
+    pub arm_clearance: f64,
 }
 
 /// How robust planning found the plan: the fraction of `trials` re-simulations from
@@ -421,6 +425,7 @@ impl PlanFile {
                 },
                 object_clearance: scene.physics.object_clearance,
                 tipping: scene.physics.tipping_margin,
+                arm_clearance: scene.physics.arm_clearance,
             }),
             solved: scene.goal.is_satisfied(path.final_state()),
             metrics: Metrics {

@@ -275,6 +275,22 @@ impl Propagator {
                     body.geometry.aabb(&moved.to_isometry(scene.table.top));
                 self.moved[object] = true;
             }
+            // A link closing in on the object without pushing it, where a push that slid
+            // it would tip it: the plan would hang on the touch never happening, or on
+            // its turning the object rather than sliding it, and a few millimetres
+            // elsewhere in the world it happens.
+            if let Some((link, distance)) = contacts.closing_in_at_tipping_height(
+                body,
+                &motion.normal_forces,
+                scene.physics.arm_clearance,
+                scene.physics.tipping_margin,
+            ) {
+                return Err(Invalid::ClosesInAtTippingHeight {
+                    link: scene.robot.chain.links[link].name.clone(),
+                    object: body.name.clone(),
+                    distance,
+                });
+            }
             for (&link, &force) in contacts.links.iter().zip(&motion.normal_forces) {
                 if force > 0.0 {
                     match pushes

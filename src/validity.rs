@@ -73,6 +73,13 @@ pub enum Invalid {
         object: String,
         link: String,
     },
+    /// A link closes in on an object closer than `physics.arm_clearance` (m) at a height
+    /// where a push that slides the object would tip it.
+    ClosesInAtTippingHeight {
+        link: String,
+        object: String,
+        distance: f64,
+    },
 }
 
 impl Invalid {
@@ -94,6 +101,7 @@ impl Invalid {
             Invalid::ObjectOffTable { .. } => "object off table",
             Invalid::Jammed { .. } => "jammed",
             Invalid::Tips { .. } => "tips",
+            Invalid::ClosesInAtTippingHeight { .. } => "closes in at tipping height",
         }
     }
 }
@@ -148,6 +156,15 @@ impl fmt::Display for Invalid {
             Invalid::Tips { object, link } => {
                 write!(f, "link '{link}' would tip object '{object}' over")
             }
+            Invalid::ClosesInAtTippingHeight {
+                link,
+                object,
+                distance,
+            } => write!(
+                f,
+                "link '{link}' closes in on object '{object}' ({:.1} mm) where a sliding push would tip it",
+                distance * 1e3
+            ),
         }
     }
 }

@@ -5,7 +5,7 @@ mod common;
 
 use nalgebra::Vector2;
 use pushplan::physics::limit_surface::GRAVITY;
-use pushplan::physics::tipping::{pusher_forces, support_balance};
+use pushplan::physics::tipping::{pusher_forces, sliding_push_tips, support_balance};
 use pushplan::physics::{object_motion, ContactElevation, Footprint, LimitSurface, PlanarContact};
 use pushplan::{EeAction, Invalid, Propagator, Scene};
 
@@ -150,9 +150,10 @@ fn pressing_down_is_not_counted_on_and_lifting_tips() {
     );
 }
 
-/// A thin planar hand (1 cm tall) at `height` pushing `shape` flat-on along +x.
+/// A thin planar hand (1 cm tall) at `height` pushing `shape` flat-on along +x. The arm
+/// clearance is off: these pushes reach the object, to test the balance on contact.
 fn hand_scene(shape: &str, radius: f64, height: f64, mu_g: f64, margin: f64) -> Scene {
-    let physics = format!("physics: {{tipping_margin: {margin}}}");
+    let physics = format!("physics: {{tipping_margin: {margin}, arm_clearance: 0.0}}");
     common::thin_hand_scene("thing", shape, 0.42 + radius + 0.01, height, mu_g, &physics)
 }
 
@@ -237,4 +238,98 @@ fn shipped_tall_objects_tip_where_the_closed_form_says() {
         kinds.len() >= 4,
         "box, glass, bottle, bowl and the goal box: {kinds:?}"
     );
+}
+
+#[test]
+fn a_sliding_push_tips_where_the_closed_form_says() {
+    let (b, margin) = (0.051, 0.2);
+    let edge = (1.0 - margin) * b;
+    let tips = |footprint: &Footprint, contact: &PlanarContact, height: f64, slope: f64| {
+        let elevation = ContactElevation { height, slope };
+        sliding_push_tips(MASS, MU_G, footprint, contact, &elevation, margin)
+    };
+    // Flat on a box's face, anywhere along it: the sliding force mu_g m g at h moves the
+    // centre of pressure by mu_g h (the weight is m g), so it tips above (1 - m) b / mu_g.
+    let h = edge / MU_G;
+    for y in [0.0, 0.8 * b] {
+        let contact = flat_on([-b, y], [0.1, 0.0]);
+        assert!(!tips(&square(b), &contact, 0.99 * h, 0.0), "y {y}");
+        assert!(tips(&square(b), &contact, 1.01 * h, 0.0), "y {y}");
+    }
+    // A cylinder from any side: the same with its radius.
+    let r = 0.035;
+    let circle = Footprint::Circle { radius: r };
+    let h = (1.0 - margin) * r / MU_G;
+    for angle in [0.3f64, 2.0, -2.5] {
+        let out = Vector2::new(angle.cos(), angle.sin());
+        let contact = PlanarContact {
+            point: r * out,
+            normal: -out,
+            pusher_velocity: -0.1 * out,
+            gap: 0.005,
+        };
+        assert!(!tips(&circle, &contact, 0.99 * h, 0.0), "angle {angle}");
+        assert!(tips(&circle, &contact, 1.01 * h, 0.0), "angle {angle}");
+    }
+    // A contact that pushes up as well (slope -s) unloads the table by s mu_g m g and
+    // lifts at the face: N = m g (1 - s mu_g), N p = mu_g m g (h + s b), so it tips above
+    // h = (1 - m) b (1 - s mu_g) / mu_g - s b.
+    let s = 0.5;
+    let h = edge * (1.0 - s * MU_G) / MU_G - s * b;
+    let contact = flat_on([-b, 0.0], [0.1, 0.0]);
+    assert!(!tips(&square(b), &contact, 0.99 * h, -s));
+    assert!(tips(&square(b), &contact, 1.01 * h, -s));
+}
+
+#[test]
+fn a_link_closing_in_where_a_sliding_push_would_tip_stops_before_the_touch() {
+    // The hand approaches a tall box from 1 cm; its contact's lowest point is 5 mm below
+    // its centre. Above the sliding tipping height it must keep `arm_clearance` away,
+    // below it the push goes on; with no clearance the touch itself tips the box.
+    let box_shape = "{type: box, size: [0.1, 0.1, 0.3]}";
+    let h_max = 0.8 * 0.05 / MU_G + 0.005;
+    let scene = |height: f64, clearance: f64| {
+        let physics = format!("physics: {{arm_clearance: {clearance}}}");
+        common::thin_hand_scene("tall", box_shape, 0.42 + 0.06, height, MU_G, &physics)
+    };
+    let high = scene(1.05 * h_max, 0.01);
+    match push_with_hand(&high) {
+        Some(Invalid::ClosesInAtTippingHeight {
+            link,
+            object,
+            distance,
+        }) => {
+            assert_eq!((link.as_str(), object.as_str()), ("hand", "tall"));
+            assert!(distance > 0.0 && distance < 0.01, "{distance}");
+        }
+        other => panic!("expected the hand to stop closing in, got {other:?}"),
+    }
+    assert_eq!(push_with_hand(&scene(0.95 * h_max, 0.01)), None);
+    assert!(matches!(
+        push_with_hand(&scene(1.05 * h_max, 0.0)),
+        Some(Invalid::Tips { .. })
+    ));
+}
+
+#[test]
+fn a_link_passing_over_a_tall_object_keeps_the_clearance_a_low_one_needs_none() {
+    // The 1 cm hand at 0.12 m (its underside at 0.115 m) starts over a box 0.11 m tall
+    // and moves on 5 mm over its top. A narrow box (half-width 2 cm) tips when pushed that high by a sliding push
+    // (above 0.8 * 0.02 / 0.4 = 0.04 m): were it 5 mm further up or the hand lower, the
+    // hand would knock it over. A wide one (half-width 10 cm) would slide.
+    let scene = |half_width: f64, clearance: f64| {
+        let shape = format!(
+            "{{type: box, size: [{}, {}, 0.11]}}",
+            2.0 * half_width,
+            2.0 * half_width
+        );
+        let physics = format!("physics: {{arm_clearance: {clearance}}}");
+        common::thin_hand_scene("under", &shape, 0.41, 0.12, MU_G, &physics)
+    };
+    assert!(matches!(
+        push_with_hand(&scene(0.02, 0.01)),
+        Some(Invalid::ClosesInAtTippingHeight { distance, .. }) if (0.004..0.006).contains(&distance)
+    ));
+    assert_eq!(push_with_hand(&scene(0.02, 0.0)), None);
+    assert_eq!(push_with_hand(&scene(0.1, 0.01)), None);
 }

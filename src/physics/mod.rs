@@ -14,4 +14,4 @@ pub mod tipping;
 
 pub use limit_surface::{Footprint, LimitSurface, LoadedSupport, SupportGrid};
 pub use pushing::{object_motion, Jammed, ObjectMotion, PlanarContact};
-pub use tipping::{ContactElevation, PusherForce, SupportBalance};
+pub use tipping::{sliding_push_tips, ContactElevation, PusherForce, SupportBalance};

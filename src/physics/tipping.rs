@@ -127,3 +127,27 @@ pub fn largest_tipping_moment(forces: &[PusherForce]) -> Option<usize> {
     let moment = |f: &PusherForce| f.p_OC.z * f.f.xy().norm();
     (0..forces.len()).max_by(|&a, &b| moment(&forces[a]).total_cmp(&moment(&forces[b])))
 }
+
+/// Would a push at this contact tip the object if it alone pushed hard enough to slide
+/// it (`|f_xy| = mu_g m g` along the contact normal, the largest push the table's
+/// friction resists)? An arm that passes or first touches an object only where this is
+/// false does not tip it whichever way the touch turns out (`physics.md`, "Tipping").
+pub fn sliding_push_tips(
+    mass: f64,
+    mu_g: f64,
+    footprint: &Footprint,
+    contact: &PlanarContact,
+    elevation: &ContactElevation,
+    margin: f64,
+) -> bool {
+    let push = mu_g * mass * GRAVITY;
+    let force = PusherForce {
+        p_OC: Vector3::new(contact.point.x, contact.point.y, elevation.height),
+        f: Vector3::new(
+            push * contact.normal.x,
+            push * contact.normal.y,
+            elevation.lift() * push,
+        ),
+    };
+    !support_balance(mass, footprint.centroid(), [&force]).stays_flat(footprint, margin)
+}

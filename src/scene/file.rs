@@ -262,6 +262,12 @@ pub struct PhysicsSpec {
     pub tipping_margin: f64,
     /// Smallest distance between a moving object and any other object or obstacle (m).
     pub object_clearance: f64,
+    /// Smallest distance a link closing in on an object keeps from it where a push
+    /// hard enough to slide the object would tip it (m): such a touch must not happen,
+    /// and a plan that misses it by millimetres tips the object when it stands a little
+    /// elsewhere. At most `contact_margin` (contacts are tracked from there on); 0 turns
+    /// the rule off.
+    pub arm_clearance: f64,
     /// A push at height loads the object's leading edge: the centre of friction follows
     /// the support's centre of pressure (the tipping balance's), instead of staying where
     /// a uniform pressure puts it.
@@ -280,6 +286,7 @@ impl Default for PhysicsSpec {
             tilt_tolerance: 0.01,
             tipping_margin: 0.2,
             object_clearance: 0.01,
+            arm_clearance: 0.01,
             pressure_shift: true,
         }
     }

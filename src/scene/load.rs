@@ -793,6 +793,15 @@ impl Loader<'_> {
                 format!("must be zero or positive, got {}", p.object_clearance),
             ));
         }
+        if !(p.arm_clearance.is_finite() && (0.0..=p.contact_margin).contains(&p.arm_clearance)) {
+            return Err(self.invalid(
+                "physics.arm_clearance",
+                format!(
+                    "must be in [0, physics.contact_margin = {}], got {}",
+                    p.contact_margin, p.arm_clearance
+                ),
+            ));
+        }
         if p.penetration_tolerance >= p.contact_margin {
             return Err(self.invalid(
                 "physics.penetration_tolerance",
