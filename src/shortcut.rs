@@ -7,6 +7,11 @@
 //! remaining control from the new state, and keep the result when every state is valid,
 //! the goal is still reached and the manipulator path is shorter (joint space).
 //!
+//! Toward robustness ([`Criterion::MoreRobust`]) half the attempts are nudges instead: one
+//! control held for a different number of steps. A push held a little longer or stopped
+//! a little earlier moves where the objects end up (deeper into the goal disc, further
+//! from a neighbour), which no shortcut between the path's own states can do.
+//!
 //! The budget is counted in propagation steps, not wall-clock time, so shortcutting is
 //! deterministic under its seed; [`STEPS_PER_SECOND`] converts the user's seconds.
 
@@ -87,7 +92,7 @@ pub enum Criterion {
     /// The manipulator path in joint space (the paper's Sec. IV).
     Shorter,
     /// Reaching the goal in more of these perturbed worlds; in as many, a shorter path.
-    /// Robust planning shortcuts toward the most robust path with it.
+    /// Robust planning shortcuts toward the most robust path with it, and nudges.
     MoreRobust(Vec<PerturbedWorld>),
 }
 
@@ -135,22 +140,30 @@ pub fn shortcut_by(
     if let Some(worlds) = &mut worlds {
         work += worlds.run(&scene.goal, &current);
     }
-    while work < settings.budget_steps && current.len() >= 2 {
+    // Shortcuts need two controls to replace; nudges one.
+    let least = if worlds.is_some() { 1 } else { 2 };
+    while work < settings.budget_steps && current.len() >= least {
         if settings.deadline.is_some_and(|d| Instant::now() >= d) {
             outcome.stopped_at_deadline = true;
             break;
         }
         outcome.attempts += 1;
-        // Two states i < j at least two controls apart; controls i..j are replaced.
-        let n = current.len();
-        let i = rng.below(n - 1);
-        let j = i + 2 + rng.below(n - i - 1);
-        let Some(connect) = connecting_control(propagator, &path, i, j) else {
-            continue;
+        // The candidate differs from the current path from control i on.
+        let (i, candidate) = if worlds.is_some() && (current.len() < 2 || rng.below(2) == 0) {
+            nudge(&current, &mut rng)
+        } else {
+            // Two states i < j at least two controls apart; controls i..j are replaced.
+            let n = current.len();
+            let i = rng.below(n - 1);
+            let j = i + 2 + rng.below(n - i - 1);
+            let Some(connect) = connecting_control(propagator, &path, i, j) else {
+                continue;
+            };
+            let mut candidate = current[..i].to_vec();
+            candidate.push(connect);
+            candidate.extend_from_slice(&current[j..]);
+            (i, candidate)
         };
-        let mut candidate = current[..i].to_vec();
-        candidate.push(connect);
-        candidate.extend_from_slice(&current[j..]);
         let tail = simulate(propagator, &path.states[i], &candidate[i..], false);
         work += tail.steps() as u64 + 1;
         if !tail.valid() || !scene.goal.is_satisfied(tail.final_state()) {
@@ -240,6 +253,21 @@ impl<'a> WorldRuns<'a> {
         }
         (reached >= needed, work)
     }
+}
+
+/// `controls` with one of them, `i`, held for a different number of steps: up to half as
+/// many more or fewer, at least one step.
+fn nudge(controls: &[PathControl], rng: &mut SplitMix64) -> (usize, Vec<PathControl>) {
+    let i = rng.below(controls.len());
+    let steps = controls[i].steps;
+    let change = 1 + rng.below(steps.div_ceil(2));
+    let mut nudged = controls.to_vec();
+    nudged[i].steps = if rng.below(2) == 0 || change >= steps {
+        steps + change
+    } else {
+        steps - change
+    };
+    (i, nudged)
 }
 
 /// The action that moves the end effector in a straight line (and turns it) from its pose

@@ -264,3 +264,77 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_beats_shorten
         "found {found}, shortened {shortened}, toward robustness {toward_robust}"
     );
 }
+
+#[test]
+fn toward_robustness_a_push_that_ends_against_a_neighbour_is_stopped_earlier() {
+    use pushplan::planner::RobustRequirement;
+    use pushplan::robustness::{reaches, PerturbedWorld};
+    use pushplan::shortcut::{shortcut_by, Criterion};
+    use pushplan::EeAction;
+    // A thin hand pushes a box along +x toward a second box, with no clearance required;
+    // the one control pushes it as far as it can go, 1-2 mm short of the neighbour (the
+    // goal disc is reached all along). In perturbed worlds the neighbour stands +-5 mm
+    // elsewhere: the boxes overlap in some. No shortcut exists for one control; a nudge
+    // stops the push earlier.
+    let yaml = "robot:
+  type: planar_hand
+  shape: {type: box, size: [0.04, 0.12, 0.01]}
+  start: [0.4, 0.0, 0.0]
+  height: 0.03
+table: {height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}
+objects:
+  - {name: pushed, shape: {type: box, size: [0.1, 0.1, 0.1]}, pose: [0.5, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}
+  - {name: neighbour, shape: {type: box, size: [0.1, 0.1, 0.1]}, pose: [0.75, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}
+goal: {object: pushed, center: [0.62, 0.0], radius: 0.1, margin: 0.0}
+physics: {object_clearance: 0.0}
+";
+    let scene = Scene::from_yaml(yaml, Path::new("scenes/nudge-test.yaml")).unwrap();
+    let push = |steps| PathControl {
+        action: EeAction::planar(0.1, 0.0, 0.0),
+        steps,
+    };
+    let mut propagator = Propagator::new(&scene);
+    let reaches_goal = |p: &mut Propagator, steps| {
+        let path = simulate(p, &scene.start, &[push(steps)], false);
+        path.valid() && scene.goal.is_satisfied(path.final_state())
+    };
+    let steps = (1..500)
+        .take_while(|&n| n < 100 || reaches_goal(&mut propagator, n))
+        .last()
+        .unwrap();
+    assert!(steps > 100 && reaches_goal(&mut propagator, steps));
+    let controls = vec![push(steps)];
+    let count = |worlds: &mut [PerturbedWorld], c: &[PathControl]| {
+        worlds
+            .iter_mut()
+            .map(|w| reaches(&scene.goal, &w.run(c)))
+            .filter(|&r| r)
+            .count()
+    };
+    let requirement = RobustRequirement {
+        trials: 20,
+        rate: 0.9,
+    };
+    let mut worlds = requirement.shortcut_worlds(&scene, 1);
+    let before = count(&mut worlds, &controls);
+    assert!((2..=17).contains(&before), "{before} of 20 reach");
+    let mut criterion = Criterion::MoreRobust(worlds);
+    let outcome = shortcut_by(
+        &mut propagator,
+        &scene.start,
+        &controls,
+        &ShortcutSettings::from_seconds(0.5, 1),
+        &mut criterion,
+    );
+    let Criterion::MoreRobust(mut worlds) = criterion else {
+        unreachable!()
+    };
+    assert_eq!(outcome.controls.len(), 1);
+    assert!(
+        outcome.controls[0].steps < steps,
+        "{steps}: {:?}",
+        outcome.controls
+    );
+    let after = count(&mut worlds, &outcome.controls);
+    assert!(after > before && after >= 18, "{before} -> {after} of 20");
+}
