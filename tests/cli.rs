@@ -311,11 +311,15 @@ fn a_fragile_solution_is_shortcut_toward_robustness_before_the_search_goes_on() 
         let Some(without) = first_dropped(&dropped) else {
             continue;
         };
+        // The search may go on past a first solution still short of 90 % and not find a
+        // robust one in time: only the first solution's fate is asserted.
         let (code, output) = plan(seed, "--robust-shortcut=3", "30");
-        assert_eq!(code, 0, "{output}");
         match first_dropped(&output) {
             Some(with) => assert!(with >= without, "seed {seed}: {without} % -> {with} %"),
-            None => repaired += 1,
+            None => {
+                assert_eq!(code, 0, "the first solution was kept: {output}");
+                repaired += 1;
+            }
         }
     }
     assert!(repaired >= 1, "no fragile first solution was made robust");
