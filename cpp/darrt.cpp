@@ -49,7 +49,7 @@ namespace pushplan::detail
             bool isValid(const ob::State *state) const override
             {
                 withJoints(state, model_->info().dof, *context_);
-                return model_->model().is_valid(slice(*context_));
+                return model_->model().is_valid(slice(*context_), {});
             }
 
         private:
@@ -270,7 +270,7 @@ namespace pushplan::detail
         }
         FlatState target = nodes_[nearest].state;
         std::copy(q.begin(), q.end(), target.begin());
-        if (!model_->model().is_valid(slice(target)))
+        if (!model_->model().is_valid(slice(target), {}))
             return -1;
         // Transit if the straight line is free, else RRTTransit.
         std::vector<FlatState> motion;

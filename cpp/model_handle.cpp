@@ -4,15 +4,53 @@
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace ob = ompl::base;
 namespace oc = ompl::control;
 
 namespace pushplan::detail
 {
-    ModelHandle::ModelHandle(rust::Box<bridge::Model> model) : model_(std::move(model)), info_(bridge::scene_info(*model_))
+    ModelHandle::ModelHandle(rust::Box<bridge::Model> model)
+      : model_(std::move(model)),
+        info_(bridge::scene_info(*model_)),
+        layout_(stateLayout(info_.dof, info_.objects, model_->particle_len()))
     {
+    }
+
+    void ModelHandle::setParticles(std::size_t count, std::uint64_t seed)
+    {
+        if (layout_fixed_)
+            throw std::logic_error("perturbed worlds must be set before the state space is made");
+        model_->set_particles(count, seed);
+        layout_ = stateLayout(info_.dof, info_.objects, model_->particle_len());
+    }
+
+    const StateLayout &ModelHandle::fixLayout()
+    {
+        layout_fixed_ = true;
+        return layout_;
+    }
+
+    rust::Slice<const double> ModelHandle::particles(const ob::State *state) const
+    {
+        const auto *at = reinterpret_cast<const char *>(state) + layout_.particles;
+        return {reinterpret_cast<const double *>(at), (layout_.size - layout_.particles) / sizeof(double)};
+    }
+
+    rust::Slice<double> ModelHandle::particles(ob::State *state) const
+    {
+        auto *at = reinterpret_cast<char *>(state) + layout_.particles;
+        return {reinterpret_cast<double *>(at), (layout_.size - layout_.particles) / sizeof(double)};
+    }
+
+    void ModelHandle::writeStart(ob::State *state) const
+    {
+        write(std::vector<double>(info_.start.begin(), info_.start.end()), state);
+        const rust::Vec<double> start = model_->start_particles();
+        std::copy(start.begin(), start.end(), particles(state).begin());
     }
 
     // The state space is the compound [joints (RealVector), object 1 (SE2), ...].
@@ -57,7 +95,7 @@ namespace pushplan::detail
     bool ModelHandle::isValid(const ob::State *state) const
     {
         read(state, a_);
-        return model_->is_valid(slice(a_));
+        return model_->is_valid(slice(a_), particles(state));
     }
 
     double ModelHandle::distance(const ob::State *a, const ob::State *b) const
@@ -71,7 +109,7 @@ namespace pushplan::detail
     double ModelHandle::goalDistance(const ob::State *state) const
     {
         read(state, a_);
-        return model_->goal_distance(slice(a_));
+        return model_->goal_distance(slice(a_), particles(state));
     }
 
     void ModelHandle::pinClutter(std::vector<double> &flat) const
@@ -95,10 +133,12 @@ namespace pushplan::detail
                                 ob::State *result) const
     {
         read(state, a_);  // copies first: OMPL may pass state == result
+        const rust::Slice<const double> from = particles(state);
+        particles_.assign(from.begin(), from.end());
         readControl(control, control_);
         b_.resize(a_.size());
-        const bool valid = model_->propagate(slice(a_), slice(control_), steps,
-                                             rust::Slice<double>(b_.data(), b_.size()));
+        const bool valid = model_->propagate(slice(a_), slice(particles_), slice(control_), steps,
+                                             rust::Slice<double>(b_.data(), b_.size()), particles(result));
         write(b_, result);
         return valid;
     }

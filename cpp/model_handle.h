@@ -3,6 +3,7 @@
 
 #include "pushplan/src/ffi.rs.h"
 #include "rust/cxx.h"  // rust::Error
+#include "state_layout.h"
 
 #include <ompl/base/State.h>
 #include <ompl/control/Control.h>
@@ -30,6 +31,14 @@ namespace pushplan::detail
         /// Writes a flat state into an OMPL state.
         void write(const std::vector<double> &in, ompl::base::State *state) const;
         void readControl(const ompl::control::Control *control, std::vector<double> &out) const;
+
+        /// Robust planning: every state carries `count` perturbed worlds drawn from `seed`
+        /// (the model's ParticleWorlds). Only before the state space fixes the layout.
+        void setParticles(std::size_t count, std::uint64_t seed);
+        /// The state layout, fixed from now on (the state space allocates by it).
+        const StateLayout &fixLayout();
+        /// Writes the start state, with the perturbed worlds' start poses.
+        void writeStart(ompl::base::State *state) const;
 
         bool isValid(const ompl::base::State *state) const;
         double distance(const ompl::base::State *a, const ompl::base::State *b) const;
@@ -62,9 +71,15 @@ namespace pushplan::detail
         bridge::Model &model() const { return *model_; }
 
     private:
+        /// The perturbed worlds' poses within a state's block (empty without worlds).
+        rust::Slice<const double> particles(const ompl::base::State *state) const;
+        rust::Slice<double> particles(ompl::base::State *state) const;
+
         mutable rust::Box<bridge::Model> model_;
         bridge::SceneInfo info_;
-        mutable std::vector<double> a_, b_, control_;
+        StateLayout layout_;
+        bool layout_fixed_ = false;
+        mutable std::vector<double> a_, b_, control_, particles_;
     };
 
     using ModelHandlePtr = std::shared_ptr<ModelHandle>;

@@ -148,6 +148,12 @@ namespace pushplan
             checked("robust_shortcut", options.robust_shortcut,
                     std::isfinite(options.robust_shortcut) && options.robust_shortcut >= 0.0);
             checked("shortcut", options.shortcut, std::isfinite(options.shortcut) && options.shortcut >= 0.0);
+            checked("robust_particles", options.robust_particles,
+                    options.robust_particles <= 64 &&
+                        (options.robust_particles == 0 ||
+                         (options.robust_trials > 0 && options.planner != PlannerKind::StaticRrt)));
+            for (unsigned i = 0; i < threads; ++i)
+                models[i]->setParticles(options.robust_particles, detail::searchSeed(seed, i));
 
             // OMPL's log level is process-wide: quiet below warnings while planning, then put
             // back as the application had it.

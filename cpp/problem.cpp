@@ -91,7 +91,7 @@ namespace pushplan::detail
             [k](const oc::SpaceInformation *s) { return std::make_shared<oc::SimpleDirectedControlSampler>(s, k); });
 
         ob::ScopedState<> start(space);
-        model->write(std::vector<double>(info.start.begin(), info.start.end()), start.get());
+        model->writeStart(start.get());
         setup->setStartState(start);
         setup->setGoal(std::make_shared<PushGoal>(si, model, subSeed(seed, 2)));
         // Path length in the model's metric: what SST (and any optimizing planner) minimizes.

@@ -18,6 +18,7 @@ namespace pushplan::bridge
         o.robust_trials = static_cast<unsigned>(options.robust_trials);
         o.robust_rate = options.robust_rate;
         o.robust_shortcut = options.robust_shortcut;
+        o.robust_particles = options.robust_particles;
         o.threads = options.threads;
         o.shortcut = 0.0;  // the CLI finishes the path itself (planner::finish), to report on it
 

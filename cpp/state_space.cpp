@@ -5,12 +5,23 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
+#include <algorithm>
 #include <new>
 
 namespace ob = ompl::base;
 
 namespace pushplan::detail
 {
+    namespace
+    {
+        /// `n` bytes rounded up to the strictest fundamental alignment.
+        std::size_t alignedSize(std::size_t n)
+        {
+            constexpr std::size_t a = alignof(std::max_align_t);
+            return (n + a - 1) / a * a;
+        }
+    }  // namespace
+
     PushStateSpace::PushStateSpace(ModelHandlePtr model) : model_(std::move(model))
     {
         const auto &info = model_->info();
@@ -38,23 +49,26 @@ namespace pushplan::detail
             addSubspace(object, 1.0);
         }
         lock();
+        layout_ = model_->fixLayout();
+    }
 
+    StateLayout stateLayout(std::size_t dof, std::size_t objects, std::size_t particle_values)
+    {
         // One block per state:
         //   [top | top components | joints | per object: SE2, its 2 components, xy header |
-        //    joint values | x, y of every object | SO2 (yaw) of every object].
-        const auto align = [](std::size_t n) {
-            constexpr std::size_t a = alignof(std::max_align_t);
-            return (n + a - 1) / a * a;
-        };
-        layout_.components = align(sizeof(ob::CompoundState));
-        layout_.joints = layout_.components + align(sizeof(ob::State *) * (1 + info.objects));
-        layout_.objects = layout_.joints + align(sizeof(ob::RealVectorStateSpace::StateType));
-        layout_.object_headers = align(sizeof(ob::SE2StateSpace::StateType)) + align(2 * sizeof(ob::State *)) +
-                                 align(sizeof(ob::RealVectorStateSpace::StateType));
-        layout_.joint_values = layout_.objects + layout_.object_headers * info.objects;
-        layout_.xy_values = layout_.joint_values + sizeof(double) * info.dof;
-        layout_.yaws = align(layout_.xy_values + 2 * sizeof(double) * info.objects);
-        layout_.size = layout_.yaws + sizeof(ob::SO2StateSpace::StateType) * info.objects;
+        //    joint values | x, y of every object | SO2 (yaw) of every object | particles].
+        StateLayout layout{};
+        layout.components = alignedSize(sizeof(ob::CompoundState));
+        layout.joints = layout.components + alignedSize(sizeof(ob::State *) * (1 + objects));
+        layout.objects = layout.joints + alignedSize(sizeof(ob::RealVectorStateSpace::StateType));
+        layout.object_headers = alignedSize(sizeof(ob::SE2StateSpace::StateType)) + alignedSize(2 * sizeof(ob::State *)) +
+                                alignedSize(sizeof(ob::RealVectorStateSpace::StateType));
+        layout.joint_values = layout.objects + layout.object_headers * objects;
+        layout.xy_values = layout.joint_values + sizeof(double) * dof;
+        layout.yaws = alignedSize(layout.xy_values + 2 * sizeof(double) * objects);
+        layout.particles = alignedSize(layout.yaws + sizeof(ob::SO2StateSpace::StateType) * objects);
+        layout.size = layout.particles + sizeof(double) * particle_values;
+        return layout;
     }
 
     double PushStateSpace::getMaximumExtent() const
@@ -65,22 +79,19 @@ namespace pushplan::detail
     ob::State *PushStateSpace::allocState() const
     {
         auto *block = static_cast<char *>(::operator new(layout_.size, std::align_val_t(alignof(std::max_align_t))));
+        std::fill(block + layout_.particles, block + layout_.size, char(0));
         auto *top = new (block) ob::CompoundState();
         top->components = reinterpret_cast<ob::State **>(block + layout_.components);
         auto *joints = new (block + layout_.joints) ob::RealVectorStateSpace::StateType();
         joints->values = reinterpret_cast<double *>(block + layout_.joint_values);
         top->components[0] = joints;
-        const auto align = [](std::size_t n) {
-            constexpr std::size_t a = alignof(std::max_align_t);
-            return (n + a - 1) / a * a;
-        };
         for (std::size_t i = 0; i + 1 < componentCount_; ++i)
         {
             char *at = block + layout_.objects + i * layout_.object_headers;
             auto *se2 = new (at) ob::SE2StateSpace::StateType();
-            at += align(sizeof(ob::SE2StateSpace::StateType));
+            at += alignedSize(sizeof(ob::SE2StateSpace::StateType));
             se2->components = reinterpret_cast<ob::State **>(at);
-            at += align(2 * sizeof(ob::State *));
+            at += alignedSize(2 * sizeof(ob::State *));
             auto *xy = new (at) ob::RealVectorStateSpace::StateType();
             xy->values = reinterpret_cast<double *>(block + layout_.xy_values) + 2 * i;
             auto *yaw = new (block + layout_.yaws + i * sizeof(ob::SO2StateSpace::StateType))
@@ -96,6 +107,15 @@ namespace pushplan::detail
     void PushStateSpace::freeState(ob::State *state) const
     {
         ::operator delete(static_cast<void *>(state), std::align_val_t(alignof(std::max_align_t)));
+    }
+
+    // The components as OMPL copies them, then the perturbed worlds' poses.
+    void PushStateSpace::copyState(ob::State *destination, const ob::State *source) const
+    {
+        ob::CompoundStateSpace::copyState(destination, source);
+        std::copy(reinterpret_cast<const char *>(source) + layout_.particles,
+                  reinterpret_cast<const char *>(source) + layout_.size,
+                  reinterpret_cast<char *>(destination) + layout_.particles);
     }
 
     double PushStateSpace::distance(const ob::State *a, const ob::State *b) const

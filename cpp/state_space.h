@@ -3,6 +3,7 @@
 #pragma once
 
 #include "model_handle.h"
+#include "state_layout.h"
 
 #include <ompl/base/StateSampler.h>
 #include <ompl/base/StateSpace.h>
@@ -16,9 +17,8 @@ namespace pushplan::detail
     /// A state and all its components are allocated as one block: nearest-neighbour
     /// queries read thousands of states, and a compound of SE2 states is otherwise about
     /// twenty scattered heap objects (measured: half of planning time in cache misses).
-    /// Within the block the numbers come last and together — joint values, every
-    /// object's x and y, every object's yaw (inside its SO2 state) — so a distance reads
-    /// few cache lines.
+    /// Within the block the numbers come last and together (StateLayout), so a distance
+    /// reads few cache lines.
     class PushStateSpace : public ompl::base::CompoundStateSpace
     {
     public:
@@ -28,15 +28,14 @@ namespace pushplan::detail
         double getMaximumExtent() const override;
         ompl::base::State *allocState() const override;
         void freeState(ompl::base::State *state) const override;
+
+        /// Copies the perturbed worlds' poses too (robust planning).
+        void copyState(ompl::base::State *destination, const ompl::base::State *source) const override;
         const ModelHandlePtr &model() const { return model_; }
 
     private:
         ModelHandlePtr model_;
-        /// Byte offsets within a state's block: headers first, then the numbers.
-        struct Layout
-        {
-            std::size_t components, joints, objects, object_headers, joint_values, xy_values, yaws, size;
-        } layout_;
+        StateLayout layout_;
     };
 
     /// Samples the robot and every object uniformly (joint limits, table extent, any

@@ -135,14 +135,19 @@ pub mod bridge {
         fn propagate(
             self: &mut Model,
             x: &[f64],
+            particles: &[f64],
             u: &[f64],
             steps: usize,
             out: &mut [f64],
+            out_particles: &mut [f64],
         ) -> Result<bool>;
-        fn is_valid(self: &mut Model, state: &[f64]) -> Result<bool>;
+        fn is_valid(self: &mut Model, state: &[f64], particles: &[f64]) -> Result<bool>;
         fn distance(self: &Model, a: &[f64], b: &[f64]) -> Result<f64>;
         fn max_extent(self: &Model) -> f64;
-        fn goal_distance(self: &Model, state: &[f64]) -> Result<f64>;
+        fn goal_distance(self: &Model, state: &[f64], particles: &[f64]) -> Result<f64>;
+        fn set_particles(self: &mut Model, count: usize, seed: u64) -> Result<()>;
+        fn particle_len(self: &Model) -> usize;
+        fn start_particles(self: &Model) -> Vec<f64>;
         fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
         fn propagation_steps(self: &Model) -> u64;
         fn propagation_seconds(self: &Model) -> f64;

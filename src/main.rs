@@ -73,6 +73,11 @@ enum Command {
         /// it is dropped.
         #[arg(long, default_value_t = 3.0)]
         robust_shortcut: f64,
+        /// With --robust: perturbed worlds every tree state carries; an extension is kept
+        /// only if it is valid in each, and the goal is reached only when it is reached in
+        /// each (0: none, only the check of each solution).
+        #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
+        particles: u32,
         /// Searches in parallel, one per thread, advancing in rounds of propagation steps
         /// (the same seed and thread count give the same plan); default: one per core.
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
@@ -268,6 +273,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             robust,
             robust_rate,
             robust_shortcut,
+            particles,
             threads,
         } => {
             let scene = scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
@@ -275,6 +281,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 robust,
                 robust_rate,
                 robust_shortcut,
+                particles,
                 threads: threads.unwrap_or_else(pushplan::cli::cores),
                 time,
                 seed,

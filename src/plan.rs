@@ -101,6 +101,9 @@ pub struct RobustnessRecord {
     pub trials: usize,
     pub required_rate: f64,
     pub success_rate: f64,
+    /// Perturbed worlds the search carried along its states (absent in older files: 0).
+    #[serde(default)]
+    pub particles: u32,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

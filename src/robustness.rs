@@ -7,8 +7,9 @@
 //! plan open loop.
 
 use crate::path::{simulate, PathControl, SimulatedPath};
-use crate::propagate::Propagator;
+use crate::propagate::{Propagation, Propagator};
 use crate::random::SplitMix64;
+use crate::robot::EeAction;
 use crate::scene::{Goal, Scene};
 use crate::state::State;
 use crate::validity::{check_state, Clearances, Invalid};
@@ -155,6 +156,26 @@ impl PerturbedWorld {
     /// `controls` simulated in this world from its perturbed start.
     pub fn run(&mut self, controls: &[PathControl]) -> SimulatedPath {
         simulate(&mut self.propagator, &self.start, controls, false)
+    }
+
+    /// The world's (perturbed) start state.
+    pub fn start(&self) -> &State {
+        &self.start
+    }
+
+    /// Holds `action` for `steps` steps from `from` (a valid state of this world).
+    pub fn propagate_steps(
+        &mut self,
+        from: &State,
+        action: &EeAction,
+        steps: usize,
+    ) -> Propagation {
+        self.propagator.propagate_steps(from, action, steps)
+    }
+
+    /// Whether `state` is valid in this world (its reserves are off).
+    pub fn is_valid(&self, state: &State) -> bool {
+        check_state(self.propagator.scene(), state).is_ok()
     }
 
     /// `controls` simulated in this world from `from` (a state of this world).

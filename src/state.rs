@@ -45,14 +45,26 @@ impl State {
         Ok(flat.chunks(n).map(|s| Self::from_flat(s, dof)).collect())
     }
 
+    /// The state of joints `q` and object poses flat as in a state (`[x, y, yaw]` each).
+    pub fn from_flat_parts(q: &DVector<f64>, objects: &[f64]) -> State {
+        State {
+            q: q.clone(),
+            objects: poses_from_flat(objects),
+        }
+    }
+
     /// The state of a flat array for a robot with `dof` joints; the rest are object poses.
     pub fn from_flat(flat: &[f64], dof: usize) -> State {
         State {
             q: DVector::from_column_slice(&flat[..dof]),
-            objects: flat[dof..]
-                .chunks_exact(3)
-                .map(|c| Pose2::new(c[0], c[1], c[2]))
-                .collect(),
+            objects: poses_from_flat(&flat[dof..]),
         }
     }
+}
+
+/// Object poses from `[x, y, yaw]` triples.
+fn poses_from_flat(flat: &[f64]) -> Vec<Pose2> {
+    flat.chunks_exact(3)
+        .map(|c| Pose2::new(c[0], c[1], c[2]))
+        .collect()
 }

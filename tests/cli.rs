@@ -274,6 +274,48 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
 }
 
 #[test]
+fn robust_planning_can_carry_perturbed_worlds_along_the_search() {
+    let scratch = common::Scratch::new("cli-robust_planning_can_carry_perturbed_worlds");
+    let plan = |name: &str, extra: &[&str]| {
+        let out = scratch.join(name);
+        let mut args = vec![
+            "plan",
+            "scenes/planar_hand_single_object.yaml",
+            "--time",
+            "30",
+            "--seed",
+            "3",
+            "--threads",
+            "1",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let (code, stdout, stderr) = pushplan(&args);
+        (code, format!("{stdout}{stderr}"), out)
+    };
+    let robust = ["--robust", "10", "--particles", "4"];
+    let (code, output, a) = plan("a.json", &robust);
+    assert_eq!(code, 0, "{output}");
+    let a: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(a).unwrap()).unwrap();
+    assert_eq!(a["robustness"]["particles"], 4);
+    assert!(
+        a["robustness"]["success_rate"].as_f64().unwrap() >= 0.9,
+        "{}",
+        a["robustness"]
+    );
+    // The worlds are drawn from the seed: the same plan again, bit for bit.
+    let (_, _, b) = plan("b.json", &robust);
+    let b: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(b).unwrap()).unwrap();
+    assert_eq!(a["controls"], b["controls"]);
+    // Worlds without robust planning are refused, naming the flag.
+    let (code, output, _) = plan("c.json", &["--particles", "4"]);
+    assert_ne!(code, 0, "{output}");
+    assert!(output.contains("--particles 4 needs --robust"), "{output}");
+}
+
+#[test]
 fn a_fragile_solution_is_shortcut_toward_robustness_before_the_search_goes_on() {
     let scratch = common::Scratch::new(
         "cli-a_fragile_solution_is_shortcut_toward_robustness_before_the_search_goes_on",

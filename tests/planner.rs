@@ -22,6 +22,7 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
         robust_trials: 0,
         robust_rate: 0.9,
         robust_shortcut: 3.0,
+        robust_particles: 0,
         threads: 1,
     }
 }
@@ -228,10 +229,10 @@ fn the_static_mode_of_the_full_problem_is_the_static_clutter_scene() {
     let (mut a, mut b) = (vec![0.0; start_reduced.len()], vec![0.0; start_full.len()]);
     for steps in [1, 20, 80, 200] {
         let valid_a = reduced
-            .propagate(&start_reduced, &control, steps, &mut a)
+            .propagate(&start_reduced, &[], &control, steps, &mut a, &mut [])
             .unwrap();
         let valid_b = full
-            .propagate(&start_full, &control, steps, &mut b)
+            .propagate(&start_full, &[], &control, steps, &mut b, &mut [])
             .unwrap();
         assert_eq!(valid_a, valid_b, "{steps} steps");
         assert_eq!(a[..7], b[..7], "same arm motion");
@@ -241,9 +242,9 @@ fn the_static_mode_of_the_full_problem_is_the_static_clutter_scene() {
     // Clutter out of place is invalid in the static problem, fine in the pushing one.
     let mut moved = start_full.clone();
     moved[10] += 0.01;
-    assert!(!full.is_valid(&moved).unwrap());
+    assert!(!full.is_valid(&moved, &[]).unwrap());
     full.set_static_clutter(false);
-    assert!(full.is_valid(&moved).unwrap());
+    assert!(full.is_valid(&moved, &[]).unwrap());
 }
 
 #[test]
@@ -266,7 +267,10 @@ fn search_statistics_count_propagations_as_ompl_runs_them() {
         for _ in 0..limit {
             let mut next = vec![0.0; state.len()];
             steps += 1;
-            if !model.propagate(&state, control, 1, &mut next).unwrap() {
+            if !model
+                .propagate(&state, &[], control, 1, &mut next, &mut [])
+                .unwrap()
+            {
                 stopped += 1;
                 break;
             }
@@ -303,12 +307,16 @@ fn past_its_time_limit_the_model_refuses_to_propagate() {
     let forward = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
     let mut next = vec![f64::NAN; start.len()];
     model.set_time_limit(0.0);
-    assert!(!model.propagate(&start, &forward, 1, &mut next).unwrap());
+    assert!(!model
+        .propagate(&start, &[], &forward, 1, &mut next, &mut [])
+        .unwrap());
     assert_eq!(next, start, "a refused step stays at its start");
     assert_eq!(model.propagation_steps(), 0);
     assert_eq!(model.search_stats().propagations, 0, "nothing counted");
     model.set_time_limit(f64::INFINITY);
-    assert!(model.propagate(&start, &forward, 1, &mut next).unwrap());
+    assert!(model
+        .propagate(&start, &[], &forward, 1, &mut next, &mut [])
+        .unwrap());
     assert_ne!(next, start);
     assert_eq!(model.propagation_steps(), 1);
 }

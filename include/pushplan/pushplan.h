@@ -90,6 +90,11 @@ namespace pushplan
         /// enough, toward the path that reaches the goal in the most perturbed scenes (drawn
         /// apart from the check's), before it is dropped.
         double robust_shortcut = 3.0;
+        /// Perturbed worlds (drawn as the check's) every tree state carries in robust
+        /// planning: an extension is kept only if it is valid in each, and the goal is
+        /// reached only when each world's goal object is in the disc. 0: none (the check
+        /// alone). Only with robust_trials > 0, in the pushing problem (not Static RRT).
+        unsigned robust_particles = 0;
         /// Searches run in parallel, one per thread, in lock-step rounds counted in
         /// propagation steps: the same scene, seed and thread count give the same plan.
         /// Default: one per core.

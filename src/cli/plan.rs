@@ -15,6 +15,8 @@ pub struct PlanOptions {
     pub robust_rate: f64,
     /// Shortcutting toward robustness per solution not robust enough (s of work).
     pub robust_shortcut: f64,
+    /// Perturbed worlds carried along the search in robust planning.
+    pub particles: u32,
     pub time: Option<f64>,
     pub seed: Option<u64>,
     pub k: Option<u32>,
@@ -44,6 +46,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         robust_trials: run.robust,
         robust_rate: run.robust_rate,
         robust_shortcut: run.robust_shortcut,
+        robust_particles: run.particles,
         threads: run.threads,
     };
     if !(0.0..=1.0).contains(&run.robust_rate) {
@@ -63,6 +66,13 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             "--k must be in [1, {}], got {}",
             crate::scene::MAX_K,
             options.k
+        ));
+    }
+    if run.particles > 0 && (run.robust == 0 || planner == PlannerKind::StaticRrt) {
+        return Err(format!(
+            "--particles {} needs --robust, and a planner that pushes (not {})",
+            run.particles,
+            PlannerKind::StaticRrt.name()
         ));
     }
     for (flag, seconds) in [
@@ -137,6 +147,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         trials: run.robust,
         required_rate: run.robust_rate,
         success_rate,
+        particles: run.particles,
     });
     std::fs::write(out, file.to_json())
         .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
@@ -161,6 +172,10 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         println!(
             "closest: {}",
             match goal {
+                crate::scene::Goal::ObjectInDisc { .. } if left <= 0.0 && run.particles > 0 => format!(
+                    "the goal object ends {:.0} mm inside the goal region, but not in every perturbed world the search carried",
+                    -1e3 * left
+                ),
                 crate::scene::Goal::ObjectInDisc { margin, .. } => format!(
                     "the goal object ends {:.0} mm from the goal region (the goal disc less its {:.0} mm margin)",
                     1e3 * left,

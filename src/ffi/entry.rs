@@ -20,6 +20,8 @@ pub mod bridge {
         /// Shortcutting budget (s of work) toward robustness for each solution not robust
         /// enough (pushplan::Options::robust_shortcut).
         pub robust_shortcut: f64,
+        /// Perturbed worlds every tree state carries (pushplan::Options::robust_particles).
+        pub robust_particles: u32,
         /// Searches in parallel (pushplan::Options::threads); at least 1.
         pub threads: u32,
     }

@@ -7,6 +7,7 @@ mod finish;
 mod kind;
 mod model;
 mod nearest;
+mod particles;
 mod problem;
 mod stats;
 
@@ -16,5 +17,6 @@ pub use finish::{
 pub use kind::PlannerKind;
 pub use model::Model;
 pub use nearest::NearestTree;
+pub use particles::ParticleWorlds;
 pub use problem::Problem;
 pub use stats::{SearchCounter, SearchStats};

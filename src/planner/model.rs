@@ -4,6 +4,7 @@
 //! C++ (nothing may unwind across the bridge).
 
 use super::finish::{FinishSettings, FinishedPath};
+use super::particles::ParticleWorlds;
 use super::{NearestTree, PlannerKind, Problem, SearchCounter, SearchStats};
 use crate::darrt;
 use crate::distance::DistanceMetric;
@@ -27,6 +28,8 @@ pub struct Model {
     static_view: StaticClutter,
     static_mode: bool,
     metric: DistanceMetric,
+    /// Robust planning's perturbed worlds, carried along every state (none by default).
+    particles: ParticleWorlds,
     /// The last state `propagate` produced and whether it was valid: OMPL asks
     /// `isValid` of exactly that state next, and the propagation already knows.
     last_result: Option<(Vec<f64>, bool)>,
@@ -63,6 +66,7 @@ impl Model {
             static_view: StaticClutter::new(&scene),
             static_mode: false,
             propagator: Propagator::new(scene),
+            particles: ParticleWorlds::default(),
             last_result: None,
             steps_taken: 0,
             propagating: Duration::ZERO,
@@ -141,14 +145,18 @@ impl Model {
         PathControl::from_flat(controls, steps, self.scene().robot.dof())
     }
 
-    /// Holds `control` for `steps` steps from `state`; writes the state reached (or, if a
-    /// step was invalid, the invalid state it tried to reach) and says whether it is valid.
+    /// Holds `control` for `steps` steps from `state` (and its perturbed worlds' poses
+    /// `particles`, see [`Model::set_particles`]); writes the state reached (or, if a step
+    /// was invalid, the invalid state it tried to reach) and the worlds' poses, and says
+    /// whether it is valid: in every world.
     pub fn propagate(
         &mut self,
         state: &[f64],
+        particles: &[f64],
         control: &[f64],
         steps: usize,
         result: &mut [f64],
+        result_particles: &mut [f64],
     ) -> Result<bool, String> {
         let started = Instant::now();
         let outcome = guarded("propagate", || {
@@ -160,6 +168,8 @@ impl Model {
             if result.len() != state.len() {
                 return Err("the result state has the wrong length".into());
             }
+            self.check_particles(particles)?;
+            self.check_particles(result_particles)?;
             // Count the propagation, then write the state reached: the valid part's end,
             // or the invalid state the last step tried to reach. Past the deadline: the
             // start, invalid, nothing counted.
@@ -194,6 +204,23 @@ impl Model {
             if let Some(taken) = taken {
                 self.steps_taken += taken as u64 + u64::from(!valid);
             }
+            // The perturbed worlds follow the same controls from the same joints.
+            result_particles.copy_from_slice(particles);
+            let valid = valid && {
+                let nominal = State::from_flat(result, start.q.len());
+                let stopped = self.particles.propagate(
+                    &start.q,
+                    particles,
+                    &action,
+                    steps,
+                    &nominal,
+                    result_particles,
+                );
+                if let Err(why) = &stopped {
+                    self.search.record_perturbed_world_stop(why.kind());
+                }
+                stopped.is_ok()
+            };
             // Kept in the same buffer: OMPL propagates one step at a time.
             match &mut self.last_result {
                 Some((last, last_valid)) => {
@@ -221,12 +248,17 @@ impl Model {
         same.then_some(*valid)
     }
 
-    pub fn is_valid(&mut self, state: &[f64]) -> Result<bool, String> {
+    /// Whether `state` is valid, in every perturbed world (their poses `particles`).
+    pub fn is_valid(&mut self, state: &[f64], particles: &[f64]) -> Result<bool, String> {
         guarded("is_valid", || {
             if let Some(valid) = self.last_result_validity(state) {
                 return Ok(valid);
             }
+            self.check_particles(particles)?;
             let state = self.state(state)?;
+            if !self.particles.all_valid(&state.q, particles) {
+                return Ok(false);
+            }
             if self.static_mode {
                 let view = &self.static_view;
                 return Ok(view.clutter_in_place(&state)
@@ -262,10 +294,51 @@ impl Model {
         self.metric.max_extent(self.scene())
     }
 
-    pub fn goal_distance(&self, state: &[f64]) -> Result<f64, String> {
+    /// How far `state` is from the goal (m or rad; zero or negative inside): the nominal
+    /// state with the planning margin, every perturbed world (poses `particles`) without.
+    pub fn goal_distance(&self, state: &[f64], particles: &[f64]) -> Result<f64, String> {
         guarded("goal_distance", || {
-            Ok(self.scene().goal.distance(&self.state(state)?))
+            self.check_particles(particles)?;
+            let state = self.state(state)?;
+            let goal = &self.scene().goal;
+            let worlds = self.particles.goal_distance(&state.q, particles);
+            Ok(goal.distance(&state).max(worlds))
         })
+    }
+
+    /// Robust planning: from now on every state carries `count` perturbed worlds drawn
+    /// from `seed` ([`ParticleWorlds`]); 0 turns them off. In the pushing problem only.
+    pub fn set_particles(&mut self, count: usize, seed: u64) -> Result<(), String> {
+        guarded("set_particles", || {
+            if count > 0 && self.static_mode {
+                return Err("perturbed worlds are carried in the pushing problem only".into());
+            }
+            self.particles = ParticleWorlds::draw(self.scene(), count, seed)
+                .map_err(|e| format!("no valid perturbed start for a perturbed world: {e}"))?;
+            self.last_result = None;
+            Ok(())
+        })
+    }
+
+    /// The number of values of a state's perturbed worlds' poses (0 without worlds).
+    pub fn particle_len(&self) -> usize {
+        self.particles.flat_len()
+    }
+
+    /// The perturbed worlds' start poses.
+    pub fn start_particles(&self) -> Vec<f64> {
+        self.particles.start_flat()
+    }
+
+    fn check_particles(&self, particles: &[f64]) -> Result<(), String> {
+        if particles.len() != self.particles.flat_len() {
+            return Err(format!(
+                "a state's perturbed worlds have {} values, this search needs {}",
+                particles.len(),
+                self.particles.flat_len()
+            ));
+        }
+        Ok(())
     }
 
     /// End-effector xy and goal-object xy (m); the goal object's xy is (0, 0) for a

@@ -113,12 +113,22 @@ impl SearchCounter {
             stats.moved_clutter += 1;
         }
         if let Some(reason) = stopped_by {
-            // No allocation once a reason has been seen.
-            match stats.stopped.get_mut(reason.kind()) {
-                Some(n) => *n += 1,
-                None => {
-                    stats.stopped.insert(reason.kind().to_string(), 1);
-                }
+            self.count_stop(reason.kind());
+        }
+    }
+
+    /// Counts the last step as stopped in a perturbed world (robust planning), which
+    /// the nominal state survived.
+    pub fn record_perturbed_world_stop(&mut self, kind: &str) {
+        self.count_stop(&format!("{kind} (in a perturbed world)"));
+    }
+
+    fn count_stop(&mut self, kind: &str) {
+        // No allocation once a reason has been seen.
+        match self.stats.stopped.get_mut(kind) {
+            Some(n) => *n += 1,
+            None => {
+                self.stats.stopped.insert(kind.to_string(), 1);
             }
         }
     }

@@ -61,6 +61,7 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>
         robust_trials: 0,
         robust_rate: 0.9,
         robust_shortcut: 3.0,
+        robust_particles: 0,
         threads: 1,
     };
     let scene_file = "scenes/herb_fig1_clutter.yaml";

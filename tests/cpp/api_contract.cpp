@@ -96,6 +96,17 @@ int main()
     bad_option("robust_rate", [](pushplan::Options &o) { o.robust_rate = 2.0; });
     bad_option("robust_shortcut", [](pushplan::Options &o) { o.robust_shortcut = -1.0; });
     bad_option("shortcut", [](pushplan::Options &o) { o.shortcut = std::nan(""); });
+    // Perturbed worlds belong to robust planning of the pushing problem.
+    bad_option("robust_particles", [](pushplan::Options &o) { o.robust_particles = 4; });
+    bad_option("robust_particles", [](pushplan::Options &o) {
+        o.robust_trials = 10;
+        o.robust_particles = 4;
+        o.planner = pushplan::PlannerKind::StaticRrt;
+    });
+    bad_option("robust_particles", [](pushplan::Options &o) {
+        o.robust_trials = 10;
+        o.robust_particles = 1000;
+    });
     // Hostile use: an integer that is no PlannerKind, a planner moved from.
     const auto no_kind = static_cast<PlannerKind>(42);
     expect(throwsError([&] { pushplan::plannerName(no_kind); }, "unknown planner kind 42"),
