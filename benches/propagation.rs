@@ -1,6 +1,7 @@
 //! Propagation steps per second for the WAM with 1, 7 and 20 objects, in free space and
 //! while the hand pushes a box with a two-point (face) contact (with the support pressure
-//! the push loads, and with a uniform one).
+//! the push loads, and with a uniform one); and the WAM with primitive collision shapes
+//! against the same WAM with tessellated meshes (`robots/wam7_mesh.urdf`).
 //!
 //! Run: `cargo bench --bench propagation`. Each measured iteration holds one action for 50
 //! steps from the same state; criterion reports time per step (throughput: steps/s).
@@ -101,6 +102,32 @@ fn propagation(c: &mut Criterion) {
                 b.iter(|| p.propagate_steps(start, &push, STEPS))
             });
         }
+    }
+    group.finish();
+
+    // The same arm with primitive links and with mesh links (simplified convex hulls),
+    // 7 objects, free and pushing.
+    let mut group = c.benchmark_group("wam_links");
+    group.throughput(Throughput::Elements(STEPS as u64));
+    for urdf in ["wam7.urdf", "wam7_mesh.urdf"] {
+        let name = urdf.trim_end_matches(".urdf");
+        let scene =
+            common::herb_scene_with_robot(urdf, common::HAND_NEAR, &objects(parked_box(), 7), "")
+                .unwrap();
+        let free = EeAction::planar(0.1, 0.1, 0.2);
+        let mut p = Propagator::new(&scene);
+        group.bench_with_input(BenchmarkId::new("free", name), &scene, |b, scene| {
+            b.iter(|| p.propagate_steps(&scene.start, &free, STEPS))
+        });
+        let scene =
+            common::herb_scene_with_robot(urdf, common::HAND_NEAR, &objects(pushed_box(), 7), "")
+                .unwrap();
+        let push = EeAction::planar(0.1, 0.0, 0.0);
+        let start = in_contact(&scene, &push);
+        let mut p = Propagator::new(&scene);
+        group.bench_with_input(BenchmarkId::new("pushing", name), &start, |b, start| {
+            b.iter(|| p.propagate_steps(start, &push, STEPS))
+        });
     }
     group.finish();
 }

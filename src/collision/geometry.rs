@@ -38,11 +38,18 @@ pub enum Primitive {
     },
 }
 
+/// Hulls with more vertices than this get their world bounding box from their local one
+/// (turned, so a little larger) rather than from every vertex: the broad phase asks for
+/// every link's box at every step.
+const EXACT_AABB_MAX_VERTICES: usize = 16;
+
 /// A shape attached to a body: `local` places the shape in the body frame.
 #[derive(Clone)]
 pub struct Geometry {
     pub local: Isometry3<f64>,
     pub shape: SharedShape,
+    /// For a hull of many vertices: its bounding box in the shape's frame.
+    local_aabb: Option<Aabb>,
 }
 
 impl std::fmt::Debug for Geometry {
@@ -81,7 +88,15 @@ impl Geometry {
                 (hull, local)
             }
         };
-        Some(Geometry { local, shape })
+        let local_aabb = shape
+            .as_convex_polyhedron()
+            .filter(|hull| hull.points().len() > EXACT_AABB_MAX_VERTICES)
+            .map(|hull| hull.local_aabb());
+        Some(Geometry {
+            local,
+            shape,
+            local_aabb,
+        })
     }
 
     /// World pose of the shape when its body is at `body_pose`.
@@ -90,10 +105,14 @@ impl Geometry {
         body_pose * self.local
     }
 
-    /// World bounding box when the body is at `body_pose`.
+    /// World bounding box when the body is at `body_pose` (for hulls of many vertices, the
+    /// box around their turned local box).
     #[inline]
     pub fn aabb(&self, body_pose: &Isometry3<f64>) -> Aabb {
-        self.shape.compute_aabb(&self.world_pose(body_pose))
+        match &self.local_aabb {
+            Some(local) => local.transform_by(&self.world_pose(body_pose)),
+            None => self.shape.compute_aabb(&self.world_pose(body_pose)),
+        }
     }
 }
 

@@ -1,9 +1,12 @@
-//! Collision meshes: STL files become the convex hull of their vertices (one hull per
-//! mesh; convex queries are an order of magnitude faster than triangle soups).
+//! Collision meshes: STL, OBJ and COLLADA files become the convex hull of their vertices
+//! (one hull per mesh; convex queries are an order of magnitude faster than triangle
+//! soups), simplified to a few dozen vertices within half a millimetre.
 
 use crate::collision::Primitive;
 use crate::error::{Error, Result};
 use nalgebra::Point3;
+use parry3d_f64::query::PointQuery;
+use parry3d_f64::shape::ConvexPolyhedron;
 use std::path::{Path, PathBuf};
 
 /// Resolves a URDF mesh reference (`package://pkg/rel`, `file:///abs` or a relative path)
@@ -37,7 +40,22 @@ pub fn resolve_mesh_path(filename: &str, urdf_path: &Path) -> Option<PathBuf> {
     path.is_file().then_some(path)
 }
 
-/// Reads an STL mesh (binary or ASCII), scales it and returns its convex hull as a primitive.
+/// Mesh formats read for collision geometry (by file extension, case-insensitive).
+pub const MESH_FORMATS: &str = "STL (.stl), Wavefront OBJ (.obj) or COLLADA (.dae)";
+
+/// Largest distance (m) from a mesh's exact convex hull to the simplified hull that
+/// collision checks use: 0.5 mm, a twentieth of the default `physics.object_clearance`.
+pub const HULL_TOLERANCE: f64 = 5e-4;
+
+/// Most vertices a simplified hull keeps. A convex shape's support point is a scan over
+/// its vertices, and a propagation step asks for many: a link hull of a few hundred
+/// vertices would cost more than the rest of the step.
+pub const MAX_HULL_VERTICES: usize = 64;
+
+/// Reads a mesh (STL, OBJ or COLLADA), scales it (per axis, in the mesh's own frame) and
+/// returns the convex hull of all its vertices, simplified to within [`HULL_TOLERANCE`]
+/// (see [`simplify_hull`]). COLLADA's `<unit>`, `<up_axis>` and node transforms are
+/// applied; OBJ material files are not read.
 pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
     let mesh_error = |message: String| Error::Mesh {
         file: path.to_path_buf(),
@@ -47,22 +65,29 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    if extension.as_deref() != Some("stl") {
-        return Err(mesh_error("only STL meshes are supported".into()));
-    }
     let bytes = crate::input::read_bytes(path, crate::input::MAX_MESH_BYTES)
         .map_err(|message| Error::io(path, message))?;
-    let mesh = stl_io::read_stl(&mut std::io::Cursor::new(bytes))
-        .map_err(|e| mesh_error(e.to_string()))?;
-    let points: Vec<Point3<f64>> = mesh
-        .vertices
+    let scene = match extension.as_deref() {
+        Some("stl") => mesh_loader::stl::from_slice(&bytes),
+        Some("obj") => mesh_loader::obj::from_slice(&bytes, Some(path), |_: &Path| {
+            // Materials do not collide: the `.mtl` file is neither needed nor read.
+            Err::<Vec<u8>, _>(std::io::Error::other("not read"))
+        }),
+        Some("dae") => mesh_loader::collada::from_slice(&bytes),
+        _ => return Err(mesh_error(format!("the mesh must be {MESH_FORMATS}"))),
+    }
+    .map_err(|e| mesh_error(e.to_string()))?;
+    let up = match extension.as_deref() {
+        Some("dae") => collada_up_axis(&bytes),
+        _ => UpAxis::Z,
+    };
+    let points: Vec<Point3<f64>> = scene
+        .meshes
         .iter()
+        .flat_map(|mesh| &mesh.vertices)
         .map(|v| {
-            Point3::new(
-                v.0[0] as f64 * scale[0],
-                v.0[1] as f64 * scale[1],
-                v.0[2] as f64 * scale[2],
-            )
+            let [x, y, z] = up.to_z_up(v.map(f64::from));
+            Point3::new(x * scale[0], y * scale[1], z * scale[2])
         })
         .collect();
     if points.len() < 4
@@ -74,5 +99,136 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
             "needs at least 4 finite vertices to make a solid".into(),
         ));
     }
-    Ok(Primitive::ConvexHull { points })
+    let simplified = simplify_hull(&points, HULL_TOLERANCE, MAX_HULL_VERTICES)
+        .ok_or_else(|| mesh_error("the mesh is flat (no convex hull)".into()))?;
+    Ok(Primitive::ConvexHull {
+        points: simplified.points,
+    })
+}
+
+/// The axis a COLLADA file calls up (`<asset><up_axis>`, Y by default in the standard);
+/// URDF's frames have z up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum UpAxis {
+    X,
+    Y,
+    Z,
+}
+
+impl UpAxis {
+    /// The point in a z-up frame. COLLADA fixes each up axis's right and in axes (X_UP:
+    /// right -y, in +z; Y_UP: right +x, in +z; Z_UP: right +x, in -y), so Y up turns
+    /// (x, y, z) into (x, -z, y) and X up into (-y, -z, x).
+    fn to_z_up(self, [x, y, z]: [f64; 3]) -> [f64; 3] {
+        match self {
+            UpAxis::X => [-y, -z, x],
+            UpAxis::Y => [x, -z, y],
+            UpAxis::Z => [x, y, z],
+        }
+    }
+}
+
+/// The `<up_axis>` of a COLLADA document (mesh-loader applies `<unit>` and node
+/// transforms, not the up axis). Y_UP when absent, as the standard says.
+fn collada_up_axis(bytes: &[u8]) -> UpAxis {
+    let text = String::from_utf8_lossy(bytes);
+    let value = text
+        .split_once("<up_axis>")
+        .and_then(|(_, rest)| rest.split_once("</up_axis>"))
+        .map(|(value, _)| value.trim());
+    match value {
+        Some("X_UP") => UpAxis::X,
+        Some("Z_UP") => UpAxis::Z,
+        _ => UpAxis::Y,
+    }
+}
+
+/// A convex hull reduced to a few of its vertices.
+#[derive(Clone, Debug)]
+pub struct SimplifiedHull {
+    /// The kept vertices (a subset of the exact hull's, so the simplified hull lies inside
+    /// the exact one).
+    pub points: Vec<Point3<f64>>,
+    /// How many vertices the exact hull has.
+    pub exact_vertices: usize,
+    /// The Hausdorff distance between the exact and the simplified hull (m): the largest
+    /// distance from an exact hull vertex to the simplified hull.
+    pub error: f64,
+}
+
+/// Simplifies the convex hull of `points` greedily: starting from a tetrahedron of
+/// extreme vertices, the exact hull's vertex furthest outside the kept ones' hull is
+/// added until none is further than `tolerance` (m) or `max_vertices` are kept. The
+/// result lies inside the exact hull; its `error` is measured over every exact vertex.
+/// `None` for flat or empty input.
+pub fn simplify_hull(
+    points: &[Point3<f64>],
+    tolerance: f64,
+    max_vertices: usize,
+) -> Option<SimplifiedHull> {
+    let (exact, _) = parry3d_f64::transformation::try_convex_hull(points).ok()?;
+    if exact.len() < 4 {
+        return None;
+    }
+    let mut kept = initial_tetrahedron(&exact)?;
+    // The exact vertices still outside the kept hull by more than the tolerance: the hull
+    // only grows, so a vertex once within it stays within.
+    let mut outside: Vec<usize> = (0..exact.len()).collect();
+    loop {
+        let hull = ConvexPolyhedron::from_convex_hull(
+            &kept.iter().map(|&i| exact[i]).collect::<Vec<_>>(),
+        )?;
+        let distances: Vec<(usize, f64)> = outside
+            .iter()
+            .map(|&i| (i, hull.distance_to_local_point(&exact[i], true)))
+            .collect();
+        let (worst, error) =
+            distances.iter().fold(
+                (0, 0.0_f64),
+                |best, &(i, d)| if d > best.1 { (i, d) } else { best },
+            );
+        if error <= tolerance || kept.len() >= max_vertices.max(4) {
+            let error = exact
+                .iter()
+                .map(|p| hull.distance_to_local_point(p, true))
+                .fold(0.0, f64::max);
+            return Some(SimplifiedHull {
+                points: kept.iter().map(|&i| exact[i]).collect(),
+                exact_vertices: exact.len(),
+                error,
+            });
+        }
+        kept.push(worst);
+        outside = distances
+            .into_iter()
+            .filter(|&(i, d)| d > tolerance && i != worst)
+            .map(|(i, _)| i)
+            .collect();
+    }
+}
+
+/// Four vertices spanning a solid: the extremes along x (or whichever axis is longest),
+/// the one furthest from their line, the one furthest from their plane.
+fn initial_tetrahedron(points: &[Point3<f64>]) -> Option<Vec<usize>> {
+    let furthest = |score: &dyn Fn(&Point3<f64>) -> f64| {
+        (0..points.len()).max_by(|&a, &b| score(&points[a]).total_cmp(&score(&points[b])))
+    };
+    let axis = (0..3).max_by(|&a, &b| {
+        let extent = |k: usize| {
+            let (lo, hi) = points
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(p[k]), hi.max(p[k]))
+                });
+            hi - lo
+        };
+        extent(a).total_cmp(&extent(b))
+    })?;
+    let a = furthest(&|p| -p[axis])?;
+    let b = furthest(&|p| p[axis])?;
+    let ab = (points[b] - points[a]).try_normalize(1e-12)?;
+    let c = furthest(&|p| (p - points[a]).cross(&ab).norm())?;
+    let normal = ab.cross(&(points[c] - points[a])).try_normalize(1e-12)?;
+    let d = furthest(&|p| (p - points[a]).dot(&normal).abs())?;
+    ((points[d] - points[a]).dot(&normal).abs() > 1e-9).then(|| vec![a, b, c, d])
 }

@@ -14,10 +14,20 @@ pub const HAND_FAR: [f64; 7] = [0.1485, 0.7954, -0.2728, 1.4626, -0.4452, -0.278
 /// A WAM scene on HERB's table; `objects` is the YAML list of objects (the first is the
 /// goal object), `extra` is appended at the top level.
 pub fn herb_scene(start: [f64; 7], objects: &str, extra: &str) -> Result<Scene, pushplan::Error> {
+    herb_scene_with_robot("wam7.urdf", start, objects, extra)
+}
+
+/// [`herb_scene`] with another URDF of `robots/` (e.g. `wam7_mesh.urdf`).
+pub fn herb_scene_with_robot(
+    urdf: &str,
+    start: [f64; 7],
+    objects: &str,
+    extra: &str,
+) -> Result<Scene, pushplan::Error> {
     let yaml = format!(
         "robot:
   type: arm
-  urdf: ../robots/wam7.urdf
+  urdf: ../robots/{urdf}
   base_pose: {{xyz: [0.1, 0.14, 0.346]}}
   end_effector: hand
   start_joints: {start:?}
