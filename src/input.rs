@@ -97,3 +97,13 @@ pub fn relative_path(from: &Path, to: &Path) -> Result<String, String> {
     parts.extend(to[common..].iter().cloned());
     Ok(parts.join("/"))
 }
+
+/// Names for a message: the first ten, quoted, and how many more.
+pub fn name_list<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<&str> = names.collect();
+    let mut text: Vec<String> = names.iter().take(10).map(|n| format!("'{n}'")).collect();
+    if names.len() > 10 {
+        text.push(format!("and {} more", names.len() - 10));
+    }
+    text.join(", ")
+}

@@ -224,7 +224,8 @@ pub fn check_robot(
     let table_box = scene.table.geometry.aabb(&identity);
     for (link, aabb) in &bounds.links {
         let shapes = &chain.links[*link].geometry;
-        if aabb.intersects(&table_box)
+        if !scene.allowed.link_table(*link)
+            && aabb.intersects(&table_box)
             && shapes
                 .iter()
                 .any(|g| intersects(g, &poses[*link], &scene.table.geometry, &identity))
@@ -233,8 +234,9 @@ pub fn check_robot(
                 link: link_name(*link),
             });
         }
-        for obstacle in &scene.obstacles {
-            if aabb.intersects(&obstacle.geometry.aabb(&obstacle.pose))
+        for (o, obstacle) in scene.obstacles.iter().enumerate() {
+            if !scene.allowed.link_obstacle(*link, o)
+                && aabb.intersects(&obstacle.geometry.aabb(&obstacle.pose))
                 && shapes
                     .iter()
                     .any(|g| intersects(g, &poses[*link], &obstacle.geometry, &obstacle.pose))

@@ -246,7 +246,10 @@ fn the_shipped_mesh_robot_matches_the_primitive_one() {
             let exact =
                 |g: &pushplan::collision::Geometry| g.shape.compute_aabb(&g.world_pose(&pose));
             let (a, b) = (exact(gp), exact(gm));
-            assert!(gm.aabb(&pose).contains(&b), "the broad phase's box holds the hull");
+            assert!(
+                gm.aabb(&pose).contains(&b),
+                "the broad phase's box holds the hull"
+            );
             let gap = (a.mins - b.mins)
                 .abs()
                 .max()

@@ -295,3 +295,106 @@ goal: {object: can, center: [0.8, 0.0], radius: 0.1}
         slide.state.objects[0]
     );
 }
+
+/// `allowed_collisions` lets exactly the named pairs touch: a pedestal around the base
+/// column, the planar hand on the table top, the forearm folded onto the upper arm.
+#[test]
+fn allowed_collisions_let_the_named_pairs_touch_and_nothing_else() {
+    let objects = parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0]);
+    // A pedestal around the base column (base at (0.1, 0.14, 0.346), column 0.3 m high).
+    let pedestal = |height: f64| {
+        format!(
+            "obstacles: [{{name: pedestal, shape: {{type: box, size: [0.22, 0.22, {height}]}}, pose: {{xyz: [0.1, 0.14, {}]}}}}]\n",
+            0.346 + height / 2.0
+        )
+    };
+    let start_error = |extra: &str| match herb_scene(HAND_NEAR, &objects, extra) {
+        Err(pushplan::Error::InvalidStart { reason, .. }) => reason,
+        other => panic!("expected an invalid start, got {:?}", other.map(|s| s.name)),
+    };
+    assert_eq!(
+        start_error(&pedestal(0.2)),
+        "link 'wam_base' hits obstacle 'pedestal'"
+    );
+    let allowed = "allowed_collisions: [[wam_base, pedestal]]\n";
+    let scene = herb_scene(HAND_NEAR, &objects, &(pedestal(0.2) + allowed)).unwrap();
+    assert_eq!(check_state(&scene, &scene.start), Ok(()));
+    // Taller, it reaches the shoulder too: that pair is not allowed.
+    assert_eq!(
+        start_error(&(pedestal(0.36) + allowed)),
+        "link 'wam_link2' hits obstacle 'pedestal'"
+    );
+
+    // The planar hand lowered into the table top, allowed to touch it.
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
+    let lowered = text.replace("height: 0.05", "height: 0.03");
+    assert!(Scene::from_yaml(&lowered, Path::new("scenes/x.yaml")).is_err());
+    let scene = Scene::from_yaml(
+        &(lowered + "allowed_collisions: [[table, hand]]\n"),
+        Path::new("scenes/x.yaml"),
+    )
+    .unwrap();
+    assert_eq!(check_state(&scene, &scene.start), Ok(()));
+
+    // The folded elbow: forearm onto upper arm, allowed; the pair leaves the checked ones.
+    let scene = herb_scene(
+        HAND_NEAR,
+        &objects,
+        "allowed_collisions: [[wam_link5, wam_link3]]\n",
+    )
+    .unwrap();
+    let mut state = scene.start.clone();
+    state.q[3] = 3.08;
+    assert!(!matches!(
+        check_state(&scene, &state),
+        Err(Invalid::SelfCollision { link_a, link_b }) if link_a == "wam_link3" && link_b == "wam_link5"
+    ));
+    assert!(scene.robot.self_collision_pairs.len() == herb().robot.self_collision_pairs.len() - 1);
+}
+
+#[test]
+fn allowed_collisions_name_what_there_is() {
+    let objects = parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0]);
+    let error = |extra: &str| {
+        herb_scene(HAND_NEAR, &objects, extra)
+            .err()
+            .expect("the scene is refused")
+            .to_string()
+    };
+    let message = error("allowed_collisions: [[wam_bse, table]]");
+    assert!(
+        message.contains("allowed_collisions[0][0]")
+            && message.contains("'wam_bse'")
+            && message.contains("'wam_base'")
+            && message.contains("'hand'")
+            && message.contains("the obstacles are none"),
+        "{message}"
+    );
+    let message = error("allowed_collisions: [[hand, box]]");
+    assert!(
+        message.contains("allowed_collisions[0][1]") && message.contains("movable object"),
+        "{message}"
+    );
+    let message = error(
+        "obstacles: [{name: lamp, shape: {type: box, size: [0.1, 0.1, 0.1]}, pose: {xyz: [0.5, 0.9, 1.5]}}]\nallowed_collisions: [[lamp, table]]",
+    );
+    assert!(
+        message.contains("allowed_collisions[0]") && message.contains("must be a link"),
+        "{message}"
+    );
+    let message = error("allowed_collisions: [[hand]]");
+    assert!(message.contains("allowed_collisions[0]"), "{message}");
+    // The goal object's error lists the objects too.
+    let message = herb_scene(
+        HAND_NEAR,
+        &objects.replace("name: goal", "name: goal_box"),
+        "",
+    )
+    .err()
+    .unwrap()
+    .to_string();
+    assert!(
+        message.contains("goal.object") && message.contains("'goal_box', 'box'"),
+        "{message}"
+    );
+}

@@ -4,6 +4,7 @@ use super::chain::{Joint, JointKind, KinematicChain, Link};
 use super::mesh::{load_convex_mesh, resolve_mesh_path};
 use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
+use crate::input::name_list;
 use crate::math::isometry_from_xyz_rpy;
 use nalgebra::{Isometry3, Unit, Vector3};
 use std::collections::{HashMap, HashSet};
@@ -31,7 +32,7 @@ pub fn load_urdf(path: &Path, end_effector: &str, base: Isometry3<f64>) -> Resul
     if !order.iter().any(|(name, _)| name == end_effector) {
         return Err(urdf_error(format!(
             "no link named '{end_effector}' (the end-effector link); the links are {}",
-            list(robot.links.iter().map(|l| l.name.as_str()))
+            name_list(robot.links.iter().map(|l| l.name.as_str()))
         )));
     }
 
@@ -145,7 +146,7 @@ fn tree_order(robot: &urdf_rs::Robot) -> std::result::Result<Vec<(String, Option
         many => {
             return Err(format!(
                 "several root links ({}): the links must form one tree",
-                list(many.iter().copied())
+                name_list(many.iter().copied())
             ))
         }
     };
@@ -165,7 +166,7 @@ fn tree_order(robot: &urdf_rs::Robot) -> std::result::Result<Vec<(String, Option
         let reached: HashSet<&str> = order.iter().map(|(n, _)| n.as_str()).collect();
         return Err(format!(
             "links {} are not connected to the root link '{root}' (their joints form a cycle)",
-            list(
+            name_list(
                 robot
                     .links
                     .iter()
@@ -175,16 +176,6 @@ fn tree_order(robot: &urdf_rs::Robot) -> std::result::Result<Vec<(String, Option
         ));
     }
     Ok(order)
-}
-
-/// Names for a message: the first ten, quoted, and how many more.
-fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
-    let names: Vec<&str> = names.collect();
-    let mut text: Vec<String> = names.iter().take(10).map(|n| format!("'{n}'")).collect();
-    if names.len() > 10 {
-        text.push(format!("and {} more", names.len() - 10));
-    }
-    text.join(", ")
 }
 
 fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize) -> Result<Joint> {

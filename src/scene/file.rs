@@ -28,6 +28,10 @@ pub struct SceneFile {
     pub physics: PhysicsSpec,
     #[serde(default)]
     pub trajectory: TrajectorySpec,
+    /// Pairs allowed to touch: a robot link with `table`, an obstacle or another link
+    /// (a base bolted onto the table, say).
+    #[serde(default)]
+    pub allowed_collisions: Vec<[String; 2]>,
 }
 
 #[derive(Debug, Deserialize)]

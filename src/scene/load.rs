@@ -5,9 +5,10 @@ use super::file::{
     GoalSpec, ObjectSpec, PhysicsSpec, PlannerSpec, PressureSpec, RobotSpec, SceneFile, ShapeSpec,
     TableSpec,
 };
-use super::{Goal, MovableObject, Obstacle, Scene, Table, DEFAULT_GOAL_MARGIN};
+use super::{AllowedCollisions, Goal, MovableObject, Obstacle, Scene, Table, DEFAULT_GOAL_MARGIN};
 use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
+use crate::input::name_list;
 use crate::math::{isometry_from_xyz_rpy, Pose2};
 use crate::physics::limit_surface::GRAVITY;
 use crate::physics::{Footprint, LimitSurface, LoadedSupport};
@@ -246,7 +247,8 @@ impl Loader<'_> {
             tilt_tolerance: physics.tilt_tolerance,
             ..ProjectionSettings::default()
         };
-        let (robot, q) = self.robot(&spec.robot, &table, &planner, &settings)?;
+        let (mut robot, q) = self.robot(&spec.robot, &table, &planner, &settings)?;
+        let allowed = self.allowed_collisions(&spec, &mut robot, &obstacles)?;
         let goal = self.goal(&spec.goal, &objects, &table, robot.dof())?;
         if let Goal::Configuration { q, .. } = &goal {
             self.within_joint_limits("goal.configuration", "", &robot, q)?;
@@ -269,6 +271,7 @@ impl Loader<'_> {
             trajectory: spec.trajectory.clone(),
             start: State { q, objects: poses },
             clearances: Clearances::default(),
+            allowed,
         };
         scene.clearances = Clearances::at_start(&scene);
         if let Err(reason) = crate::validity::check_state(&scene, &scene.start) {
@@ -278,6 +281,82 @@ impl Loader<'_> {
             });
         }
         Ok(scene)
+    }
+
+    /// Resolves `allowed_collisions`: each pair names a robot link and the table, an
+    /// obstacle or another link. Allowed link pairs leave the robot's self-collision pairs.
+    fn allowed_collisions(
+        &self,
+        spec: &SceneFile,
+        robot: &mut Robot,
+        obstacles: &[Obstacle],
+    ) -> Result<AllowedCollisions> {
+        #[derive(Clone, Copy, PartialEq)]
+        enum Named {
+            Link(usize),
+            Table,
+            Obstacle(usize),
+        }
+        let links = &robot.chain.links;
+        let mut allowed = AllowedCollisions::default();
+        let mut link_pairs = Vec::new();
+        for (i, pair) in spec.allowed_collisions.iter().enumerate() {
+            let mut named = [Named::Table; 2];
+            for (k, name) in pair.iter().enumerate() {
+                let field = format!("allowed_collisions[{i}][{k}]");
+                let link = links.iter().position(|l| &l.name == name);
+                let obstacle = obstacles.iter().position(|o| &o.name == name);
+                named[k] = match (link, obstacle, name == "table") {
+                    (Some(l), None, false) => Named::Link(l),
+                    (None, Some(o), false) => Named::Obstacle(o),
+                    (None, None, true) => Named::Table,
+                    (None, None, false) => {
+                        let message = if spec.objects.iter().any(|o| &o.name == name) {
+                            format!("'{name}' is a movable object: the arm pushes objects, it cannot pass through them")
+                        } else {
+                            format!(
+                                "no link or obstacle named '{name}'; the links are {}; the obstacles are {}; or 'table'",
+                                name_list(links.iter().map(|l| l.name.as_str())),
+                                if obstacles.is_empty() {
+                                    "none".into()
+                                } else {
+                                    name_list(obstacles.iter().map(|o| o.name.as_str()))
+                                }
+                            )
+                        };
+                        return Err(self.invalid(field, message));
+                    }
+                    _ => {
+                        return Err(self.invalid(
+                            field,
+                            format!("'{name}' names more than one of a link, an obstacle and the table; rename the obstacle"),
+                        ))
+                    }
+                };
+            }
+            match named {
+                [Named::Link(a), Named::Link(b)] => link_pairs.push((a.min(b), a.max(b))),
+                [Named::Link(l), Named::Table] | [Named::Table, Named::Link(l)] => {
+                    allowed.table.push(l)
+                }
+                [Named::Link(l), Named::Obstacle(o)] | [Named::Obstacle(o), Named::Link(l)] => {
+                    allowed.obstacles.push((l, o))
+                }
+                _ => {
+                    return Err(self.invalid(
+                        format!("allowed_collisions[{i}]"),
+                        format!(
+                            "{:?}: one of a pair must be a link of the robot (the static world never moves into itself)",
+                            pair
+                        ),
+                    ))
+                }
+            }
+        }
+        robot
+            .self_collision_pairs
+            .retain(|&(a, b)| !link_pairs.contains(&(a.min(b), a.max(b))));
+        Ok(allowed)
     }
 
     fn table(&self, t: &TableSpec) -> Result<Table> {
@@ -645,7 +724,17 @@ impl Loader<'_> {
                     .iter()
                     .position(|o| &o.name == name)
                     .ok_or_else(|| {
-                        self.invalid("goal.object", format!("no movable object named '{name}'"))
+                        self.invalid(
+                            "goal.object",
+                            format!(
+                                "no movable object named '{name}'; the objects are {}",
+                                if objects.is_empty() {
+                                    "none".into()
+                                } else {
+                                    name_list(objects.iter().map(|o| o.name.as_str()))
+                                }
+                            ),
+                        )
                     })?;
                 let center = g.center.ok_or_else(|| {
                     self.invalid("goal.center", "missing (the goal disc's centre [x, y])")

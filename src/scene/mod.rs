@@ -43,6 +43,28 @@ pub struct Scene {
     pub start: State,
     /// The distance each object keeps from the others and the obstacles (from `start`).
     pub clearances: Clearances,
+    /// Link–table and link–obstacle pairs that may touch (allowed link–link pairs are
+    /// left out of the robot's self-collision pairs).
+    pub allowed: AllowedCollisions,
+}
+
+/// The scene's `allowed_collisions` between the robot and the static world.
+#[derive(Clone, Debug, Default)]
+pub struct AllowedCollisions {
+    /// Links (indices into the chain's links) that may touch the table.
+    pub table: Vec<usize>,
+    /// (link, obstacle) index pairs that may touch.
+    pub obstacles: Vec<(usize, usize)>,
+}
+
+impl AllowedCollisions {
+    pub fn link_table(&self, link: usize) -> bool {
+        self.table.contains(&link)
+    }
+
+    pub fn link_obstacle(&self, link: usize, obstacle: usize) -> bool {
+        self.obstacles.contains(&(link, obstacle))
+    }
 }
 
 /// The support surface: a slab whose top is at `top`, spanning `x` x `y`.
