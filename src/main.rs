@@ -5,7 +5,7 @@ use clap::{Parser, Subcommand};
 use pushplan::benchmark::grid::{Grid, Shard};
 use pushplan::cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, plan, plots,
-    BenchOptions, PlanOptions,
+    robot, BenchOptions, PlanOptions, RobotQuery,
 };
 use pushplan::planner::PlannerKind;
 use pushplan::scene::generate::Design;
@@ -186,6 +186,30 @@ enum Command {
         #[command(subcommand)]
         action: ScenesCommand,
     },
+    /// Show a scene's robot for writing `start_joints`: its joints and limits, the tool
+    /// pose of a configuration (forward kinematics; default: the scene's start) and, with
+    /// --reach, configurations that put the tool on a point of the pushing plane (inverse
+    /// kinematics), printed as `start_joints:` lines. A start the scene refuses is shown
+    /// with the reason, not refused here.
+    Robot {
+        /// Scene file (YAML); default: the built-in Fig. 1 scene.
+        scene: Option<PathBuf>,
+        /// A configuration to show instead of the start: joint values (rad, or m for
+        /// prismatic joints), comma-separated.
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        joints: Option<Vec<f64>>,
+        /// Find configurations with the tool at X,Y[,YAW] on the pushing plane (world
+        /// frame: m, m, rad; the plane's tilt is kept).
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        reach: Option<Vec<f64>>,
+        /// Inverse kinematics attempts for --reach: from the shown configuration, then from
+        /// random ones within the limits.
+        #[arg(long, default_value_t = 50)]
+        tries: usize,
+        /// Seed of the random attempts.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
     /// Draw a plan: snapshots.svg, timeline.svg and animation.html.
     Render {
         /// Plan file (JSON, written by `plan`).
@@ -313,6 +337,21 @@ fn run(command: Command) -> Result<ExitCode, String> {
             render.as_deref(),
         ),
         Command::Render { plan, out, times } => draw(&plan, &out, &times),
+        Command::Robot {
+            scene,
+            joints,
+            reach,
+            tries,
+            seed,
+        } => robot(
+            &scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE)),
+            &RobotQuery {
+                joints,
+                reach,
+                tries,
+                seed,
+            },
+        ),
         Command::Scenes {
             action:
                 ScenesCommand::Generate {

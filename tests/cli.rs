@@ -432,3 +432,77 @@ fn every_planner_kind_is_chosen_by_its_name() {
         "{stderr}"
     );
 }
+
+/// `pushplan robot --reach X,Y`: each printed `start_joints` line, written into the scene,
+/// loads as a valid start with the tool at (X, Y) on the plane (the loader's own forward
+/// kinematics and plane projection judge the inverse kinematics' answer); a scene whose
+/// start is refused can still be inspected.
+#[test]
+fn robot_prints_start_joints_that_reach_a_point() {
+    let scratch = common::Scratch::new("test-robot-command");
+    let (code, stdout, stderr) = pushplan(&[
+        "robot",
+        "scenes/herb_single_object.yaml",
+        "--reach",
+        "0.6,0.3,0.2",
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(
+        stdout.contains("j4") && stdout.contains("[-0.9000, 3.1000] rad"),
+        "{stdout}"
+    );
+    let lines: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.trim_start().starts_with("start_joints:") && l.ends_with("# valid"))
+        .collect();
+    assert!(!lines.is_empty(), "{stdout}");
+    let text = std::fs::read_to_string("scenes/herb_single_object.yaml").unwrap();
+    let original = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("start_joints:"))
+        .unwrap();
+    for line in lines {
+        let joints = line.split('#').next().unwrap().trim();
+        let scene_text = text.replace(original, &format!("  {joints}")).replace(
+            "urdf: ../robots/",
+            &format!("urdf: {}/robots/", env!("CARGO_MANIFEST_DIR")),
+        );
+        let path = scratch.join("reached.yaml");
+        std::fs::write(&path, scene_text).unwrap();
+        let scene = pushplan::Scene::load(&path).unwrap();
+        let poses = scene.robot.link_poses(&scene.start.q);
+        let tool = scene.robot.tool_pose(&poses).translation.vector;
+        assert!(
+            (tool.x - 0.6).abs() < 1e-3 && (tool.y - 0.3).abs() < 1e-3,
+            "{joints}: tool at {tool:?}"
+        );
+    }
+
+    // A start off its plane is shown with the reason, not refused.
+    let bad = text.replace(original, "  start_joints: [0, 0, 0, 0, 0, 0, 0]");
+    let bad = bad.replace(
+        "urdf: ../robots/",
+        &format!("urdf: {}/robots/", env!("CARGO_MANIFEST_DIR")),
+    );
+    let path = scratch.join("bad.yaml");
+    std::fs::write(&path, bad).unwrap();
+    let (code, stdout, _) = pushplan(&["plan", path.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 2);
+    let (code, stdout_robot, stderr) = pushplan(&["robot", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stdout}{stdout_robot}{stderr}");
+    assert!(
+        stdout_robot.contains("the scene's start is refused")
+            && stdout_robot.contains("pushing plane"),
+        "{stdout_robot}"
+    );
+
+    let (code, _, stderr) = pushplan(&["robot", "--joints", "1,2"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--joints: 2 values given, the robot has 7 joints"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = pushplan(&["robot", "--reach", "0.5"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("--reach"), "{stderr}");
+}

@@ -7,12 +7,14 @@ mod check;
 mod execute;
 mod files;
 mod plan;
+mod robot;
 
 pub use bench::{bench, bench_merge, bench_scene, plots, BenchOptions};
 pub use check::check;
 pub use execute::execute;
 pub use files::{draw, generate_scenes, install};
 pub use plan::{plan, PlanOptions};
+pub use robot::{robot, RobotQuery};
 
 /// The cores this process may use (at least 1): the default of `plan --threads` and
 /// `bench --jobs`.

@@ -31,6 +31,27 @@ impl Scene {
         Scene::from_yaml(&text, path)
     }
 
+    /// Loads the scene file at `path` like [`Scene::load`], except that a start
+    /// configuration off its pushing plane, outside the joint limits or in collision is
+    /// reported beside the scene instead of refusing it (its `start.q` is then
+    /// `start_joints` as written): for inspecting the robot while choosing start joints.
+    pub fn load_any_start(path: impl AsRef<Path>) -> Result<(Scene, Option<String>)> {
+        let path = path.as_ref();
+        let text = crate::input::read_text(path, crate::input::MAX_SCENE_BYTES)
+            .map_err(|message| Error::io(path, message))?;
+        let spec = parse(&text, path)?;
+        let loader = Loader {
+            file: path,
+            start: StartCheck::Report(Default::default()),
+        };
+        let scene = loader.scene(spec)?;
+        let problem = match loader.start {
+            StartCheck::Report(problem) => problem.into_inner(),
+            StartCheck::Require => None,
+        };
+        Ok((scene, problem))
+    }
+
     /// Parses scene YAML. `source` names the scene in errors, and relative file
     /// references (URDF, meshes) are resolved against its folder.
     pub fn from_yaml(text: &str, source: &Path) -> Result<Scene> {
@@ -43,22 +64,31 @@ impl Scene {
                 ),
             });
         }
-        let deserializer = serde_yaml::Deserializer::from_str(text);
-        let spec: SceneFile = serde_path_to_error::deserialize(deserializer).map_err(|e| {
-            let field = e.path().to_string();
-            let message = crate::input::shorten_quoted(&e.inner().to_string());
-            let message = message
-                .strip_prefix(&format!("{field}: "))
-                .map(str::to_string)
-                .unwrap_or(message);
-            Error::Parse {
-                file: source.to_path_buf(),
-                field,
-                message,
-            }
-        })?;
-        Loader { file: source }.scene(spec)
+        let spec = parse(text, source)?;
+        Loader {
+            file: source,
+            start: StartCheck::Require,
+        }
+        .scene(spec)
     }
+}
+
+/// The scene file's syntax: YAML into [`SceneFile`], errors naming the field.
+fn parse(text: &str, source: &Path) -> Result<SceneFile> {
+    let deserializer = serde_yaml::Deserializer::from_str(text);
+    serde_path_to_error::deserialize(deserializer).map_err(|e| {
+        let field = e.path().to_string();
+        let message = crate::input::shorten_quoted(&e.inner().to_string());
+        let message = message
+            .strip_prefix(&format!("{field}: "))
+            .map(str::to_string)
+            .unwrap_or(message);
+        Error::Parse {
+            file: source.to_path_buf(),
+            field,
+            message,
+        }
+    })
 }
 
 /// Most movable objects in a scene.
@@ -104,9 +134,28 @@ fn too_deep(text: &str) -> Option<usize> {
 
 struct Loader<'a> {
     file: &'a Path,
+    start: StartCheck,
+}
+
+/// What a start configuration that is not on its plane, within its limits and free of
+/// collisions does to the scene: refuses it, or is reported beside it.
+enum StartCheck {
+    Require,
+    Report(std::cell::RefCell<Option<String>>),
 }
 
 impl Loader<'_> {
+    /// `problem` with the start configuration: an error, or noted when only reported.
+    fn start_problem(&self, problem: Error) -> Result<()> {
+        match &self.start {
+            StartCheck::Require => Err(problem),
+            StartCheck::Report(noted) => {
+                noted.borrow_mut().get_or_insert(problem.to_string());
+                Ok(())
+            }
+        }
+    }
+
     fn invalid(&self, field: impl Into<String>, message: impl Into<String>) -> Error {
         Error::invalid(self.file, field, message)
     }
@@ -275,10 +324,10 @@ impl Loader<'_> {
         };
         scene.clearances = Clearances::at_start(&scene);
         if let Err(reason) = crate::validity::check_state(&scene, &scene.start) {
-            return Err(Error::InvalidStart {
+            self.start_problem(Error::InvalidStart {
                 file: self.file.to_path_buf(),
                 reason: reason.to_string(),
-            });
+            })?;
         }
         Ok(scene)
     }
@@ -660,10 +709,17 @@ impl Loader<'_> {
                     tilt_tolerance: settings.tilt_tolerance * 1e-3,
                     ..settings.clone()
                 };
-                robot.restore_plane(&mut q, &mut poses, &tight).map_err(|failure| {
-                    self.invalid("robot.start_joints", format!("the tool cannot be brought onto its pushing plane from here: {failure}"))
-                })?;
-                self.within_joint_limits("robot.start_joints", " (on the plane)", &robot, &q)?;
+                let written = q.clone();
+                if let Err(failure) = robot.restore_plane(&mut q, &mut poses, &tight) {
+                    self.start_problem(self.invalid("robot.start_joints", format!("the tool cannot be brought onto its pushing plane from here: {failure}")))?;
+                    q = written.clone();
+                }
+                if let Err(problem) =
+                    self.within_joint_limits("robot.start_joints", " (on the plane)", &robot, &q)
+                {
+                    self.start_problem(problem)?;
+                    q = written;
+                }
                 Ok((robot, q))
             }
             RobotSpec::PlanarHand {
