@@ -357,8 +357,7 @@ fn allowed_collisions_name_what_there_is() {
     let objects = parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0]);
     let error = |extra: &str| {
         herb_scene(HAND_NEAR, &objects, extra)
-            .err()
-            .expect("the scene is refused")
+            .expect_err("the scene is refused")
             .to_string()
     };
     let message = error("allowed_collisions: [[wam_bse, table]]");
