@@ -8,12 +8,10 @@ use pushplan::cli::{
     robot, BenchOptions, PlanOptions, RobotQuery,
 };
 use pushplan::planner::PlannerKind;
+use pushplan::scene::builtin;
 use pushplan::scene::generate::Design;
 use std::path::PathBuf;
 use std::process::ExitCode;
-
-/// The built-in default scene: the whole-arm paper's Fig. 1 situation.
-const DEFAULT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/herb_fig1_clutter.yaml");
 
 #[derive(Parser)]
 #[command(
@@ -280,6 +278,15 @@ fn main() -> ExitCode {
     pushplan::cli::exit_code(move || run(cli.command))
 }
 
+/// The scene given, or the built-in default scene written out (with its robot) to the
+/// cache folder (`pushplan::scene::builtin`).
+fn scene_or_default(scene: Option<PathBuf>) -> Result<PathBuf, String> {
+    match scene {
+        Some(scene) => Ok(scene),
+        None => builtin::write_default_scene(&builtin::cache_root()),
+    }
+}
+
 /// Runs one command: its exit code, or the message of bad input.
 fn run(command: Command) -> Result<ExitCode, String> {
     match command {
@@ -300,7 +307,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             particles,
             threads,
         } => {
-            let scene = scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
+            let scene = scene_or_default(scene)?;
             let options = PlanOptions {
                 robust,
                 robust_rate,
@@ -344,7 +351,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             tries,
             seed,
         } => robot(
-            &scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE)),
+            &scene_or_default(scene)?,
             &RobotQuery {
                 joints,
                 reach,

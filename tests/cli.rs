@@ -506,3 +506,71 @@ fn robot_prints_start_joints_that_reach_a_point() {
     assert_eq!(code, 2);
     assert!(stderr.contains("--reach"), "{stderr}");
 }
+
+/// `plan` without a scene plans the built-in default scene, written with its robot into
+/// the cache folder (not read from the build folder); the plan names it there, so it
+/// renders from any folder.
+#[test]
+fn the_default_scene_is_built_in() {
+    let scratch = common::Scratch::new("test-built-in-scene");
+    let run = |dir: &std::path::Path, args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
+            .current_dir(dir)
+            .env("XDG_CACHE_HOME", scratch.join("cache"))
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stdout).into_owned()
+                + &String::from_utf8_lossy(&out.stderr),
+        )
+    };
+    let work = scratch.join("work");
+    std::fs::create_dir_all(&work).unwrap();
+    let (code, output) = run(
+        &work,
+        &[
+            "plan",
+            "--time",
+            "0.5",
+            "--threads",
+            "1",
+            "--shortcut",
+            "0",
+            "--quiet",
+            "--out",
+            "plans/plan.json",
+        ],
+    );
+    assert!(code == 0 || code == 1, "{output}");
+    let version = env!("CARGO_PKG_VERSION");
+    let cached = scratch.join(&format!("cache/pushplan/{version}"));
+    for (file, source) in [
+        (
+            "scenes/herb_fig1_clutter.yaml",
+            "scenes/herb_fig1_clutter.yaml",
+        ),
+        ("robots/wam7.urdf", "robots/wam7.urdf"),
+    ] {
+        assert_eq!(
+            std::fs::read_to_string(cached.join(file)).unwrap(),
+            std::fs::read_to_string(source).unwrap(),
+            "{file}"
+        );
+    }
+    let plan = std::fs::read_to_string(work.join("plans/plan.json")).unwrap();
+    let scene_line = plan.lines().find(|l| l.contains("\"scene\"")).unwrap();
+    assert!(
+        scene_line.contains(&format!(
+            "cache/pushplan/{version}/scenes/herb_fig1_clutter.yaml"
+        )),
+        "{scene_line}"
+    );
+    let (code, output) = run(
+        scratch.path(),
+        &["render", "work/plans/plan.json", "--out", "pictures"],
+    );
+    assert_eq!(code, 0, "{output}");
+    assert!(scratch.join("pictures/animation.html").is_file());
+}

@@ -70,6 +70,32 @@ fn generated_scenes_follow_the_dataset_design() {
         .any(|(a, b)| without_urdf(a) != without_urdf(b)));
 }
 
+/// Scenes generated outside a project tree carry their robot with them (the built-in
+/// WAM in `robots/` beside them); inside one they name the tree's identical copy.
+#[test]
+fn generated_scenes_name_a_robot_beside_them() {
+    let scratch = common::Scratch::new("generate-generated_scenes_name_a_robot_beside_them");
+    let dir = scratch.join("set");
+    let files = generate(Design::Paper, 2, (1, 2), 1, &dir).unwrap();
+    let text = std::fs::read_to_string(&files[0]).unwrap();
+    assert!(text.contains("urdf: robots/wam7.urdf"), "{text}");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("robots/wam7.urdf")).unwrap(),
+        std::fs::read_to_string("robots/wam7.urdf").unwrap()
+    );
+    // Moved elsewhere as a folder, the set still loads.
+    let moved = scratch.join("moved");
+    std::fs::rename(&dir, &moved).unwrap();
+    assert!(Scene::load(moved.join("scene_00.yaml")).is_ok());
+    for committed in [
+        "scenes/benchmark/scene_00.yaml",
+        "scenes/dense/scene_00.yaml",
+    ] {
+        let text = std::fs::read_to_string(committed).unwrap();
+        assert!(text.contains("urdf: ../../robots/wam7.urdf"), "{committed}");
+    }
+}
+
 #[test]
 fn the_committed_benchmark_set_is_what_the_command_generates() {
     let scratch =

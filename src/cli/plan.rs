@@ -32,6 +32,11 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     // --time bounds the whole command: loading, search, shortcutting and writing.
     let started = std::time::Instant::now();
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
+    // The plan's folder is made before the search, not found missing after it.
+    if let Some(folder) = out.parent().filter(|f| !f.as_os_str().is_empty()) {
+        std::fs::create_dir_all(folder)
+            .map_err(|e| format!("{}: cannot make the plan's folder: {e}", folder.display()))?;
+    }
     let p = scene.planner;
     let (planner, quiet) = (run.planner, run.quiet);
     let seed = run.seed.unwrap_or(p.seed);

@@ -100,10 +100,7 @@ pub fn generate(
         ));
     }
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let urdf = crate::input::relative_path(
-        dir,
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("robots/wam7.urdf"),
-    )?;
+    let urdf = crate::input::relative_path(dir, &super::builtin::wam_for(dir)?)?;
     let mut rng = SplitMix64::new(seed);
     let mut files = Vec::with_capacity(count);
     for i in 0..count {

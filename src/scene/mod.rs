@@ -3,6 +3,7 @@
 //!
 //! World frame: z up, the table top horizontal at `table.top`.
 
+pub mod builtin;
 pub mod file;
 pub mod generate;
 mod load;
