@@ -73,20 +73,25 @@ impl Scene {
     }
 }
 
-/// The scene file's syntax: YAML into [`SceneFile`], errors naming the field.
+/// The scene file's syntax: YAML into [`SceneFile`], errors naming the field, the line
+/// and the column.
 fn parse(text: &str, source: &Path) -> Result<SceneFile> {
-    let deserializer = serde_yaml::Deserializer::from_str(text);
-    serde_path_to_error::deserialize(deserializer).map_err(|e| {
-        let field = e.path().to_string();
-        let message = crate::input::shorten_quoted(&e.inner().to_string());
-        let message = message
-            .strip_prefix(&format!("{field}: "))
-            .map(str::to_string)
-            .unwrap_or(message);
+    let options = serde_saphyr::options! { with_snippet: false };
+    let mut field = String::new();
+    serde_saphyr::with_deserializer_from_str_with_options(text, options, |deserializer| {
+        serde_path_to_error::deserialize(deserializer).map_err(|e| {
+            field = e.path().to_string();
+            e.into_inner()
+        })
+    })
+    .map_err(|e| {
+        // "error: line L column C: what" -> "line L column C: what".
+        let message = e.to_string();
+        let message = message.strip_prefix("error: ").unwrap_or(&message);
         Error::Parse {
             file: source.to_path_buf(),
-            field,
-            message,
+            field: if field == "." { String::new() } else { field },
+            message: crate::input::shorten_quoted(message),
         }
     })
 }
