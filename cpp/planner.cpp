@@ -60,6 +60,26 @@ namespace pushplan
                 total.stopped.emplace_back(std::string(sum.stop_reasons[i]), sum.stop_counts[i]);
             return total;
         }
+
+        /// A progress report on stderr, one line (Options::progress without on_progress).
+        void printProgress(const Progress &p)
+        {
+            if (!p.note.empty())
+            {
+                std::fprintf(stderr, "  %s\n", p.note.c_str());
+                return;
+            }
+            std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps, %.0f steps/s, %.0f %% propagating",
+                         p.seconds, static_cast<unsigned long long>(p.propagation_steps), p.steps_per_second,
+                         100.0 * p.propagating);
+            if (p.tree_states)
+                std::fprintf(stderr, ", tree of %zu states", *p.tree_states);
+            if (p.searches > 1)
+                std::fprintf(stderr, " in %u searches", p.searches);
+            if (std::isfinite(p.closest_goal_distance))
+                std::fprintf(stderr, ", closest to the goal %.3f", p.closest_goal_distance);
+            std::fputc('\n', stderr);
+        }
     }  // namespace detail
 
     Planner::Planner(const std::string &scene_file) : Planner(std::make_unique<Source>(Source{scene_file, "", false, ""}))
@@ -191,22 +211,28 @@ namespace pushplan
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
             std::uint64_t last_steps = 0;
+            // Reports go to options.on_progress, or are printed with options.progress.
+            const auto tell = [&](const Progress &p) {
+                if (options.on_progress)
+                    options.on_progress(p);
+                else if (options.progress)
+                    detail::printProgress(p);
+            };
             const std::function<void()> report = [&] {
                 const double t = elapsed();
-                if (!options.progress || t < next_report)
+                if ((!options.progress && !options.on_progress) || t < next_report)
                     return;
-                const std::uint64_t steps = portfolio.propagationSteps();
+                Progress p;
+                p.seconds = t;
+                p.propagation_steps = portfolio.propagationSteps();
                 const double propagating = portfolio.propagationSeconds() / threads;
-                std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps, %.0f steps/s, %.0f %% propagating",
-                             t, static_cast<unsigned long long>(steps),
-                             static_cast<double>(steps - last_steps) / (t - last_t),
-                             100.0 * (propagating - last_propagating) / (t - last_t));
-                if (const std::optional<std::size_t> states = portfolio.treeStates())
-                    std::fprintf(stderr, ", tree of %zu states", *states);
-                if (threads > 1)
-                    std::fprintf(stderr, " in %u searches", threads);
-                std::fputc('\n', stderr);
-                last_t = t, last_steps = steps, last_propagating = propagating;
+                p.steps_per_second = static_cast<double>(p.propagation_steps - last_steps) / (t - last_t);
+                p.propagating = (propagating - last_propagating) / (t - last_t);
+                p.tree_states = portfolio.treeStates();
+                p.searches = threads;
+                p.closest_goal_distance = portfolio.closestGoalDistance();
+                tell(p);
+                last_t = t, last_steps = p.propagation_steps, last_propagating = propagating;
                 next_report = std::floor(t) + 1.0;
             };
             const auto search = [&] {
@@ -252,12 +278,21 @@ namespace pushplan
                              std::vector<double>(repaired.states.begin(), repaired.states.end())};
                     break;
                 }
-                if (options.progress)
-                    std::fprintf(stderr,
-                                 "  a solution reaches the goal in %.0f %% of %u perturbed re-simulations "
-                                 "(%zu of %zu controls kept shortcutting toward robustness): searching on\n",
-                                 100.0 * plan.robustness, options.robust_trials, repaired.steps.size(),
-                                 found.steps.size());
+                {
+                    Progress p;
+                    p.seconds = elapsed();
+                    p.propagation_steps = portfolio.propagationSteps();
+                    p.searches = threads;
+                    p.closest_goal_distance = portfolio.closestGoalDistance();
+                    char note[256];
+                    std::snprintf(note, sizeof note,
+                                  "a solution reaches the goal in %.0f %% of %u perturbed re-simulations "
+                                  "(%zu of %zu controls kept shortcutting toward robustness): searching on",
+                                  100.0 * plan.robustness, options.robust_trials, repaired.steps.size(),
+                                  found.steps.size());
+                    p.note = note;
+                    tell(p);
+                }
                 if (out_of_time())
                 {
                     winner.reset();  // the last path is kept, as an approximate solution

@@ -1,5 +1,8 @@
 #include "portfolio.h"
 
+#include <algorithm>
+#include <limits>
+
 #include <exception>
 #include <thread>
 
@@ -104,6 +107,14 @@ namespace pushplan::detail
         for (const Search &s : searches_)
             seconds += s.problem.model->model().propagation_seconds();
         return seconds;
+    }
+
+    double Portfolio::closestGoalDistance() const
+    {
+        double closest = std::numeric_limits<double>::infinity();
+        for (const Search &s : searches_)
+            closest = std::min(closest, s.problem.model->model().closest_goal_distance());
+        return closest;
     }
 
     std::optional<std::size_t> Portfolio::treeStates() const

@@ -52,6 +52,8 @@ namespace pushplan::detail
         /// Totals over the searches.
         std::uint64_t propagationSteps() const;
         double propagationSeconds() const;
+        /// The smallest goal distance any search has reached.
+        double closestGoalDistance() const;
         /// States in the searches' trees, for the planners that report it cheaply (RRT).
         std::optional<std::size_t> treeStates() const;
 

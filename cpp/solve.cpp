@@ -5,7 +5,8 @@
 
 namespace pushplan::bridge
 {
-    SolveOutput solve(rust::Str scene_path, const SolveOptions &options)
+    SolveOutput solve(rust::Str scene_path, const SolveOptions &options,
+                      rust::Fn<void(const SearchProgress &)> progress)
     {
         Options o;
         o.planner = options.planner;
@@ -15,6 +16,19 @@ namespace pushplan::bridge
         o.goal_bias = options.goal_bias;
         o.intermediate_states = options.intermediate_states;
         o.progress = options.progress;
+        if (options.progress)
+            o.on_progress = [progress](const Progress &p) {
+                SearchProgress report;
+                report.seconds = p.seconds;
+                report.propagation_steps = p.propagation_steps;
+                report.steps_per_second = p.steps_per_second;
+                report.propagating = p.propagating;
+                report.tree_states = p.tree_states.value_or(0);
+                report.searches = p.searches;
+                report.closest_goal_distance = p.closest_goal_distance;
+                report.note = p.note;
+                progress(report);
+            };
         o.robust_trials = static_cast<unsigned>(options.robust_trials);
         o.robust_rate = options.robust_rate;
         o.robust_shortcut = options.robust_shortcut;

@@ -7,7 +7,10 @@ namespace pushplan::bridge
 {
     struct SolveOptions;
     struct SolveOutput;
+    struct SearchProgress;
 
-    /// Plans a scene file; throws (a Rust Err) on bad input.
-    SolveOutput solve(rust::Str scene_path, const SolveOptions &options);
+    /// Plans a scene file, telling `progress` how far it is (with options.progress);
+    /// throws (a Rust Err) on bad input.
+    SolveOutput solve(rust::Str scene_path, const SolveOptions &options,
+                      rust::Fn<void(const SearchProgress &)> progress);
 }  // namespace pushplan::bridge

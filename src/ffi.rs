@@ -7,7 +7,7 @@
 mod convert;
 pub mod entry;
 
-pub use entry::{benchmark_scene, solve, BenchOptions, SolveOptions, SolveOutput};
+pub use entry::{benchmark_scene, solve, BenchOptions, SearchProgress, SolveOptions, SolveOutput};
 
 use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
@@ -150,6 +150,8 @@ pub mod bridge {
         fn start_particles(self: &Model) -> Vec<f64>;
         fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
         fn propagation_steps(self: &Model) -> u64;
+        /// The smallest goal distance of a state so far (progress reports).
+        fn closest_goal_distance(self: &Model) -> f64;
         fn propagation_seconds(self: &Model) -> f64;
         fn search_stats(model: &Model) -> SearchStats;
         fn add_search_stats(a: &SearchStats, b: &SearchStats) -> SearchStats;

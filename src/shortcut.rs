@@ -30,7 +30,7 @@ use std::time::Instant;
 /// see BENCHMARKS.md).
 pub const STEPS_PER_SECOND: f64 = 200_000.0;
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct ShortcutSettings {
     /// Work budget in propagation steps.
     pub budget_steps: u64,
@@ -38,6 +38,9 @@ pub struct ShortcutSettings {
     /// Wall-clock time at which shortcutting stops even if budget is left (the plan's
     /// time limit). Only then does the outcome depend on the machine's speed.
     pub deadline: Option<Instant>,
+    /// Told how far shortcutting is before every attempt (a progress line); it cannot
+    /// change the outcome.
+    pub progress: Option<fn(&ShortcutProgress)>,
 }
 
 impl ShortcutSettings {
@@ -47,8 +50,22 @@ impl ShortcutSettings {
             budget_steps: (seconds.max(0.0) * STEPS_PER_SECOND) as u64,
             seed,
             deadline: None,
+            progress: None,
         }
     }
+}
+
+/// How far shortcutting is.
+#[derive(Clone, Copy, Debug)]
+pub struct ShortcutProgress {
+    /// Work done and the budget (propagation steps).
+    pub work: u64,
+    pub budget: u64,
+    pub attempts: usize,
+    pub accepted: usize,
+    /// The current path's manipulator path (joint space) and duration (s).
+    pub joint_length: f64,
+    pub duration: f64,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -146,6 +163,16 @@ pub fn shortcut_by(
         if settings.deadline.is_some_and(|d| Instant::now() >= d) {
             outcome.stopped_at_deadline = true;
             break;
+        }
+        if let Some(progress) = settings.progress {
+            progress(&ShortcutProgress {
+                work,
+                budget: settings.budget_steps,
+                attempts: outcome.attempts,
+                accepted: outcome.accepted,
+                joint_length: path.metrics.joint_length,
+                duration: path.metrics.duration,
+            });
         }
         outcome.attempts += 1;
         // The candidate differs from the current path from control i on.

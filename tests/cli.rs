@@ -112,7 +112,9 @@ fn no_exact_solution_exits_non_zero() {
         .map(|(t, rest)| {
             (
                 t.trim().parse::<f64>(),
-                rest.contains("propagation steps, ") && rest.contains("% propagating"),
+                rest.contains("propagation steps, ")
+                    && rest.contains("% propagating")
+                    && rest.contains("closest to the goal "),
             )
         });
     assert!(
@@ -573,4 +575,30 @@ fn the_default_scene_is_built_in() {
     );
     assert_eq!(code, 0, "{output}");
     assert!(scratch.join("pictures/animation.html").is_file());
+}
+
+/// Shortcutting reports how far it is, a line a second when stderr is not a terminal.
+#[test]
+fn shortcutting_reports_its_progress() {
+    let scratch = common::Scratch::new("cli-shortcutting_reports_its_progress");
+    let out = scratch.join("plan.json");
+    let (code, _, stderr) = pushplan(&[
+        "plan",
+        "scenes/benchmark/scene_05.yaml",
+        "--seed",
+        "3",
+        "--threads",
+        "1",
+        "--shortcut",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.trim_start().starts_with("shortcutting: ") && l.contains("% of the budget"))
+        .collect();
+    assert!(!lines.is_empty(), "{stderr}");
+    assert!(lines[0].contains("attempts accepted, path "), "{stderr}");
 }

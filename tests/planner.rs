@@ -195,7 +195,7 @@ fn a_robot_configuration_goal_is_planned_for_too() {
     let scratch = common::Scratch::new("config-goal");
     let path = scratch.join("scene.yaml");
     std::fs::write(&path, text.replace("../robots", "robots")).unwrap();
-    let out = solve(&path, &options("pcrrt", 1, 30.0)).unwrap();
+    let out = solve(&path, &options("pcrrt", 1, 30.0), |_| {}).unwrap();
     assert!(out.exact);
     let scene = Scene::load(&path).unwrap();
     let controls = PathControl::from_flat(&out.controls, &out.steps, 3).unwrap();

@@ -250,6 +250,7 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_beats_shorten
             seed: 1,
             robust,
             deadline: None,
+            progress: None,
         };
         finish(&scene, &controls, &states, true, &settings).unwrap()
     };

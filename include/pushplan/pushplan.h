@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -66,6 +67,22 @@ namespace pushplan
     /// The planner of a name; throws pushplan::Error listing the names for another.
     PlannerKind plannerKind(const std::string &name);
 
+    /// How far a search is: reported once a second to Options::on_progress.
+    struct Progress
+    {
+        double seconds = 0.0;                   ///< since the search started
+        std::uint64_t propagation_steps = 0;    ///< in all searches
+        double steps_per_second = 0.0;          ///< since the last report
+        double propagating = 0.0;               ///< share of that time spent in the physics
+        std::optional<std::size_t> tree_states; ///< in all trees (RRT-based planners)
+        unsigned searches = 1;                  ///< running in parallel
+        /// The smallest distance to the goal of a state reached so far (m for a goal disc,
+        /// rad for a goal configuration; zero or negative: inside).
+        double closest_goal_distance = 0.0;
+        /// An event instead of a periodic report (a solution dropped as not robust, say).
+        std::string note;
+    };
+
     /// Planner options. Unset values take the scene file's `planner:` values.
     struct Options
     {
@@ -81,6 +98,9 @@ namespace pushplan
         bool intermediate_states = false;
         /// Print progress to stderr once a second.
         bool progress = false;
+        /// Called with the progress once a second and at events instead of printing it
+        /// (whatever `progress` says), on the thread that called solve().
+        std::function<void(const Progress &)> on_progress;
         /// Keep a solution only if at least `robust_rate` of this many re-simulations from
         /// perturbed scenes (object start poses +-5 mm / +-0.05 rad; mass, frictions and
         /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on. 0: no check.

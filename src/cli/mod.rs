@@ -7,6 +7,7 @@ mod check;
 mod execute;
 mod files;
 mod plan;
+mod progress;
 mod robot;
 
 pub use bench::{bench, bench_merge, bench_scene, plots, BenchOptions};

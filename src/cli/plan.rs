@@ -1,9 +1,11 @@
 //! `pushplan plan`: search a scene with OMPL, finish the path, write the plan file.
 
+use super::progress;
 use crate::ffi::{solve, SolveOptions};
 use crate::path::PathControl;
 use crate::plan::{PlanFile, PlanSettings, RobustnessRecord};
 use crate::planner::{FinishSettings, PlannerKind, Problem, RobustRequirement};
+use crate::shortcut::ShortcutProgress;
 use crate::state::State;
 use crate::Scene;
 use std::path::Path;
@@ -104,7 +106,14 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             }
         );
     }
-    let solution = solve(scene_path, &options)?;
+    if !quiet {
+        progress::start(match scene.goal {
+            crate::scene::Goal::ObjectInDisc { .. } => "m",
+            crate::scene::Goal::Configuration { .. } => "rad",
+        });
+    }
+    let solution =
+        solve(scene_path, &options, progress::search).inspect_err(|_| progress::finish())?;
     let problem = Problem::new(scene.clone(), planner);
     let dof = scene.robot.dof();
     let found = PathControl::from_flat(&solution.controls, &solution.steps, dof)?;
@@ -117,8 +126,11 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             rate: run.robust_rate,
         }),
         deadline: crate::planner::deadline(started, options.time_limit),
+        progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
     };
-    let path = problem.finish(&found, &found_states, solution.exact, &finish_settings)?;
+    let path = problem.finish(&found, &found_states, solution.exact, &finish_settings);
+    progress::finish();
+    let path = path?;
     if !quiet && path.shortcut.attempts > 0 {
         eprintln!(
             "shortcutting: {} of {} attempts accepted",

@@ -191,6 +191,7 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 rate: s.robust_rate,
             }),
             deadline: crate::planner::deadline(std::time::Instant::now(), s.time_left),
+            progress: None,
         })
     }
 }

@@ -41,6 +41,23 @@ pub mod bridge {
         pub states: Vec<f64>,
     }
 
+    /// How far the CLI's search is (pushplan::Progress): once a second, or an event.
+    #[derive(Debug, Clone)]
+    pub struct SearchProgress {
+        pub seconds: f64,
+        pub propagation_steps: u64,
+        pub steps_per_second: f64,
+        /// Share of the time since the last report spent propagating.
+        pub propagating: f64,
+        /// States in all trees; 0 when the planner has none to count.
+        pub tree_states: usize,
+        pub searches: u32,
+        /// Smallest goal distance reached (m, or rad for a configuration goal).
+        pub closest_goal_distance: f64,
+        /// Not empty: an event rather than a periodic report.
+        pub note: String,
+    }
+
     /// One run of one planner on one scene (`ompl::tools::Benchmark`), seeded from
     /// `seed` and `run` only; the OMPL log goes to `log`.
     #[derive(Debug, Clone)]
@@ -61,20 +78,30 @@ pub mod bridge {
         include!("pushplan/src/ffi.rs.h");
         type SearchStats = crate::ffi::bridge::SearchStats;
         include!("pushplan/cpp/solve.h");
-        /// Searches the scene file with OMPL (the CLI's entry point).
-        fn solve(scene_path: &str, options: &SolveOptions) -> Result<SolveOutput>;
+        /// Searches the scene file with OMPL (the CLI's entry point), telling `progress`
+        /// how far it is when `options.progress` is set.
+        fn solve(
+            scene_path: &str,
+            options: &SolveOptions,
+            progress: fn(report: &SearchProgress),
+        ) -> Result<SolveOutput>;
         include!("pushplan/cpp/benchmark.h");
         /// Runs one benchmark run with ompl::tools::Benchmark and writes its log.
         fn benchmark_scene(scene_path: &str, options: &BenchOptions) -> Result<()>;
     }
 }
 
-pub use bridge::{BenchOptions, SolveOptions, SolveOutput};
+pub use bridge::{BenchOptions, SearchProgress, SolveOptions, SolveOutput};
 use std::path::Path;
 
 /// Searches a scene file with OMPL (the C++ side), as the CLI does.
-pub fn solve(scene_path: &Path, options: &SolveOptions) -> Result<SolveOutput, String> {
-    bridge::solve(&scene_path.to_string_lossy(), options).map_err(|e| e.what().to_string())
+pub fn solve(
+    scene_path: &Path,
+    options: &SolveOptions,
+    progress: fn(&SearchProgress),
+) -> Result<SolveOutput, String> {
+    bridge::solve(&scene_path.to_string_lossy(), options, progress)
+        .map_err(|e| e.what().to_string())
 }
 
 /// Benchmarks one scene with OMPL's tooling, writing `options.log`.

@@ -7,12 +7,14 @@ use crate::propagate::Propagator;
 use crate::random::SplitMix64;
 use crate::robustness::{robustness, Noise, PerturbedWorld};
 use crate::scene::Scene;
-use crate::shortcut::{shortcut_by, Criterion, ShortcutOutcome, ShortcutSettings};
+use crate::shortcut::{
+    shortcut_by, Criterion, ShortcutOutcome, ShortcutProgress, ShortcutSettings,
+};
 use crate::state::State;
 use std::time::Instant;
 
 /// How a found path is finished.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct FinishSettings {
     /// Shortcutting budget in seconds of work (0: none).
     pub shortcut: f64,
@@ -22,6 +24,8 @@ pub struct FinishSettings {
     pub robust: Option<RobustRequirement>,
     /// When shortcutting must stop, budget left or not (the plan's time limit).
     pub deadline: Option<Instant>,
+    /// Told how far shortcutting is (a progress line).
+    pub progress: Option<fn(&ShortcutProgress)>,
 }
 
 /// The instant `seconds` after `start`; `None` (no deadline) for an infinite or NaN span.
@@ -120,6 +124,7 @@ pub fn finish(
     if settings.shortcut > 0.0 {
         let budget = ShortcutSettings {
             deadline: settings.deadline,
+            progress: settings.progress,
             ..ShortcutSettings::from_seconds(settings.shortcut, settings.seed)
         };
         // Robust planning shortens first (fewer pushes: less to go wrong), then shortcuts

@@ -34,6 +34,9 @@ pub struct Model {
     /// `isValid` of exactly that state next, and the propagation already knows.
     last_result: Option<(Vec<f64>, bool)>,
     steps_taken: u64,
+    /// The smallest goal distance asked for so far (progress reports: how close the
+    /// search has come).
+    closest_goal_distance: std::cell::Cell<f64>,
     /// Wall time spent in `propagate` (progress reports: the rest is the planner's).
     propagating: Duration,
     search: SearchCounter,
@@ -69,6 +72,7 @@ impl Model {
             particles: ParticleWorlds::default(),
             last_result: None,
             steps_taken: 0,
+            closest_goal_distance: std::cell::Cell::new(f64::INFINITY),
             propagating: Duration::ZERO,
             deadline: None,
         }
@@ -302,8 +306,16 @@ impl Model {
             let state = self.state(state)?;
             let goal = &self.scene().goal;
             let worlds = self.particles.goal_distance(&state.q, particles);
-            Ok(goal.distance(&state).max(worlds))
+            let distance = goal.distance(&state).max(worlds);
+            let closest = &self.closest_goal_distance;
+            closest.set(closest.get().min(distance));
+            Ok(distance)
         })
+    }
+
+    /// The smallest goal distance of a state so far (m or rad; infinite before any).
+    pub fn closest_goal_distance(&self) -> f64 {
+        self.closest_goal_distance.get()
     }
 
     /// Robust planning: from now on every state carries `count` perturbed worlds drawn

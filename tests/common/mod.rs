@@ -75,7 +75,7 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>
         threads: 1,
     };
     let scene_file = "scenes/herb_fig1_clutter.yaml";
-    let out = pushplan::ffi::solve(Path::new(scene_file), &options).unwrap();
+    let out = pushplan::ffi::solve(Path::new(scene_file), &options, |_| {}).unwrap();
     assert!(out.exact, "seed {seed} should solve the default scene");
     let scene = Scene::load(scene_file).unwrap();
     let controls =

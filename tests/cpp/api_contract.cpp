@@ -25,6 +25,7 @@
 
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -76,6 +77,25 @@ int main()
     ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
     planner.solve(options);
     expect(ompl::msg::getLogLevel() == ompl::msg::LOG_ERROR, "... whatever it was");
+
+    {
+        // A search that cannot succeed (clutter pinned on the goal disc) reports once a
+        // second to on_progress, with how close it has come.
+        const pushplan::Planner cluttered("tests/data/clutter_on_goal.yaml");
+        pushplan::Options o;
+        o.planner = PlannerKind::StaticRrt;
+        o.time_limit = 1.5;
+        o.seed = 1;
+        o.threads = 1;
+        o.shortcut = 0.0;
+        std::vector<pushplan::Progress> reports;
+        o.on_progress = [&](const pushplan::Progress &p) { reports.push_back(p); };
+        cluttered.solve(o);
+        expect(!reports.empty() && reports[0].seconds >= 1.0 && reports[0].tree_states &&
+                   *reports[0].tree_states > 0 && reports[0].propagation_steps > 0 &&
+                   std::isfinite(reports[0].closest_goal_distance) && reports[0].closest_goal_distance > 0.0,
+               "on_progress hears the search once a second: its tree, steps and closest goal distance");
+    }
 
     options.time_limit = -1.0;
     expect(throwsError([&] { planner.solve(options); }, "time_limit"), "a bad option throws pushplan::Error");
