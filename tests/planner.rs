@@ -41,7 +41,7 @@ fn plan_file(scene: &str, planner: &str, seed: u64, out: &SolveOutput) -> PlanFi
 #[test]
 fn pc_rrt_solves_the_single_object_scene_and_its_plan_checks() {
     let scene = "scenes/herb_single_object.yaml";
-    let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0)).unwrap();
+    let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0), |_| {}).unwrap();
     assert!(out.exact, "no exact solution");
     assert!(out.tree_size > 1 && out.propagation_steps > 0);
     let plan = plan_file(scene, "pcrrt", 1, &out);
@@ -66,7 +66,7 @@ fn pc_rrt_solves_the_single_object_scene_and_its_plan_checks() {
 #[test]
 fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_away() {
     let scene = "tests/data/clutter_on_goal.yaml";
-    let out = solve(Path::new(scene), &options("pcrrt", 5, 30.0)).unwrap();
+    let out = solve(Path::new(scene), &options("pcrrt", 5, 30.0), |_| {}).unwrap();
     assert!(out.exact);
     let plan = plan_file(scene, "pcrrt", 5, &out);
     assert!(plan.check(Path::new("plan.json")).unwrap().passed());
@@ -81,7 +81,7 @@ fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_awa
         .any(|c| c.object == "clutter"));
 
     // Static RRT treats the clutter as an obstacle: that goal is unreachable for it.
-    let stuck = solve(Path::new(scene), &options("static", 5, 1.0)).unwrap();
+    let stuck = solve(Path::new(scene), &options("static", 5, 1.0), |_| {}).unwrap();
     assert!(!stuck.exact);
     let static_plan = plan_file(scene, "static", 5, &stuck);
     // Its plan holds the whole scene, the clutter pinned where it starts.
@@ -101,7 +101,7 @@ fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_awa
 #[test]
 fn static_rrt_solves_when_no_clutter_is_in_the_way() {
     let scene = "scenes/herb_single_object.yaml";
-    let out = solve(Path::new(scene), &options("static", 2, 30.0)).unwrap();
+    let out = solve(Path::new(scene), &options("static", 2, 30.0), |_| {}).unwrap();
     assert!(out.exact);
     assert!(plan_file(scene, "static", 2, &out)
         .check(Path::new("plan.json"))
@@ -112,14 +112,14 @@ fn static_rrt_solves_when_no_clutter_is_in_the_way() {
 #[test]
 fn the_same_seed_gives_the_same_plan() {
     let scene = "scenes/herb_single_object.yaml";
-    let a = solve(Path::new(scene), &options("pcrrt", 3, 30.0)).unwrap();
-    let b = solve(Path::new(scene), &options("pcrrt", 3, 30.0)).unwrap();
+    let a = solve(Path::new(scene), &options("pcrrt", 3, 30.0), |_| {}).unwrap();
+    let b = solve(Path::new(scene), &options("pcrrt", 3, 30.0), |_| {}).unwrap();
     assert_eq!(
         (a.states.clone(), a.controls.clone(), a.steps.clone()),
         (b.states, b.controls, b.steps)
     );
     assert_eq!(a.tree_size, b.tree_size);
-    let c = solve(Path::new(scene), &options("pcrrt", 4, 30.0)).unwrap();
+    let c = solve(Path::new(scene), &options("pcrrt", 4, 30.0), |_| {}).unwrap();
     assert_ne!(
         a.controls, c.controls,
         "a different seed should give a different plan"
@@ -133,11 +133,11 @@ fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
         threads: n,
         ..options("pcrrt", 1, 60.0)
     };
-    let a = solve(Path::new(scene), &threads(3)).unwrap();
+    let a = solve(Path::new(scene), &threads(3), |_| {}).unwrap();
     // Again, while another search competes for the cores: other thread timings.
     let b = std::thread::scope(|s| {
-        let noise = s.spawn(|| solve(Path::new(scene), &options("pcrrt", 9, 60.0)));
-        let b = solve(Path::new(scene), &threads(3)).unwrap();
+        let noise = s.spawn(|| solve(Path::new(scene), &options("pcrrt", 9, 60.0), |_| {}));
+        let b = solve(Path::new(scene), &threads(3), |_| {}).unwrap();
         noise.join().unwrap().unwrap();
         b
     });
@@ -151,16 +151,22 @@ fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
         .check(Path::new("plan.json"))
         .unwrap()
         .passed());
-    assert!(solve(Path::new(scene), &threads(0)).is_err());
+    assert!(solve(Path::new(scene), &threads(0), |_| {}).is_err());
 }
 
 #[test]
 fn bad_scenes_and_options_are_errors_not_crashes() {
-    let err = solve(Path::new("scenes/missing.yaml"), &options("pcrrt", 1, 1.0)).unwrap_err();
+    let err = solve(
+        Path::new("scenes/missing.yaml"),
+        &options("pcrrt", 1, 1.0),
+        |_| {},
+    )
+    .unwrap_err();
     assert!(err.contains("scenes/missing.yaml"), "{err}");
     let err = solve(
         Path::new("tests/data/gripper.urdf"),
         &options("pcrrt", 1, 1.0),
+        |_| {},
     )
     .unwrap_err();
     assert!(err.contains("gripper.urdf"), "{err}");
@@ -169,6 +175,7 @@ fn bad_scenes_and_options_are_errors_not_crashes() {
     let err = solve(
         Path::new("scenes/herb_single_object.yaml"),
         &options("pcrrt", 1, -1.0),
+        |_| {},
     )
     .unwrap_err();
     assert!(err.contains("time_limit"), "{err}");
@@ -177,7 +184,7 @@ fn bad_scenes_and_options_are_errors_not_crashes() {
 #[test]
 fn a_tampered_plan_fails_its_check() {
     let scene = "scenes/herb_single_object.yaml";
-    let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0)).unwrap();
+    let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0), |_| {}).unwrap();
     let mut plan = plan_file(scene, "pcrrt", 1, &out);
     plan.controls[0].ee_velocity[0] += 0.01;
     let report = plan.check(Path::new("plan.json")).unwrap();
