@@ -138,6 +138,6 @@ draw(0);
         names = names.join(","),
         colours = colours.join(","),
         contact = super::svg::CONTACT_COLOUR,
-        goal_colour = super::svg::GOAL_COLOUR,
+        goal_colour = super::svg::GOAL_REGION_COLOUR,
     )
 }

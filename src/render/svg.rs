@@ -54,10 +54,11 @@ impl View {
 }
 
 /// Fill colour of object `i`: the goal object dark green (as in the paper's figures),
-/// the others blue, red, grey, ... in order.
+/// the others blue, red, grey, brown, pink, cyan in order (none of them green, purple or
+/// orange: those are the goal object's, the goal region's and a pushing link's).
 pub fn object_colour(film: &Film, i: usize) -> &'static str {
     const PALETTE: [&str; 6] = [
-        "#3b6fd8", "#d8453b", "#8c8c8c", "#d89b3b", "#8a4fd8", "#3bb3d8",
+        "#3b6fd8", "#d8453b", "#8c8c8c", "#8c564b", "#e377c2", "#17becf",
     ];
     match film.scene.goal {
         crate::scene::Goal::ObjectInDisc { object, .. } if object == i => GOAL_COLOUR,
@@ -69,8 +70,18 @@ pub fn object_colour(film: &Film, i: usize) -> &'static str {
 }
 
 pub const GOAL_COLOUR: &str = "#1e7b1e";
-/// Links in contact are highlighted (bright green, as in Fig. 2).
-pub const CONTACT_COLOUR: &str = "#7cfc00";
+/// The goal region (the disc the goal object must reach), dashed.
+pub const GOAL_REGION_COLOUR: &str = "#7b3294";
+/// Links in contact are highlighted.
+pub const CONTACT_COLOUR: &str = "#ff7f00";
+/// The arm's other links.
+const LINK_COLOUR: &str = "#9aa3ad";
+/// Length of the scale bar (m).
+const SCALE_BAR: f64 = 0.2;
+/// Height of the snapshots' header: title and legend (px).
+const HEADER: f64 = 44.0;
+/// Snapshots per row.
+const COLUMNS: usize = 2;
 
 /// `s` as HTML / XML text or attribute value.
 pub(super) fn escape(s: &str) -> String {
@@ -98,7 +109,7 @@ fn panel(film: &Film, view: &View, frame: &Frame, k: usize, out: &mut String) {
         let (u, v) = view.px(&c);
         let _ = writeln!(
             out,
-            r##"  <circle class="goal" cx="{u:.1}" cy="{v:.1}" r="{:.1}" fill="{GOAL_COLOUR}" fill-opacity="0.15" stroke="{GOAL_COLOUR}" stroke-dasharray="4 3"/>"##,
+            r##"  <circle class="goal" cx="{u:.1}" cy="{v:.1}" r="{:.1}" fill="{GOAL_REGION_COLOUR}" fill-opacity="0.12" stroke="{GOAL_REGION_COLOUR}" stroke-dasharray="4 3"/>"##,
             r * SCALE
         );
     }
@@ -132,7 +143,7 @@ fn panel(film: &Film, view: &View, frame: &Frame, k: usize, out: &mut String) {
         let (fill, class) = if *hot {
             (CONTACT_COLOUR, "link contact")
         } else {
-            ("#9aa3ad", "link")
+            (LINK_COLOUR, "link")
         };
         let _ = writeln!(
             out,
@@ -140,17 +151,71 @@ fn panel(film: &Film, view: &View, frame: &Frame, k: usize, out: &mut String) {
             view.points(outline)
         );
     }
+    // Object names over the objects, haloed so they read over links and neighbours.
+    for (object, outline) in film.scene.objects.iter().zip(&frame.objects) {
+        let centre = outline.iter().sum::<Vector2<f64>>() / outline.len().max(1) as f64;
+        let (u, v) = view.px(&centre);
+        let _ = writeln!(
+            out,
+            r##"  <text class="name" x="{u:.1}" y="{:.1}" font-size="10" text-anchor="middle" paint-order="stroke" stroke="#fff" stroke-width="3">{}</text>"##,
+            v + 3.5,
+            escape(&object.name)
+        );
+    }
+    // Scale bar, bottom left.
+    let (x0, y) = (MARGIN, view.height - 10.0);
+    let x1 = x0 + SCALE_BAR * SCALE;
+    let _ = writeln!(
+        out,
+        r##"  <g class="scale-bar"><path d="M{x0:.1},{:.1} V{y:.1} H{x1:.1} V{:.1}" fill="none" stroke="#222" stroke-width="1.5"/><text x="{:.1}" y="{:.1}" font-size="11">{:.0} cm</text></g>"##,
+        y - 5.0,
+        y - 5.0,
+        x1 + 5.0,
+        y,
+        SCALE_BAR * 100.0
+    );
 }
 
-/// Snapshots at `times` (s), side by side.
+/// The snapshots' legend: what the colours mean.
+fn legend(out: &mut String) {
+    let items = [
+        ("rect", GOAL_COLOUR, "goal object"),
+        ("circle", GOAL_REGION_COLOUR, "goal region"),
+        ("rect", LINK_COLOUR, "arm"),
+        ("rect", CONTACT_COLOUR, "link pushing"),
+    ];
+    let mut x = MARGIN;
+    for (shape, colour, label) in items {
+        let swatch = match shape {
+            "circle" => format!(
+                r##"<circle cx="{:.1}" cy="34" r="6" fill="{colour}" fill-opacity="0.15" stroke="{colour}" stroke-dasharray="3 2"/>"##,
+                x + 6.0
+            ),
+            _ => format!(
+                r##"<rect x="{x:.1}" y="28" width="12" height="12" fill="{colour}" stroke="#333" stroke-width="0.5"/>"##
+            ),
+        };
+        let _ = writeln!(
+            out,
+            r##"<g class="legend">{swatch}<text x="{:.1}" y="38" font-size="12">{label}</text></g>"##,
+            x + 16.0
+        );
+        x += 16.0 + 7.0 * label.len() as f64 + 18.0;
+    }
+}
+
+/// Snapshots at `times` (s), in rows of [`COLUMNS`] under a title and a legend. Each
+/// panel has its own frame (`View`), placed by its group's translation.
 pub fn snapshots(film: &Film, times: &[f64]) -> String {
     let view = View::of(film);
+    let columns = times.len().clamp(1, COLUMNS);
+    let rows = times.len().div_ceil(columns).max(1);
     let mut out = String::new();
     let _ = writeln!(
         out,
         r##"<svg xmlns="http://www.w3.org/2000/svg" width="{:.0}" height="{:.0}" data-scale="{SCALE}" data-x-top="{}" data-y-left="{}" data-margin="{MARGIN}" font-family="sans-serif" font-size="14">"##,
-        view.width * times.len() as f64,
-        view.height,
+        view.width * columns as f64,
+        HEADER + view.height * rows as f64,
         view.x_top,
         view.y_left
     );
@@ -159,14 +224,21 @@ pub fn snapshots(film: &Film, times: &[f64]) -> String {
         "<title>{}: snapshots</title>",
         escape(&film.scene.name)
     );
+    let _ = writeln!(
+        out,
+        r##"<text x="{MARGIN}" y="18" font-size="15">{}: the plan seen from above (robot at the bottom)</text>"##,
+        escape(&film.scene.name)
+    );
+    legend(&mut out);
     for (n, &t) in times.iter().enumerate() {
         let k = film.step_at(t);
         let frame = film.frame(k);
         let _ = writeln!(
             out,
-            r##"<g class="snapshot" data-time="{:.4}" data-step="{k}" transform="translate({:.1},0)">"##,
+            r##"<g class="snapshot" data-time="{:.4}" data-step="{k}" transform="translate({:.1},{:.1})">"##,
             frame.time,
-            n as f64 * view.width
+            (n % columns) as f64 * view.width,
+            HEADER + (n / columns) as f64 * view.height
         );
         panel(film, &view, &frame, k, &mut out);
         let _ = writeln!(
@@ -187,7 +259,13 @@ pub fn timeline(film: &Film) -> String {
     pairs.dedup();
     let (label_width, row, px_per_s) =
         (190.0, 22.0, 120.0f64.min(900.0 / film.duration().max(1e-9)));
-    let width = label_width + film.duration() * px_per_s + 30.0;
+    let title = format!(
+        "Contacts between links and objects over the plan ({:.2} s)",
+        film.duration()
+    );
+    // About 8 px per character at 14 px: the title must fit however short the plan.
+    let width =
+        (label_width + film.duration() * px_per_s + 30.0).max(8.0 + 8.0 * title.len() as f64);
     let height = 40.0 + row * pairs.len().max(1) as f64 + 30.0;
     let mut out = String::new();
     let _ = writeln!(
@@ -198,8 +276,8 @@ pub fn timeline(film: &Film) -> String {
     let _ = writeln!(out, "<title>{}: contacts</title>", escape(&film.scene.name));
     let _ = writeln!(
         out,
-        r##"<text x="4" y="16" font-size="14">Contacts between links and objects over the plan ({:.2} s)</text>"##,
-        film.duration()
+        r##"<text x="4" y="16" font-size="14">{}</text>"##,
+        escape(&title)
     );
     let links = &film.scene.robot.chain.links;
     for (r, &(link, object)) in pairs.iter().enumerate() {
@@ -215,7 +293,7 @@ pub fn timeline(film: &Film) -> String {
             out,
             r##"<line x1="{label_width}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#ddd"/>"##,
             y + 11.0,
-            width - 30.0,
+            label_width + film.duration() * px_per_s,
             y + 11.0
         );
         // Contiguous runs of steps with this contact.
