@@ -78,6 +78,12 @@ fn main() {
     println!("cargo:rerun-if-changed=src/ffi/entry.rs");
     write_pkg_config(&deps);
     write_install_manifest(&deps);
+    // Debian's OMPL 1.5.2 defines OMPL_VERSION as "": benchmark logs take the version
+    // from the numeric macros instead.
+    println!(
+        "cargo:rustc-env=PUSHPLAN_OMPL_VERSION={}",
+        ompl_version(&deps.ompl_include)
+    );
 }
 
 fn find_dependencies() -> Result<Dependencies, Vec<&'static str>> {
@@ -367,4 +373,28 @@ fn write_install_manifest(deps: &Dependencies) {
         ompl_library.display().to_string(),
     );
     std::fs::write(out.join("install_manifest.rs"), code).expect("OUT_DIR is writable");
+}
+
+/// OMPL's version from `ompl/config.h`'s OMPL_MAJOR/MINOR/PATCH_VERSION ("" if unreadable).
+fn ompl_version(include: &Path) -> String {
+    let config = include.join("ompl/config.h");
+    println!("cargo:rerun-if-changed={}", config.display());
+    let text = std::fs::read_to_string(&config).unwrap_or_default();
+    let number = |name: &str| {
+        text.lines().find_map(|l| {
+            l.strip_prefix("#define ")?
+                .strip_prefix(name)?
+                .trim()
+                .parse::<u32>()
+                .ok()
+        })
+    };
+    match (
+        number("OMPL_MAJOR_VERSION"),
+        number("OMPL_MINOR_VERSION"),
+        number("OMPL_PATCH_VERSION"),
+    ) {
+        (Some(a), Some(b), Some(c)) => format!("{a}.{b}.{c}"),
+        _ => String::new(),
+    }
 }

@@ -182,12 +182,15 @@ fn bench_runs_planners_on_scenes_and_merges_a_database() {
     // The plots, one curve or bar per planner.
     let plots = out.join("plots");
     let curves = std::fs::read_to_string(plots.join("success_vs_time.svg")).unwrap();
-    for planner in ["PCRRT", "StaticRRT", "DARRT", "KPIECE1"] {
+    // The papers' names with the number of runs in the legend (3 scenes x 2 runs).
+    for planner in ["PC RRT", "Static RRT", "DARRT", "KPIECE1"] {
         assert!(
-            curves.contains(&format!("data-planner=\"{planner}\"")),
+            curves.contains(&format!("{planner} (n = 6)")),
             "{planner} missing from success_vs_time.svg"
         );
     }
+    let boxes = std::fs::read_to_string(plots.join("plan_time.svg")).unwrap();
+    assert!(boxes.contains("PC RRT, n = "), "plan_time.svg names n");
     for plot in [
         "plan_time.svg",
         "shortcut_path_length.svg",
@@ -214,6 +217,7 @@ darrt = "(select id from plannerConfigs where name = 'control_DARRT')"
 print(*c.execute(f"""select count(*), sum(correct_solution), sum(objects_moved >= 1), sum(manipulator_path_length > 0),
     sum(manipulator_path_length_shortcut is null), sum(propagation_steps_per_second is null)
     from runs where plannerid in {darrt} and solved = 1""").fetchone())
+print(",".join(sorted({r[0] for r in c.execute("select version from experiments")})))
 "#;
     let answer = Command::new("python3")
         .args(["-c", query])
@@ -224,7 +228,7 @@ print(*c.execute(f"""select count(*), sum(correct_solution), sum(objects_moved >
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines.len(),
-        6,
+        7,
         "{text}{}",
         String::from_utf8_lossy(&answer.stderr)
     );
@@ -244,6 +248,12 @@ print(*c.execute(f"""select count(*), sum(correct_solution), sum(objects_moved >
     let darrt: Vec<u32> = lines[5].split(' ').map(|v| v.parse().unwrap()).collect();
     assert!(darrt[0] >= 2, "DARRT solved {} runs", darrt[0]);
     assert!(darrt.iter().all(|&v| v == darrt[0]), "{darrt:?}");
+    // The OMPL version the library was built with (Debian's leaves OMPL_VERSION empty).
+    assert!(
+        lines[6].starts_with("OMPL 1.") && lines[6].matches('.').count() == 2,
+        "{}",
+        lines[6]
+    );
 }
 
 #[test]

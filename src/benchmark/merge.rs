@@ -143,6 +143,9 @@ pub fn merge_scene(planners: &[Vec<&Path>], seed: u64, runs: u32) -> Result<Stri
             out.push(format!("{seed} is the random seed"));
         } else if line.ends_with(" runs per planner") {
             out.push(format!("{runs} runs per planner"));
+        } else if line.trim_end() == "OMPL version" {
+            // Debian's OMPL leaves its version string empty (build.rs reads the numbers).
+            out.push(format!("OMPL version {}", env!("PUSHPLAN_OMPL_VERSION")));
         } else if line.ends_with(" seconds spent to collect the data") {
             out.push(format!("{total_time} seconds spent to collect the data"));
         } else if line == "Properties of benchmarked planners:" {

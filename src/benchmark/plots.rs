@@ -1,25 +1,73 @@
-//! The paper's plots from benchmark logs, as SVG: success rate against time budget
-//! (Fig. 7), plan time of solved runs (Fig. 4b), manipulator path length and object
-//! displacement before and after shortcutting (Fig. 8), and success against the number
-//! of objects.
+//! The paper's plots from benchmark logs, as SVG drawn with `plotters`: success rate
+//! against time budget (Fig. 7), plan time of solved runs (Fig. 4b), manipulator path
+//! length and object displacement before and after shortcutting (Fig. 8), and success
+//! against the number of objects. Every plot says how many runs it shows; planners carry
+//! the papers' names; an anytime planner (SST, whose time is the whole budget) is marked.
 
 use super::BenchmarkLog;
-use std::fmt::Write;
+use crate::planner::PlannerKind;
+use plotters::coord::Shift;
+use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
-const COLOURS: [&str; 7] = [
-    "#1e7b1e", "#7b3fb8", "#d8453b", "#3b6fd8", "#d89b3b", "#3bb3d8", "#555555",
-];
-// Picture size and the plot area within it (px).
-const W: f64 = 640.0;
-const H: f64 = 400.0;
-const LEFT: f64 = 70.0;
-const TOP: f64 = 40.0;
-const PLOT_W: f64 = 420.0;
-const PLOT_H: f64 = 300.0;
+/// Picture size (px).
+const SIZE: (u32, u32) = (900, 440);
+/// Room right of the plot for the legend (px).
+const LEGEND_WIDTH: u32 = 270;
+/// Fastest time a log axis shows (s): solved times below it sit on the axis.
+const MIN_TIME: f64 = 0.01;
 
-/// Planner names in a stable order (as first seen), without OMPL's `control_` prefix.
-fn planner_names(logs: &[BenchmarkLog]) -> Vec<String> {
+type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+
+/// A planner in the logs: its OMPL name and what the plots call it.
+struct Planner {
+    ompl: String,
+    kind: Option<PlannerKind>,
+}
+
+impl Planner {
+    fn name(&self) -> String {
+        match self.kind {
+            Some(kind) => kind.paper_name().to_string(),
+            None => self
+                .ompl
+                .strip_prefix("control_")
+                .unwrap_or(&self.ompl)
+                .to_string(),
+        }
+    }
+
+    /// The legend's entry: the name, marked when its time is the whole budget.
+    fn label(&self, n: usize) -> String {
+        let anytime = if self.kind.is_some_and(PlannerKind::is_anytime) {
+            ", anytime: its time is the budget"
+        } else {
+            ""
+        };
+        format!("{} (n = {n}{anytime})", self.name())
+    }
+
+    /// One colour per planner kind, the same in every plot.
+    fn colour(&self, index: usize) -> RGBColor {
+        const COLOURS: [RGBColor; 7] = [
+            RGBColor(0x1e, 0x7b, 0x1e),
+            RGBColor(0x7b, 0x32, 0x94),
+            RGBColor(0xd8, 0x45, 0x3b),
+            RGBColor(0x3b, 0x6f, 0xd8),
+            RGBColor(0xff, 0x7f, 0x00),
+            RGBColor(0x17, 0xbe, 0xcf),
+            RGBColor(0x55, 0x55, 0x55),
+        ];
+        let k = self
+            .kind
+            .and_then(|k| PlannerKind::ALL.iter().position(|&a| a == k))
+            .unwrap_or(index);
+        COLOURS[k % COLOURS.len()]
+    }
+}
+
+/// The planners of the logs, in a stable order (as first seen).
+fn planners(logs: &[BenchmarkLog]) -> Vec<Planner> {
     let mut names: Vec<String> = Vec::new();
     for p in logs.iter().flat_map(|l| &l.planners) {
         if !names.contains(&p.name) {
@@ -27,241 +75,281 @@ fn planner_names(logs: &[BenchmarkLog]) -> Vec<String> {
         }
     }
     names
+        .into_iter()
+        .map(|ompl| Planner {
+            kind: PlannerKind::from_ompl_name(&ompl),
+            ompl,
+        })
+        .collect()
 }
 
-fn short(name: &str) -> &str {
-    name.strip_prefix("control_").unwrap_or(name)
+/// One run of a planner: its time, whether it solved, its scene's object count and the
+/// row it came from.
+struct Run<'a> {
+    time: f64,
+    solved: bool,
+    objects: Option<usize>,
+    row: &'a super::PlannerRuns,
+    index: usize,
 }
 
-/// All runs of a planner over all logs: (time, solved, objects of the scene, row).
-fn runs<'a>(
-    logs: &'a [BenchmarkLog],
-    planner: &str,
-) -> Vec<(f64, bool, Option<usize>, &'a super::PlannerRuns, usize)> {
+impl Run<'_> {
+    fn value(&self, column: &str) -> Option<f64> {
+        self.row.column(column)[self.index]
+    }
+}
+
+/// All runs of a planner over all logs.
+fn runs<'a>(logs: &'a [BenchmarkLog], planner: &Planner) -> Vec<Run<'a>> {
     let mut out = Vec::new();
     for log in logs {
-        for p in log.planners.iter().filter(|p| p.name == planner) {
+        for p in log.planners.iter().filter(|p| p.name == planner.ompl) {
             let (time, solved) = (p.column("time"), p.column("solved"));
-            for i in 0..p.runs.len() {
-                out.push((
-                    time[i].unwrap_or(f64::INFINITY),
-                    solved[i] == Some(1.0),
-                    log.objects,
-                    p,
-                    i,
-                ));
+            for index in 0..p.runs.len() {
+                out.push(Run {
+                    time: time[index].unwrap_or(f64::INFINITY),
+                    solved: solved[index] == Some(1.0),
+                    objects: log.objects,
+                    row: p,
+                    index,
+                });
             }
         }
     }
     out
 }
 
-fn frame(
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    x_max: f64,
-    y_max: f64,
-    x_ticks: &[f64],
-    y_ticks: &[f64],
-) -> String {
-    let mut s = format!(
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="12">
-<text x="{LEFT}" y="22" font-size="15">{title}</text>
-<rect x="{LEFT}" y="{TOP}" width="{PLOT_W}" height="{PLOT_H}" fill="none" stroke="#444"/>
-"##
-    );
-    for &t in x_ticks {
-        let x = LEFT + t / x_max * PLOT_W;
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#888"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            TOP + PLOT_H,
-            TOP + PLOT_H + 5.0,
-            TOP + PLOT_H + 18.0,
-            fmt_tick(t)
-        );
-    }
-    for &t in y_ticks {
-        let y = TOP + PLOT_H - t / y_max * PLOT_H;
-        let _ = writeln!(
-            s,
-            r##"<line x1="{LEFT}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-            LEFT + PLOT_W,
-            LEFT - 6.0,
-            y + 4.0,
-            fmt_tick(t)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">{x_label}</text>"##,
-        LEFT + PLOT_W / 2.0,
-        TOP + PLOT_H + 36.0
-    );
-    let _ = writeln!(
-        s,
-        r##"<text transform="translate(18,{:.1}) rotate(-90)" text-anchor="middle">{y_label}</text>"##,
-        TOP + PLOT_H / 2.0
-    );
-    s
-}
-
-fn fmt_tick(t: f64) -> String {
-    if (t - t.round()).abs() < 1e-9 {
-        format!("{}", t.round())
-    } else {
-        format!("{t:.2}")
+/// The `p`-quantile (0 <= p <= 1) of sorted values, interpolated linearly between order
+/// statistics (Hyndman and Fan's type 7, R's and NumPy's default): the median of four
+/// values is the mean of the middle two.
+pub fn quantile(sorted: &[f64], p: f64) -> f64 {
+    let h = (sorted.len() - 1) as f64 * p.clamp(0.0, 1.0);
+    let (lo, frac) = (h.floor() as usize, h - h.floor());
+    match sorted.get(lo + 1) {
+        Some(next) => sorted[lo] + frac * (next - sorted[lo]),
+        None => sorted[lo],
     }
 }
 
-fn legend(s: &mut String, names: &[String]) {
-    for (i, n) in names.iter().enumerate() {
-        let y = TOP + 10.0 + i as f64 * 18.0;
-        let _ = writeln!(
-            s,
-            r##"<rect x="{:.1}" y="{:.1}" width="12" height="12" fill="{}"/><text x="{:.1}" y="{:.1}">{}</text>"##,
-            LEFT + PLOT_W + 15.0,
-            y,
-            COLOURS[i % COLOURS.len()],
-            LEFT + PLOT_W + 32.0,
-            y + 10.0,
-            short(n)
-        );
+fn plot_error(e: impl std::fmt::Display) -> String {
+    format!("drawing a plot: {e}")
+}
+
+/// Draws into an SVG string with `draw`.
+fn svg(draw: impl FnOnce(&Area) -> Result<(), String>) -> Result<String, String> {
+    let mut out = String::new();
+    {
+        let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_error)?;
+        draw(&root)?;
+        root.present().map_err(plot_error)?;
+    }
+    Ok(out)
+}
+
+/// The longest time any run may take: the time limit, or a solved run's time if a
+/// planner overran it (SST does, slightly).
+fn time_limit(logs: &[BenchmarkLog], all: &[Planner]) -> f64 {
+    logs.iter()
+        .map(|l| l.time_limit)
+        .filter(|t| t.is_finite())
+        .chain(
+            all.iter()
+                .flat_map(|p| runs(logs, p))
+                .filter(|r| r.solved)
+                .map(|r| r.time),
+        )
+        .fold(1.0, f64::max)
+}
+
+/// Fig. 7: the share of runs solved within each time budget, on a log time axis (most
+/// runs finish in the first seconds).
+pub fn success_vs_time(logs: &[BenchmarkLog]) -> Result<String, String> {
+    let all = planners(logs);
+    let t_max = time_limit(logs, &all);
+    svg(|root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption("Runs solved within a time budget", ("sans-serif", 18))
+            .margin(12)
+            .margin_right(LEGEND_WIDTH)
+            .x_label_area_size(40)
+            .y_label_area_size(50)
+            .build_cartesian_2d((MIN_TIME..t_max).log_scale(), 0.0..100.0)
+            .map_err(plot_error)?;
+        chart
+            .configure_mesh()
+            .x_desc("time budget (s, log scale)")
+            .y_desc("runs solved (%)")
+            .draw()
+            .map_err(plot_error)?;
+        let mut entries = Vec::new();
+        for (k, planner) in all.iter().enumerate() {
+            let runs = runs(logs, planner);
+            let mut times: Vec<f64> = runs.iter().filter(|r| r.solved).map(|r| r.time).collect();
+            times.sort_by(f64::total_cmp);
+            let share = |i: usize| 100.0 * i as f64 / runs.len().max(1) as f64;
+            let mut points = vec![(MIN_TIME, 0.0)];
+            for (i, t) in times.iter().enumerate() {
+                let t = t.max(MIN_TIME);
+                points.push((t, share(i)));
+                points.push((t, share(i + 1)));
+            }
+            points.push((t_max, share(times.len())));
+            let colour = planner.colour(k);
+            chart
+                .draw_series(LineSeries::new(points, colour.stroke_width(2)))
+                .map_err(plot_error)?;
+            entries.push((planner.label(runs.len()), colour, Glyph::Line));
+            // A marker where the curve ends: the share solved at the time limit.
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    (t_max, share(times.len())),
+                    4,
+                    colour.filled(),
+                )))
+                .map_err(plot_error)?;
+        }
+        side_legend(root, &entries)
+    })
+}
+
+/// How a legend entry is drawn.
+#[derive(Clone, Copy)]
+enum Glyph {
+    Line,
+    Dot,
+}
+
+/// The legend in the room right of the plot (`LEGEND_WIDTH`), drawn on the whole
+/// picture (a chart clips what lies outside its plot).
+fn side_legend(root: &Area, entries: &[(String, RGBColor, Glyph)]) -> Result<(), String> {
+    let x = SIZE.0 as i32 - LEGEND_WIDTH as i32 + 8;
+    for (i, (label, colour, glyph)) in entries.iter().enumerate() {
+        let y = 50 + 20 * i as i32;
+        match glyph {
+            Glyph::Line => root.draw(&PathElement::new(
+                vec![(x, y), (x + 20, y)],
+                colour.stroke_width(2),
+            )),
+            Glyph::Dot => root.draw(&Circle::new((x + 10, y), 4, colour.filled())),
+        }
+        .map_err(plot_error)?;
+        root.draw(&Text::new(
+            label.clone(),
+            (x + 28, y - 7),
+            ("sans-serif", 12).into_font(),
+        ))
+        .map_err(plot_error)?;
+    }
+    Ok(())
+}
+
+/// Categories along x: planner `i` centred at `i`, labelled with its name and `n`.
+fn category_labels(names: Vec<String>) -> impl Fn(&f64) -> String {
+    move |x: &f64| {
+        let i = x.round();
+        if (x - i).abs() < 1e-6 && i >= 0.0 {
+            names.get(i as usize).cloned().unwrap_or_default()
+        } else {
+            String::new()
+        }
     }
 }
 
-/// A planner's curve through data points (x in [0, x_max], y in [0, y_max]).
-fn curve(s: &mut String, name: &str, k: usize, points: &[(f64, f64)], x_max: f64, y_max: f64) {
-    let px: Vec<String> = points
+/// Fig. 4b: plan time of the solved runs, as box plots on a log axis: the box spans the
+/// quartiles, the thick line is the median, the whiskers reach the fastest and slowest
+/// run (quantiles by [`quantile`]).
+pub fn plan_time(logs: &[BenchmarkLog]) -> Result<String, String> {
+    let all = planners(logs);
+    let t_max = time_limit(logs, &all);
+    let solved: Vec<Vec<f64>> = all
         .iter()
-        .map(|(x, y)| {
-            format!(
-                "{:.1},{:.1}",
-                LEFT + x / x_max * PLOT_W,
-                TOP + PLOT_H - y / y_max * PLOT_H
-            )
+        .map(|p| {
+            let mut t: Vec<f64> = runs(logs, p)
+                .iter()
+                .filter(|r| r.solved)
+                .map(|r| r.time.max(MIN_TIME))
+                .collect();
+            t.sort_by(f64::total_cmp);
+            t
         })
         .collect();
-    let _ = writeln!(
-        s,
-        r##"<polyline class="planner" data-planner="{}" points="{}" fill="none" stroke="{}" stroke-width="2"/>"##,
-        short(name),
-        px.join(" "),
-        COLOURS[k % COLOURS.len()]
-    );
-}
-
-/// Round tick values (steps of 1, 2 or 5 times a power of ten) from 0 to `max`.
-fn ticks(max: f64, count: usize) -> Vec<f64> {
-    let raw = max / count.max(1) as f64;
-    let power = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0]
+    let names: Vec<String> = all
         .iter()
-        .map(|m| m * power)
-        .find(|s| *s >= raw)
-        .unwrap_or(raw);
-    (0..)
-        .map(|i| i as f64 * step)
-        .take_while(|t| *t <= max + 1e-9)
-        .collect()
-}
-
-/// Fig. 7: the share of runs solved within each time budget.
-pub fn success_vs_time(logs: &[BenchmarkLog]) -> String {
-    let names = planner_names(logs);
-    // The time limit, or a solved run's time if a planner overran it (SST does, slightly).
-    let solved_times: Vec<f64> = names
-        .iter()
-        .flat_map(|n| runs(logs, n))
-        .filter(|r| r.1)
-        .map(|r| r.0)
+        .zip(&solved)
+        .map(|(p, t)| {
+            let anytime = if p.kind.is_some_and(PlannerKind::is_anytime) {
+                " (anytime)"
+            } else {
+                ""
+            };
+            format!("{}{anytime}, n = {}", p.name(), t.len())
+        })
         .collect();
-    let t_max = logs
-        .iter()
-        .map(|l| l.time_limit)
-        .filter(|t| t.is_finite())
-        .chain(solved_times)
-        .fold(1.0, f64::max);
-    let mut s = frame(
-        "Success rate within a time budget",
-        "time budget (s)",
-        "runs solved (%)",
-        t_max,
-        100.0,
-        &ticks(t_max, 6),
-        &ticks(100.0, 5),
-    );
-    for (k, name) in names.iter().enumerate() {
-        let all = runs(logs, name);
-        let mut times: Vec<f64> = all.iter().filter(|r| r.1).map(|r| r.0).collect();
-        times.sort_by(f64::total_cmp);
-        let mut points = vec![(0.0, 0.0)];
-        for (i, t) in times.iter().enumerate() {
-            points.push((*t, points.last().unwrap().1));
-            points.push((*t, 100.0 * (i + 1) as f64 / all.len().max(1) as f64));
+    let count = all.len().max(1);
+    svg(|root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "Plan time of solved runs (n: solved runs; an anytime planner's is the budget)",
+                ("sans-serif", 18),
+            )
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(50)
+            .build_cartesian_2d(
+                -0.5..count as f64 - 0.5,
+                (MIN_TIME..t_max * 1.2).log_scale(),
+            )
+            .map_err(plot_error)?;
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(count)
+            .x_label_formatter(&category_labels(names))
+            .y_desc("time (s, log scale)")
+            .draw()
+            .map_err(plot_error)?;
+        for (k, (planner, times)) in all.iter().zip(&solved).enumerate() {
+            if times.is_empty() {
+                continue;
+            }
+            let x = k as f64;
+            let colour = planner.colour(k);
+            let q = |p: f64| quantile(times, p);
+            let elements = vec![
+                PathElement::new(vec![(x, q(0.0)), (x, q(0.25))], colour.stroke_width(1)),
+                PathElement::new(vec![(x, q(0.75)), (x, q(1.0))], colour.stroke_width(1)),
+                PathElement::new(
+                    vec![(x - 0.12, q(0.0)), (x + 0.12, q(0.0))],
+                    colour.stroke_width(1),
+                ),
+                PathElement::new(
+                    vec![(x - 0.12, q(1.0)), (x + 0.12, q(1.0))],
+                    colour.stroke_width(1),
+                ),
+            ];
+            chart.draw_series(elements).map_err(plot_error)?;
+            chart
+                .draw_series([Rectangle::new(
+                    [(x - 0.25, q(0.25)), (x + 0.25, q(0.75))],
+                    colour.mix(0.3).filled(),
+                )])
+                .map_err(plot_error)?;
+            chart
+                .draw_series([Rectangle::new(
+                    [(x - 0.25, q(0.25)), (x + 0.25, q(0.75))],
+                    colour,
+                )])
+                .map_err(plot_error)?;
+            chart
+                .draw_series([PathElement::new(
+                    vec![(x - 0.25, q(0.5)), (x + 0.25, q(0.5))],
+                    colour.stroke_width(3),
+                )])
+                .map_err(plot_error)?;
         }
-        points.push((t_max, points.last().unwrap().1));
-        curve(&mut s, name, k, &points, t_max, 100.0);
-    }
-    legend(&mut s, &names);
-    s + "</svg>\n"
-}
-
-/// Fig. 4b: plan time of the solved runs, as box plots (min, quartiles, median, max).
-pub fn plan_time(logs: &[BenchmarkLog]) -> String {
-    let names = planner_names(logs);
-    let t_max = logs
-        .iter()
-        .map(|l| l.time_limit)
-        .filter(|t| t.is_finite())
-        .fold(1.0, f64::max);
-    let mut s = frame(
-        "Plan time of solved runs",
-        "",
-        "time (s)",
-        names.len() as f64,
-        t_max,
-        &[],
-        &ticks(t_max, 6),
-    );
-    for (k, name) in names.iter().enumerate() {
-        let mut times: Vec<f64> = runs(logs, name)
-            .iter()
-            .filter(|r| r.1)
-            .map(|r| r.0)
-            .collect();
-        let x = LEFT + (k as f64 + 0.5) / names.len() as f64 * PLOT_W;
-        let _ = writeln!(
-            s,
-            r##"<text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            TOP + PLOT_H + 18.0,
-            short(name)
-        );
-        if times.is_empty() {
-            continue;
-        }
-        times.sort_by(f64::total_cmp);
-        let q = |f: f64| times[((times.len() - 1) as f64 * f).round() as usize];
-        let y = |t: f64| TOP + PLOT_H - t / t_max * PLOT_H;
-        let colour = COLOURS[k % COLOURS.len()];
-        let _ = writeln!(
-            s,
-            r##"<g class="box" data-planner="{}" data-median="{}"><line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="{colour}"/><rect x="{:.1}" y="{:.1}" width="30" height="{:.1}" fill="{colour}" fill-opacity="0.3" stroke="{colour}"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{colour}" stroke-width="3"/></g>"##,
-            short(name),
-            q(0.5),
-            y(q(0.0)),
-            y(q(1.0)),
-            x - 15.0,
-            y(q(0.75)),
-            (y(q(0.25)) - y(q(0.75))).max(1.0),
-            x - 15.0,
-            y(q(0.5)),
-            x + 15.0,
-            y(q(0.5))
-        );
-    }
-    s + "</svg>\n"
+        Ok(())
+    })
 }
 
 /// Fig. 8: the mean of a path measure over solved runs, before (dark) and after (light)
@@ -273,19 +361,23 @@ pub fn shortcutting(
     after: &str,
     title: &str,
     unit: &str,
-) -> String {
-    let names = planner_names(logs);
-    let mean = |name: &str, column: &str| {
-        let values: Vec<f64> = runs(logs, name)
+) -> Result<String, String> {
+    let all = planners(logs);
+    let values = |planner: &Planner, column: &str| -> Vec<f64> {
+        runs(logs, planner)
             .iter()
-            .filter(|r| r.1)
-            .filter_map(|r| r.3.column(column)[r.4])
-            .collect();
-        (!values.is_empty()).then(|| values.iter().sum::<f64>() / values.len() as f64)
+            .filter(|r| r.solved)
+            .filter_map(|r| r.value(column))
+            .collect()
     };
-    let bars: Vec<[Option<f64>; 2]> = names
+    let mean = |v: &[f64]| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
+    let bars: Vec<[Option<f64>; 2]> = all
         .iter()
-        .map(|n| [mean(n, before), mean(n, after)])
+        .map(|p| [mean(&values(p, before)), mean(&values(p, after))])
+        .collect();
+    let names: Vec<String> = all
+        .iter()
+        .map(|p| format!("{}, n = {}", p.name(), values(p, before).len()))
         .collect();
     let y_max = bars
         .iter()
@@ -293,90 +385,124 @@ pub fn shortcutting(
         .flatten()
         .fold(1e-9f64, |a, b| a.max(*b))
         * 1.15;
-    let mut s = frame(
-        title,
-        "",
-        unit,
-        names.len() as f64,
-        y_max,
-        &[],
-        &ticks(y_max, 5),
-    );
-    for (k, (name, b)) in names.iter().zip(&bars).enumerate() {
-        let x0 = LEFT + k as f64 / names.len() as f64 * PLOT_W + 10.0;
-        let width = (PLOT_W / names.len() as f64 - 20.0) / 2.0;
-        for (j, value) in b.iter().enumerate() {
-            let Some(value) = value else { continue };
-            let h = value / y_max * PLOT_H;
-            let (series, opacity) = if j == 0 {
-                ("before", 0.9)
-            } else {
-                ("after", 0.4)
-            };
-            let _ = writeln!(
-                s,
-                r##"<rect class="bar" data-planner="{}" data-series="{series}" data-value="{value}" x="{:.1}" y="{:.1}" width="{:.1}" height="{h:.1}" fill="{}" fill-opacity="{opacity}"/>"##,
-                short(name),
-                x0 + j as f64 * width,
-                TOP + PLOT_H - h,
-                width - 2.0,
-                COLOURS[k % COLOURS.len()]
-            );
+    let count = all.len().max(1);
+    svg(|root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(title, ("sans-serif", 16))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-0.5..count as f64 - 0.5, 0.0..y_max)
+            .map_err(plot_error)?;
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(count)
+            .x_label_formatter(&category_labels(names))
+            .y_desc(format!("mean {unit} (n: solved runs)"))
+            .draw()
+            .map_err(plot_error)?;
+        for (k, (planner, b)) in all.iter().zip(&bars).enumerate() {
+            let colour = planner.colour(k);
+            for (j, value) in b.iter().enumerate() {
+                let Some(value) = *value else { continue };
+                let (x0, style) = if j == 0 {
+                    (k as f64 - 0.35, colour.mix(0.9).filled())
+                } else {
+                    (k as f64, colour.mix(0.35).filled())
+                };
+                chart
+                    .draw_series([Rectangle::new([(x0, 0.0), (x0 + 0.33, value)], style)])
+                    .map_err(plot_error)?;
+            }
         }
-        let _ = writeln!(
-            s,
-            r##"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            x0 + width,
-            TOP + PLOT_H + 18.0,
-            short(name)
-        );
-    }
-    s + "</svg>\n"
+        Ok(())
+    })
 }
 
-/// Success rate against the number of objects in the scene.
-pub fn success_vs_objects(logs: &[BenchmarkLog]) -> String {
-    let names = planner_names(logs);
+/// Success rate against the number of objects in the scene: a marker per measured
+/// count, lines only between neighbouring counts that both have runs, planners spread a
+/// little apart so that equal rates stay visible.
+pub fn success_vs_objects(logs: &[BenchmarkLog]) -> Result<String, String> {
+    let all = planners(logs);
     let most = logs
         .iter()
         .filter_map(|l| l.objects)
         .max()
         .unwrap_or(1)
         .max(1);
-    let mut s = frame(
-        "Success rate by number of objects",
-        "movable objects",
-        "runs solved (%)",
-        most as f64,
-        100.0,
-        &(1..=most).map(|n| n as f64).collect::<Vec<_>>(),
-        &ticks(100.0, 5),
-    );
-    for (k, name) in names.iter().enumerate() {
-        let all = runs(logs, name);
-        let points: Vec<(f64, f64)> = (1..=most)
-            .filter_map(|n| {
-                let of_n: Vec<_> = all.iter().filter(|r| r.2 == Some(n)).collect();
-                (!of_n.is_empty()).then(|| {
-                    (
-                        n as f64,
-                        100.0 * of_n.iter().filter(|r| r.1).count() as f64 / of_n.len() as f64,
-                    )
-                })
+    let spread = |k: usize| (k as f64 - (all.len() as f64 - 1.0) / 2.0) * 0.06;
+    svg(|root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "Runs solved by number of objects (n: runs per object count)",
+                ("sans-serif", 18),
+            )
+            .margin(12)
+            .margin_right(LEGEND_WIDTH)
+            .x_label_area_size(40)
+            .y_label_area_size(50)
+            .build_cartesian_2d(0.5..most as f64 + 0.5, -2.0..104.0)
+            .map_err(plot_error)?;
+        chart
+            .configure_mesh()
+            .x_labels(most)
+            .x_label_formatter(&|x| {
+                let n = x.round();
+                if (x - n).abs() < 1e-6 {
+                    format!("{n}")
+                } else {
+                    String::new()
+                }
             })
-            .collect();
-        curve(&mut s, name, k, &points, most as f64, 100.0);
-    }
-    legend(&mut s, &names);
-    s + "</svg>\n"
+            .x_desc("movable objects")
+            .y_desc("runs solved (%)")
+            .draw()
+            .map_err(plot_error)?;
+        let mut entries = Vec::new();
+        for (k, planner) in all.iter().enumerate() {
+            let runs = runs(logs, planner);
+            let points: Vec<(usize, f64, usize)> = (1..=most)
+                .filter_map(|n| {
+                    let of_n: Vec<&Run> = runs.iter().filter(|r| r.objects == Some(n)).collect();
+                    (!of_n.is_empty()).then(|| {
+                        let solved = of_n.iter().filter(|r| r.solved).count();
+                        (n, 100.0 * solved as f64 / of_n.len() as f64, of_n.len())
+                    })
+                })
+                .collect();
+            let colour = planner.colour(k);
+            let at = |(n, rate, _): &(usize, f64, usize)| (*n as f64 + spread(k), *rate);
+            let segments = points
+                .windows(2)
+                .filter(|w| w[1].0 == w[0].0 + 1)
+                .map(|w| PathElement::new(vec![at(&w[0]), at(&w[1])], colour.stroke_width(2)));
+            chart.draw_series(segments).map_err(plot_error)?;
+            let per_count: Vec<usize> = points.iter().map(|p| p.2).collect();
+            let n = match (per_count.iter().min(), per_count.iter().max()) {
+                (Some(a), Some(b)) if a == b => format!("{a}"),
+                (Some(a), Some(b)) => format!("{a}-{b}"),
+                _ => "0".into(),
+            };
+            chart
+                .draw_series(
+                    points
+                        .iter()
+                        .map(|p| Circle::new(at(p), 4, colour.filled())),
+                )
+                .map_err(plot_error)?;
+            entries.push((format!("{} (n = {n})", planner.name()), colour, Glyph::Dot));
+        }
+        side_legend(root, &entries)
+    })
 }
 
 /// Writes the five plots into `dir` from the logs; returns the files.
 pub fn write_plots(logs: &[BenchmarkLog], dir: &Path) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let plots = [
-        ("success_vs_time.svg", success_vs_time(logs)),
-        ("plan_time.svg", plan_time(logs)),
+        ("success_vs_time.svg", success_vs_time(logs)?),
+        ("plan_time.svg", plan_time(logs)?),
         (
             "shortcut_path_length.svg",
             shortcutting(
@@ -385,7 +511,7 @@ pub fn write_plots(logs: &[BenchmarkLog], dir: &Path) -> Result<Vec<PathBuf>, St
                 "manipulator path length shortcut",
                 "Manipulator path length before (dark) and after (light) shortcutting",
                 "joint path (rad)",
-            ),
+            )?,
         ),
         (
             "shortcut_object_displacement.svg",
@@ -395,9 +521,9 @@ pub fn write_plots(logs: &[BenchmarkLog], dir: &Path) -> Result<Vec<PathBuf>, St
                 "object displacement shortcut",
                 "Object displacement before (dark) and after (light) shortcutting",
                 "object displacement (m)",
-            ),
+            )?,
         ),
-        ("success_vs_objects.svg", success_vs_objects(logs)),
+        ("success_vs_objects.svg", success_vs_objects(logs)?),
     ];
     plots
         .into_iter()
@@ -407,4 +533,22 @@ pub fn write_plots(logs: &[BenchmarkLog], dir: &Path) -> Result<Vec<PathBuf>, St
             Ok(path)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::quantile;
+
+    /// Type-7 quantiles computed by hand (R: quantile(x, type = 7)).
+    #[test]
+    fn quantiles_interpolate_between_order_statistics() {
+        let four = [0.1, 0.3, 0.41, 0.9];
+        assert!((quantile(&four, 0.5) - 0.355).abs() < 1e-12);
+        assert!((quantile(&four, 0.25) - 0.25).abs() < 1e-12);
+        assert!((quantile(&four, 0.75) - 0.5325).abs() < 1e-12);
+        assert_eq!(quantile(&four, 0.0), 0.1);
+        assert_eq!(quantile(&four, 1.0), 0.9);
+        assert_eq!(quantile(&[2.0], 0.5), 2.0);
+        assert_eq!(quantile(&[1.0, 2.0, 7.0], 0.5), 2.0);
+    }
 }

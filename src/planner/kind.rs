@@ -44,6 +44,44 @@ impl PlannerKind {
         }
     }
 
+    /// The name papers and plots use ("PC RRT", "KPIECE1", ...).
+    pub fn paper_name(self) -> &'static str {
+        match self {
+            PlannerKind::PcRrt => "PC RRT",
+            PlannerKind::StaticRrt => "Static RRT",
+            PlannerKind::Darrt => "DARRT",
+            PlannerKind::Kpiece => "KPIECE1",
+            PlannerKind::Est => "EST",
+            PlannerKind::Pdst => "PDST",
+            PlannerKind::Sst => "SST",
+        }
+    }
+
+    /// The planner's name in OMPL benchmark logs, without OMPL's `control_` prefix.
+    pub fn ompl_name(self) -> &'static str {
+        match self {
+            PlannerKind::PcRrt => "PCRRT",
+            PlannerKind::StaticRrt => "StaticRRT",
+            PlannerKind::Darrt => "DARRT",
+            PlannerKind::Kpiece => "KPIECE1",
+            PlannerKind::Est => "EST",
+            PlannerKind::Pdst => "PDST",
+            PlannerKind::Sst => "SST",
+        }
+    }
+
+    /// The planner a benchmark log names (`control_PCRRT`, `DARRT`, ...).
+    pub fn from_ompl_name(name: &str) -> Option<PlannerKind> {
+        let name = name.strip_prefix("control_").unwrap_or(name);
+        PlannerKind::ALL.into_iter().find(|k| k.ompl_name() == name)
+    }
+
+    /// Does it search on after its first solution until the time limit (asymptotically
+    /// near-optimal)? Its runs' times are then the whole budget, not a first solution.
+    pub fn is_anytime(self) -> bool {
+        self == PlannerKind::Sst
+    }
+
     /// Does it treat every object but the goal object as a static obstacle (Static RRT)?
     pub fn pins_clutter(self) -> bool {
         self == PlannerKind::StaticRrt
