@@ -168,12 +168,7 @@ pub fn success_vs_time(logs: &[BenchmarkLog]) -> Result<String, String> {
     let all = planners(logs);
     let t_max = time_limit(logs, &all);
     svg(|root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption("Runs solved within a time budget", ("sans-serif", 18))
-            .margin(12)
-            .margin_right(LEGEND_WIDTH)
-            .x_label_area_size(40)
-            .y_label_area_size(50)
+        let mut chart = chart(root, "Runs solved within a time budget", true)
             .build_cartesian_2d((MIN_TIME..t_max).log_scale(), 0.0..100.0)
             .map_err(plot_error)?;
         chart
@@ -211,6 +206,22 @@ pub fn success_vs_time(logs: &[BenchmarkLog]) -> Result<String, String> {
         }
         side_legend(root, &entries)
     })
+}
+
+/// A chart with its title, leaving room right of it for a legend if it has one.
+fn chart<'a, 'b>(
+    root: &'a Area<'b>,
+    title: &str,
+    legend: bool,
+) -> ChartBuilder<'a, 'b, SVGBackend<'b>> {
+    let mut builder = ChartBuilder::on(root);
+    builder
+        .caption(title, ("sans-serif", 17))
+        .margin(12)
+        .margin_right(if legend { LEGEND_WIDTH } else { 12 })
+        .x_label_area_size(40)
+        .y_label_area_size(60);
+    builder
 }
 
 /// How a legend entry is drawn.
@@ -288,19 +299,16 @@ pub fn plan_time(logs: &[BenchmarkLog]) -> Result<String, String> {
         .collect();
     let count = all.len().max(1);
     svg(|root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Plan time of solved runs (n: solved runs; an anytime planner's is the budget)",
-                ("sans-serif", 18),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(50)
-            .build_cartesian_2d(
-                -0.5..count as f64 - 0.5,
-                (MIN_TIME..t_max * 1.2).log_scale(),
-            )
-            .map_err(plot_error)?;
+        let mut chart = chart(
+            root,
+            "Plan time of solved runs (n: solved runs; an anytime planner's is the budget)",
+            false,
+        )
+        .build_cartesian_2d(
+            -0.5..count as f64 - 0.5,
+            (MIN_TIME..t_max * 1.2).log_scale(),
+        )
+        .map_err(plot_error)?;
         chart
             .configure_mesh()
             .disable_x_mesh()
@@ -387,11 +395,7 @@ pub fn shortcutting(
         * 1.15;
     let count = all.len().max(1);
     svg(|root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(title, ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
+        let mut chart = chart(root, title, false)
             .build_cartesian_2d(-0.5..count as f64 - 0.5, 0.0..y_max)
             .map_err(plot_error)?;
         chart
@@ -433,17 +437,13 @@ pub fn success_vs_objects(logs: &[BenchmarkLog]) -> Result<String, String> {
         .max(1);
     let spread = |k: usize| (k as f64 - (all.len() as f64 - 1.0) / 2.0) * 0.06;
     svg(|root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Runs solved by number of objects (n: runs per object count)",
-                ("sans-serif", 18),
-            )
-            .margin(12)
-            .margin_right(LEGEND_WIDTH)
-            .x_label_area_size(40)
-            .y_label_area_size(50)
-            .build_cartesian_2d(0.5..most as f64 + 0.5, -2.0..104.0)
-            .map_err(plot_error)?;
+        let mut chart = chart(
+            root,
+            "Runs solved by number of objects (n: runs per object count)",
+            true,
+        )
+        .build_cartesian_2d(0.5..most as f64 + 0.5, -2.0..104.0)
+        .map_err(plot_error)?;
         chart
             .configure_mesh()
             .x_labels(most)
