@@ -34,6 +34,7 @@ pub mod render;
 pub mod robot;
 pub mod robustness;
 pub mod scene;
+pub mod semi_dynamic;
 pub mod shortcut;
 pub mod state;
 pub mod static_clutter;

@@ -1,0 +1,181 @@
+//! The semi-dynamic world (issue 14's engine) against physical truths computed here in
+//! closed form: Coulomb support friction stops a struck object after v^2 / (2 mu_g g), a
+//! spinning one after omega^2 I / (2 mu_g m g c); ice lets it slide further; a pushed
+//! object pushes its neighbour; an object still moving at t_max is an error; the same
+//! start gives the same end, bit for bit.
+
+use nalgebra::Vector2;
+use pushplan::math::Pose2;
+use pushplan::physics::Footprint;
+use pushplan::semi_dynamic::{Body, PusherVelocity, RestSettings, World};
+
+const G: f64 = 9.81;
+
+/// A square footprint of side `side` (m), centred.
+fn square(side: f64) -> Footprint {
+    let h = side / 2.0;
+    Footprint::Polygon {
+        vertices: vec![
+            Vector2::new(-h, -h),
+            Vector2::new(h, -h),
+            Vector2::new(h, h),
+            Vector2::new(-h, h),
+        ],
+    }
+}
+
+fn body(mu_g: f64) -> Body {
+    Body {
+        footprint: square(0.1),
+        mass: 1.0,
+        mu_g,
+        mu_c: 0.3,
+    }
+}
+
+/// Strikes one 1 kg box at `v0` (m/s) along x on a table of friction `mu_g`; where it
+/// stops, and how long that took (s).
+fn struck(mu_g: f64, v0: f64) -> (Pose2, f64) {
+    let mut world = World::new(&[(body(mu_g), Pose2::new(0.0, 0.0, 0.0))], None).unwrap();
+    world.set_velocity(0, Vector2::new(v0, 0.0), 0.0);
+    let took = world.settle(&RestSettings::default()).unwrap();
+    (world.pose(0), took)
+}
+
+#[test]
+fn a_struck_object_stops_after_the_coulomb_distance() {
+    for (mu_g, v0) in [(0.4, 0.5), (0.3, 1.0), (0.05, 0.5)] {
+        let (pose, took) = struck(mu_g, v0);
+        let distance = v0 * v0 / (2.0 * mu_g * G);
+        let time = v0 / (mu_g * G);
+        assert!(
+            (pose.x - distance).abs() < 0.02 * distance,
+            "mu_g {mu_g}, v0 {v0}: stopped after {} m, Coulomb says {distance} m",
+            pose.x
+        );
+        assert!(
+            (took - time).abs() < 0.05 * time + 0.01,
+            "{took} s against {time} s"
+        );
+        // A push through the centre of a symmetric body: no turn, no drift sideways.
+        assert!(pose.y.abs() < 1e-9 && pose.theta.abs() < 1e-9, "{pose:?}");
+    }
+    // On ice (mu_g 0.05) the same strike slides 8 times as far as on wood (0.4).
+    let (ice, _) = struck(0.05, 0.5);
+    let (wood, _) = struck(0.4, 0.5);
+    assert!((ice.x / wood.x - 8.0).abs() < 0.2, "{} / {}", ice.x, wood.x);
+}
+
+/// A square of side s: I = m s^2 / 6 and c = (s / 6) (sqrt 2 + asinh 1), so a spin at
+/// omega0 stops after omega0^2 I / (2 mu_g m g c).
+#[test]
+fn a_spinning_object_stops_after_the_coulomb_angle() {
+    let (s, mu_g, omega0) = (0.1, 0.4, 6.0);
+    let mut world = World::new(&[(body(mu_g), Pose2::new(0.3, 0.2, 0.0))], None).unwrap();
+    world.set_velocity(0, Vector2::zeros(), omega0);
+    world.settle(&RestSettings::default()).unwrap();
+    let inertia = s * s / 6.0;
+    let c = s / 6.0 * (2f64.sqrt() + 1f64.asinh());
+    let angle = omega0 * omega0 * inertia / (2.0 * mu_g * G * c);
+    let pose = world.pose(0);
+    assert!(
+        (pose.theta - angle).abs() < 0.02 * angle,
+        "turned {} rad, Coulomb says {angle} rad",
+        pose.theta
+    );
+    assert!((pose.x - 0.3).abs() < 1e-9 && (pose.y - 0.2).abs() < 1e-9);
+}
+
+#[test]
+fn a_pushed_object_pushes_its_neighbour() {
+    let objects = [
+        (body(0.4), Pose2::new(0.2, 0.0, 0.0)),
+        (body(0.4), Pose2::new(0.32, 0.0, 0.0)),
+    ];
+    let hand = Footprint::Polygon {
+        vertices: vec![
+            Vector2::new(-0.02, -0.06),
+            Vector2::new(0.02, -0.06),
+            Vector2::new(0.02, 0.06),
+            Vector2::new(-0.02, 0.06),
+        ],
+    };
+    let mut world = World::new(&objects, Some((&hand, Pose2::new(0.1, 0.0, 0.0), 0.3))).unwrap();
+    world.push(
+        PusherVelocity {
+            vx: 0.3,
+            vy: 0.0,
+            omega: 0.0,
+        },
+        1.0,
+    );
+    world.settle(&RestSettings::default()).unwrap();
+    let (first, second) = (world.pose(0), world.pose(1));
+    // The hand's face ends at 0.1 + 0.02 + 0.3 m; the first box ahead of it, the second
+    // ahead of the first.
+    assert!(first.x > 0.1 + 0.02 + 0.3 + 0.05 - 0.01, "{first:?}");
+    assert!(
+        second.x > 0.32 + 0.2,
+        "the second box moved only to {second:?}"
+    );
+    // Rapier lets resting contacts overlap by about a millimetre (its allowed error).
+    assert!(
+        second.x - first.x >= 0.1 - 2e-3,
+        "the boxes overlap: {first:?} {second:?}"
+    );
+}
+
+#[test]
+fn an_object_still_moving_at_t_max_makes_the_state_invalid() {
+    let mut world = World::new(&[(body(0.05), Pose2::new(0.0, 0.0, 0.0))], None).unwrap();
+    world.set_velocity(0, Vector2::new(1.0, 0.0), 0.0);
+    let short = RestSettings {
+        t_max: 0.5,
+        ..RestSettings::default()
+    };
+    let unsettled = world.settle(&short).unwrap_err();
+    assert_eq!(unsettled.object, 0);
+    // After 0.5 s on ice it still slides at 1 - 0.05 g 0.5 m/s.
+    assert!(
+        (unsettled.speed - (1.0 - 0.05 * G * 0.5)).abs() < 0.01,
+        "{unsettled:?}"
+    );
+}
+
+#[test]
+fn the_same_start_gives_the_same_end_bit_for_bit() {
+    let run = || {
+        let objects = [
+            (body(0.3), Pose2::new(0.2, 0.01, 0.1)),
+            (body(0.3), Pose2::new(0.33, -0.02, -0.2)),
+        ];
+        let hand = square(0.05);
+        let mut world =
+            World::new(&objects, Some((&hand, Pose2::new(0.1, 0.0, 0.0), 0.3))).unwrap();
+        world.push(
+            PusherVelocity {
+                vx: 0.8,
+                vy: 0.05,
+                omega: 0.5,
+            },
+            0.4,
+        );
+        world.settle(&RestSettings::default()).unwrap();
+        (world.pose(0), world.pose(1))
+    };
+    let (a, b) = (run(), run());
+    assert_eq!(
+        (
+            a.0.x.to_bits(),
+            a.0.y.to_bits(),
+            a.0.theta.to_bits(),
+            a.1.x.to_bits()
+        ),
+        (
+            b.0.x.to_bits(),
+            b.0.y.to_bits(),
+            b.0.theta.to_bits(),
+            b.1.x.to_bits()
+        )
+    );
+}
