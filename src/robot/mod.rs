@@ -12,6 +12,7 @@ pub mod mesh;
 pub mod planar_hand;
 pub mod projection;
 pub mod urdf;
+pub mod wgr;
 
 pub use chain::{Joint, JointKind, KinematicChain, Link};
 pub use ik::IkSettings;

@@ -155,6 +155,41 @@ pub struct ObjectSpec {
     /// Pressure distribution over the footprint; sets the characteristic length.
     #[serde(default)]
     pub pressure: PressureSpec,
+    /// Ways to grasp it: Workspace Goal Regions in the object frame.
+    #[serde(default)]
+    pub grasps: Vec<GraspSpec>,
+}
+
+/// A Workspace Goal Region of an object (Berenson et al.): the grasp frame `w` in the
+/// object frame (whose origin is the footprint's centre on the table top), the end
+/// effector's pose in `w` (`T_e^w`), and how far the grasp may move within `w`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GraspSpec {
+    #[serde(default)]
+    pub frame: PoseSpec,
+    #[serde(default)]
+    pub end_effector: PoseSpec,
+    #[serde(default)]
+    pub bounds: BoundsSpec,
+}
+
+/// `B^w`: [min, max] of each displacement coordinate (m; rad); 0 when left out.
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct BoundsSpec {
+    #[serde(default)]
+    pub x: [f64; 2],
+    #[serde(default)]
+    pub y: [f64; 2],
+    #[serde(default)]
+    pub z: [f64; 2],
+    #[serde(default)]
+    pub roll: [f64; 2],
+    #[serde(default)]
+    pub pitch: [f64; 2],
+    #[serde(default)]
+    pub yaw: [f64; 2],
 }
 
 #[derive(Debug, Deserialize, Default)]

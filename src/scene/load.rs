@@ -2,10 +2,12 @@
 //! every reference resolved, and every error names the file and the field.
 
 use super::file::{
-    GoalSpec, ObjectSpec, PhysicsSpec, PlannerSpec, PressureSpec, RobotSpec, SceneFile, ShapeSpec,
-    TableSpec,
+    GoalSpec, GraspSpec, ObjectSpec, PhysicsSpec, PlannerSpec, PressureSpec, RobotSpec, SceneFile,
+    ShapeSpec, TableSpec,
 };
-use super::{AllowedCollisions, Goal, MovableObject, Obstacle, Scene, Table, DEFAULT_GOAL_MARGIN};
+use super::{
+    AllowedCollisions, Goal, Grasp, MovableObject, Obstacle, Scene, Table, DEFAULT_GOAL_MARGIN,
+};
 use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
 use crate::input::name_list;
@@ -631,8 +633,56 @@ impl Loader<'_> {
                 centre: Vector2::zeros(),
             },
             support: LoadedSupport::new(&footprint),
+            grasps: o
+                .grasps
+                .iter()
+                .enumerate()
+                .map(|(g, spec)| self.grasp(&format!("{field}.grasps[{g}]"), spec))
+                .collect::<Result<_>>()?,
         };
         Ok((object, pose))
+    }
+
+    /// A grasp region: finite poses, each bound [min, max] with min <= max, angles
+    /// within [-pi, pi].
+    fn grasp(&self, field: &str, g: &GraspSpec) -> Result<Grasp> {
+        for (name, pose) in [("frame", &g.frame), ("end_effector", &g.end_effector)] {
+            self.finite(&format!("{field}.{name}.xyz"), &pose.xyz)?;
+            self.finite(&format!("{field}.{name}.rpy"), &pose.rpy)?;
+        }
+        let b = &g.bounds;
+        let named = [
+            ("x", b.x),
+            ("y", b.y),
+            ("z", b.z),
+            ("roll", b.roll),
+            ("pitch", b.pitch),
+            ("yaw", b.yaw),
+        ];
+        let mut bounds = [(0.0, 0.0); 6];
+        for (k, (name, [lo, hi])) in named.into_iter().enumerate() {
+            let at = format!("{field}.bounds.{name}");
+            self.finite(&at, &[lo, hi])?;
+            if lo > hi {
+                return Err(self.invalid(
+                    at,
+                    format!("must be [min, max] with min <= max, got [{lo}, {hi}]"),
+                ));
+            }
+            let pi = std::f64::consts::PI;
+            if k >= 3 && (lo < -pi - 1e-9 || hi > pi + 1e-9) {
+                return Err(self.invalid(
+                    at,
+                    format!("angles must be within [-pi, pi], got [{lo}, {hi}]"),
+                ));
+            }
+            bounds[k] = (lo, hi);
+        }
+        Ok(Grasp {
+            x_ow: isometry_from_xyz_rpy(g.frame.xyz, g.frame.rpy),
+            x_se: isometry_from_xyz_rpy(g.end_effector.xyz, g.end_effector.rpy),
+            bounds,
+        })
     }
 
     fn robot(
