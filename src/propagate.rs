@@ -15,12 +15,14 @@
 use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact, ObjectContacts};
 use crate::math::Pose2;
 use crate::physics::tipping::{largest_tipping_moment, pusher_forces, support_balance};
-use crate::physics::{object_motion, LimitSurface, PusherForce};
+use crate::physics::{object_motion, Footprint, LimitSurface, PusherForce};
 use crate::robot::EeAction;
+use crate::scene::file::PhysicsModel;
 use crate::scene::Scene;
+use crate::semi_dynamic::{Body, RestSettings, Transition};
 use crate::state::State;
 use crate::validity::{check_arm_objects, check_objects, check_robot, Invalid};
-use nalgebra::{DVector, Isometry3};
+use nalgebra::{DVector, Isometry3, Vector2};
 use parry3d_f64::bounding_volume::Aabb;
 use std::sync::Arc;
 
@@ -66,6 +68,9 @@ pub struct Propagator {
     q_new: DVector<f64>,
     objects_new: Vec<Pose2>,
     moved: Vec<bool>,
+    /// The semi-dynamic model's transition (`physics.model: semi_dynamic`), if it is the
+    /// scene's.
+    semi_dynamic: Option<Transition>,
 }
 
 impl Propagator {
@@ -81,7 +86,6 @@ impl Propagator {
         let scene: Arc<Scene> = scene.into();
         let (dof, objects) = (scene.robot.dof(), scene.objects.len());
         Self {
-            scene,
             prepared: None,
             dt,
             poses: Vec::new(),
@@ -96,6 +100,8 @@ impl Propagator {
             q_new: DVector::zeros(dof),
             objects_new: Vec::new(),
             moved: vec![false; objects],
+            semi_dynamic: semi_dynamic_transition(&scene),
+            scene,
         }
     }
 
@@ -188,6 +194,9 @@ impl Propagator {
     /// One step from `state` (whose link poses and contacts are cached). On success the
     /// state, poses and contacts advance; on failure nothing changes.
     fn step(&mut self, state: &mut State, action: &EeAction) -> Result<Vec<Contact>, Invalid> {
+        if self.semi_dynamic.is_some() {
+            return self.semi_dynamic_step(state, action);
+        }
         let scene = &*self.scene;
         let dt = self.dt;
         scene
@@ -330,6 +339,121 @@ impl Propagator {
         std::mem::swap(&mut self.object_boxes, &mut self.object_boxes_new);
         Ok(pushes)
     }
+}
+
+impl Propagator {
+    /// One step of the semi-dynamic model: the hand moves as the action says, the world
+    /// (rebuilt from `state`) runs until its objects rest, and the new state must be
+    /// valid (hand against table and obstacles, hand against objects, objects on the table
+    /// and apart). Obstacles are not bodies of the engine's world yet: an object that ends
+    /// in one makes the step invalid. Contacts are not reported.
+    fn semi_dynamic_step(
+        &mut self,
+        state: &mut State,
+        action: &EeAction,
+    ) -> Result<Vec<Contact>, Invalid> {
+        let scene = &*self.scene;
+        let dt = self.dt;
+        scene
+            .robot
+            .project_step(
+                &state.q,
+                &self.poses,
+                action,
+                dt,
+                &mut self.q_new,
+                &mut self.poses_new,
+            )
+            .map_err(Invalid::Projection)?;
+        let transition = self
+            .semi_dynamic
+            .as_ref()
+            .expect("called for semi-dynamic scenes only");
+        let ee = scene.robot.ee_link;
+        self.objects_new = transition
+            .step(
+                &state.objects,
+                &planar_pose(&self.poses[ee]),
+                &planar_pose(&self.poses_new[ee]),
+                dt,
+            )
+            .map_err(|u| Invalid::Unsettled {
+                object: scene.objects[u.object].name.clone(),
+                speed: u.speed,
+            })?;
+        object_bounds(scene, &self.objects_new, &mut self.object_boxes_new);
+        ArmBounds::compute(scene, &self.poses_new, &mut self.bounds);
+        check_robot(scene, &self.q_new, &self.poses_new, &self.bounds)?;
+        check_arm_objects(
+            scene,
+            &self.poses_new,
+            &self.bounds,
+            &self.objects_new,
+            &self.object_boxes_new,
+            &mut self.contacts_new,
+        )?;
+        for (moved, (a, b)) in self
+            .moved
+            .iter_mut()
+            .zip(state.objects.iter().zip(&self.objects_new))
+        {
+            *moved = a.x.to_bits() != b.x.to_bits()
+                || a.y.to_bits() != b.y.to_bits()
+                || a.theta.to_bits() != b.theta.to_bits();
+        }
+        let moved = &self.moved;
+        check_objects(scene, &self.objects_new, |i| moved[i])?;
+
+        state.q.copy_from(&self.q_new);
+        state.objects.clone_from(&self.objects_new);
+        std::mem::swap(&mut self.poses, &mut self.poses_new);
+        std::mem::swap(&mut self.contacts, &mut self.contacts_new);
+        std::mem::swap(&mut self.object_boxes, &mut self.object_boxes_new);
+        Ok(Vec::new())
+    }
+}
+
+/// A link's planar pose: its x, y and the yaw of its x axis.
+fn planar_pose(x_wl: &Isometry3<f64>) -> Pose2 {
+    let x_axis = x_wl.rotation * nalgebra::Vector3::x();
+    Pose2::new(
+        x_wl.translation.x,
+        x_wl.translation.y,
+        x_axis.y.atan2(x_axis.x),
+    )
+}
+
+/// The semi-dynamic transition of a scene whose `physics.model` is `semi_dynamic`: its
+/// objects as bodies, the pusher the end-effector link's footprint (its convex outline
+/// seen from above, in the link frame).
+fn semi_dynamic_transition(scene: &Scene) -> Option<Transition> {
+    if scene.physics.model != PhysicsModel::SemiDynamic {
+        return None;
+    }
+    let bodies = scene
+        .objects
+        .iter()
+        .map(|o| Body {
+            footprint: o.footprint.clone(),
+            mass: o.mass,
+            mu_g: o.mu_g,
+            mu_c: o.mu_c,
+        })
+        .collect();
+    let link = &scene.robot.chain.links[scene.robot.ee_link];
+    let outline: Vec<Vector2<f64>> = link
+        .geometry
+        .iter()
+        .flat_map(|g| crate::render::outline::shape_outline(g, &Isometry3::identity()))
+        .collect();
+    let pusher = Footprint::Polygon {
+        vertices: crate::render::outline::convex_hull(outline),
+    };
+    let rest = RestSettings {
+        t_max: scene.physics.t_max,
+        ..RestSettings::default()
+    };
+    Some(Transition::new(bodies, pusher, rest))
 }
 
 /// Bitwise equality of two states (NaN-safe, distinguishes -0.0).

@@ -151,9 +151,10 @@ impl World {
         let pusher = match pusher {
             Some((footprint, pose, mu_c)) => {
                 let handle = bodies
-                    .insert(RigidBodyBuilder::kinematic_velocity_based().pose(isometry(&pose)));
+                    .insert(RigidBodyBuilder::kinematic_position_based().pose(isometry(&pose)));
                 let collider = ColliderBuilder::new(shape(footprint)?)
                     .friction(mu_c)
+                    .friction_combine_rule(CoefficientCombineRule::Max)
                     .restitution(0.0);
                 colliders.insert_with_parent(collider, handle, &mut bodies);
                 Some(handle)
@@ -180,20 +181,37 @@ impl World {
         })
     }
 
-    /// Moves the pusher at `velocity` for `duration` seconds (whole engine steps), then
-    /// holds it still.
+    /// Moves the pusher at `velocity` for `duration` seconds, then holds it still.
     pub fn push(&mut self, velocity: PusherVelocity, duration: f64) {
-        if let Some(pusher) = self.pusher {
-            self.bodies[pusher].set_linvel(Vector2::new(velocity.vx, velocity.vy), true);
-            self.bodies[pusher].set_angvel(velocity.omega, true);
-        }
-        for _ in 0..(duration / STEP).round() as usize {
+        let Some(pusher) = self.pusher else { return };
+        let p = self.bodies[pusher].position();
+        let from = Pose2::new(p.translation.x, p.translation.y, p.rotation.angle());
+        let to = Pose2::new(
+            from.x + velocity.vx * duration,
+            from.y + velocity.vy * duration,
+            from.theta + velocity.omega * duration,
+        );
+        self.move_pusher(&from, &to, duration);
+    }
+
+    /// Moves the pusher from `from` to `to` (its yaw unwrapped) at constant speed over
+    /// `duration` seconds, ending exactly at `to`: in engine steps of at most [`STEP`]
+    /// that divide the duration, so that the pusher's speed is the one asked for.
+    pub fn move_pusher(&mut self, from: &Pose2, to: &Pose2, duration: f64) {
+        let Some(pusher) = self.pusher else { return };
+        let steps = (duration / STEP).ceil().max(1.0) as usize;
+        self.params.dt = duration / steps as f64;
+        for k in 1..=steps {
+            let f = k as f64 / steps as f64;
+            let at = Pose2::new(
+                from.x + f * (to.x - from.x),
+                from.y + f * (to.y - from.y),
+                from.theta + f * (to.theta - from.theta),
+            );
+            self.bodies[pusher].set_next_kinematic_position(isometry(&at));
             self.step();
         }
-        if let Some(pusher) = self.pusher {
-            self.bodies[pusher].set_linvel(Vector2::zeros(), true);
-            self.bodies[pusher].set_angvel(0.0, true);
-        }
+        self.params.dt = STEP;
     }
 
     /// Runs on until every object rests; the time it took (s), or the fastest object
@@ -223,10 +241,11 @@ impl World {
         }
     }
 
-    /// Advances the world by [`STEP`], support friction acting half before and half
-    /// after the engine's step.
+    /// Advances the world by one engine step ([`STEP`], or less while the pusher moves),
+    /// support friction acting half before and half after it.
     pub fn step(&mut self) {
-        self.support_friction(STEP / 2.0);
+        let dt = self.params.dt;
+        self.support_friction(dt / 2.0);
         self.pipeline.step(
             &Vector2::zeros(),
             &self.params,
@@ -241,8 +260,8 @@ impl World {
             &(),
             &(),
         );
-        self.support_friction(STEP / 2.0);
-        self.time += STEP;
+        self.support_friction(dt / 2.0);
+        self.time += dt;
     }
 
     /// Removes `dt` seconds' worth of the support's friction from every object's velocity.
@@ -288,5 +307,52 @@ impl World {
     /// Seconds simulated so far.
     pub fn time(&self) -> f64 {
         self.time
+    }
+}
+
+/// The semi-dynamic transition of a scene's objects under a planar pusher: the world is
+/// rebuilt from the state for every step (so a step from a stored state is reproduced
+/// exactly), the pusher moves, and the objects come to rest.
+#[derive(Clone, Debug)]
+pub struct Transition {
+    bodies: Vec<Body>,
+    pusher: Footprint,
+    rest: RestSettings,
+}
+
+impl Transition {
+    /// The scene's objects as bodies and the pusher's footprint (in its link frame).
+    pub fn new(bodies: Vec<Body>, pusher: Footprint, rest: RestSettings) -> Transition {
+        Transition {
+            bodies,
+            pusher,
+            rest,
+        }
+    }
+
+    /// The objects' poses after the pusher moves from `from` to `to` in `dt` seconds and
+    /// everything comes to rest, or the object still moving at `t_max`.
+    pub fn step(
+        &self,
+        objects: &[Pose2],
+        from: &Pose2,
+        to: &Pose2,
+        dt: f64,
+    ) -> Result<Vec<Pose2>, Unsettled> {
+        let placed: Vec<(Body, Pose2)> = self
+            .bodies
+            .iter()
+            .cloned()
+            .zip(objects.iter().copied())
+            .collect();
+        // The pusher's friction combines as the larger with each object's mu_c: an
+        // object's contact friction is the object's.
+        let mut world = World::new(&placed, Some((&self.pusher, *from, 0.0)))
+            .expect("the scene's footprints have area");
+        let mut to = *to;
+        to.theta = from.theta + crate::math::wrap_angle(to.theta - from.theta);
+        world.move_pusher(from, &to, dt);
+        world.settle(&self.rest)?;
+        Ok((0..objects.len()).map(|i| world.pose(i)).collect())
     }
 }

@@ -80,6 +80,12 @@ pub enum Invalid {
         object: String,
         distance: f64,
     },
+    /// Semi-dynamic model: an object still moves `physics.t_max` after the step, at
+    /// `speed` (m/s).
+    Unsettled {
+        object: String,
+        speed: f64,
+    },
 }
 
 impl Invalid {
@@ -102,6 +108,7 @@ impl Invalid {
             Invalid::Jammed { .. } => "jammed",
             Invalid::Tips { .. } => "tips",
             Invalid::ClosesInAtTippingHeight { .. } => "closes in at tipping height",
+            Invalid::Unsettled { .. } => "does not come to rest",
         }
     }
 }
@@ -164,6 +171,11 @@ impl fmt::Display for Invalid {
                 f,
                 "link '{link}' closes in on object '{object}' ({:.1} mm) where a sliding push would tip it",
                 distance * 1e3
+            ),
+            Invalid::Unsettled { object, speed } => write!(
+                f,
+                "object '{object}' still moves at {:.3} m/s when physics.t_max has passed",
+                speed
             ),
         }
     }

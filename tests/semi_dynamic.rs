@@ -179,3 +179,139 @@ fn the_same_start_gives_the_same_end_bit_for_bit() {
         )
     );
 }
+
+/// The planar-hand scene with `physics` set (and the table's friction `mu_g`).
+fn hand_scene(physics: &str, mu_g: f64) -> pushplan::Scene {
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml")
+        .unwrap()
+        .replace("mu_g: 0.4", &format!("mu_g: {mu_g}"));
+    assert!(text.contains(&format!("mu_g: {mu_g}")));
+    pushplan::Scene::from_yaml(
+        &format!("{text}physics: {physics}\n"),
+        std::path::Path::new("scenes/x.yaml"),
+    )
+    .unwrap()
+}
+
+/// The hand (front face at x = 0.42 m) drives at 0.5 m/s into the box (back face at
+/// 0.55 m) for 0.36 s. Quasistatic, the box ends against the hand. Semi-dynamic on ice,
+/// it is struck at the hand's speed and coasts about v^2 / (2 mu_g g) = 0.25 m beyond.
+#[test]
+fn a_semi_dynamic_step_lets_a_struck_object_coast() {
+    use pushplan::{EeAction, Propagator};
+    let push = EeAction::planar(0.5, 0.0, 0.0);
+    let quasistatic = hand_scene("{}", 0.05);
+    let run = Propagator::new(&quasistatic).propagate_steps(&quasistatic.start, &push, 36);
+    assert!(run.stopped_by.is_none(), "{:?}", run.stopped_by);
+    let hand_front = run.state.q[0] + 0.02;
+    let pushed = run.state.objects[0].x;
+    assert!(
+        (pushed - 0.05 - hand_front).abs() < 0.01,
+        "{pushed} against {hand_front}"
+    );
+
+    let semi = hand_scene("{model: semi_dynamic, object_clearance: 0}", 0.05);
+    let run = Propagator::new(&semi).propagate_steps(&semi.start, &push, 36);
+    assert!(run.stopped_by.is_none(), "{:?}", run.stopped_by);
+    assert_eq!(run.state.q[0], quasistatic_hand(&quasistatic, &push));
+    let struck = run.state.objects[0].x;
+    let coast = 0.5f64.powi(2) / (2.0 * 0.05 * G);
+    // Struck at 0.6 m (its centre when the hand's face reaches it), within a step.
+    assert!(
+        (struck - (0.6 + coast)).abs() < 0.01,
+        "the struck box ends at {struck} m, Coulomb says {} m; the hand's face at {hand_front} m",
+        0.6 + coast
+    );
+    // The same step from the same state, again: the same end, bit for bit.
+    let again = Propagator::new(&semi).propagate_steps(&semi.start, &push, 36);
+    assert_eq!(again.state.objects[0].x.to_bits(), struck.to_bits());
+
+    // On ice with 0.2 s to come to rest the strike is invalid.
+    let hurried = hand_scene(
+        "{model: semi_dynamic, object_clearance: 0, t_max: 0.2}",
+        0.05,
+    );
+    let run = Propagator::new(&hurried).propagate_steps(&hurried.start, &push, 36);
+    let why = run
+        .stopped_by
+        .expect("the box is still sliding after 0.2 s");
+    assert_eq!(why.kind(), "does not come to rest", "{why}");
+}
+
+fn quasistatic_hand(scene: &pushplan::Scene, push: &pushplan::EeAction) -> f64 {
+    pushplan::Propagator::new(scene)
+        .propagate_steps(&scene.start, push, 36)
+        .state
+        .q[0]
+}
+
+#[test]
+fn the_semi_dynamic_model_is_for_the_planar_hand_and_touching_objects() {
+    let text = std::fs::read_to_string("scenes/herb_single_object.yaml").unwrap();
+    let message = pushplan::Scene::from_yaml(
+        &format!("{text}physics: {{model: semi_dynamic, object_clearance: 0}}\n"),
+        std::path::Path::new("scenes/x.yaml"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        message.contains("physics.model") && message.contains("planar_hand"),
+        "{message}"
+    );
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
+    let message = pushplan::Scene::from_yaml(
+        &format!("{text}physics: {{model: semi_dynamic}}\n"),
+        std::path::Path::new("scenes/x.yaml"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(message.contains("physics.object_clearance"), "{message}");
+}
+
+/// PC RRT plans a semi-dynamic scene (the planar hand, wood and ice), and `check`
+/// re-simulates the plan from its file bit for bit: every step rebuilds the world from its
+/// state, so OMPL's re-propagation from stored states agrees.
+#[test]
+fn pc_rrt_plans_semi_dynamic_scenes_that_check() {
+    let scratch = std::env::temp_dir().join(format!("pushplan-semi-{}", std::process::id()));
+    std::fs::create_dir_all(&scratch).unwrap();
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
+    for (name, mu_g) in [("wood", 0.4), ("ice", 0.05)] {
+        let scene = scratch.join(format!("{name}.yaml"));
+        let plan = scratch.join(format!("{name}.json"));
+        std::fs::write(
+            &scene,
+            text.replace("mu_g: 0.4", &format!("mu_g: {mu_g}"))
+                + "physics: {model: semi_dynamic, object_clearance: 0}\n",
+        )
+        .unwrap();
+        let run = |args: &[&str]| {
+            let out = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
+                .args(args)
+                .output()
+                .unwrap();
+            (
+                out.status.code(),
+                String::from_utf8_lossy(&out.stdout).into_owned(),
+            )
+        };
+        let (code, stdout) = run(&[
+            "plan",
+            scene.to_str().unwrap(),
+            "--seed",
+            "1",
+            "--threads",
+            "1",
+            "--time",
+            "60",
+            "--quiet",
+            "--out",
+            plan.to_str().unwrap(),
+        ]);
+        assert_eq!(code, Some(0), "{name}: {stdout}");
+        let (code, stdout) = run(&["check", plan.to_str().unwrap()]);
+        assert_eq!(code, Some(0), "{name}: {stdout}");
+        assert!(stdout.contains("states reproduced: yes"), "{stdout}");
+    }
+    let _ = std::fs::remove_dir_all(&scratch);
+}

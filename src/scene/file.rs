@@ -160,6 +160,15 @@ pub struct ObjectSpec {
     pub grasps: Vec<GraspSpec>,
 }
 
+/// The physics model of a scene (`physics.model`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PhysicsModel {
+    #[default]
+    Quasistatic,
+    SemiDynamic,
+}
+
 /// A Workspace Goal Region of an object (Berenson et al.): the grasp frame `w` in the
 /// object frame (whose origin is the footprint's centre on the table top), the end
 /// effector's pose in `w` (`T_e^w`), and how far the grasp may move within `w`.
@@ -307,6 +316,12 @@ pub struct PhysicsSpec {
     /// elsewhere. At most `contact_margin` (contacts are tracked from there on); 0 turns
     /// the rule off.
     pub arm_clearance: f64,
+    /// How pushed objects move: `quasistatic` (the default: the planar pushing model) or
+    /// `semi_dynamic` (the workshop paper's: a 2D rigid-body engine; objects may be
+    /// struck, push one another and coast, and must come to rest within `t_max`).
+    pub model: PhysicsModel,
+    /// Semi-dynamic model: longest time for every object to come to rest after a step (s).
+    pub t_max: f64,
     /// A push at height loads the object's leading edge: the centre of friction follows
     /// the support's centre of pressure (the tipping balance's), instead of staying where
     /// a uniform pressure puts it.
@@ -326,6 +341,8 @@ impl Default for PhysicsSpec {
             tipping_margin: 0.2,
             object_clearance: 0.01,
             arm_clearance: 0.01,
+            model: PhysicsModel::Quasistatic,
+            t_max: 8.0,
             pressure_shift: true,
         }
     }

@@ -2,8 +2,8 @@
 //! every reference resolved, and every error names the file and the field.
 
 use super::file::{
-    GoalSpec, GraspSpec, ObjectSpec, PhysicsSpec, PlannerSpec, PressureSpec, RobotSpec, SceneFile,
-    ShapeSpec, TableSpec,
+    GoalSpec, GraspSpec, ObjectSpec, PhysicsModel, PhysicsSpec, PlannerSpec, PressureSpec,
+    RobotSpec, SceneFile, ShapeSpec, TableSpec,
 };
 use super::{
     AllowedCollisions, Goal, Grasp, MovableObject, Obstacle, Scene, Table, DEFAULT_GOAL_MARGIN,
@@ -304,6 +304,12 @@ impl Loader<'_> {
             ..ProjectionSettings::default()
         };
         let (mut robot, q) = self.robot(&spec.robot, &table, &planner, &settings)?;
+        if physics.model == PhysicsModel::SemiDynamic && robot.kind != RobotKind::PlanarHand {
+            return Err(self.invalid(
+                "physics.model",
+                "semi_dynamic needs robot.type: planar_hand (the arm's pushing cross-sections come later)",
+            ));
+        }
         let allowed = self.allowed_collisions(&spec, &mut robot, &obstacles)?;
         let goal = self.goal(&spec.goal, &objects, &table, robot.dof())?;
         if let Goal::Configuration { q, .. } = &goal {
@@ -999,6 +1005,16 @@ impl Loader<'_> {
                 format!(
                     "must be in [0, physics.contact_margin = {}], got {}",
                     p.contact_margin, p.arm_clearance
+                ),
+            ));
+        }
+        self.positive("physics.t_max", p.t_max)?;
+        if p.model == PhysicsModel::SemiDynamic && p.object_clearance > 0.0 {
+            return Err(self.invalid(
+                "physics.object_clearance",
+                format!(
+                    "must be 0 with physics.model: semi_dynamic (objects push one another), got {}",
+                    p.object_clearance
                 ),
             ));
         }
