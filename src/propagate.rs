@@ -345,8 +345,8 @@ impl Propagator {
     /// One step of the semi-dynamic model: the hand moves as the action says, the world
     /// (rebuilt from `state`) runs until its objects rest, and the new state must be
     /// valid (hand against table and obstacles, hand against objects, objects on the table
-    /// and apart). Obstacles are not bodies of the engine's world yet: an object that ends
-    /// in one makes the step invalid. Contacts are not reported.
+    /// and apart). Obstacles reaching into the objects' height are fixed bodies of the
+    /// engine's world. Contacts are not reported.
     fn semi_dynamic_step(
         &mut self,
         state: &mut State,
@@ -449,11 +449,23 @@ fn semi_dynamic_transition(scene: &Scene) -> Option<Transition> {
     let pusher = Footprint::Polygon {
         vertices: crate::render::outline::convex_hull(outline),
     };
+    // Obstacles reaching into the objects' height range, as outlines seen from above.
+    let top = scene.table.top;
+    let tallest = scene.objects.iter().map(|o| o.height).fold(0.0, f64::max);
+    let obstacles = scene
+        .obstacles
+        .iter()
+        .filter(|o| {
+            let aabb = o.geometry.aabb(&o.pose);
+            aabb.mins.z < top + tallest && aabb.maxs.z > top
+        })
+        .map(|o| crate::render::outline::shape_outline(&o.geometry, &o.pose))
+        .collect();
     let rest = RestSettings {
         t_max: scene.physics.t_max,
         ..RestSettings::default()
     };
-    Some(Transition::new(bodies, pusher, rest))
+    Some(Transition::new(bodies, pusher, obstacles, rest))
 }
 
 /// Bitwise equality of two states (NaN-safe, distinguishes -0.0).

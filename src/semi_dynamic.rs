@@ -13,6 +13,9 @@
 //! Half the step's friction acts before the engine's step and half after, so positions
 //! integrate the mid-step velocity (exact for a constant deceleration).
 //!
+//! Obstacles are fixed outlines: what an obstacle covers of the objects' height range, seen
+//! from above.
+//!
 //! Frames: world x, y on the table (m); yaw about world z (rad).
 
 use crate::math::Pose2;
@@ -181,6 +184,18 @@ impl World {
         })
     }
 
+    /// Adds a fixed obstacle: the convex hull of `outline` (world x, y; m). Objects meet it
+    /// with their own contact friction. `None` for an outline without area.
+    pub fn add_obstacle(&mut self, outline: &[Vector2<f64>]) -> Option<()> {
+        let points: Vec<Point2<f64>> = outline.iter().map(|v| Point2::from(*v)).collect();
+        let collider = ColliderBuilder::new(SharedShape::convex_hull(&points)?)
+            .friction(0.0)
+            .friction_combine_rule(CoefficientCombineRule::Max)
+            .restitution(0.0);
+        self.colliders.insert(collider);
+        Some(())
+    }
+
     /// Moves the pusher at `velocity` for `duration` seconds, then holds it still.
     pub fn push(&mut self, velocity: PusherVelocity, duration: f64) {
         let Some(pusher) = self.pusher else { return };
@@ -317,15 +332,24 @@ impl World {
 pub struct Transition {
     bodies: Vec<Body>,
     pusher: Footprint,
+    /// Obstacles' outlines in the world (x, y; m).
+    obstacles: Vec<Vec<Vector2<f64>>>,
     rest: RestSettings,
 }
 
 impl Transition {
-    /// The scene's objects as bodies and the pusher's footprint (in its link frame).
-    pub fn new(bodies: Vec<Body>, pusher: Footprint, rest: RestSettings) -> Transition {
+    /// The scene's objects as bodies, the pusher's footprint (in its link frame) and the
+    /// outlines of the obstacles the objects can meet (world frame).
+    pub fn new(
+        bodies: Vec<Body>,
+        pusher: Footprint,
+        obstacles: Vec<Vec<Vector2<f64>>>,
+        rest: RestSettings,
+    ) -> Transition {
         Transition {
             bodies,
             pusher,
+            obstacles,
             rest,
         }
     }
@@ -349,6 +373,9 @@ impl Transition {
         // object's contact friction is the object's.
         let mut world = World::new(&placed, Some((&self.pusher, *from, 0.0)))
             .expect("the scene's footprints have area");
+        for outline in &self.obstacles {
+            world.add_obstacle(outline);
+        }
         let mut to = *to;
         to.theta = from.theta + crate::math::wrap_angle(to.theta - from.theta);
         world.move_pusher(from, &to, dt);

@@ -4,6 +4,8 @@
 //! object pushes its neighbour; an object still moving at t_max is an error; the same
 //! start gives the same end, bit for bit.
 
+mod common;
+
 use nalgebra::Vector2;
 use pushplan::math::Pose2;
 use pushplan::physics::Footprint;
@@ -273,12 +275,11 @@ fn the_semi_dynamic_model_is_for_the_planar_hand_and_touching_objects() {
 /// state, so OMPL's re-propagation from stored states agrees.
 #[test]
 fn pc_rrt_plans_semi_dynamic_scenes_that_check() {
-    let scratch = std::env::temp_dir().join(format!("pushplan-semi-{}", std::process::id()));
-    std::fs::create_dir_all(&scratch).unwrap();
+    let scratch = common::Scratch::new("semi-dynamic-plans");
     let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
     for (name, mu_g) in [("wood", 0.4), ("ice", 0.05)] {
-        let scene = scratch.join(format!("{name}.yaml"));
-        let plan = scratch.join(format!("{name}.json"));
+        let scene = scratch.join(&format!("{name}.yaml"));
+        let plan = scratch.join(&format!("{name}.json"));
         std::fs::write(
             &scene,
             text.replace("mu_g: 0.4", &format!("mu_g: {mu_g}"))
@@ -313,5 +314,59 @@ fn pc_rrt_plans_semi_dynamic_scenes_that_check() {
         assert_eq!(code, Some(0), "{name}: {stdout}");
         assert!(stdout.contains("states reproduced: yes"), "{stdout}");
     }
-    let _ = std::fs::remove_dir_all(&scratch);
+}
+
+/// An obstacle is a fixed body: a box struck at a wall on ice stops against it.
+#[test]
+fn a_struck_object_stops_at_an_obstacle() {
+    let mut world = World::new(&[(body(0.05), Pose2::new(0.0, 0.0, 0.0))], None).unwrap();
+    // A wall whose face is at x = 0.2 m.
+    world
+        .add_obstacle(&[
+            Vector2::new(0.2, -0.5),
+            Vector2::new(0.3, -0.5),
+            Vector2::new(0.3, 0.5),
+            Vector2::new(0.2, 0.5),
+        ])
+        .unwrap();
+    world.set_velocity(0, Vector2::new(1.0, 0.0), 0.0);
+    world.settle(&RestSettings::default()).unwrap();
+    let x = world.pose(0).x;
+    // Free, it would slide 1 / (2 * 0.05 * g) = 1.02 m; the wall holds its front face.
+    assert!(
+        x + 0.05 <= 0.2 + 2e-3 && x + 0.05 > 0.2 - 0.05,
+        "stopped at {x}"
+    );
+}
+
+/// The workshop's scenes load, and each plans (the four of the paper quickly; the ice
+/// scenes, which need a strike, are measured in BENCHMARKS.md).
+#[test]
+fn the_workshop_scenes_load_and_plan() {
+    let scratch = common::Scratch::new("workshop-scenes");
+    for n in 1..=4 {
+        let path = format!("scenes/workshop/scene_{n}.yaml");
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
+            .args([
+                "plan",
+                &path,
+                "--seed",
+                "1",
+                "--threads",
+                "1",
+                "--time",
+                "60",
+                "--quiet",
+            ])
+            .args(["--shortcut", "0", "--out"])
+            .arg(scratch.join(&format!("scene_{n}.json")))
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(0), "{path}: {stdout}");
+    }
+    for name in ["ice_1", "ice_2"] {
+        let scene = pushplan::Scene::load(format!("scenes/workshop/{name}.yaml")).unwrap();
+        assert!(scene.objects.iter().all(|o| o.mu_g == 0.05));
+    }
 }
