@@ -54,6 +54,10 @@ pub struct PlanFile {
     pub settings: PlanSettings,
     /// Propagation step (s).
     pub step: f64,
+    /// How pushed objects moved: the scene's `physics.model` (quasistatic in files from
+    /// before the semi-dynamic model).
+    #[serde(default)]
+    pub physics_model: crate::scene::file::PhysicsModel,
     /// The reserves the plan was made with (absent in files from before they existed).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub margins: Option<Margins>,
@@ -421,6 +425,7 @@ impl PlanFile {
             scene_name: scene.name.clone(),
             settings: settings.clone(),
             step: scene.planner.step,
+            physics_model: scene.physics.model,
             margins: Some(Margins {
                 goal: match scene.goal {
                     crate::scene::Goal::ObjectInDisc { margin, .. } => margin,

@@ -313,6 +313,27 @@ fn pc_rrt_plans_semi_dynamic_scenes_that_check() {
         let (code, stdout) = run(&["check", plan.to_str().unwrap()]);
         assert_eq!(code, Some(0), "{name}: {stdout}");
         assert!(stdout.contains("states reproduced: yes"), "{stdout}");
+        let text = std::fs::read_to_string(&plan).unwrap();
+        assert!(text.contains("\"physics_model\": \"semi_dynamic\""), "the plan names its model");
+        if name == "wood" {
+            // The same scene, seed and thread count: the same plan, byte for byte.
+            let again = scratch.join("again.json");
+            let (code, _) = run(&[
+                "plan",
+                scene.to_str().unwrap(),
+                "--seed",
+                "1",
+                "--threads",
+                "1",
+                "--time",
+                "60",
+                "--quiet",
+                "--out",
+                again.to_str().unwrap(),
+            ]);
+            assert_eq!(code, Some(0));
+            assert_eq!(std::fs::read_to_string(&again).unwrap(), text);
+        }
     }
 }
 

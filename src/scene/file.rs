@@ -161,7 +161,7 @@ pub struct ObjectSpec {
 }
 
 /// The physics model of a scene (`physics.model`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum PhysicsModel {
     #[default]
