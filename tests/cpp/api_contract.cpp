@@ -1,5 +1,6 @@
 // The C++ API's contract beyond planning (run by tests/cpp_api.rs):
 // - every planner kind has the CLI's name, and a name gives the kind back;
+// - progress reaches Options::on_progress; a semi-dynamic scene plans;
 // - OMPL's process-wide log level is as the application left it after solve();
 // - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
 //   whose paths are not controls, a bad scene, the model failing inside solve() and
@@ -77,6 +78,20 @@ int main()
     ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
     planner.solve(options);
     expect(ompl::msg::getLogLevel() == ompl::msg::LOG_ERROR, "... whatever it was");
+
+    {
+        // The semi-dynamic model (physics.model in the scene) through the same API, with
+        // shortcutting.
+        const pushplan::Planner workshop("scenes/workshop/scene_2.yaml");
+        pushplan::Options o;
+        o.seed = 1;
+        o.threads = 1;
+        o.time_limit = 60.0;
+        o.shortcut = 0.5;
+        const pushplan::Plan plan = workshop.solve(o);
+        expect(plan.solved && !plan.controls.empty(),
+               "the semi-dynamic model plans through the C++ API (the workshop's scene two)");
+    }
 
     {
         // A search that cannot succeed (clutter pinned on the goal disc) reports once a
