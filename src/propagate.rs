@@ -197,19 +197,9 @@ impl Propagator {
         if self.semi_dynamic.is_some() {
             return self.semi_dynamic_step(state, action);
         }
+        self.project(state, action)?;
         let scene = &*self.scene;
         let dt = self.dt;
-        scene
-            .robot
-            .project_step(
-                &state.q,
-                &self.poses,
-                action,
-                dt,
-                &mut self.q_new,
-                &mut self.poses_new,
-            )
-            .map_err(Invalid::Projection)?;
 
         // Physics: every object with contacts.
         self.objects_new.clone_from(&state.objects);
@@ -318,7 +308,29 @@ impl Propagator {
             start = end;
         }
 
-        // Validity of the new state; its contacts serve the next step.
+        self.accept(state)?;
+        Ok(pushes)
+    }
+
+    /// The arm's step from `state` under `action` into `q_new` and `poses_new`.
+    fn project(&mut self, state: &State, action: &EeAction) -> Result<(), Invalid> {
+        self.scene
+            .robot
+            .project_step(
+                &state.q,
+                &self.poses,
+                action,
+                self.dt,
+                &mut self.q_new,
+                &mut self.poses_new,
+            )
+            .map_err(Invalid::Projection)
+    }
+
+    /// Checks the new state (`q_new`, `poses_new`, `objects_new` and their boxes, `moved`)
+    /// and, if it is valid, makes it `state`; its contacts serve the next step.
+    fn accept(&mut self, state: &mut State) -> Result<(), Invalid> {
+        let scene = &*self.scene;
         ArmBounds::compute(scene, &self.poses_new, &mut self.bounds);
         check_robot(scene, &self.q_new, &self.poses_new, &self.bounds)?;
         check_arm_objects(
@@ -337,7 +349,7 @@ impl Propagator {
         std::mem::swap(&mut self.poses, &mut self.poses_new);
         std::mem::swap(&mut self.contacts, &mut self.contacts_new);
         std::mem::swap(&mut self.object_boxes, &mut self.object_boxes_new);
-        Ok(pushes)
+        Ok(())
     }
 }
 
@@ -352,19 +364,8 @@ impl Propagator {
         state: &mut State,
         action: &EeAction,
     ) -> Result<Vec<Contact>, Invalid> {
+        self.project(state, action)?;
         let scene = &*self.scene;
-        let dt = self.dt;
-        scene
-            .robot
-            .project_step(
-                &state.q,
-                &self.poses,
-                action,
-                dt,
-                &mut self.q_new,
-                &mut self.poses_new,
-            )
-            .map_err(Invalid::Projection)?;
         let transition = self
             .semi_dynamic
             .as_ref()
@@ -375,23 +376,13 @@ impl Propagator {
                 &state.objects,
                 &planar_pose(&self.poses[ee]),
                 &planar_pose(&self.poses_new[ee]),
-                dt,
+                self.dt,
             )
             .map_err(|u| Invalid::Unsettled {
                 object: scene.objects[u.object].name.clone(),
                 speed: u.speed,
             })?;
         object_bounds(scene, &self.objects_new, &mut self.object_boxes_new);
-        ArmBounds::compute(scene, &self.poses_new, &mut self.bounds);
-        check_robot(scene, &self.q_new, &self.poses_new, &self.bounds)?;
-        check_arm_objects(
-            scene,
-            &self.poses_new,
-            &self.bounds,
-            &self.objects_new,
-            &self.object_boxes_new,
-            &mut self.contacts_new,
-        )?;
         for (moved, (a, b)) in self
             .moved
             .iter_mut()
@@ -401,14 +392,7 @@ impl Propagator {
                 || a.y.to_bits() != b.y.to_bits()
                 || a.theta.to_bits() != b.theta.to_bits();
         }
-        let moved = &self.moved;
-        check_objects(scene, &self.objects_new, |i| moved[i])?;
-
-        state.q.copy_from(&self.q_new);
-        state.objects.clone_from(&self.objects_new);
-        std::mem::swap(&mut self.poses, &mut self.poses_new);
-        std::mem::swap(&mut self.contacts, &mut self.contacts_new);
-        std::mem::swap(&mut self.object_boxes, &mut self.object_boxes_new);
+        self.accept(state)?;
         Ok(Vec::new())
     }
 }

@@ -296,29 +296,8 @@ fn pc_rrt_plans_semi_dynamic_scenes_that_check() {
                 String::from_utf8_lossy(&out.stdout).into_owned(),
             )
         };
-        let (code, stdout) = run(&[
-            "plan",
-            scene.to_str().unwrap(),
-            "--seed",
-            "1",
-            "--threads",
-            "1",
-            "--time",
-            "60",
-            "--quiet",
-            "--out",
-            plan.to_str().unwrap(),
-        ]);
-        assert_eq!(code, Some(0), "{name}: {stdout}");
-        let (code, stdout) = run(&["check", plan.to_str().unwrap()]);
-        assert_eq!(code, Some(0), "{name}: {stdout}");
-        assert!(stdout.contains("states reproduced: yes"), "{stdout}");
-        let text = std::fs::read_to_string(&plan).unwrap();
-        assert!(text.contains("\"physics_model\": \"semi_dynamic\""), "the plan names its model");
-        if name == "wood" {
-            // The same scene, seed and thread count: the same plan, byte for byte.
-            let again = scratch.join("again.json");
-            let (code, _) = run(&[
+        let plan_into = |out: &std::path::Path| {
+            run(&[
                 "plan",
                 scene.to_str().unwrap(),
                 "--seed",
@@ -329,8 +308,23 @@ fn pc_rrt_plans_semi_dynamic_scenes_that_check() {
                 "60",
                 "--quiet",
                 "--out",
-                again.to_str().unwrap(),
-            ]);
+                out.to_str().unwrap(),
+            ])
+        };
+        let (code, stdout) = plan_into(&plan);
+        assert_eq!(code, Some(0), "{name}: {stdout}");
+        let (code, stdout) = run(&["check", plan.to_str().unwrap()]);
+        assert_eq!(code, Some(0), "{name}: {stdout}");
+        assert!(stdout.contains("states reproduced: yes"), "{stdout}");
+        let text = std::fs::read_to_string(&plan).unwrap();
+        assert!(
+            text.contains("\"physics_model\": \"semi_dynamic\""),
+            "the plan names its model"
+        );
+        if name == "wood" {
+            // The same scene, seed and thread count: the same plan, byte for byte.
+            let again = scratch.join("again.json");
+            let (code, _) = plan_into(&again);
             assert_eq!(code, Some(0));
             assert_eq!(std::fs::read_to_string(&again).unwrap(), text);
         }
