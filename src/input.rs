@@ -98,9 +98,12 @@ pub fn relative_path(from: &Path, to: &Path) -> Result<String, String> {
     Ok(parts.join("/"))
 }
 
-/// Names for a message: the first ten, quoted, and how many more.
+/// Names for a message: the first ten, quoted, and how many more ("none" for none).
 pub fn name_list<'a>(names: impl Iterator<Item = &'a str>) -> String {
     let names: Vec<&str> = names.collect();
+    if names.is_empty() {
+        return "none".into();
+    }
     let mut text: Vec<String> = names.iter().take(10).map(|n| format!("'{n}'")).collect();
     if names.len() > 10 {
         text.push(format!("and {} more", names.len() - 10));

@@ -110,6 +110,17 @@ impl Pose2 {
             UnitQuaternion::from_axis_angle(&Vector3::z_axis(), self.theta),
         )
     }
+
+    /// The planar pose of a 3D pose: its x, y and the yaw of its x axis (the inverse of
+    /// [`to_isometry`](Self::to_isometry); height and tilt are dropped).
+    pub fn from_isometry(pose: &Isometry3<f64>) -> Pose2 {
+        let x_axis = pose.rotation * Vector3::x();
+        Pose2::new(
+            pose.translation.x,
+            pose.translation.y,
+            x_axis.y.atan2(x_axis.x),
+        )
+    }
 }
 
 /// A planar body twist: velocity of the object's origin and angular velocity,

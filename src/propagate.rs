@@ -374,8 +374,8 @@ impl Propagator {
         self.objects_new = transition
             .step(
                 &state.objects,
-                &planar_pose(&self.poses[ee]),
-                &planar_pose(&self.poses_new[ee]),
+                &Pose2::from_isometry(&self.poses[ee]),
+                &Pose2::from_isometry(&self.poses_new[ee]),
                 self.dt,
             )
             .map_err(|u| Invalid::Unsettled {
@@ -397,16 +397,6 @@ impl Propagator {
     }
 }
 
-/// A link's planar pose: its x, y and the yaw of its x axis.
-fn planar_pose(x_wl: &Isometry3<f64>) -> Pose2 {
-    let x_axis = x_wl.rotation * nalgebra::Vector3::x();
-    Pose2::new(
-        x_wl.translation.x,
-        x_wl.translation.y,
-        x_axis.y.atan2(x_axis.x),
-    )
-}
-
 /// The semi-dynamic transition of a scene whose `physics.model` is `semi_dynamic`: its
 /// objects as bodies, the pusher the end-effector link's footprint (its convex outline
 /// seen from above, in the link frame).
@@ -414,7 +404,7 @@ fn semi_dynamic_transition(scene: &Scene) -> Option<Transition> {
     if scene.physics.model != PhysicsModel::SemiDynamic {
         return None;
     }
-    let bodies = scene
+    let bodies: Vec<Body> = scene
         .objects
         .iter()
         .map(|o| Body {
@@ -444,12 +434,14 @@ fn semi_dynamic_transition(scene: &Scene) -> Option<Transition> {
             aabb.mins.z < top + tallest && aabb.maxs.z > top
         })
         .map(|o| crate::render::outline::shape_outline(&o.geometry, &o.pose))
-        .collect();
+        .collect::<Vec<_>>();
     let rest = RestSettings {
         t_max: scene.physics.t_max,
         ..RestSettings::default()
     };
-    Some(Transition::new(bodies, pusher, obstacles, rest))
+    let transition = Transition::new(&bodies, &pusher, &obstacles, rest)
+        .expect("a scene's footprints and its hand's outline have area");
+    Some(transition)
 }
 
 /// Bitwise equality of two states (NaN-safe, distinguishes -0.0).

@@ -72,6 +72,32 @@ pub struct PusherVelocity {
     pub omega: f64,
 }
 
+/// A body as the world needs it, derived once from a [`Body`]: its collider's shape and
+/// its support's friction.
+#[derive(Clone)]
+struct Solid {
+    shape: SharedShape,
+    mass: f64,
+    mu_c: f64,
+    /// Largest support friction force (N): mu_g m g.
+    force: f64,
+    /// Characteristic length c (m): the torque for pure turning is force * c.
+    c: f64,
+}
+
+impl Solid {
+    /// `None` for a footprint without area.
+    fn of(body: &Body) -> Option<Solid> {
+        Some(Solid {
+            shape: shape(&body.footprint)?,
+            mass: body.mass,
+            mu_c: body.mu_c,
+            force: body.mu_g * body.mass * GRAVITY,
+            c: body.footprint.characteristic_length(),
+        })
+    }
+}
+
 /// The friction a body's support removes, per step.
 #[derive(Clone, Copy, Debug)]
 struct Support {
@@ -105,11 +131,14 @@ pub struct World {
 fn shape(footprint: &Footprint) -> Option<SharedShape> {
     match footprint {
         Footprint::Circle { radius } => Some(SharedShape::ball(*radius)),
-        Footprint::Polygon { vertices } => {
-            let points: Vec<Point2<f64>> = vertices.iter().map(|v| Point2::from(*v)).collect();
-            SharedShape::convex_hull(&points)
-        }
+        Footprint::Polygon { vertices } => hull(vertices),
     }
+}
+
+/// The convex hull of points as a collider shape; `None` without area.
+fn hull(points: &[Vector2<f64>]) -> Option<SharedShape> {
+    let points: Vec<Point2<f64>> = points.iter().map(|v| Point2::from(*v)).collect();
+    SharedShape::convex_hull(&points)
 }
 
 fn isometry(pose: &Pose2) -> Isometry2<f64> {
@@ -123,18 +152,37 @@ impl World {
         objects: &[(Body, Pose2)],
         pusher: Option<(&Footprint, Pose2, f64)>,
     ) -> Option<World> {
+        let solids = objects
+            .iter()
+            .map(|(body, _)| Solid::of(body))
+            .collect::<Option<Vec<_>>>()?;
+        let pusher = match pusher {
+            Some((footprint, pose, mu_c)) => Some((shape(footprint)?, pose, mu_c)),
+            None => None,
+        };
+        Some(World::build(
+            solids.iter().zip(objects.iter().map(|(_, pose)| pose)),
+            pusher,
+        ))
+    }
+
+    /// The world of solids at their poses and a pusher (its shape, pose and friction).
+    fn build<'a>(
+        objects: impl Iterator<Item = (&'a Solid, &'a Pose2)>,
+        pusher: Option<(SharedShape, Pose2, f64)>,
+    ) -> World {
         let mut bodies = RigidBodySet::new();
         let mut colliders = ColliderSet::new();
-        let mut handles = Vec::with_capacity(objects.len());
-        for (body, pose) in objects {
+        let mut handles = Vec::new();
+        for (solid, pose) in objects {
             let handle = bodies.insert(
                 RigidBodyBuilder::dynamic()
                     .pose(isometry(pose))
                     .can_sleep(false),
             );
-            let collider = ColliderBuilder::new(shape(&body.footprint)?)
-                .mass(body.mass)
-                .friction(body.mu_c)
+            let collider = ColliderBuilder::new(solid.shape.clone())
+                .mass(solid.mass)
+                .friction(solid.mu_c)
                 .restitution(0.0);
             colliders.insert_with_parent(collider, handle, &mut bodies);
             let inertia = bodies[handle]
@@ -144,27 +192,24 @@ impl World {
             handles.push((
                 handle,
                 Support {
-                    force: body.mu_g * body.mass * GRAVITY,
-                    c: body.footprint.characteristic_length(),
-                    mass: body.mass,
+                    force: solid.force,
+                    c: solid.c,
+                    mass: solid.mass,
                     inertia,
                 },
             ));
         }
-        let pusher = match pusher {
-            Some((footprint, pose, mu_c)) => {
-                let handle = bodies
-                    .insert(RigidBodyBuilder::kinematic_position_based().pose(isometry(&pose)));
-                let collider = ColliderBuilder::new(shape(footprint)?)
-                    .friction(mu_c)
-                    .friction_combine_rule(CoefficientCombineRule::Max)
-                    .restitution(0.0);
-                colliders.insert_with_parent(collider, handle, &mut bodies);
-                Some(handle)
-            }
-            None => None,
-        };
-        Some(World {
+        let pusher = pusher.map(|(shape, pose, mu_c)| {
+            let handle =
+                bodies.insert(RigidBodyBuilder::kinematic_position_based().pose(isometry(&pose)));
+            let collider = ColliderBuilder::new(shape)
+                .friction(mu_c)
+                .friction_combine_rule(CoefficientCombineRule::Max)
+                .restitution(0.0);
+            colliders.insert_with_parent(collider, handle, &mut bodies);
+            handle
+        });
+        World {
             pipeline: PhysicsPipeline::new(),
             params: IntegrationParameters {
                 dt: STEP,
@@ -181,19 +226,22 @@ impl World {
             objects: handles,
             pusher,
             time: 0.0,
-        })
+        }
     }
 
     /// Adds a fixed obstacle: the convex hull of `outline` (world x, y; m). Objects meet it
     /// with their own contact friction. `None` for an outline without area.
     pub fn add_obstacle(&mut self, outline: &[Vector2<f64>]) -> Option<()> {
-        let points: Vec<Point2<f64>> = outline.iter().map(|v| Point2::from(*v)).collect();
-        let collider = ColliderBuilder::new(SharedShape::convex_hull(&points)?)
+        self.add_fixed(hull(outline)?);
+        Some(())
+    }
+
+    fn add_fixed(&mut self, shape: SharedShape) {
+        let collider = ColliderBuilder::new(shape)
             .friction(0.0)
             .friction_combine_rule(CoefficientCombineRule::Max)
             .restitution(0.0);
         self.colliders.insert(collider);
-        Some(())
     }
 
     /// Moves the pusher at `velocity` for `duration` seconds, then holds it still.
@@ -328,30 +376,31 @@ impl World {
 /// The semi-dynamic transition of a scene's objects under a planar pusher: the world is
 /// rebuilt from the state for every step (so a step from a stored state is reproduced
 /// exactly), the pusher moves, and the objects come to rest.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Transition {
-    bodies: Vec<Body>,
-    pusher: Footprint,
-    /// Obstacles' outlines in the world (x, y; m).
-    obstacles: Vec<Vec<Vector2<f64>>>,
+    solids: Vec<Solid>,
+    pusher: SharedShape,
+    /// Obstacles' outlines in the world, as fixed shapes.
+    obstacles: Vec<SharedShape>,
     rest: RestSettings,
 }
 
 impl Transition {
     /// The scene's objects as bodies, the pusher's footprint (in its link frame) and the
-    /// outlines of the obstacles the objects can meet (world frame).
+    /// outlines of the obstacles the objects can meet (world frame; one without area is
+    /// left out). `None` if a body's or the pusher's footprint has no area.
     pub fn new(
-        bodies: Vec<Body>,
-        pusher: Footprint,
-        obstacles: Vec<Vec<Vector2<f64>>>,
+        bodies: &[Body],
+        pusher: &Footprint,
+        obstacles: &[Vec<Vector2<f64>>],
         rest: RestSettings,
-    ) -> Transition {
-        Transition {
-            bodies,
-            pusher,
-            obstacles,
+    ) -> Option<Transition> {
+        Some(Transition {
+            solids: bodies.iter().map(Solid::of).collect::<Option<_>>()?,
+            pusher: shape(pusher)?,
+            obstacles: obstacles.iter().filter_map(|o| hull(o)).collect(),
             rest,
-        }
+        })
     }
 
     /// The objects' poses after the pusher moves from `from` to `to` in `dt` seconds and
@@ -363,18 +412,14 @@ impl Transition {
         to: &Pose2,
         dt: f64,
     ) -> Result<Vec<Pose2>, Unsettled> {
-        let placed: Vec<(Body, Pose2)> = self
-            .bodies
-            .iter()
-            .cloned()
-            .zip(objects.iter().copied())
-            .collect();
         // The pusher's friction combines as the larger with each object's mu_c: an
         // object's contact friction is the object's.
-        let mut world = World::new(&placed, Some((&self.pusher, *from, 0.0)))
-            .expect("the scene's footprints have area");
-        for outline in &self.obstacles {
-            world.add_obstacle(outline);
+        let mut world = World::build(
+            self.solids.iter().zip(objects),
+            Some((self.pusher.clone(), *from, 0.0)),
+        );
+        for obstacle in &self.obstacles {
+            world.add_fixed(obstacle.clone());
         }
         let mut to = *to;
         to.theta = from.theta + crate::math::wrap_angle(to.theta - from.theta);

@@ -255,7 +255,7 @@ fn side_legend(root: &Area, entries: &[(String, RGBColor, Glyph)]) -> Result<(),
     Ok(())
 }
 
-/// Categories along x: planner `i` centred at `i`, labelled with its name and `n`.
+/// Labels of categories along x: category `i` centred at `i`, labelled `names[i]`.
 fn category_labels(names: Vec<String>) -> impl Fn(&f64) -> String {
     move |x: &f64| {
         let i = x.round();
@@ -447,14 +447,9 @@ pub fn success_vs_objects(logs: &[BenchmarkLog]) -> Result<String, String> {
         chart
             .configure_mesh()
             .x_labels(most)
-            .x_label_formatter(&|x| {
-                let n = x.round();
-                if (x - n).abs() < 1e-6 {
-                    format!("{n}")
-                } else {
-                    String::new()
-                }
-            })
+            .x_label_formatter(&category_labels(
+                (0..=most).map(|n| n.to_string()).collect(),
+            ))
             .x_desc("movable objects")
             .y_desc("runs solved (%)")
             .draw()

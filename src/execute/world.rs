@@ -323,13 +323,7 @@ impl World {
 
     /// Object `i`'s planar pose (x, y and yaw of its body frame).
     pub fn object_pose2(&self, i: usize) -> Pose2 {
-        let pose = self.object_pose(i);
-        let x_axis = pose.rotation * Vector3::x();
-        Pose2::new(
-            pose.translation.x,
-            pose.translation.y,
-            x_axis.y.atan2(x_axis.x),
-        )
+        Pose2::from_isometry(&self.object_pose(i))
     }
 
     /// Object `i`'s tilt: the angle between its body z axis and the world's (rad).

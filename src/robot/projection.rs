@@ -60,13 +60,10 @@ impl PushingPlane {
     /// The planar pose (x, y, yaw) of a tool pose on the plane: the inverse of
     /// [`tool_pose_at`](Self::tool_pose_at) (the tilt is ignored).
     pub fn planar_pose(&self, tool: &Isometry3<f64>) -> Pose2 {
-        let turn = tool.rotation * self.orientation.inverse();
-        let x_axis = turn * Vector3::x();
-        Pose2::new(
-            tool.translation.x,
-            tool.translation.y,
-            x_axis.y.atan2(x_axis.x),
-        )
+        Pose2::from_isometry(&Isometry3::from_parts(
+            tool.translation,
+            tool.rotation * self.orientation.inverse(),
+        ))
     }
 
     /// The twist (linear z and angular x, y rows; others zero) that removes the error

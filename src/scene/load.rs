@@ -18,6 +18,7 @@ use crate::robot::mesh::load_convex_mesh;
 use crate::robot::planar_hand::planar_hand_chain;
 use crate::robot::projection::ProjectionSettings;
 use crate::robot::urdf::{check_dimensions, load_urdf};
+use crate::robot::wgr::Wgr;
 use crate::robot::{PushingPlane, Robot, RobotKind};
 use crate::state::State;
 use crate::validity::Clearances;
@@ -379,11 +380,7 @@ impl Loader<'_> {
                             format!(
                                 "no link or obstacle named '{name}'; the links are {}; the obstacles are {}; or 'table'",
                                 name_list(links.iter().map(|l| l.name.as_str())),
-                                if obstacles.is_empty() {
-                                    "none".into()
-                                } else {
-                                    name_list(obstacles.iter().map(|o| o.name.as_str()))
-                                }
+                                name_list(obstacles.iter().map(|o| o.name.as_str()))
                             )
                         };
                         return Err(self.invalid(field, message));
@@ -684,11 +681,11 @@ impl Loader<'_> {
             }
             bounds[k] = (lo, hi);
         }
-        Ok(Grasp {
-            x_ow: isometry_from_xyz_rpy(g.frame.xyz, g.frame.rpy),
+        Ok(Grasp(Wgr {
+            x_0w: isometry_from_xyz_rpy(g.frame.xyz, g.frame.rpy),
             x_se: isometry_from_xyz_rpy(g.end_effector.xyz, g.end_effector.rpy),
             bounds,
-        })
+        }))
     }
 
     fn robot(
@@ -845,11 +842,7 @@ impl Loader<'_> {
                             "goal.object",
                             format!(
                                 "no movable object named '{name}'; the objects are {}",
-                                if objects.is_empty() {
-                                    "none".into()
-                                } else {
-                                    name_list(objects.iter().map(|o| o.name.as_str()))
-                                }
+                                name_list(objects.iter().map(|o| o.name.as_str()))
                             ),
                         )
                     })?;

@@ -138,25 +138,18 @@ pub struct MovableObject {
     pub grasps: Vec<Grasp>,
 }
 
-/// A Workspace Goal Region attached to an object: `w` in the object frame.
+/// A Workspace Goal Region attached to an object: the region with its frame `w` given in
+/// the object frame (`X_OW` in place of `X_0W`).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Grasp {
-    /// `w` in the object frame (`X_OW`).
-    pub x_ow: Isometry3<f64>,
-    /// The end effector in the grasp frame (`T_e^w`).
-    pub x_se: Isometry3<f64>,
-    /// `B^w`: x, y, z (m), roll, pitch, yaw (rad).
-    pub bounds: [(f64, f64); 6],
-}
+pub struct Grasp(pub crate::robot::wgr::Wgr);
 
 impl Grasp {
     /// The region in the world for the object at `pose` on a table whose top is at
     /// `table_top`: `X_0W = X_0O X_OW`.
     pub fn region(&self, pose: &Pose2, table_top: f64) -> crate::robot::wgr::Wgr {
         crate::robot::wgr::Wgr {
-            x_0w: pose.to_isometry(table_top) * self.x_ow,
-            x_se: self.x_se,
-            bounds: self.bounds,
+            x_0w: pose.to_isometry(table_top) * self.0.x_0w,
+            ..self.0.clone()
         }
     }
 }
