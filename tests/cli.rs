@@ -602,3 +602,89 @@ fn shortcutting_reports_its_progress() {
     assert!(!lines.is_empty(), "{stderr}");
     assert!(lines[0].contains("attempts accepted, path "), "{stderr}");
 }
+
+/// Every subcommand and every option says what it is for in `--help`.
+#[test]
+fn every_command_and_option_has_help() {
+    let commands: [&[&str]; 11] = [
+        &["plan"],
+        &["check"],
+        &["execute"],
+        &["bench"],
+        &["bench", "merge"],
+        &["plots"],
+        &["scenes"],
+        &["scenes", "generate"],
+        &["render"],
+        &["robot"],
+        &["install"],
+    ];
+    for command in commands {
+        let mut args = command.to_vec();
+        args.push("--help");
+        let (code, stdout, stderr) = pushplan(&args);
+        assert_eq!(code, 0, "{command:?}: {stderr}");
+        let mut listed = false;
+        let lines: Vec<&str> = stdout
+            .lines()
+            .skip_while(|l| !l.starts_with("Arguments:") && !l.starts_with("Options:"))
+            .collect();
+        let indent = |l: &str| l.len() - l.trim_start().len();
+        for (i, line) in lines.iter().enumerate() {
+            // "  --name <VALUE>  What it does", or the description on the next, deeper line.
+            let entry = line.trim_start();
+            let is_entry = indent(line) > 0
+                && (entry.starts_with('-') || entry.starts_with('<') || entry.starts_with('['));
+            if !is_entry || entry.starts_with("-h, --help") {
+                continue;
+            }
+            listed = true;
+            let below = lines.get(i + 1).copied().unwrap_or("");
+            let described = entry.contains("  ")
+                || (indent(below) > indent(line) && !below.trim_start().starts_with('-'));
+            assert!(described, "{command:?}: no help for `{entry}`");
+        }
+        assert!(
+            listed || command == ["scenes"],
+            "{command:?}: no options listed\n{stdout}"
+        );
+    }
+    let (_, stdout, _) = pushplan(&["--help"]);
+    for line in stdout
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+    {
+        assert!(
+            line.trim().contains("  "),
+            "no help for the command `{line}`"
+        );
+    }
+}
+
+/// A search that does not reach the goal says how far from it its closest path ends.
+#[test]
+fn an_unsolved_plan_says_how_far_from_the_goal_it_ends() {
+    let scratch = common::Scratch::new("cli-unsolved-distance");
+    let out = scratch.join("plan.json");
+    let (code, stdout, _) = pushplan(&[
+        "plan",
+        "tests/data/clutter_on_goal.yaml",
+        "--planner",
+        "static",
+        "--time",
+        "1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{stdout}");
+    let closest = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("closest: the goal object ends "))
+        .unwrap_or_else(|| panic!("no closest line: {stdout}"));
+    let (millimetres, rest) = closest.split_once(" mm from the goal region").unwrap();
+    assert!(millimetres.parse::<f64>().unwrap() > 0.0, "{closest}");
+    assert!(rest.contains("margin"), "{closest}");
+}

@@ -185,3 +185,67 @@ fn snapshot_times_outside_the_plan_are_errors() {
         .unwrap();
     assert!(err.contains("outside the plan"), "{err}");
 }
+
+/// The snapshots sit two to a row under a legend; each has a 20 cm scale bar and the
+/// objects' names; the goal object, the goal region and pushing links have colours of
+/// their own; the timeline is at least as wide as its title.
+#[test]
+fn snapshots_have_a_grid_legend_scale_bar_and_names() {
+    let (plan, dir) = plan();
+    let files = render(&plan, &dir.join("plan.json"), &dir.join("pictures"), &[]).unwrap();
+    let svg = std::fs::read_to_string(&files.snapshots).unwrap();
+    let offsets: Vec<(f64, f64)> = svg
+        .split("<g class=\"snapshot\"")
+        .skip(1)
+        .map(|panel| {
+            let t = attribute(panel, "transform").unwrap();
+            let (x, y) = t
+                .trim_start_matches("translate(")
+                .trim_end_matches(')')
+                .split_once(',')
+                .unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect();
+    assert_eq!(offsets.len(), 4);
+    assert!(
+        offsets[1].0 > offsets[0].0 && offsets[1].1 == offsets[0].1,
+        "{offsets:?}"
+    );
+    assert!(
+        offsets[2].0 == offsets[0].0 && offsets[2].1 > offsets[0].1,
+        "{offsets:?}"
+    );
+    for label in ["goal object", "goal region", "arm", "link pushing"] {
+        assert!(
+            svg.contains(&format!(">{label}</text>")),
+            "legend lacks {label}"
+        );
+    }
+    for panel in svg.split("<g class=\"snapshot\"").skip(1) {
+        assert!(panel.contains("class=\"scale-bar\"") && panel.contains(">20 cm</text>"));
+        for name in &plan.objects {
+            assert!(panel.contains(&format!(">{name}</text>")), "{name} unnamed");
+        }
+    }
+    // The legend's four swatches, four colours.
+    let mut colours: Vec<&str> = svg
+        .split("<g class=\"legend\">")
+        .skip(1)
+        .map(|swatch| attribute(swatch, "fill").unwrap())
+        .collect();
+    assert_eq!(colours.len(), 4);
+    colours.sort_unstable();
+    colours.dedup();
+    assert_eq!(colours.len(), 4, "{colours:?}");
+
+    let timeline = std::fs::read_to_string(&files.timeline).unwrap();
+    let root = &timeline[..timeline.find('>').unwrap()];
+    let title_start = timeline.find("font-size=\"14\">").unwrap() + "font-size=\"14\">".len();
+    let title = &timeline[title_start..title_start + timeline[title_start..].find('<').unwrap()];
+    // About 7 px a character at 14 px.
+    assert!(
+        number(root, "width") >= 7.0 * title.chars().count() as f64,
+        "{title}"
+    );
+}
