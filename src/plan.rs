@@ -446,7 +446,7 @@ impl PlanFile {
             objects: scene.objects.iter().map(|o| o.name.clone()).collect(),
             start: StateRecord::from_state(&scene.start),
             controls: records,
-            trajectory: executable(scene, controls, &path.step_states),
+            trajectory: executable(scene, controls, &path.step_states)?,
             robustness: None,
             unknown: Default::default(),
         })

@@ -12,14 +12,15 @@
 //! per call) skips preparing it again. Results depend only on the start state and the
 //! action: propagation is deterministic bit for bit.
 
+use crate::collision::section::slab_section;
 use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact, ObjectContacts};
 use crate::math::Pose2;
 use crate::physics::tipping::{largest_tipping_moment, pusher_forces, support_balance};
-use crate::physics::{object_motion, Footprint, LimitSurface, PusherForce};
+use crate::physics::{object_motion, LimitSurface, PusherForce};
 use crate::robot::EeAction;
 use crate::scene::file::PhysicsModel;
 use crate::scene::Scene;
-use crate::semi_dynamic::{Body, RestSettings, Transition};
+use crate::semi_dynamic::{Body, Rest, RestSettings, Sweep, Sweeps, Transition, Unsettled};
 use crate::state::State;
 use crate::validity::{check_arm_objects, check_objects, check_robot, Invalid};
 use nalgebra::{DVector, Isometry3, Vector2};
@@ -68,9 +69,8 @@ pub struct Propagator {
     q_new: DVector<f64>,
     objects_new: Vec<Pose2>,
     moved: Vec<bool>,
-    /// The semi-dynamic model's transition (`physics.model: semi_dynamic`), if it is the
-    /// scene's.
-    semi_dynamic: Option<Transition>,
+    /// The semi-dynamic model (`physics.model: semi_dynamic`), if it is the scene's.
+    semi_dynamic: Option<SemiDynamic>,
 }
 
 impl Propagator {
@@ -100,7 +100,7 @@ impl Propagator {
             q_new: DVector::zeros(dof),
             objects_new: Vec::new(),
             moved: vec![false; objects],
-            semi_dynamic: semi_dynamic_transition(&scene),
+            semi_dynamic: SemiDynamic::of(&scene),
             scene,
         }
     }
@@ -354,11 +354,11 @@ impl Propagator {
 }
 
 impl Propagator {
-    /// One step of the semi-dynamic model: the hand moves as the action says, the world
-    /// (rebuilt from `state`) runs until its objects rest, and the new state must be
-    /// valid (hand against table and obstacles, hand against objects, objects on the table
-    /// and apart). Obstacles reaching into the objects' height are fixed bodies of the
-    /// engine's world. Contacts are not reported.
+    /// One step of the semi-dynamic model: the links reaching the objects' heights sweep
+    /// as the projected joint step moves them, the world (rebuilt from `state`) runs until
+    /// its objects rest, and the new state must be valid (arm against table and
+    /// obstacles, arm against objects in 3D, objects on the table and apart). A contact's
+    /// force is the mean normal force over the step: the engine's impulse over `dt`.
     fn semi_dynamic_step(
         &mut self,
         state: &mut State,
@@ -366,22 +366,33 @@ impl Propagator {
     ) -> Result<Vec<Contact>, Invalid> {
         self.project(state, action)?;
         let scene = &*self.scene;
-        let transition = self
+        let model = self
             .semi_dynamic
-            .as_ref()
+            .as_mut()
             .expect("called for semi-dynamic scenes only");
-        let ee = scene.robot.ee_link;
-        self.objects_new = transition
-            .step(
+        let rest = model
+            .transition(
+                scene,
                 &state.objects,
-                &Pose2::from_isometry(&self.poses[ee]),
-                &Pose2::from_isometry(&self.poses_new[ee]),
+                &self.poses,
+                &self.poses_new,
                 self.dt,
+                false,
             )
             .map_err(|u| Invalid::Unsettled {
                 object: scene.objects[u.object].name.clone(),
                 speed: u.speed,
             })?;
+        let pushes = rest
+            .pushes
+            .iter()
+            .map(|p| Contact {
+                link: model.buffer[p.pusher].link,
+                object: p.object,
+                force: p.impulse / self.dt,
+            })
+            .collect();
+        self.objects_new = rest.poses;
         object_bounds(scene, &self.objects_new, &mut self.object_boxes_new);
         for (moved, (a, b)) in self
             .moved
@@ -393,55 +404,84 @@ impl Propagator {
                 || a.theta.to_bits() != b.theta.to_bits();
         }
         self.accept(state)?;
-        Ok(Vec::new())
+        Ok(pushes)
     }
 }
 
-/// The semi-dynamic transition of a scene whose `physics.model` is `semi_dynamic`: its
-/// objects as bodies, the pusher the end-effector link's footprint (its convex outline
-/// seen from above, in the link frame).
-fn semi_dynamic_transition(scene: &Scene) -> Option<Transition> {
-    if scene.physics.model != PhysicsModel::SemiDynamic {
-        return None;
+/// The semi-dynamic model of a scene: its objects as bodies of a top-down world, the
+/// robot's links cut at the objects' heights as its pushers.
+#[derive(Clone)]
+pub struct SemiDynamic {
+    transition: Transition,
+    sweeps: Sweeps,
+    /// The last step's sweeps.
+    buffer: Vec<Sweep>,
+}
+
+impl SemiDynamic {
+    /// The model of a scene whose `physics.model` is `semi_dynamic`.
+    pub fn of(scene: &Scene) -> Option<SemiDynamic> {
+        if scene.physics.model != PhysicsModel::SemiDynamic {
+            return None;
+        }
+        let bodies: Vec<Body> = scene
+            .objects
+            .iter()
+            .map(|o| Body {
+                footprint: o.footprint.clone(),
+                mass: o.mass,
+                mu_g: o.mu_g,
+                mu_c: o.mu_c,
+            })
+            .collect();
+        let top = scene.table.top;
+        let heights: Vec<f64> = scene.objects.iter().map(|o| o.height).collect();
+        let sweeps = Sweeps::new(&heights, top);
+        // Obstacles where they reach into the objects' height range, seen from above.
+        let mut points = Vec::new();
+        let obstacles: Vec<Vec<Vector2<f64>>> = scene
+            .obstacles
+            .iter()
+            .map(|o| {
+                points.clear();
+                slab_section(
+                    &o.geometry,
+                    &o.pose,
+                    top,
+                    top + sweeps.tallest(),
+                    &mut points,
+                );
+                points.iter().map(|p| p.xy().coords).collect()
+            })
+            .collect();
+        let rest = RestSettings {
+            t_max: scene.physics.t_max,
+            ..RestSettings::default()
+        };
+        let transition = Transition::new(&bodies, sweeps.object_classes(), &obstacles, rest)
+            .expect("a scene's footprints have area");
+        Some(SemiDynamic {
+            transition,
+            sweeps,
+            buffer: Vec::new(),
+        })
     }
-    let bodies: Vec<Body> = scene
-        .objects
-        .iter()
-        .map(|o| Body {
-            footprint: o.footprint.clone(),
-            mass: o.mass,
-            mu_g: o.mu_g,
-            mu_c: o.mu_c,
-        })
-        .collect();
-    let link = &scene.robot.chain.links[scene.robot.ee_link];
-    let outline: Vec<Vector2<f64>> = link
-        .geometry
-        .iter()
-        .flat_map(|g| crate::render::outline::shape_outline(g, &Isometry3::identity()))
-        .collect();
-    let pusher = Footprint::Polygon {
-        vertices: crate::render::outline::convex_hull(outline),
-    };
-    // Obstacles reaching into the objects' height range, as outlines seen from above.
-    let top = scene.table.top;
-    let tallest = scene.objects.iter().map(|o| o.height).fold(0.0, f64::max);
-    let obstacles = scene
-        .obstacles
-        .iter()
-        .filter(|o| {
-            let aabb = o.geometry.aabb(&o.pose);
-            aabb.mins.z < top + tallest && aabb.maxs.z > top
-        })
-        .map(|o| crate::render::outline::shape_outline(&o.geometry, &o.pose))
-        .collect::<Vec<_>>();
-    let rest = RestSettings {
-        t_max: scene.physics.t_max,
-        ..RestSettings::default()
-    };
-    let transition = Transition::new(&bodies, &pusher, &obstacles, rest)
-        .expect("a scene's footprints and its hand's outline have area");
-    Some(transition)
+
+    /// The objects' rest after the links move from poses `from` to `to` in `dt` seconds
+    /// (with every engine step's poses if `record`).
+    pub fn transition(
+        &mut self,
+        scene: &Scene,
+        objects: &[Pose2],
+        from: &[Isometry3<f64>],
+        to: &[Isometry3<f64>],
+        dt: f64,
+        record: bool,
+    ) -> Result<Rest, Unsettled> {
+        self.sweeps
+            .sweeps(&scene.robot.chain.links, from, to, &mut self.buffer);
+        self.transition.step(objects, &self.buffer, dt, record)
+    }
 }
 
 /// Bitwise equality of two states (NaN-safe, distinguishes -0.0).

@@ -3,10 +3,13 @@
 //! faster than the scene allows, sampled at a fixed rate, with the object poses the model
 //! predicts along it.
 
-use crate::math::wrap_angle;
+use crate::math::{wrap_angle, Pose2};
 use crate::path::PathControl;
+use crate::propagate::SemiDynamic;
 use crate::robot::Robot;
+use crate::scene::file::PhysicsModel;
 use crate::scene::{Scene, TrajectoryParams};
+use crate::semi_dynamic::TracePoint;
 use crate::state::State;
 use nalgebra::DVector;
 use serde::{Deserialize, Serialize};
@@ -37,9 +40,31 @@ pub fn joint_motion_time(robot: &Robot, from: &DVector<f64>, to: &DVector<f64>) 
 pub const TRAJECTORY_RATE: f64 = 50.0;
 
 /// The executable trajectory of `controls` in `scene`, whose every step's state is
-/// `step_states` (the start first), at [`TRAJECTORY_RATE`]: it stops at each control's
-/// end, and its limits are the scene's.
-pub fn executable(scene: &Scene, controls: &[PathControl], step_states: &[State]) -> Trajectory {
+/// `step_states` (the start first), at [`TRAJECTORY_RATE`]. Quasistatic pushing does not
+/// depend on speed: the trajectory stops at each control's end, and its limits are the
+/// scene's. Semi-dynamic pushing does: the trajectory keeps the plan's pace ([`paced`]).
+pub fn executable(
+    scene: &Scene,
+    controls: &[PathControl],
+    step_states: &[State],
+) -> Result<Trajectory, String> {
+    if scene.physics.model == PhysicsModel::SemiDynamic {
+        let paced = paced(scene, step_states, TRAJECTORY_RATE)?;
+        return Ok(Trajectory {
+            rate: TRAJECTORY_RATE,
+            times: paced.times,
+            q: paced
+                .states
+                .iter()
+                .map(|s| s.q.as_slice().to_vec())
+                .collect(),
+            objects: paced
+                .states
+                .iter()
+                .map(|s| s.objects.iter().map(|p| [p.x, p.y, p.theta]).collect())
+                .collect(),
+        });
+    }
     let radii: Vec<f64> = scene.objects.iter().map(|o| o.bounding_radius).collect();
     let stops: Vec<usize> = controls
         .iter()
@@ -48,7 +73,7 @@ pub fn executable(scene: &Scene, controls: &[PathControl], step_states: &[State]
             Some(*step)
         })
         .collect();
-    time_parameterise(
+    Ok(time_parameterise(
         &scene.robot,
         &radii,
         step_states,
@@ -56,7 +81,100 @@ pub fn executable(scene: &Scene, controls: &[PathControl], step_states: &[State]
         scene.planner.step,
         &scene.trajectory,
         TRAJECTORY_RATE,
-    )
+    ))
+}
+
+/// A semi-dynamic plan at its own pace, sampled at a fixed rate.
+#[derive(Clone, Debug, Default)]
+pub struct Paced {
+    /// Sample times (s); the last is the plan's end.
+    pub times: Vec<f64>,
+    /// The arm and the objects at each sample.
+    pub states: Vec<State>,
+    /// The plan step (from step state k to k + 1) each sample falls in.
+    pub steps: Vec<usize>,
+    /// When each step starts (s), and the plan's end last.
+    pub step_starts: Vec<f64>,
+}
+
+/// The plan of a semi-dynamic `scene` through `step_states` as the model has it happen,
+/// sampled at `rate` Hz: each step's joint motion takes the plan's step `dt` at constant
+/// joint speed (the pushers' speed is part of the model), then the arm holds still while
+/// the objects come to rest; objects at the engine's poses, interpolated between its
+/// steps. Stopping at once between steps is the model's too (actions are velocity steps).
+/// An error if a step does not come to rest or does not reach the plan's next state.
+pub fn paced(scene: &Scene, step_states: &[State], rate: f64) -> Result<Paced, String> {
+    let mut model = SemiDynamic::of(scene).ok_or("the scene's physics is not semi_dynamic")?;
+    let dt = scene.planner.step;
+    let robot = &scene.robot;
+    let mut paced = Paced::default();
+    let Some(first) = step_states.first() else {
+        return Ok(paced);
+    };
+    let mut from = robot.link_poses(&first.q);
+    let (mut start, mut sample) = (0.0, 0usize);
+    for (k, pair) in step_states.windows(2).enumerate() {
+        let (a, b) = (&pair[0], &pair[1]);
+        let to = robot.link_poses(&b.q);
+        let rest = model
+            .transition(scene, &a.objects, &from, &to, dt, true)
+            .map_err(|u| {
+                format!(
+                    "step {k}: {} still moves at {:.3} m/s after t_max",
+                    scene.objects[u.object].name, u.speed
+                )
+            })?;
+        if rest.poses != b.objects {
+            return Err(format!(
+                "step {k}: the engine does not reach the plan's next state"
+            ));
+        }
+        paced.step_starts.push(start);
+        let end = start + rest.trace.last().map_or(dt, |p| p.time);
+        while (sample as f64 / rate) < end {
+            let t = sample as f64 / rate;
+            let tau = t - start;
+            let f = (tau / dt).min(1.0);
+            paced.times.push(t);
+            paced.states.push(State {
+                q: &a.q + f * (&b.q - &a.q),
+                objects: poses_at(&rest.trace, tau),
+            });
+            paced.steps.push(k);
+            sample += 1;
+        }
+        from = to;
+        start = end;
+    }
+    paced.step_starts.push(start);
+    paced.times.push(start);
+    paced.states.push(step_states.last().unwrap().clone());
+    paced.steps.push(step_states.len().saturating_sub(2));
+    Ok(paced)
+}
+
+/// The objects' poses at `time` in a trace, interpolated between its points.
+fn poses_at(trace: &[TracePoint], time: f64) -> Vec<Pose2> {
+    let after = trace.partition_point(|p| p.time <= time);
+    match (after.checked_sub(1).map(|i| &trace[i]), trace.get(after)) {
+        (Some(a), Some(b)) => {
+            let f = (time - a.time) / (b.time - a.time);
+            a.poses
+                .iter()
+                .zip(&b.poses)
+                .map(|(p, q)| {
+                    Pose2::new(
+                        p.x + f * (q.x - p.x),
+                        p.y + f * (q.y - p.y),
+                        wrap_angle(p.theta + f * wrap_angle(q.theta - p.theta)),
+                    )
+                })
+                .collect()
+        }
+        (Some(a), None) => a.poses.clone(),
+        (None, Some(b)) => b.poses.clone(),
+        (None, None) => Vec::new(),
+    }
 }
 
 /// Share of the acceleration limit spent on speeding up and slowing down along the path;

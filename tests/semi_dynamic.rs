@@ -242,29 +242,27 @@ fn a_semi_dynamic_step_lets_a_struck_object_coast() {
 }
 
 #[test]
-fn the_semi_dynamic_model_is_for_the_planar_hand_and_touching_objects() {
-    let refused = |scene: &str, physics: &str| {
+fn the_semi_dynamic_model_is_for_touching_objects_and_either_robot() {
+    let scene = |scene: &str, physics: &str| {
         let text = std::fs::read_to_string(scene).unwrap();
         pushplan::Scene::from_yaml(
             &format!("{text}physics: {physics}\n"),
             std::path::Path::new("scenes/x.yaml"),
         )
-        .unwrap_err()
-        .to_string()
     };
-    let message = refused(
-        "scenes/herb_single_object.yaml",
-        "{model: semi_dynamic, object_clearance: 0}",
-    );
-    assert!(
-        message.contains("physics.model") && message.contains("planar_hand"),
-        "{message}"
-    );
-    let message = refused(
+    let message = scene(
         "scenes/planar_hand_single_object.yaml",
         "{model: semi_dynamic}",
-    );
+    )
+    .unwrap_err()
+    .to_string();
     assert!(message.contains("physics.object_clearance"), "{message}");
+    // The arm too: its links, cut at the objects' heights, are the pushers.
+    scene(
+        "scenes/herb_single_object.yaml",
+        "{model: semi_dynamic, object_clearance: 0}",
+    )
+    .unwrap();
 }
 
 /// PC RRT plans a semi-dynamic scene (the planar hand, wood and ice), and `check`
@@ -381,4 +379,251 @@ fn the_workshop_scenes_load_and_plan() {
         let scene = pushplan::Scene::load(format!("scenes/workshop/{name}.yaml")).unwrap();
         assert!(scene.objects.iter().all(|o| o.mu_g == 0.05));
     }
+}
+
+/// A solid on a link at `pose`, cut by the slab `z0..z1`, seen from above: the cut's extent
+/// along world x and y (m).
+fn cut_extent(
+    primitive: pushplan::collision::Primitive,
+    pose: nalgebra::Isometry3<f64>,
+    z0: f64,
+    z1: f64,
+) -> (f64, f64) {
+    let geometry =
+        pushplan::collision::Geometry::new(&primitive, nalgebra::Isometry3::identity()).unwrap();
+    let mut points = Vec::new();
+    pushplan::collision::section::slab_section(&geometry, &pose, z0, z1, &mut points);
+    assert!(points
+        .iter()
+        .all(|p| p.z >= z0 - 1e-12 && p.z <= z1 + 1e-12));
+    let extent = |f: fn(&nalgebra::Point3<f64>) -> f64| {
+        let (lo, hi) = points
+            .iter()
+            .map(f)
+            .fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)));
+        hi - lo
+    };
+    (extent(|p| p.x), extent(|p| p.y))
+}
+
+/// The cuts against closed forms: a cylinder lying along x (radius r, axis at height h)
+/// cut by a slab whose top is d below the axis is 2 sqrt(r^2 - d^2) wide; a cube of side
+/// 2a tilted by alpha about y, cut through its centre by a slab of half-height t, spans
+/// 2 (a + t sin alpha) / cos alpha along x (where its faces x' = +-a cross the slab's
+/// planes); a sphere cut a distance d from its centre is a disc of radius
+/// sqrt(r^2 - d^2).
+#[test]
+fn a_slab_cuts_solids_as_closed_forms_say() {
+    use nalgebra::{Isometry3, Vector3};
+    use pushplan::collision::Primitive;
+    let (r, length, h) = (0.05, 0.3, 0.2);
+    let lying = Isometry3::new(
+        Vector3::new(0.0, 0.0, h),
+        Vector3::y() * std::f64::consts::FRAC_PI_2,
+    );
+    let cylinder = Primitive::Cylinder { radius: r, length };
+    for d in [0.0, 0.02, 0.04] {
+        let (x, y) = cut_extent(cylinder.clone(), lying, 0.0, h - d);
+        // The 32-gon's vertices lie on the circle: its width at a chord is within
+        // r (1 - cos(pi / 32)) of the circle's.
+        let chord = 2.0 * (r * r - d * d).sqrt();
+        assert!((y - chord).abs() < 2e-3, "d {d}: {y} against {chord}");
+        assert!((x - length).abs() < 1e-9, "{x}");
+    }
+    // Missed entirely.
+    let (x, _) = cut_extent(cylinder, lying, 0.0, h - r - 1e-3);
+    assert!(x <= 0.0, "a cut below the cylinder has points: {x}");
+
+    let (a, alpha, t) = (0.05_f64, 0.3_f64, 0.01);
+    let tilted = Isometry3::new(Vector3::new(0.0, 0.0, h), Vector3::y() * alpha);
+    let (x, y) = cut_extent(
+        Primitive::Box {
+            size: Vector3::repeat(2.0 * a),
+        },
+        tilted,
+        h - t,
+        h + t,
+    );
+    let expected = 2.0 * (a + t * alpha.sin()) / alpha.cos();
+    assert!((x - expected).abs() < 1e-9, "{x} against {expected}");
+    assert!((y - 2.0 * a).abs() < 1e-9, "{y}");
+
+    let (x, y) = cut_extent(
+        Primitive::Sphere { radius: r },
+        Isometry3::translation(0.0, 0.0, h),
+        0.0,
+        h - 0.03,
+    );
+    let disc = 2.0 * (r * r - 0.03_f64.powi(2)).sqrt();
+    assert!(
+        (x - disc).abs() < 1e-9 && (y - disc).abs() < 2e-3 * disc,
+        "{x} {y} {disc}"
+    );
+}
+
+/// A link box, 4 cm x 4 cm x 4 cm, at `xyz` turned by `yaw` about z.
+fn link_at(xyz: [f64; 3], yaw: f64) -> nalgebra::Isometry3<f64> {
+    nalgebra::Isometry3::new(
+        nalgebra::Vector3::new(xyz[0], xyz[1], xyz[2]),
+        nalgebra::Vector3::z() * yaw,
+    )
+}
+
+fn cube_link() -> Vec<pushplan::robot::chain::Link> {
+    vec![pushplan::robot::chain::Link {
+        name: "cube".into(),
+        joint: None,
+        geometry: vec![pushplan::collision::Geometry::new(
+            &pushplan::collision::Primitive::Box {
+                size: nalgebra::Vector3::repeat(0.04),
+            },
+            nalgebra::Isometry3::identity(),
+        )
+        .unwrap()],
+    }]
+}
+
+/// A link moving in the plane sweeps exactly: the cut's frame turns by the link's turn and
+/// its centroid follows the link's motion (closed form: a rotation about the link's axis).
+#[test]
+fn a_link_moving_in_the_plane_sweeps_with_its_motion() {
+    use pushplan::semi_dynamic::Sweeps;
+    let sweeps = Sweeps::new(&[0.2], 0.0);
+    let (from, to) = (
+        link_at([0.3, 0.1, 0.05], 0.2),
+        link_at([0.35, 0.12, 0.05], 0.5),
+    );
+    let mut out = Vec::new();
+    sweeps.sweeps(&cube_link(), &[from], &[to], &mut out);
+    assert_eq!(out.len(), 1);
+    let sweep = &out[0];
+    assert!((sweep.to.theta - 0.3).abs() < 1e-12, "{:?}", sweep.to);
+    // The cube's centroid is its frame's origin.
+    assert!((sweep.from.x - 0.3).abs() < 1e-12 && (sweep.from.y - 0.1).abs() < 1e-12);
+    assert!((sweep.to.x - 0.35).abs() < 1e-12 && (sweep.to.y - 0.12).abs() < 1e-12);
+}
+
+/// Objects of different heights are told apart: a link passing 8-12 cm above the table
+/// sweeps over a 5 cm can and pushes a 20 cm bottle; its contact force is reported.
+#[test]
+fn a_link_above_a_short_object_pushes_only_the_tall_one() {
+    use pushplan::semi_dynamic::{Sweeps, Transition};
+    let top = 0.7;
+    let heights = [0.05, 0.2];
+    let sweeps = Sweeps::new(&heights, top);
+    assert_eq!(sweeps.object_classes(), &[0, 1]);
+    let bodies = [body(0.4), body(0.4)];
+    let transition = Transition::new(
+        &bodies,
+        sweeps.object_classes(),
+        &[],
+        RestSettings::default(),
+    )
+    .unwrap();
+    // The short can in the link's path at y = 0, the bottle at y = 0.3.
+    let objects = [Pose2::new(0.2, 0.0, 0.0), Pose2::new(0.2, 0.3, 0.0)];
+    let mut poses = objects.to_vec();
+    let mut pushed = Vec::new();
+    // The link drives along x through both rows: at y = 0 first, then at y = 0.3.
+    for y in [0.0, 0.3] {
+        for k in 0..40 {
+            let x = 0.05 + 0.01 * k as f64;
+            let mut out = Vec::new();
+            sweeps.sweeps(
+                &cube_link(),
+                &[link_at([x, y, top + 0.1], 0.0)],
+                &[link_at([x + 0.01, y, top + 0.1], 0.0)],
+                &mut out,
+            );
+            // Cut only for the bottle's class: the cube's bottom is 8 cm up.
+            assert!(out.iter().all(|s| s.class == 1), "{}", out.len());
+            let rest = transition.step(&poses, &out, 0.05, false).unwrap();
+            pushed.extend(rest.pushes.iter().map(|p| p.object));
+            poses = rest.poses;
+        }
+    }
+    assert_eq!(poses[0], objects[0], "the can under the link moved");
+    assert!(
+        poses[1].x > 0.4,
+        "the bottle was not pushed: {:?}",
+        poses[1]
+    );
+    assert!(
+        !pushed.is_empty() && pushed.iter().all(|&o| o == 1),
+        "{pushed:?}"
+    );
+}
+
+/// The arm pushes in the semi-dynamic world: driving the hand along -y from its start
+/// over the green box moves the box, the pushing links are reported with a positive
+/// force, and the state stays valid in 3D.
+#[test]
+fn the_arm_pushes_in_the_semi_dynamic_world() {
+    use pushplan::{EeAction, Propagator};
+    let scene = pushplan::Scene::load("scenes/workshop/arm_1.yaml").unwrap();
+    let start = scene.start.objects[0];
+    let run =
+        Propagator::new(&scene).propagate(&scene.start, &EeAction::planar(0.0, -0.2, 0.0), 2.5);
+    let moved = run.state.objects[0];
+    assert!(
+        (moved.translation() - start.translation()).norm() > 0.05,
+        "the green box stayed at {moved:?} (stopped by {:?})",
+        run.stopped_by
+    );
+    let pushes: Vec<_> = run.contacts.iter().flatten().collect();
+    assert!(!pushes.is_empty(), "no contact reported");
+    assert!(
+        pushes.iter().all(|c| c.force > 0.0 && c.object == 0),
+        "{pushes:?}"
+    );
+}
+
+/// A semi-dynamic plan is executed at its own pace: the hand drives at 0.5 m/s for its
+/// 0.36 s, the trajectory holds the arm still while the struck box coasts on ice, and it
+/// lasts the push plus the box's Coulomb stopping time v / (mu_g g).
+#[test]
+fn a_semi_dynamic_trajectory_keeps_the_plans_pace_and_waits_for_rest() {
+    use pushplan::path::PathControl;
+    use pushplan::EeAction;
+    let scene = hand_scene("{model: semi_dynamic, object_clearance: 0}", 0.05);
+    let controls = [PathControl {
+        action: EeAction::planar(0.5, 0.0, 0.0),
+        steps: 36,
+    }];
+    let problem =
+        pushplan::planner::Problem::new(scene.clone(), pushplan::planner::PlannerKind::PcRrt);
+    let trajectory = problem.trajectory(&controls).unwrap();
+    let end = *trajectory.times.last().unwrap();
+    let stopping = 0.5 / (0.05 * G);
+    assert!(
+        (end - (0.36 + stopping)).abs() < 0.05,
+        "lasts {end} s; the push and the coasting take {} s",
+        0.36 + stopping
+    );
+    // At the plan's pace while the hand moves: 0.1 m in the first 0.2 s.
+    let at = trajectory
+        .times
+        .iter()
+        .position(|t| (t - 0.2).abs() < 1e-9)
+        .unwrap();
+    let hand = trajectory.q[at][0] - trajectory.q[0][0];
+    assert!(
+        (hand - 0.1).abs() < 1e-6,
+        "the hand moved {hand} m in 0.2 s"
+    );
+    // Samples where the arm holds still and the box slides.
+    let coasting = trajectory
+        .q
+        .windows(2)
+        .zip(trajectory.objects.windows(2))
+        .filter(|(q, o)| q[0] == q[1] && o[0][0][0] != o[1][0][0])
+        .count();
+    assert!(
+        coasting as f64 / trajectory.rate > 0.8 * stopping,
+        "{coasting} samples of coasting with the arm still"
+    );
+    let path = problem.simulate(&controls, false);
+    let last = trajectory.objects.last().unwrap()[0];
+    let planned = path.final_state().objects[0];
+    assert_eq!([planned.x, planned.y, planned.theta], last);
 }

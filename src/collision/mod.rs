@@ -6,5 +6,6 @@
 
 pub mod geometry;
 pub mod query;
+pub mod section;
 
 pub use geometry::{Geometry, Primitive};

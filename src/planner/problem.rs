@@ -115,6 +115,6 @@ impl Problem {
         if let Some((i, reason)) = &path.stopped_by {
             return Err(format!("the plan does not simulate: control {i}: {reason}"));
         }
-        Ok(executable(&self.scene, controls, &path.step_states))
+        executable(&self.scene, controls, &path.step_states)
     }
 }

@@ -2,7 +2,9 @@
 //! timeline, and a self-contained HTML animation.
 //!
 //! The renderer re-simulates the plan from its file, recording every step, so it draws
-//! exactly what the model predicts. Times are plan time: step index x the propagation step.
+//! exactly what the model predicts. Times are plan time: step index x the propagation step;
+//! under the semi-dynamic model, the plan at its pace with the objects coasting to rest
+//! after every step, in frames one propagation step apart.
 
 mod html;
 pub mod outline;
@@ -10,8 +12,10 @@ mod svg;
 
 use crate::plan::PlanFile;
 use crate::planner::Problem;
+use crate::scene::file::PhysicsModel;
 use crate::scene::{Goal, Scene};
 use crate::state::State;
+use crate::trajectory::paced;
 use nalgebra::Vector2;
 use outline::{footprint_outline, shape_outline};
 use std::path::{Path, PathBuf};
@@ -54,14 +58,35 @@ impl Film {
         for c in &plan.controls {
             control_starts.push(control_starts.last().unwrap() + c.steps);
         }
+        let dt = scene.planner.step;
+        let contacts: Vec<Vec<(usize, usize)>> = path
+            .contacts
+            .iter()
+            .flatten()
+            .map(|s| s.iter().map(|p| (p.link, p.object)).collect())
+            .collect();
+        if scene.physics.model == PhysicsModel::SemiDynamic {
+            // Objects coast after each step: frames every `dt` of the plan at its pace.
+            let paced = paced(&scene, &path.step_states, 1.0 / dt)?;
+            return Ok(Film {
+                dt,
+                contacts: paced.steps[1..]
+                    .iter()
+                    .map(|&s| contacts.get(s).cloned().unwrap_or_default())
+                    .collect(),
+                control_starts: control_starts
+                    .iter()
+                    .map(|&s| (paced.step_starts[s] / dt).round() as usize)
+                    .map(|k| k.min(paced.states.len() - 1))
+                    .collect(),
+                states: paced.states,
+                scene,
+                executed: Vec::new(),
+            });
+        }
         Ok(Film {
-            dt: scene.planner.step,
-            contacts: path
-                .contacts
-                .iter()
-                .flatten()
-                .map(|s| s.iter().map(|p| (p.link, p.object)).collect())
-                .collect(),
+            dt,
+            contacts,
             states: path.step_states,
             control_starts,
             scene,

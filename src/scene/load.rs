@@ -305,12 +305,6 @@ impl Loader<'_> {
             ..ProjectionSettings::default()
         };
         let (mut robot, q) = self.robot(&spec.robot, &table, &planner, &settings)?;
-        if physics.model == PhysicsModel::SemiDynamic && robot.kind != RobotKind::PlanarHand {
-            return Err(self.invalid(
-                "physics.model",
-                "semi_dynamic needs robot.type: planar_hand (the arm's pushing cross-sections come later)",
-            ));
-        }
         let allowed = self.allowed_collisions(&spec, &mut robot, &obstacles)?;
         let goal = self.goal(&spec.goal, &objects, &table, robot.dof())?;
         if let Goal::Configuration { q, .. } = &goal {

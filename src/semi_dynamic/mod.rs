@@ -13,8 +13,11 @@
 //! Half the step's friction acts before the engine's step and half after, so positions
 //! integrate the mid-step velocity (exact for a constant deceleration).
 //!
-//! Obstacles are fixed outlines: what an obstacle covers of the objects' height range, seen
-//! from above.
+//! Pushers are kinematic bodies: the planar hand's outline, or each arm link's cut at the
+//! objects' heights ([`sweep`]). Objects of different heights are kept in height classes,
+//! and a link's cut for a class meets only that class's objects, so that a forearm above a
+//! short can still pushes a tall bottle. Obstacles are fixed outlines: what an obstacle
+//! covers of the objects' height range, seen from above.
 //!
 //! Frames: world x, y on the table (m); yaw about world z (rad).
 
@@ -23,6 +26,9 @@ use crate::physics::limit_surface::GRAVITY;
 use crate::physics::Footprint;
 use nalgebra::{Isometry2, Point2, Vector2};
 use rapier2d_f64::prelude::*;
+
+pub mod sweep;
+pub use sweep::{Sweep, Sweeps};
 
 /// Engine step (s).
 pub const STEP: f64 = 1.0 / 240.0;
@@ -122,9 +128,30 @@ pub struct World {
     multibody_joints: MultibodyJointSet,
     ccd: CCDSolver,
     objects: Vec<(RigidBodyHandle, Support)>,
-    pusher: Option<RigidBodyHandle>,
+    /// Kinematic pushers and their colliders.
+    pushers: Vec<(RigidBodyHandle, ColliderHandle)>,
+    /// Normal impulse (N s) each pusher has given each object so far, `[pusher][object]`.
+    impulses: Vec<Vec<f64>>,
+    /// Every step's time and object poses, when recording ([`World::record`]).
+    trace: Option<Vec<TracePoint>>,
     /// Seconds simulated.
     time: f64,
+}
+
+/// The objects' poses at a time (s since the world was built).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TracePoint {
+    pub time: f64,
+    pub poses: Vec<Pose2>,
+}
+
+/// A pusher to put in a world: its collider's shape (in its frame), its pose, its contact
+/// friction, and the height class of the objects it meets (`None`: every object).
+struct PusherBody {
+    shape: SharedShape,
+    pose: Pose2,
+    mu_c: f64,
+    class: Option<usize>,
 }
 
 /// A footprint as a 2D collider shape.
@@ -145,9 +172,37 @@ fn isometry(pose: &Pose2) -> Isometry2<f64> {
     Isometry2::new(Vector2::new(pose.x, pose.y), pose.theta)
 }
 
+fn pose2(isometry: &Isometry2<f64>) -> Pose2 {
+    Pose2::new(
+        isometry.translation.x,
+        isometry.translation.y,
+        isometry.rotation.angle(),
+    )
+}
+
+/// Interaction groups: an object of height class `c` is in group `c` and meets everything;
+/// a pusher of class `c` meets group `c` only. Pushers and fixed obstacles never meet
+/// (rapier skips kinematic-fixed pairs).
+fn object_groups(class: usize) -> InteractionGroups {
+    InteractionGroups::new(Group::from_bits_retain(1 << class), Group::ALL)
+}
+
+fn pusher_groups(class: Option<usize>) -> InteractionGroups {
+    match class {
+        Some(c) => InteractionGroups::new(
+            Group::from_bits_retain(1 << c),
+            Group::from_bits_retain(1 << c),
+        ),
+        None => InteractionGroups::all(),
+    }
+}
+
+/// Height classes a world tells apart (rapier's interaction groups have 32 bits).
+pub const MAX_CLASSES: usize = 32;
+
 impl World {
-    /// Objects at `poses`, and a pusher of footprint `pusher` at its pose, if any.
-    /// `None` if a footprint has no area.
+    /// Objects at `poses`, and a pusher of footprint `pusher` at its pose with its
+    /// contact friction, if any. `None` if a footprint has no area.
     pub fn new(
         objects: &[(Body, Pose2)],
         pusher: Option<(&Footprint, Pose2, f64)>,
@@ -156,25 +211,33 @@ impl World {
             .iter()
             .map(|(body, _)| Solid::of(body))
             .collect::<Option<Vec<_>>>()?;
-        let pusher = match pusher {
-            Some((footprint, pose, mu_c)) => Some((shape(footprint)?, pose, mu_c)),
-            None => None,
+        let pushers = match pusher {
+            Some((footprint, pose, mu_c)) => vec![PusherBody {
+                shape: shape(footprint)?,
+                pose,
+                mu_c,
+                class: None,
+            }],
+            None => vec![],
         };
         Some(World::build(
-            solids.iter().zip(objects.iter().map(|(_, pose)| pose)),
-            pusher,
+            solids
+                .iter()
+                .zip(objects.iter().map(|(_, pose)| pose))
+                .map(|(solid, pose)| (solid, pose, 0)),
+            pushers,
         ))
     }
 
-    /// The world of solids at their poses and a pusher (its shape, pose and friction).
+    /// The world of solids at their poses (with their height classes) and pushers.
     fn build<'a>(
-        objects: impl Iterator<Item = (&'a Solid, &'a Pose2)>,
-        pusher: Option<(SharedShape, Pose2, f64)>,
+        objects: impl Iterator<Item = (&'a Solid, &'a Pose2, usize)>,
+        pushers: Vec<PusherBody>,
     ) -> World {
         let mut bodies = RigidBodySet::new();
         let mut colliders = ColliderSet::new();
         let mut handles = Vec::new();
-        for (solid, pose) in objects {
+        for (i, (solid, pose, class)) in objects.enumerate() {
             let handle = bodies.insert(
                 RigidBodyBuilder::dynamic()
                     .pose(isometry(pose))
@@ -183,7 +246,9 @@ impl World {
             let collider = ColliderBuilder::new(solid.shape.clone())
                 .mass(solid.mass)
                 .friction(solid.mu_c)
-                .restitution(0.0);
+                .restitution(0.0)
+                .collision_groups(object_groups(class))
+                .user_data(i as u128 + 1);
             colliders.insert_with_parent(collider, handle, &mut bodies);
             let inertia = bodies[handle]
                 .mass_properties()
@@ -199,16 +264,21 @@ impl World {
                 },
             ));
         }
-        let pusher = pusher.map(|(shape, pose, mu_c)| {
-            let handle =
-                bodies.insert(RigidBodyBuilder::kinematic_position_based().pose(isometry(&pose)));
-            let collider = ColliderBuilder::new(shape)
-                .friction(mu_c)
-                .friction_combine_rule(CoefficientCombineRule::Max)
-                .restitution(0.0);
-            colliders.insert_with_parent(collider, handle, &mut bodies);
-            handle
-        });
+        let pushers: Vec<_> = pushers
+            .into_iter()
+            .map(|p| {
+                let handle = bodies
+                    .insert(RigidBodyBuilder::kinematic_position_based().pose(isometry(&p.pose)));
+                // The larger of the pusher's and each object's contact friction.
+                let collider = ColliderBuilder::new(p.shape)
+                    .friction(p.mu_c)
+                    .friction_combine_rule(CoefficientCombineRule::Max)
+                    .restitution(0.0)
+                    .collision_groups(pusher_groups(p.class));
+                let collider = colliders.insert_with_parent(collider, handle, &mut bodies);
+                (handle, collider)
+            })
+            .collect();
         World {
             pipeline: PhysicsPipeline::new(),
             params: IntegrationParameters {
@@ -218,13 +288,15 @@ impl World {
             islands: IslandManager::new(),
             broad_phase: BroadPhaseBvh::new(),
             narrow_phase: NarrowPhase::new(),
+            impulses: vec![vec![0.0; handles.len()]; pushers.len()],
             bodies,
             colliders,
             impulse_joints: ImpulseJointSet::new(),
             multibody_joints: MultibodyJointSet::new(),
             ccd: CCDSolver::new(),
             objects: handles,
-            pusher,
+            pushers,
+            trace: None,
             time: 0.0,
         }
     }
@@ -244,34 +316,54 @@ impl World {
         self.colliders.insert(collider);
     }
 
-    /// Moves the pusher at `velocity` for `duration` seconds, then holds it still.
+    /// From now on, records the objects' poses after every step ([`World::trace`]), and
+    /// now.
+    pub fn record(&mut self) {
+        self.trace = Some(vec![self.trace_point()]);
+    }
+
+    /// The recorded poses (empty unless [`World::record`] was called).
+    pub fn trace(&self) -> &[TracePoint] {
+        self.trace.as_deref().unwrap_or(&[])
+    }
+
+    fn trace_point(&self) -> TracePoint {
+        TracePoint {
+            time: self.time,
+            poses: (0..self.objects.len()).map(|i| self.pose(i)).collect(),
+        }
+    }
+
+    /// Moves the (first) pusher at `velocity` for `duration` seconds, then holds it still.
     pub fn push(&mut self, velocity: PusherVelocity, duration: f64) {
-        let Some(pusher) = self.pusher else { return };
-        let p = self.bodies[pusher].position();
-        let from = Pose2::new(p.translation.x, p.translation.y, p.rotation.angle());
+        let Some(&(pusher, _)) = self.pushers.first() else {
+            return;
+        };
+        let from = pose2(self.bodies[pusher].position());
         let to = Pose2::new(
             from.x + velocity.vx * duration,
             from.y + velocity.vy * duration,
             from.theta + velocity.omega * duration,
         );
-        self.move_pusher(&from, &to, duration);
+        self.move_pushers(&[(from, to)], duration);
     }
 
-    /// Moves the pusher from `from` to `to` (its yaw unwrapped) at constant speed over
-    /// `duration` seconds, ending exactly at `to`: in engine steps of at most [`STEP`]
-    /// that divide the duration, so that the pusher's speed is the one asked for.
-    pub fn move_pusher(&mut self, from: &Pose2, to: &Pose2, duration: f64) {
-        let Some(pusher) = self.pusher else { return };
+    /// Moves each pusher from its `from` to its `to` (yaw unwrapped) at constant speed
+    /// over `duration` seconds, ending exactly at `to`: in engine steps of at most
+    /// [`STEP`] that divide the duration, so that every pusher has the speed asked for.
+    pub fn move_pushers(&mut self, motions: &[(Pose2, Pose2)], duration: f64) {
         let steps = (duration / STEP).ceil().max(1.0) as usize;
         self.params.dt = duration / steps as f64;
         for k in 1..=steps {
             let f = k as f64 / steps as f64;
-            let at = Pose2::new(
-                from.x + f * (to.x - from.x),
-                from.y + f * (to.y - from.y),
-                from.theta + f * (to.theta - from.theta),
-            );
-            self.bodies[pusher].set_next_kinematic_position(isometry(&at));
+            for (&(pusher, _), (from, to)) in self.pushers.iter().zip(motions) {
+                let at = Pose2::new(
+                    from.x + f * (to.x - from.x),
+                    from.y + f * (to.y - from.y),
+                    from.theta + f * (to.theta - from.theta),
+                );
+                self.bodies[pusher].set_next_kinematic_position(isometry(&at));
+            }
             self.step();
         }
         self.params.dt = STEP;
@@ -304,7 +396,7 @@ impl World {
         }
     }
 
-    /// Advances the world by one engine step ([`STEP`], or less while the pusher moves),
+    /// Advances the world by one engine step ([`STEP`], or less while pushers move),
     /// support friction acting half before and half after it.
     pub fn step(&mut self) {
         let dt = self.params.dt;
@@ -325,6 +417,30 @@ impl World {
         );
         self.support_friction(dt / 2.0);
         self.time += dt;
+        self.add_pusher_impulses();
+        if let Some(mut trace) = self.trace.take() {
+            trace.push(self.trace_point());
+            self.trace = Some(trace);
+        }
+    }
+
+    /// Adds this step's normal impulses between pushers and objects.
+    fn add_pusher_impulses(&mut self) {
+        for (p, &(_, collider)) in self.pushers.iter().enumerate() {
+            for pair in self.narrow_phase.contact_pairs_with(collider) {
+                let other = if pair.collider1 == collider {
+                    pair.collider2
+                } else {
+                    pair.collider1
+                };
+                let Some(object) = self.colliders.get(other).map(|c| c.user_data) else {
+                    continue;
+                };
+                if object > 0 {
+                    self.impulses[p][object as usize - 1] += pair.total_impulse_magnitude();
+                }
+            }
+        }
     }
 
     /// Removes `dt` seconds' worth of the support's friction from every object's velocity.
@@ -363,8 +479,12 @@ impl World {
 
     /// Object `i`'s pose.
     pub fn pose(&self, i: usize) -> Pose2 {
-        let p = self.bodies[self.objects[i].0].position();
-        Pose2::new(p.translation.x, p.translation.y, p.rotation.angle())
+        pose2(self.bodies[self.objects[i].0].position())
+    }
+
+    /// The normal impulse (N s) pusher `p` has given object `i` so far.
+    pub fn impulse(&self, p: usize, i: usize) -> f64 {
+        self.impulses[p][i]
     }
 
     /// Seconds simulated so far.
@@ -373,58 +493,118 @@ impl World {
     }
 }
 
-/// The semi-dynamic transition of a scene's objects under a planar pusher: the world is
+/// A pusher pressing on an object during a transition.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Push {
+    /// Index of the [`Sweep`] that pushed.
+    pub pusher: usize,
+    pub object: usize,
+    /// Normal impulse over the whole transition (N s).
+    pub impulse: f64,
+}
+
+/// Where a transition leaves the objects.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rest {
+    /// The objects' poses at rest.
+    pub poses: Vec<Pose2>,
+    /// How long they took to come to rest after the pushers stopped (s).
+    pub settle_time: f64,
+    /// Which pushers pressed on which objects.
+    pub pushes: Vec<Push>,
+    /// The objects' poses at every engine step (when asked for), from the start.
+    pub trace: Vec<TracePoint>,
+}
+
+/// The semi-dynamic transition of a scene's objects under kinematic pushers: the world is
 /// rebuilt from the state for every step (so a step from a stored state is reproduced
-/// exactly), the pusher moves, and the objects come to rest.
+/// exactly), the pushers move, and the objects come to rest.
 #[derive(Clone)]
 pub struct Transition {
     solids: Vec<Solid>,
-    pusher: SharedShape,
+    /// Each object's height class (see [`Sweeps`]).
+    classes: Vec<usize>,
     /// Obstacles' outlines in the world, as fixed shapes.
     obstacles: Vec<SharedShape>,
     rest: RestSettings,
 }
 
 impl Transition {
-    /// The scene's objects as bodies, the pusher's footprint (in its link frame) and the
-    /// outlines of the obstacles the objects can meet (world frame; one without area is
-    /// left out). `None` if a body's or the pusher's footprint has no area.
+    /// The scene's objects as bodies with their height classes (below [`MAX_CLASSES`]),
+    /// and the outlines of the obstacles the objects can meet (world frame; one without
+    /// area is left out). `None` if a body's footprint has no area.
     pub fn new(
         bodies: &[Body],
-        pusher: &Footprint,
+        classes: &[usize],
         obstacles: &[Vec<Vector2<f64>>],
         rest: RestSettings,
     ) -> Option<Transition> {
         Some(Transition {
             solids: bodies.iter().map(Solid::of).collect::<Option<_>>()?,
-            pusher: shape(pusher)?,
+            classes: classes.to_vec(),
             obstacles: obstacles.iter().filter_map(|o| hull(o)).collect(),
             rest,
         })
     }
 
-    /// The objects' poses after the pusher moves from `from` to `to` in `dt` seconds and
-    /// everything comes to rest, or the object still moving at `t_max`.
+    /// The objects' poses after the pushers sweep for `dt` seconds and everything comes
+    /// to rest, or the object still moving at `t_max`. With `record`, the poses at every
+    /// engine step too.
     pub fn step(
         &self,
         objects: &[Pose2],
-        from: &Pose2,
-        to: &Pose2,
+        sweeps: &[Sweep],
         dt: f64,
-    ) -> Result<Vec<Pose2>, Unsettled> {
-        // The pusher's friction combines as the larger with each object's mu_c: an
+        record: bool,
+    ) -> Result<Rest, Unsettled> {
+        // The pushers' friction combines as the larger with each object's mu_c: an
         // object's contact friction is the object's.
-        let mut world = World::build(
-            self.solids.iter().zip(objects),
-            Some((self.pusher.clone(), *from, 0.0)),
-        );
+        let pushers = sweeps
+            .iter()
+            .map(|s| PusherBody {
+                shape: s.shape.clone(),
+                pose: s.from,
+                mu_c: 0.0,
+                class: Some(s.class),
+            })
+            .collect();
+        let objects_in = self
+            .solids
+            .iter()
+            .zip(objects)
+            .zip(&self.classes)
+            .map(|((solid, pose), &class)| (solid, pose, class));
+        let mut world = World::build(objects_in, pushers);
         for obstacle in &self.obstacles {
             world.add_fixed(obstacle.clone());
         }
-        let mut to = *to;
-        to.theta = from.theta + crate::math::wrap_angle(to.theta - from.theta);
-        world.move_pusher(from, &to, dt);
-        world.settle(&self.rest)?;
-        Ok((0..objects.len()).map(|i| world.pose(i)).collect())
+        if record {
+            world.record();
+        }
+        let motions: Vec<(Pose2, Pose2)> = sweeps
+            .iter()
+            .map(|s| {
+                let mut to = s.to;
+                to.theta = s.from.theta + crate::math::wrap_angle(s.to.theta - s.from.theta);
+                (s.from, to)
+            })
+            .collect();
+        world.move_pushers(&motions, dt);
+        let settle_time = world.settle(&self.rest)?;
+        let pushes = (0..sweeps.len())
+            .flat_map(|p| (0..objects.len()).map(move |i| (p, i)))
+            .filter(|&(p, i)| world.impulse(p, i) > 0.0)
+            .map(|(pusher, object)| Push {
+                pusher,
+                object,
+                impulse: world.impulse(pusher, object),
+            })
+            .collect();
+        Ok(Rest {
+            poses: (0..objects.len()).map(|i| world.pose(i)).collect(),
+            settle_time,
+            pushes,
+            trace: world.trace.take().unwrap_or_default(),
+        })
     }
 }
