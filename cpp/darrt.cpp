@@ -31,82 +31,6 @@ namespace pushplan::detail
             return rust::Slice<const double>(data, size);
         }
 
-        /// The full state `context` with its joints replaced by an arm-space state's.
-        void withJoints(const ob::State *arm, std::size_t dof, FlatState &context)
-        {
-            const double *q = arm->as<ob::RealVectorStateSpace::StateType>()->values;
-            std::copy(q, q + dof, context.begin());
-        }
-
-        /// Arm-space states are valid when the full state (objects where they are) is.
-        class ArmValidity : public ob::StateValidityChecker
-        {
-        public:
-            ArmValidity(const ob::SpaceInformationPtr &si, ModelHandlePtr model, std::shared_ptr<FlatState> context)
-              : ob::StateValidityChecker(si), model_(std::move(model)), context_(std::move(context))
-            {
-            }
-            bool isValid(const ob::State *state) const override
-            {
-                withJoints(state, model_->info().dof, *context_);
-                return model_->model().is_valid(slice(*context_), {});
-            }
-
-        private:
-            ModelHandlePtr model_;
-            std::shared_ptr<FlatState> context_;
-        };
-
-        /// Arm-space motions are Transit lines, checked by the model at its resolution.
-        class TransitMotions : public ob::MotionValidator
-        {
-        public:
-            TransitMotions(const ob::SpaceInformationPtr &si, ModelHandlePtr model, std::shared_ptr<FlatState> context)
-              : ob::MotionValidator(si), model_(std::move(model)), context_(std::move(context))
-            {
-            }
-            bool checkMotion(const ob::State *s1, const ob::State *s2) const override
-            {
-                const std::size_t dof = model_->info().dof;
-                from_ = *context_;
-                to_ = *context_;
-                withJoints(s1, dof, from_);
-                withJoints(s2, dof, to_);
-                const bool valid = model_->model().darrt_transit(slice(from_), slice(to_));
-                (valid ? valid_ : invalid_)++;
-                return valid;
-            }
-            // RRT-Connect asks only the two-state form; the last valid state is not
-            // located, so the answer is the (conservative) start of the motion.
-            bool checkMotion(const ob::State *s1, const ob::State *s2,
-                             std::pair<ob::State *, double> &last_valid) const override
-            {
-                if (checkMotion(s1, s2))
-                    return true;
-                if (last_valid.first != nullptr)
-                    si_->copyState(last_valid.first, s1);
-                last_valid.second = 0.0;
-                return false;
-            }
-
-        private:
-            ModelHandlePtr model_;
-            std::shared_ptr<FlatState> context_;
-            mutable FlatState from_, to_;
-        };
-
-        /// Uniform joint samples from a given seed (OMPL's default draws from the global
-        /// seed sequence).
-        class SeededJointSampler : public ob::RealVectorStateSampler
-        {
-        public:
-            SeededJointSampler(const ob::StateSpace *space, std::uint_fast32_t seed)
-              : ob::RealVectorStateSampler(space)
-            {
-                rng_.setLocalSeed(seed);
-            }
-        };
-
         class SeededRRTConnect : public og::RRTConnect
         {
         public:
@@ -152,42 +76,22 @@ namespace pushplan::detail
     }
 
     ArmTransit::ArmTransit(ModelHandlePtr model, double time_cap)
-      : model_(std::move(model)), context_(std::make_shared<FlatState>(model_->stateSize())), time_cap_(time_cap)
+      : model_(model), space_(std::move(model)), time_cap_(time_cap)
     {
-        const bridge::SceneInfo &info = model_->info();
-        auto space = std::make_shared<ob::RealVectorStateSpace>(info.dof);
-        ob::RealVectorBounds bounds(info.dof);
-        for (std::size_t i = 0; i < info.dof; ++i)
-        {
-            bounds.setLow(i, info.joint_lower[i]);
-            bounds.setHigh(i, info.joint_upper[i]);
-        }
-        space->setBounds(bounds);
-        std::uint_fast32_t *counter = &sampler_seed_;
-        space->setStateSamplerAllocator([counter](const ob::StateSpace *s) {
-            return std::make_shared<SeededJointSampler>(s, (*counter)++);
-        });
-        si_ = std::make_shared<ob::SpaceInformation>(space);
-        si_->setStateValidityChecker(std::make_shared<ArmValidity>(si_, model_, context_));
-        si_->setMotionValidator(std::make_shared<TransitMotions>(si_, model_, context_));
-        si_->setup();
     }
 
     bool ArmTransit::plan(const FlatState &from, const FlatState &to, const ob::PlannerTerminationCondition &ptc,
                           std::uint_fast32_t seed, std::vector<FlatState> &motion)
     {
-        const std::size_t dof = model_->info().dof;
-        *context_ = from;
-        sampler_seed_ = subSeed(seed, 1);
-        ob::ScopedState<> start(si_), goal(si_);
-        for (std::size_t i = 0; i < dof; ++i)
-        {
-            start[i] = from[i];
-            goal[i] = to[i];
-        }
-        auto pdef = std::make_shared<ob::ProblemDefinition>(si_);
+        space_.context() = from;
+        space_.seedSamplers(subSeed(seed, 1));
+        const ob::SpaceInformationPtr &si = space_.si();
+        ob::ScopedState<> start(si), goal(si);
+        space_.toArm(from, start.get());
+        space_.toArm(to, goal.get());
+        auto pdef = std::make_shared<ob::ProblemDefinition>(si);
         pdef->setStartAndGoalStates(start, goal);
-        auto planner = std::make_shared<SeededRRTConnect>(si_, subSeed(seed, 0));
+        auto planner = std::make_shared<SeededRRTConnect>(si, subSeed(seed, 0));
         planner->setProblemDefinition(pdef);
         planner->setup();
         const ob::PlannerStatus status =
@@ -198,7 +102,7 @@ namespace pushplan::detail
         for (std::size_t k = 1; k < path.getStateCount(); ++k)
         {
             FlatState waypoint = from;
-            withJoints(path.getState(k), dof, waypoint);
+            space_.withJoints(path.getState(k), waypoint);
             motion.push_back(std::move(waypoint));
         }
         // The goal tree is rooted at the goal itself, so the path ends exactly there.

@@ -2,6 +2,7 @@
 // whose extensions are motion primitives instead of physics-propagated controls.
 #pragma once
 
+#include "arm_space.h"
 #include "model_handle.h"
 
 #include <ompl/base/Planner.h>
@@ -16,9 +17,6 @@
 
 namespace pushplan::detail
 {
-    /// A flat state (the bridge's layout: joints, then x, y, yaw per object).
-    using FlatState = std::vector<double>;
-
     /// A DARRT solution: states joined by Transit motions and Push steps, checked by the
     /// model. Its controls are placeholders (zero, one propagation step each) because a
     /// caged object follows the hand by assumption, not by the pushing model: `check()`
@@ -55,11 +53,8 @@ namespace pushplan::detail
 
     private:
         ModelHandlePtr model_;
-        ompl::base::SpaceInformationPtr si_;
-        /// The full state whose joints the arm space's states replace (objects fixed).
-        std::shared_ptr<FlatState> context_;
+        ArmSpace space_;
         double time_cap_;
-        std::uint_fast32_t sampler_seed_ = 0;
     };
 
     /// DARRT with three primitives (Transit, RRTTransit, Push). Each iteration samples,

@@ -26,14 +26,6 @@ namespace pushplan
 {
     namespace detail
     {
-        template <typename T>
-        T checked(const char *name, T value, bool ok)
-        {
-            if (!ok)
-                throw Error(std::string("option ") + name + " is out of range: " + std::to_string(value));
-            return value;
-        }
-
         /// `kind` if it is one of PlannerKind's values: an integer cast to the enum must not
         /// reach Rust, where an unknown discriminant is undefined behaviour.
         PlannerKind checkedKind(PlannerKind kind)

@@ -12,6 +12,15 @@ namespace pushplan
 {
     namespace detail
     {
+        /// `value` if `ok`, else an error naming the option.
+        template <typename T>
+        T checked(const char *name, T value, bool ok)
+        {
+            if (!ok)
+                throw Error(std::string("option ") + name + " is out of range: " + std::to_string(value));
+            return value;
+        }
+
         /// Runs `f`; an error of the model (rust::Error) or of OMPL (std::exception)
         /// leaves as pushplan::Error, the one exception type the API promises.
         template <typename F>

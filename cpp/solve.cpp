@@ -70,4 +70,30 @@ namespace pushplan::bridge
         }
         return out;
     }
+
+    ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from_q,
+                      rust::Slice<const double> from_objects, const ReachOptions &options)
+    {
+        const Planner planner{std::string(scene_path)};
+        pushplan::ReachOptions o;
+        o.time_limit = options.time_limit;
+        o.seed = options.seed;
+        o.sample_probability = options.sample_probability;
+        // A state to reach from is passed as the one state of a plan.
+        Plan after;
+        after.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(from_q.data(), from_q.size()));
+        after.object_poses.emplace_back();
+        for (std::size_t at = 0; at + 3 <= from_objects.size(); at += 3)
+            after.object_poses.back().emplace_back(from_objects[at], from_objects[at + 1], from_objects[at + 2]);
+        const Reach r = planner.reach(std::string(object), o, from_q.empty() ? nullptr : &after);
+        ReachOutput out;
+        out.solved = r.solved;
+        out.planning_time = r.planning_time;
+        out.goal_samples = r.goal_samples;
+        out.tree_size = r.tree_size;
+        for (const auto &q : r.waypoints)
+            for (Eigen::Index i = 0; i < q.size(); ++i)
+                out.waypoints.push_back(q[i]);
+        return out;
+    }
 }  // namespace pushplan::bridge

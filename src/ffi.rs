@@ -7,7 +7,10 @@
 mod convert;
 pub mod entry;
 
-pub use entry::{benchmark_scene, solve, BenchOptions, SearchProgress, SolveOptions, SolveOutput};
+pub use entry::{
+    benchmark_scene, reach, solve, BenchOptions, ReachOptions, ReachOutput, SearchProgress,
+    SolveOptions, SolveOutput,
+};
 
 use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
@@ -184,6 +187,15 @@ pub mod bridge {
         ) -> Result<bool>;
         fn darrt_carry(self: &Model, x: &[f64], object: usize, target: &[f64]) -> Result<Vec<f64>>;
         fn darrt_check(model: &Model, states: &[f64]) -> Result<PrimitiveCheck>;
+        fn graspable_object(self: &Model, name: &str) -> Result<usize>;
+        fn grasp_sample(self: &Model, state: &[f64], object: usize, seed: u64) -> Result<Vec<f64>>;
+        fn grasp_distance(self: &Model, state: &[f64], object: usize) -> Result<f64>;
+        fn check_reach(
+            self: &Model,
+            from: &[f64],
+            object: usize,
+            waypoints: &[f64],
+        ) -> Result<String>;
         type NearestTree;
         fn nearest_tree(model: &Model) -> Box<NearestTree>;
         fn tree_add(tree: &mut NearestTree, state: &[f64]) -> Result<usize>;

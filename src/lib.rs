@@ -30,6 +30,7 @@ pub mod plan;
 pub mod planner;
 pub mod propagate;
 pub mod random;
+pub mod reach;
 pub mod render;
 pub mod robot;
 pub mod robustness;

@@ -80,6 +80,18 @@ enum Command {
         /// (the same seed and thread count give the same plan); default: one per core.
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
         threads: Option<u32>,
+        /// The goal instead of the scene's: `grasp:OBJECT` reaches a grasp of OBJECT (its
+        /// scene `grasps`) with IK-BiRRT, every object a static obstacle, no pushing.
+        #[arg(long, value_name = "grasp:OBJECT")]
+        goal: Option<String>,
+        /// Push, then grasp: after the pushing plan reaches the goal, reach a grasp of the
+        /// goal object where it now is with IK-BiRRT (the plan file holds both).
+        #[arg(long)]
+        grasp: bool,
+        /// IK-BiRRT's P_sample: the probability that an iteration adds inverse-kinematics
+        /// solutions of the grasp regions to the goal tree.
+        #[arg(long, default_value_t = 0.1)]
+        sample_probability: f64,
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is
     /// reached; with --noise, also how often perturbed re-simulations still reach it.
@@ -306,9 +318,15 @@ fn run(command: Command) -> Result<ExitCode, String> {
             robust_shortcut,
             particles,
             threads,
+            goal,
+            grasp,
+            sample_probability,
         } => {
             let scene = scene_or_default(scene)?;
             let options = PlanOptions {
+                grasp_goal: goal.map(|g| pushplan::cli::grasp_goal(&g)).transpose()?,
+                grasp_after: grasp,
+                sample_probability,
                 robust,
                 robust_rate,
                 robust_shortcut,

@@ -75,9 +75,27 @@ pub struct PlanFile {
     /// Robust planning's check of the plan (only when it was asked for).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub robustness: Option<RobustnessRecord>,
+    /// A reach of a grasp after the controls (`plan --goal grasp:OBJECT`, or `--grasp`
+    /// after pushing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reach: Option<ReachRecord>,
     /// Fields this format does not have (an error when read).
     #[serde(flatten, skip_serializing)]
     unknown: std::collections::BTreeMap<String, serde::de::IgnoredAny>,
+}
+
+/// A reach of a grasp (issue 15): IK-BiRRT's path from where the controls leave the arm
+/// to a configuration in a grasp region of the object, every object a static obstacle.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReachRecord {
+    /// The object grasped.
+    pub object: String,
+    /// IK-BiRRT's P_sample.
+    pub sample_probability: f64,
+    /// Joint values, joined by straight lines: the first where the controls end, the
+    /// last in a grasp region.
+    pub waypoints: Vec<Vec<f64>>,
 }
 
 /// The reserves of the validity rules a plan keeps (see the scene's `goal.margin`,
@@ -448,6 +466,7 @@ impl PlanFile {
             controls: records,
             trajectory: executable(scene, controls, &path.step_states)?,
             robustness: None,
+            reach: None,
             unknown: Default::default(),
         })
     }
@@ -470,13 +489,68 @@ impl PlanFile {
     fn rebuilt(&self, scene: Scene) -> Result<PlanFile, String> {
         let mut rebuilt = PlanFile::build(
             &self.scene,
-            scene,
+            scene.clone(),
             &self.settings,
             &self.path_controls(),
             Some(self.metrics.before_shortcut),
         )?;
         rebuilt.robustness.clone_from(&self.robustness);
-        Ok(rebuilt)
+        match &self.reach {
+            Some(reach) => rebuilt.with_reach(&scene, reach.clone()),
+            None => Ok(rebuilt),
+        }
+    }
+
+    /// The state the controls end in.
+    pub fn end_state(&self) -> State {
+        let end = self.controls.last().map_or(&self.start, |c| &c.state);
+        State::from_flat(&end.flat(), self.joints.len())
+    }
+
+    /// The reach's waypoints (none without a reach).
+    pub fn reach_waypoints(&self) -> Vec<nalgebra::DVector<f64>> {
+        self.reach.as_ref().map_or_else(Vec::new, |r| {
+            r.waypoints
+                .iter()
+                .map(|q| nalgebra::DVector::from_column_slice(q))
+                .collect()
+        })
+    }
+
+    /// Adds a reach after the controls, checked in `scene` (the plan's): the plan is
+    /// solved when the reach ends in a grasp region and, if there are controls, they
+    /// reach the scene's goal; the trajectory goes on with the reach, timed within the
+    /// joints' velocity and acceleration limits, at rest at both ends.
+    pub fn with_reach(mut self, scene: &Scene, reach: ReachRecord) -> Result<PlanFile, String> {
+        let object = crate::reach::graspable_object(scene, &reach.object)?;
+        self.reach = Some(reach);
+        let from = self.end_state();
+        let waypoints = self.reach_waypoints();
+        crate::reach::check_reach(scene, &from, object, &waypoints)
+            .map_err(|why| format!("reach: {why}"))?;
+        if self.controls.is_empty() {
+            self.solved = true;
+        }
+        let states = crate::reach::reach_states(&from, &waypoints);
+        let radii: Vec<f64> = scene.objects.iter().map(|o| o.bounding_radius).collect();
+        // The plan's own pace does not bound a reach: only the joints' limits do.
+        let motion = crate::trajectory::time_parameterise(
+            &scene.robot,
+            &radii,
+            &states,
+            &[],
+            f64::MIN_POSITIVE,
+            &scene.trajectory,
+            self.trajectory.rate,
+        );
+        let t = &mut self.trajectory;
+        let offset = t.times.last().copied().unwrap_or(0.0);
+        for k in 1..motion.times.len() {
+            t.times.push(offset + motion.times[k]);
+            t.q.push(motion.q[k].clone());
+            t.objects.push(motion.objects[k].clone());
+        }
+        Ok(self)
     }
 
     /// The controls of the plan.
@@ -531,9 +605,26 @@ impl PlanFile {
                 break;
             }
         }
-        let goal_reached = problem.scene().goal.is_satisfied(sim.final_state());
+        // A reach alone (`--goal grasp:OBJECT`) has the grasp as its goal.
+        let grasp_only = self.reach.is_some() && self.controls.is_empty();
+        let mut goal_reached = grasp_only || problem.scene().goal.is_satisfied(sim.final_state());
         if !goal_reached {
             problems.push("the goal is not reached".to_string());
+        }
+        if let Some(reach) = &self.reach {
+            let checked =
+                crate::reach::graspable_object(problem.scene(), &reach.object).and_then(|object| {
+                    crate::reach::check_reach(
+                        problem.scene(),
+                        sim.final_state(),
+                        object,
+                        &self.reach_waypoints(),
+                    )
+                });
+            if let Err(why) = checked {
+                goal_reached = false;
+                problems.push(format!("reach: {why}"));
+            }
         }
         let mut record_matches = problems.is_empty();
         if record_matches {

@@ -627,3 +627,58 @@ fn a_semi_dynamic_trajectory_keeps_the_plans_pace_and_waits_for_rest() {
     let planned = path.final_state().objects[0];
     assert_eq!([planned.x, planned.y, planned.theta], last);
 }
+
+/// `render` draws a semi-dynamic plan at its pace: the struck box coasts on in frames
+/// where the hand is still, and the film lasts as long as the trajectory, which is the one
+/// the plan's controls give.
+#[test]
+fn render_draws_objects_coasting_after_the_action() {
+    use pushplan::path::PathControl;
+    use pushplan::plan::PlanFile;
+    use pushplan::EeAction;
+    let scratch = common::Scratch::new("semi-dynamic-render");
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml")
+        .unwrap()
+        .replace("mu_g: 0.4", "mu_g: 0.05")
+        + "physics: {model: semi_dynamic, object_clearance: 0}\n";
+    let scene_path = scratch.join("ice.yaml");
+    std::fs::write(&scene_path, &text).unwrap();
+    let scene = pushplan::Scene::load(&scene_path).unwrap();
+    let controls = [PathControl {
+        action: EeAction::planar(0.5, 0.0, 0.0),
+        steps: 36,
+    }];
+    let plan_path = scratch.join("plan.json");
+    let settings = common::plan_settings("pcrrt", 1, 0.0);
+    let reference = PlanFile::scene_reference(&scene_path, &plan_path);
+    let plan = PlanFile::build(&reference, scene, &settings, &controls, None).unwrap();
+    std::fs::write(&plan_path, plan.to_json()).unwrap();
+    let report = plan.check(&plan_path).unwrap();
+    assert!(report.all_valid && report.states_match, "{report:?}");
+    // The push alone does not reach the goal; the recorded trajectory is the model's.
+    plan.check_trajectory(&plan.load_scene(&plan_path).unwrap())
+        .unwrap();
+
+    let film = pushplan::render::Film::of(&plan, &plan_path).unwrap();
+    let end = *plan.trajectory.times.last().unwrap();
+    assert!(
+        (film.duration() - end).abs() <= film.dt,
+        "film {} s, trajectory {end} s",
+        film.duration()
+    );
+    let coasting = film
+        .states
+        .windows(2)
+        .filter(|w| w[0].q == w[1].q && w[0].objects[0].x != w[1].objects[0].x)
+        .count();
+    let stopping = 0.5 / (0.05 * G);
+    assert!(
+        coasting as f64 * film.dt > 0.8 * stopping,
+        "{coasting} frames of coasting with the hand still"
+    );
+    assert_eq!(
+        film.states.last().unwrap().objects[0].x,
+        plan.trajectory.objects.last().unwrap()[0][0]
+    );
+    pushplan::render::render(&plan, &plan_path, &scratch.join("pictures"), &[]).unwrap();
+}

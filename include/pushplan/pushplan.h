@@ -205,6 +205,32 @@ namespace pushplan
         double duration() const;
     };
 
+    /// Options of reaching a grasp (Planner::reach). Unset values take the scene file's
+    /// `planner:` values.
+    struct ReachOptions
+    {
+        std::optional<double> time_limit;   ///< search time (s)
+        std::optional<std::uint64_t> seed;  ///< random seed
+        /// IK-BiRRT's P_sample: the probability that an iteration adds inverse-kinematics
+        /// solutions of the grasp regions to the goal tree instead of growing the trees.
+        double sample_probability = 0.1;
+    };
+
+    /// A reach of a grasp (Planner::reach): joint-space waypoints, joined by straight
+    /// lines, from the arm's configuration to one inside a grasp region of the object
+    /// (its scene `grasps`), every object a static obstacle where it is.
+    struct Reach
+    {
+        bool solved = false;
+        double planning_time = 0.0;  ///< s
+        std::string object;
+        /// The first is where the arm starts; the last is in a grasp region. Empty when
+        /// not solved.
+        std::vector<Eigen::VectorXd> waypoints;
+        std::size_t goal_samples = 0;  ///< IK solutions the goal tree was rooted at
+        std::size_t tree_size = 0;     ///< states in both trees
+    };
+
     /// Options of the OMPL problem of a scene (pushplan/ompl.h). Unset values take the
     /// scene file's `planner:` values.
     struct SetupOptions
@@ -236,6 +262,13 @@ namespace pushplan
         /// finds no exact solution returns a Plan with solved == false (and the closest
         /// path found, if any).
         Plan solve(const Options &options = Options()) const;
+
+        /// Reaches a grasp of `object` with IK-BiRRT (the manipulation-planning lecture):
+        /// from the scene's start, or from the end of `after` (a plan of this planner:
+        /// push, then grasp). The reach is checked by the model before it is returned.
+        /// Throws pushplan::Error if the object has no grasps or an option is out of range.
+        Reach reach(const std::string &object, const ReachOptions &options = ReachOptions(),
+                    const Plan *after = nullptr) const;
 
         /// The scene's name.
         std::string sceneName() const;

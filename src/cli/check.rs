@@ -45,6 +45,18 @@ pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
         yes(report.states_match),
         yes(report.goal_reached)
     );
+    if let Some(reach) = &plan.reach {
+        println!(
+            "  then a reach of a grasp of '{}' through {} waypoints{}",
+            reach.object,
+            reach.waypoints.len(),
+            if report.problems.iter().any(|p| p.starts_with("reach:")) {
+                ""
+            } else {
+                ", every segment valid, ending in a grasp region"
+            }
+        );
+    }
     for problem in &report.problems {
         println!("  {problem}");
     }

@@ -14,7 +14,7 @@ pub use bench::{bench, bench_merge, bench_scene, plots, BenchOptions};
 pub use check::check;
 pub use execute::execute;
 pub use files::{draw, generate_scenes, install};
-pub use plan::{plan, PlanOptions};
+pub use plan::{grasp_goal, plan, PlanOptions};
 pub use robot::{robot, RobotQuery};
 
 /// The cores this process may use (at least 1): the default of `plan --threads` and

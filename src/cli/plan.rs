@@ -1,9 +1,9 @@
 //! `pushplan plan`: search a scene with OMPL, finish the path, write the plan file.
 
 use super::progress;
-use crate::ffi::{solve, SolveOptions};
+use crate::ffi::{solve, ReachOptions, SolveOptions};
 use crate::path::PathControl;
-use crate::plan::{PlanFile, PlanSettings, RobustnessRecord};
+use crate::plan::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
 use crate::planner::{FinishSettings, PlannerKind, Problem, RobustRequirement};
 use crate::shortcut::ShortcutProgress;
 use crate::state::State;
@@ -28,6 +28,61 @@ pub struct PlanOptions {
     pub quiet: bool,
     /// Searches in parallel, one per thread.
     pub threads: u32,
+    /// `--goal grasp:OBJECT`: reach a grasp of this object instead of pushing.
+    pub grasp_goal: Option<String>,
+    /// `--grasp`: after pushing, reach a grasp of the goal object.
+    pub grasp_after: bool,
+    /// IK-BiRRT's P_sample.
+    pub sample_probability: f64,
+}
+
+/// The object of a `--goal` value `grasp:OBJECT`.
+pub fn grasp_goal(goal: &str) -> Result<String, String> {
+    match goal.strip_prefix("grasp:") {
+        Some(object) if !object.is_empty() => Ok(object.to_string()),
+        _ => Err(format!(
+            "--goal must be grasp:OBJECT (an object with grasps in the scene), got '{goal}'"
+        )),
+    }
+}
+
+/// IK-BiRRT's reach of a grasp of `object` from `from` (`None`: the start), as the plan
+/// file records it; `None` if no reach was found within `time` seconds.
+fn reach(
+    scene_path: &Path,
+    object: &str,
+    from: Option<&State>,
+    run: &PlanOptions,
+    time: f64,
+    seed: u64,
+    dof: usize,
+) -> Result<Option<ReachRecord>, String> {
+    if !(0.0..=1.0).contains(&run.sample_probability) {
+        return Err(format!(
+            "--sample-probability must be in [0, 1], got {}",
+            run.sample_probability
+        ));
+    }
+    let options = ReachOptions {
+        time_limit: time,
+        seed,
+        sample_probability: run.sample_probability,
+    };
+    let found = crate::ffi::reach(scene_path, object, from, &options)?;
+    if !run.quiet {
+        eprintln!(
+            "reaching a grasp of '{object}' with IK-BiRRT: {} in {:.2} s, {} IK solutions, trees of {} states",
+            if found.solved { "found" } else { "not found" },
+            found.planning_time,
+            found.goal_samples,
+            found.tree_size
+        );
+    }
+    Ok(found.solved.then(|| ReachRecord {
+        object: object.to_string(),
+        sample_probability: run.sample_probability,
+        waypoints: found.waypoints.chunks(dof).map(<[f64]>::to_vec).collect(),
+    }))
 }
 
 pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode, String> {
@@ -90,6 +145,35 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             return Err(format!("{flag} must be zero or positive, got {seconds}"));
         }
     }
+    let settings = PlanSettings {
+        planner,
+        seed: options.seed,
+        k: options.k,
+        goal_bias: options.goal_bias,
+        time_limit: options.time_limit,
+        shortcut: run.shortcut,
+        threads: options.threads,
+    };
+    let reference = PlanFile::scene_reference(scene_path, out);
+    if let Some(object) = &run.grasp_goal {
+        // Reaching a grasp only: no controls, the reach from the start.
+        crate::reach::graspable_object(&scene, object)?;
+        let dof = scene.robot.dof();
+        let found = reach(scene_path, object, None, run, options.time_limit, seed, dof)?;
+        let solved = found.is_some();
+        let mut file = PlanFile::build(&reference, scene.clone(), &settings, &[], None)?;
+        if let Some(record) = found {
+            file = file.with_reach(&scene, record)?;
+        }
+        return write_plan(&file, out, solved);
+    }
+    if run.grasp_after {
+        if let crate::scene::Goal::ObjectInDisc { object, .. } = scene.goal {
+            crate::reach::graspable_object(&scene, &scene.objects[object].name)?;
+        } else {
+            return Err("--grasp needs an object goal (the object to grasp after pushing)".into());
+        }
+    }
     if !quiet {
         eprintln!(
             "planning '{}' with {} (k = {}, seed = {}, up to {} s, {} {})",
@@ -143,16 +227,6 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             eprintln!("shortcutting: the shortcut path is less robust; the path as found is kept");
         }
     }
-    let settings = PlanSettings {
-        planner,
-        seed: options.seed,
-        k: options.k,
-        goal_bias: options.goal_bias,
-        time_limit: options.time_limit,
-        shortcut: run.shortcut,
-        threads: options.threads,
-    };
-    let reference = PlanFile::scene_reference(scene_path, out);
     let mut file = PlanFile::build(
         &reference,
         scene,
@@ -166,6 +240,30 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         success_rate,
         particles: run.particles,
     });
+    let mut solved = solution.exact;
+    if run.grasp_after && solution.exact {
+        let goal_object = match problem.scene().goal {
+            crate::scene::Goal::ObjectInDisc { object, .. } => object,
+            crate::scene::Goal::Configuration { .. } => unreachable!("checked above"),
+        };
+        let name = problem.scene().objects[goal_object].name.clone();
+        let end = file.end_state();
+        match reach(
+            scene_path,
+            &name,
+            Some(&end),
+            run,
+            options.time_limit,
+            seed,
+            dof,
+        )? {
+            Some(record) => file = file.with_reach(problem.scene(), record)?,
+            None => {
+                file.solved = false;
+                solved = false;
+            }
+        }
+    }
     std::fs::write(out, file.to_json())
         .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
 
@@ -267,8 +365,37 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             n => format!("{n} links"),
         }
     );
+    if let Some(r) = &file.reach {
+        println!(
+            "then a grasp of '{}': {} waypoints",
+            r.object,
+            r.waypoints.len()
+        );
+    } else if run.grasp_after && solution.exact {
+        println!("then a grasp of the goal object: not found (the plan is not solved)");
+    }
     println!("plan written to {}", out.display());
-    Ok(if solution.exact {
+    Ok(if solved {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+/// Writes a plan file of a reach alone and says how it went.
+fn write_plan(file: &PlanFile, out: &Path, solved: bool) -> Result<ExitCode, String> {
+    std::fs::write(out, file.to_json())
+        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    match &file.reach {
+        Some(r) => println!(
+            "solved: a grasp of '{}' reached through {} waypoints",
+            r.object,
+            r.waypoints.len()
+        ),
+        None => println!("not solved: no reach of a grasp found"),
+    }
+    println!("plan written to {}", out.display());
+    Ok(if solved {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE

@@ -71,6 +71,24 @@ pub mod bridge {
         pub log: String,
     }
 
+    /// Reaching a grasp (pushplan::ReachOptions): IK-BiRRT's time, seed and P_sample.
+    #[derive(Debug, Clone)]
+    pub struct ReachOptions {
+        pub time_limit: f64,
+        pub seed: u64,
+        pub sample_probability: f64,
+    }
+
+    /// A reach (pushplan::Reach): waypoints flat, one configuration after another.
+    #[derive(Debug, Clone)]
+    pub struct ReachOutput {
+        pub solved: bool,
+        pub planning_time: f64,
+        pub goal_samples: usize,
+        pub tree_size: usize,
+        pub waypoints: Vec<f64>,
+    }
+
     unsafe extern "C++" {
         include!("pushplan/pushplan.h");
         #[namespace = "pushplan"]
@@ -85,13 +103,25 @@ pub mod bridge {
             options: &SolveOptions,
             progress: fn(report: &SearchProgress),
         ) -> Result<SolveOutput>;
+        /// Reaches a grasp of `object` with IK-BiRRT from the arm at `from_q` with the
+        /// objects at `from_objects` (x, y, yaw each); from the scene's start if `from_q`
+        /// is empty.
+        fn reach(
+            scene_path: &str,
+            object: &str,
+            from_q: &[f64],
+            from_objects: &[f64],
+            options: &ReachOptions,
+        ) -> Result<ReachOutput>;
         include!("pushplan/cpp/benchmark.h");
         /// Runs one benchmark run with ompl::tools::Benchmark and writes its log.
         fn benchmark_scene(scene_path: &str, options: &BenchOptions) -> Result<()>;
     }
 }
 
-pub use bridge::{BenchOptions, SearchProgress, SolveOptions, SolveOutput};
+pub use bridge::{
+    BenchOptions, ReachOptions, ReachOutput, SearchProgress, SolveOptions, SolveOutput,
+};
 use std::path::Path;
 
 /// Searches a scene file with OMPL (the C++ side), as the CLI does.
@@ -107,5 +137,24 @@ pub fn solve(
 /// Benchmarks one scene with OMPL's tooling, writing `options.log`.
 pub fn benchmark_scene(scene_path: &Path, options: &BenchOptions) -> Result<(), String> {
     bridge::benchmark_scene(&scene_path.to_string_lossy(), options)
+        .map_err(|e| e.what().to_string())
+}
+
+/// Reaches a grasp of `object` with IK-BiRRT (the C++ side) from `from` (`None`: the
+/// scene's start).
+pub fn reach(
+    scene_path: &Path,
+    object: &str,
+    from: Option<&crate::state::State>,
+    options: &ReachOptions,
+) -> Result<ReachOutput, String> {
+    let (q, objects): (Vec<f64>, Vec<f64>) = match from {
+        Some(s) => (
+            s.q.as_slice().to_vec(),
+            s.objects.iter().flat_map(|p| [p.x, p.y, p.theta]).collect(),
+        ),
+        None => (Vec::new(), Vec::new()),
+    };
+    bridge::reach(&scene_path.to_string_lossy(), object, &q, &objects, options)
         .map_err(|e| e.what().to_string())
 }

@@ -18,6 +18,7 @@ use crate::state::State;
 use crate::static_clutter::StaticClutter;
 use crate::trajectory::Trajectory;
 use crate::validity::check_state;
+use nalgebra::DVector;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::{Duration, Instant};
 
@@ -506,6 +507,65 @@ impl Model {
     ) -> Result<Result<darrt::PrimitivePath, String>, String> {
         guarded("darrt_check", || {
             Ok(darrt::check_path(self.scene(), &self.states(states)?))
+        })
+    }
+
+    /// Reaching a grasp: the index of the object named `name`, which must have grasps.
+    pub fn graspable_object(&self, name: &str) -> Result<usize, String> {
+        crate::reach::graspable_object(self.scene(), name)
+    }
+
+    /// IK-BiRRT's ADDIKSOLUTIONS, one try: a valid configuration in a grasp region of
+    /// `object` at its pose in `state` (objects where `state` has them), drawn from
+    /// `seed`, or an empty vector if this try's inverse kinematics found none.
+    pub fn grasp_sample(
+        &self,
+        state: &[f64],
+        object: usize,
+        seed: u64,
+    ) -> Result<Vec<f64>, String> {
+        guarded("grasp_sample", || {
+            let state = self.state(state)?;
+            Ok(
+                crate::reach::sample_grasp(self.scene(), &state, object, seed)?
+                    .map_or_else(Vec::new, |q| q.as_slice().to_vec()),
+            )
+        })
+    }
+
+    /// The distance from `state`'s configuration to the nearest grasp region of `object`.
+    pub fn grasp_distance(&self, state: &[f64], object: usize) -> Result<f64, String> {
+        guarded("grasp_distance", || {
+            crate::reach::grasp_distance(self.scene(), &self.state(state)?, object)
+        })
+    }
+
+    /// Checks a reach of `object` from `from` (waypoints flat, one configuration after
+    /// another): an empty string if it is valid, else why not ([`crate::reach::check_reach`]).
+    pub fn check_reach(
+        &self,
+        from: &[f64],
+        object: usize,
+        waypoints: &[f64],
+    ) -> Result<String, String> {
+        guarded("check_reach", || {
+            let from = self.state(from)?;
+            let dof = self.scene().robot.dof();
+            if waypoints.len() % dof != 0 {
+                return Err(format!(
+                    "{} waypoint values for {dof} joints",
+                    waypoints.len()
+                ));
+            }
+            let waypoints: Vec<DVector<f64>> = waypoints
+                .chunks(dof)
+                .map(DVector::from_column_slice)
+                .collect();
+            Ok(
+                crate::reach::check_reach(self.scene(), &from, object, &waypoints)
+                    .err()
+                    .unwrap_or_default(),
+            )
         })
     }
 

@@ -48,6 +48,29 @@ pub struct Frame {
 impl Film {
     /// Simulates the plan in the file (its scene resolved as `check` does).
     pub fn of(plan: &PlanFile, plan_path: &Path) -> Result<Film, String> {
+        let mut film = Film::of_controls(plan, plan_path)?;
+        film.append_reach(plan);
+        Ok(film)
+    }
+
+    /// A reach of a grasp after the controls, one frame per Transit check (objects still).
+    fn append_reach(&mut self, plan: &PlanFile) {
+        let Some(end) = self.states.last().cloned() else {
+            return;
+        };
+        let waypoints = plan.reach_waypoints();
+        if waypoints.is_empty() {
+            return;
+        }
+        let states = crate::reach::reach_states(&end, &waypoints);
+        self.contacts
+            .extend(std::iter::repeat_n(Vec::new(), states.len() - 1));
+        self.states.extend(states.into_iter().skip(1));
+        self.control_starts.push(self.states.len() - 1);
+    }
+
+    /// The plan's controls simulated.
+    fn of_controls(plan: &PlanFile, plan_path: &Path) -> Result<Film, String> {
         let scene = plan.load_scene(plan_path)?;
         let path = Problem::new(scene.clone(), plan.settings.planner)
             .simulate(&plan.path_controls(), true);

@@ -1,6 +1,7 @@
 // The C++ API's contract beyond planning (run by tests/cpp_api.rs):
 // - every planner kind has the CLI's name, and a name gives the kind back;
 // - progress reaches Options::on_progress; a semi-dynamic scene plans;
+// - Planner::reach reaches a grasp behind a wall with IK-BiRRT, and after a pushing plan;
 // - OMPL's process-wide log level is as the application left it after solve();
 // - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
 //   whose paths are not controls, a bad scene, the model failing inside solve() and
@@ -91,6 +92,38 @@ int main()
         const pushplan::Plan plan = workshop.solve(o);
         expect(plan.solved && !plan.controls.empty(),
                "the semi-dynamic model plans through the C++ API (the workshop's scene two)");
+    }
+
+    {
+        // Reaching a grasp with IK-BiRRT: from the start, over a wall; then after a
+        // pushing plan (push, then grasp) from where the plan leaves the arm and objects.
+        const pushplan::Planner walled("scenes/grasp_behind_wall.yaml");
+        pushplan::ReachOptions r;
+        r.seed = 1;
+        r.time_limit = 60.0;
+        const pushplan::Reach reach = walled.reach("can", r);
+        expect(reach.solved && reach.waypoints.size() >= 2 && reach.goal_samples > 0 && reach.object == "can",
+               "Planner::reach reaches a grasp of the can behind the wall");
+        pushplan::Options o;
+        o.seed = 1;
+        o.threads = 1;
+        o.time_limit = 60.0;
+        o.shortcut = 0.0;
+        const pushplan::Plan pushed = walled.solve(o);
+        const pushplan::Reach then = walled.reach("box", r, &pushed);
+        expect(pushed.solved && then.solved &&
+                   (then.waypoints.front() - pushed.joint_trajectory.back()).norm() == 0.0,
+               "Planner::reach after a pushing plan starts where the plan ends and reaches the box");
+        bool refused = false;
+        try
+        {
+            walled.reach("wall", r);
+        }
+        catch (const pushplan::Error &e)
+        {
+            refused = std::string(e.what()).find("objects with grasps: 'can', 'box'") != std::string::npos;
+        }
+        expect(refused, "Planner::reach of something without grasps throws pushplan::Error naming the graspable objects");
     }
 
     {
