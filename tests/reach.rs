@@ -30,19 +30,22 @@ fn pushplan(args: &[&str]) -> (Option<i32>, String, String) {
 fn ik_birrt_reaches_a_grasp_behind_a_wall() {
     let scratch = common::Scratch::new("reach-wall");
     let plan_path = scratch.join("reach.json");
-    let (code, stdout, stderr) = pushplan(&[
-        "plan",
-        "scenes/grasp_behind_wall.yaml",
-        "--goal",
-        "grasp:can",
-        "--seed",
-        "1",
-        "--time",
-        "60",
-        "--quiet",
-        "--out",
-        plan_path.to_str().unwrap(),
-    ]);
+    let reach_into = |out: &std::path::Path| {
+        pushplan(&[
+            "plan",
+            "scenes/grasp_behind_wall.yaml",
+            "--goal",
+            "grasp:can",
+            "--seed",
+            "1",
+            "--time",
+            "60",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    let (code, stdout, stderr) = reach_into(&plan_path);
     assert_eq!(code, Some(0), "{stdout}{stderr}");
     let plan = PlanFile::read(&plan_path).unwrap();
     assert!(plan.solved && plan.controls.is_empty());
@@ -75,19 +78,7 @@ fn ik_birrt_reaches_a_grasp_behind_a_wall() {
     assert_eq!(DVector::from_column_slice(last), end.q);
     // The same seed gives the same reach, byte for byte.
     let again = scratch.join("again.json");
-    let (code, _, _) = pushplan(&[
-        "plan",
-        "scenes/grasp_behind_wall.yaml",
-        "--goal",
-        "grasp:can",
-        "--seed",
-        "1",
-        "--time",
-        "60",
-        "--quiet",
-        "--out",
-        again.to_str().unwrap(),
-    ]);
+    let (code, _, _) = reach_into(&again);
     assert_eq!(code, Some(0));
     assert_eq!(
         std::fs::read_to_string(&again).unwrap(),
