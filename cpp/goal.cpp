@@ -29,6 +29,8 @@ namespace pushplan::detail
         // the goal configuration), everything else uniform, valid or not. (Drawing until
         // valid took 60 % of the time in dense clutter: BENCHMARKS.md.)
         const auto &info = model_->info();
+        if (info.grasp_object >= 0 && sampleGrasp(state))
+            return;
         PushStateSampler::sampleRaw(info, rng_, buffer_);
         if (info.goal_object >= 0)
         {
@@ -43,6 +45,24 @@ namespace pushplan::detail
         }
         model_->pinClutter(buffer_);
         model_->write(buffer_, state);
+    }
+
+    bool PushGoal::sampleGrasp(ompl::base::State *state) const
+    {
+        // The objects where they start, the arm at an IK solution of a grasp region there
+        // (one try; the model's inverse kinematics may find none).
+        const auto &info = model_->info();
+        const std::uint64_t seed = (static_cast<std::uint64_t>(rng_.uniformInt(0, 0x7fffffff)) << 31) |
+                                   static_cast<std::uint64_t>(rng_.uniformInt(0, 0x7fffffff));
+        const rust::Vec<double> q =
+            model_->model().grasp_sample(rust::Slice<const double>(info.start.data(), info.start.size()),
+                                         static_cast<std::size_t>(info.grasp_object), seed, true);
+        if (q.empty())
+            return false;
+        buffer_.assign(info.start.begin(), info.start.end());
+        std::copy(q.begin(), q.end(), buffer_.begin());
+        model_->write(buffer_, state);
+        return true;
     }
 
     unsigned int PushGoal::maxSampleCount() const

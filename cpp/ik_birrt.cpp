@@ -27,7 +27,7 @@ namespace pushplan::detail
 
     bool GraspGoal::trySample(ob::State *state) const
     {
-        const rust::Vec<double> q = model_->model().grasp_sample(slice(from_), object_, seed_++);
+        const rust::Vec<double> q = model_->model().grasp_sample(slice(from_), object_, seed_++, false);
         if (q.empty())
             return false;
         std::copy(q.begin(), q.end(), scratch_.begin());

@@ -24,9 +24,10 @@ impl DistanceMetric {
     /// The metric with the scene's weights; the goal object gets `goal_object_weight`.
     pub fn from_scene(scene: &Scene) -> Self {
         let p = &scene.planner;
+        // A grasp goal is the arm's: its object weighs as clutter does.
         let goal_object = match scene.goal {
             Goal::ObjectInDisc { object, .. } => Some(object),
-            Goal::Configuration { .. } => None,
+            Goal::Configuration { .. } | Goal::Grasp { .. } => None,
         };
         Self {
             robot_weight: p.robot_weight,

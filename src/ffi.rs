@@ -63,6 +63,8 @@ pub mod bridge {
         pub goal_center: [f64; 2],
         pub goal_radius: f64,
         pub goal_configuration: Vec<f64>,
+        /// The object whose grasp a grasp goal reaches, or -1.
+        pub grasp_object: i64,
         pub start: Vec<f64>,
     }
 
@@ -188,7 +190,13 @@ pub mod bridge {
         fn darrt_carry(self: &Model, x: &[f64], object: usize, target: &[f64]) -> Result<Vec<f64>>;
         fn darrt_check(model: &Model, states: &[f64]) -> Result<PrimitiveCheck>;
         fn graspable_object(self: &Model, name: &str) -> Result<usize>;
-        fn grasp_sample(self: &Model, state: &[f64], object: usize, seed: u64) -> Result<Vec<f64>>;
+        fn grasp_sample(
+            self: &Model,
+            state: &[f64],
+            object: usize,
+            seed: u64,
+            arm_only: bool,
+        ) -> Result<Vec<f64>>;
         fn grasp_distance(self: &Model, state: &[f64], object: usize) -> Result<f64>;
         fn check_reach(
             self: &Model,

@@ -447,7 +447,9 @@ impl PlanFile {
             margins: Some(Margins {
                 goal: match scene.goal {
                     crate::scene::Goal::ObjectInDisc { margin, .. } => margin,
-                    crate::scene::Goal::Configuration { .. } => 0.0,
+                    crate::scene::Goal::Configuration { .. } | crate::scene::Goal::Grasp { .. } => {
+                        0.0
+                    }
                 },
                 object_clearance: scene.physics.object_clearance,
                 tipping: scene.physics.tipping_margin,

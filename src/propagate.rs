@@ -19,7 +19,7 @@ use crate::physics::tipping::{largest_tipping_moment, pusher_forces, support_bal
 use crate::physics::{object_motion, LimitSurface, PusherForce};
 use crate::robot::EeAction;
 use crate::scene::file::PhysicsModel;
-use crate::scene::Scene;
+use crate::scene::{Goal, Scene};
 use crate::semi_dynamic::{Body, Rest, RestSettings, Sweep, Sweeps, Transition, Unsettled};
 use crate::state::State;
 use crate::validity::{check_arm_objects, check_objects, check_robot, Invalid};
@@ -343,6 +343,18 @@ impl Propagator {
         )?;
         let moved = &self.moved;
         check_objects(scene, &self.objects_new, |i| moved[i])?;
+        if let Goal::Grasp {
+            object,
+            object_may_move: false,
+            ..
+        } = scene.goal
+        {
+            if moved[object] {
+                return Err(Invalid::MovesObjectToGrasp {
+                    object: scene.objects[object].name.clone(),
+                });
+            }
+        }
 
         state.q.copy_from(&self.q_new);
         state.objects.clone_from(&self.objects_new);

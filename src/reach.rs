@@ -4,13 +4,14 @@
 //! is the model's side of it: sampling the regions' configurations by inverse kinematics,
 //! the distance to them, and the check of a reach that plan files and the C++ API return.
 
+use crate::contact::ArmBounds;
 use crate::darrt::check_transit;
 use crate::darrt::transit::transit_segments;
 use crate::random::SplitMix64;
 use crate::robot::wgr::Wgr;
 use crate::scene::Scene;
 use crate::state::State;
-use crate::validity::check_state;
+use crate::validity::{check_robot, check_state};
 use nalgebra::DVector;
 
 /// A configuration is inside a grasp region within this distance (the lecture's
@@ -61,28 +62,45 @@ pub fn grasp_distance(scene: &Scene, state: &State, object: usize) -> Result<f64
         .fold(f64::INFINITY, f64::min))
 }
 
+/// What a grasp sample must be valid against.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GraspSampling {
+    /// The whole state, objects where they are (IK-BiRRT: they are obstacles).
+    AmongObjects,
+    /// The arm alone: joint limits, itself, the table and obstacles (a target of the
+    /// pushing planner, which may push the objects out of the way).
+    ArmOnly,
+}
+
 /// One IK sample of `object`'s grasp regions (ADDIKSOLUTIONS): a region drawn uniformly,
 /// a displacement drawn uniformly in its bounds, solved by inverse kinematics from
-/// `state`'s configuration; the configuration if it is valid with the objects where
-/// `state` has them. All randomness comes from `seed`.
+/// `state`'s configuration; the configuration if it is valid as `sampling` says (objects
+/// where `state` has them). All randomness comes from `seed`.
 pub fn sample_grasp(
     scene: &Scene,
     state: &State,
     object: usize,
     seed: u64,
+    sampling: GraspSampling,
 ) -> Result<Option<DVector<f64>>, String> {
     let regions = grasp_regions(scene, state, object)?;
     let mut rng = SplitMix64::new(seed);
     let region = &regions[rng.below(regions.len())];
-    let valid = |q: &DVector<f64>| {
-        check_state(
+    let valid = |q: &DVector<f64>| match sampling {
+        GraspSampling::AmongObjects => check_state(
             scene,
             &State {
                 q: q.clone(),
                 objects: state.objects.clone(),
             },
         )
-        .is_ok()
+        .is_ok(),
+        GraspSampling::ArmOnly => {
+            let poses = scene.robot.link_poses(q);
+            let mut bounds = ArmBounds::default();
+            ArmBounds::compute(scene, &poses, &mut bounds);
+            check_robot(scene, q, &poses, &bounds).is_ok()
+        }
     };
     Ok(region.sample_configuration(&scene.robot, &state.q, &mut rng, 1, valid))
 }

@@ -199,10 +199,7 @@ pub fn robustness(
     trials: usize,
     seed: u64,
 ) -> RobustnessReport {
-    let goal_object = match scene.goal {
-        Goal::ObjectInDisc { object, .. } => Some(object),
-        Goal::Configuration { .. } => None,
-    };
+    let goal_object = scene.goal.object();
     let planned = {
         let mut propagator = Propagator::new(Arc::new(scene.clone()));
         let path = simulate(&mut propagator, &scene.start, controls, false);

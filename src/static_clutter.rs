@@ -4,7 +4,7 @@
 //! stay at their start poses, and the physics runs on `Scene::with_static_clutter`.
 
 use crate::propagate::Propagator;
-use crate::scene::{Goal, Scene};
+use crate::scene::Scene;
 use crate::state::State;
 
 pub struct StaticClutter {
@@ -20,10 +20,7 @@ impl StaticClutter {
     pub fn new(scene: &Scene) -> Self {
         Self {
             propagator: Propagator::new(scene.with_static_clutter()),
-            goal: match scene.goal {
-                Goal::ObjectInDisc { object, .. } => Some(object),
-                Goal::Configuration { .. } => None,
-            },
+            goal: scene.goal.object(),
             start: scene.start.clone(),
         }
     }

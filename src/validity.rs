@@ -86,6 +86,11 @@ pub enum Invalid {
         object: String,
         speed: f64,
     },
+    /// A grasp goal whose object must stay where it starts (`goal.object_may_move: false`):
+    /// a push moved it.
+    MovesObjectToGrasp {
+        object: String,
+    },
 }
 
 impl Invalid {
@@ -109,6 +114,7 @@ impl Invalid {
             Invalid::Tips { .. } => "tips",
             Invalid::ClosesInAtTippingHeight { .. } => "closes in at tipping height",
             Invalid::Unsettled { .. } => "does not come to rest",
+            Invalid::MovesObjectToGrasp { .. } => "moves the object to grasp",
         }
     }
 }
@@ -176,6 +182,10 @@ impl fmt::Display for Invalid {
                 f,
                 "object '{object}' still moves at {:.3} m/s when physics.t_max has passed",
                 speed
+            ),
+            Invalid::MovesObjectToGrasp { object } => write!(
+                f,
+                "object '{object}' is to be grasped where it stands (goal.object_may_move is false) and was pushed"
             ),
         }
     }

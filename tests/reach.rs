@@ -9,6 +9,7 @@ use pushplan::darrt::check_transit;
 use pushplan::plan::PlanFile;
 use pushplan::reach::{check_reach, grasp_distance, graspable_object, GRASP_TOLERANCE};
 use pushplan::{Scene, State};
+use std::path::Path;
 use std::process::Command;
 
 fn pushplan(args: &[&str]) -> (Option<i32>, String, String) {
@@ -182,4 +183,99 @@ fn grasp_goals_name_what_is_wrong() {
         stderr.contains("--sample-probability must be in [0, 1]"),
         "{stderr}"
     );
+}
+
+/// A WGR goal for the pushing planner: PC RRT reaches a grasp of the blue box at the
+/// pushing plane, pushing clutter aside on the way, the blue box itself unmoved (it must
+/// stay); the plan checks and its last state is inside the region.
+#[test]
+fn pc_rrt_reaches_a_grasp_pushing_clutter_aside() {
+    let scratch = common::Scratch::new("grasp-goal");
+    let plan_path = scratch.join("plan.json");
+    let scene_path = "scenes/grasp_through_clutter.yaml";
+    let (code, stdout, stderr) = pushplan(&[
+        "plan",
+        scene_path,
+        "--seed",
+        "1",
+        "--threads",
+        "1",
+        "--time",
+        "60",
+        "--quiet",
+        "--out",
+        plan_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0), "{stdout}{stderr}");
+    let plan = PlanFile::read(&plan_path).unwrap();
+    assert!(plan.solved && !plan.controls.is_empty() && plan.reach.is_none());
+    let scene = Scene::load(scene_path).unwrap();
+    let blue = graspable_object(&scene, "blue_box").unwrap();
+    let end = plan.end_state();
+    assert!(grasp_distance(&scene, &end, blue).unwrap() <= GRASP_TOLERANCE);
+    assert_eq!(
+        end.objects[blue], scene.start.objects[blue],
+        "the box to grasp moved"
+    );
+    // This seed's plan pushes clutter: the goal allows it.
+    assert!(
+        (0..end.objects.len()).any(|i| i != blue && end.objects[i] != scene.start.objects[i]),
+        "no clutter pushed"
+    );
+    let (code, stdout, _) = pushplan(&["check", plan_path.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{stdout}");
+}
+
+/// The planar hand drives into the box it is to grasp: with `object_may_move: false`
+/// (the default) the push is invalid as soon as the box moves; with true it goes on.
+#[test]
+fn the_object_to_grasp_stays_put_unless_it_may_move() {
+    use pushplan::{EeAction, Invalid, Propagator};
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
+    let grasps =
+        "    grasps: [{end_effector: {xyz: [-0.1, 0, 0.05]}, bounds: {yaw: [-3.14, 3.14]}}]\n";
+    let with = |goal: &str| {
+        let text = text.replace("    mu_c: 0.3\n", &format!("    mu_c: 0.3\n{grasps}"));
+        let text = text.replace(
+            "goal: {object: box, center: [0.85, 0.1], radius: 0.1}",
+            goal,
+        );
+        Scene::from_yaml(&text, Path::new("scenes/x.yaml"))
+    };
+    let push = EeAction::planar(0.2, 0.0, 0.0);
+    let stays = with("goal: {grasp: box}").unwrap();
+    let run = Propagator::new(&stays).propagate(&stays.start, &push, 1.0);
+    match run.stopped_by {
+        Some(Invalid::MovesObjectToGrasp { ref object }) => assert_eq!(object, "box"),
+        other => panic!("stopped by {other:?}"),
+    }
+    assert_eq!(run.state.objects[0], stays.start.objects[0]);
+    let may = with("goal: {grasp: box, object_may_move: true}").unwrap();
+    let run = Propagator::new(&may).propagate(&may.start, &push, 1.0);
+    assert!(run.stopped_by.is_none(), "{:?}", run.stopped_by);
+    assert!(run.state.objects[0].x > may.start.objects[0].x + 0.05);
+
+    for (goal, field, message) in [
+        (
+            "goal: {grasp: hand}",
+            "goal.grasp",
+            "objects with grasps: 'box'",
+        ),
+        (
+            "goal: {grasp: box, center: [0.8, 0]}",
+            "goal",
+            "a grasp goal has grasp and object_may_move only",
+        ),
+        (
+            "goal: {object: box, center: [0.85, 0.1], radius: 0.1, object_may_move: true}",
+            "goal.object_may_move",
+            "applies to grasp goals only",
+        ),
+    ] {
+        let error = with(goal).unwrap_err().to_string();
+        assert!(
+            error.contains(field) && error.contains(message),
+            "{goal}: {error}"
+        );
+    }
 }

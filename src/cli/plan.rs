@@ -194,6 +194,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         progress::start(match scene.goal {
             crate::scene::Goal::ObjectInDisc { .. } => "m",
             crate::scene::Goal::Configuration { .. } => "rad",
+            crate::scene::Goal::Grasp { .. } => "(m and rad)",
         });
     }
     let solution =
@@ -242,10 +243,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     });
     let mut solved = solution.exact;
     if run.grasp_after && solution.exact {
-        let goal_object = match problem.scene().goal {
-            crate::scene::Goal::ObjectInDisc { object, .. } => object,
-            crate::scene::Goal::Configuration { .. } => unreachable!("checked above"),
-        };
+        let goal_object = problem.scene().goal.object().expect("checked above");
         let name = problem.scene().objects[goal_object].name.clone();
         let end = file.end_state();
         match reach(
@@ -295,6 +293,11 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
                     "the goal object ends {:.0} mm from the goal region (the goal disc less its {:.0} mm margin)",
                     1e3 * left,
                     1e3 * margin
+                ),
+                crate::scene::Goal::Grasp { object, .. } => format!(
+                    "the tool ends {:.3} (m and rad together, the lecture's d(q, WGR)) from the nearest grasp region of '{}'",
+                    left + crate::reach::GRASP_TOLERANCE,
+                    problem.scene().objects[*object].name
                 ),
                 crate::scene::Goal::Configuration { .. } => format!(
                     "the arm ends {left:.3} rad (joint-space distance) beyond the goal configuration's tolerance"

@@ -13,7 +13,7 @@ use crate::math::Pose2;
 use crate::plan::PlanFile;
 use crate::random::SplitMix64;
 use crate::robustness::Noise;
-use crate::scene::{Goal, Scene};
+use crate::scene::Scene;
 use nalgebra::DVector;
 use serde::Serialize;
 use world::{SolverSettings, World, STEP};
@@ -288,10 +288,10 @@ fn run(
     end_state.q = q_at(samples - 1);
     end_state.objects.clone_from(&final_poses);
     let goal_distance = scene.goal.task_distance(&end_state);
-    let upright = match scene.goal {
-        Goal::ObjectInDisc { object, .. } => world.object_tilt(object) < TIPPED_TILT,
-        Goal::Configuration { .. } => true,
-    };
+    let upright = scene
+        .goal
+        .object()
+        .is_none_or(|object| world.object_tilt(object) < TIPPED_TILT);
     ExecutionTrial {
         reached: goal_distance <= 0.0 && upright,
         goal_distance,

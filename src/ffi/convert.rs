@@ -145,6 +145,11 @@ impl From<&Scene> for bridge::SceneInfo {
             Goal::Configuration { q, tolerance } => {
                 (-1, [0.0; 2], *tolerance, q.as_slice().to_vec())
             }
+            Goal::Grasp { .. } => (-1, [0.0; 2], 0.0, vec![]),
+        };
+        let grasp_object = match &scene.goal {
+            Goal::Grasp { object, .. } => *object as i64,
+            _ => -1,
         };
         bridge::SceneInfo {
             name: scene.name.clone(),
@@ -168,6 +173,7 @@ impl From<&Scene> for bridge::SceneInfo {
             goal_center: center,
             goal_radius: radius,
             goal_configuration: configuration,
+            grasp_object,
             start: scene.start.to_flat(),
         }
     }

@@ -13,7 +13,7 @@ use crate::path::PathControl;
 use crate::propagate::Propagator;
 use crate::robot::EeAction;
 use crate::robustness::Noise;
-use crate::scene::{Goal, Scene};
+use crate::scene::Scene;
 use crate::state::State;
 use crate::static_clutter::StaticClutter;
 use crate::trajectory::Trajectory;
@@ -361,9 +361,9 @@ impl Model {
             let state = self.state(state)?;
             let robot = &self.scene().robot;
             let tool = robot.tool_pose(&robot.link_poses(&state.q)).translation;
-            let goal = match self.scene().goal {
-                Goal::ObjectInDisc { object, .. } => state.objects[object].translation(),
-                Goal::Configuration { .. } => nalgebra::Vector2::zeros(),
+            let goal = match self.scene().goal.object() {
+                Some(object) => state.objects[object].translation(),
+                None => nalgebra::Vector2::zeros(),
             };
             Ok(vec![tool.x, tool.y, goal.x, goal.y])
         })
@@ -515,19 +515,26 @@ impl Model {
         crate::reach::graspable_object(self.scene(), name)
     }
 
-    /// IK-BiRRT's ADDIKSOLUTIONS, one try: a valid configuration in a grasp region of
-    /// `object` at its pose in `state` (objects where `state` has them), drawn from
-    /// `seed`, or an empty vector if this try's inverse kinematics found none.
+    /// One try at a configuration in a grasp region of `object` at its pose in `state`,
+    /// drawn from `seed`: valid among the objects (IK-BiRRT's ADDIKSOLUTIONS) or, with
+    /// `arm_only`, valid for the arm alone (a grasp goal's sample, a target the pushing
+    /// planner may clear the way to). Empty if this try's inverse kinematics found none.
     pub fn grasp_sample(
         &self,
         state: &[f64],
         object: usize,
         seed: u64,
+        arm_only: bool,
     ) -> Result<Vec<f64>, String> {
         guarded("grasp_sample", || {
             let state = self.state(state)?;
+            let sampling = if arm_only {
+                crate::reach::GraspSampling::ArmOnly
+            } else {
+                crate::reach::GraspSampling::AmongObjects
+            };
             Ok(
-                crate::reach::sample_grasp(self.scene(), &state, object, seed)?
+                crate::reach::sample_grasp(self.scene(), &state, object, seed, sampling)?
                     .map_or_else(Vec::new, |q| q.as_slice().to_vec()),
             )
         })

@@ -2,7 +2,7 @@
 //! whether they moved the goal object or the clutter. Diagnostics for the planner's user
 //! and for benchmarks (`benches/stops.sh`), not part of the plan.
 
-use crate::scene::{Goal, Scene};
+use crate::scene::Scene;
 use crate::state::State;
 use crate::validity::Invalid;
 use std::collections::BTreeMap;
@@ -68,10 +68,7 @@ pub struct SearchCounter {
 
 impl SearchCounter {
     pub fn new(scene: &Scene) -> Self {
-        let goal_object = match scene.goal {
-            Goal::ObjectInDisc { object, .. } => Some(object),
-            Goal::Configuration { .. } => None,
-        };
+        let goal_object = scene.goal.object();
         Self {
             stats: SearchStats::default(),
             goal_object,

@@ -220,7 +220,7 @@ impl Film {
     pub fn goal_disc(&self) -> Option<(Vector2<f64>, f64)> {
         match &self.scene.goal {
             Goal::ObjectInDisc { center, radius, .. } => Some((*center, *radius)),
-            Goal::Configuration { .. } => None,
+            Goal::Configuration { .. } | Goal::Grasp { .. } => None,
         }
     }
 

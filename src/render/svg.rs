@@ -60,11 +60,9 @@ pub fn object_colour(film: &Film, i: usize) -> &'static str {
     const PALETTE: [&str; 6] = [
         "#3b6fd8", "#d8453b", "#8c8c8c", "#8c564b", "#e377c2", "#17becf",
     ];
-    match film.scene.goal {
-        crate::scene::Goal::ObjectInDisc { object, .. } if object == i => GOAL_COLOUR,
-        crate::scene::Goal::ObjectInDisc { object, .. } if object < i => {
-            PALETTE[(i - 1) % PALETTE.len()]
-        }
+    match film.scene.goal.object() {
+        Some(object) if object == i => GOAL_COLOUR,
+        Some(object) if object < i => PALETTE[(i - 1) % PALETTE.len()],
         _ => PALETTE[i % PALETTE.len()],
     }
 }

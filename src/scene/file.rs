@@ -227,6 +227,12 @@ pub struct GoalSpec {
     pub configuration: Option<Vec<f64>>,
     /// Distance in configuration space counted as reached (rad).
     pub tolerance: Option<f64>,
+    /// Or: an object whose grasp (one of its `grasps`) the tool must reach, pushing
+    /// clutter aside on the way.
+    pub grasp: Option<String>,
+    /// With `grasp`: may pushes move the object to grasp too (default false: it must stay
+    /// where it starts).
+    pub object_may_move: Option<bool>,
 }
 
 /// Planner parameters; every field has a default (see [`PlannerSpec::default`]). C++'s

@@ -306,7 +306,10 @@ impl Loader<'_> {
         };
         let (mut robot, q) = self.robot(&spec.robot, &table, &planner, &settings)?;
         let allowed = self.allowed_collisions(&spec, &mut robot, &obstacles)?;
-        let goal = self.goal(&spec.goal, &objects, &table, robot.dof())?;
+        let goal = match &spec.goal.grasp {
+            Some(name) => self.grasp_goal(&spec.goal, name, &objects, &table, &robot)?,
+            None => self.goal(&spec.goal, &objects, &table, robot.dof())?,
+        };
         if let Goal::Configuration { q, .. } = &goal {
             self.within_joint_limits("goal.configuration", "", &robot, q)?;
         }
@@ -821,6 +824,9 @@ impl Loader<'_> {
         table: &Table,
         dof: usize,
     ) -> Result<Goal> {
+        if g.object_may_move.is_some() {
+            return Err(self.invalid("goal.object_may_move", "applies to grasp goals only"));
+        }
         match (&g.object, &g.configuration) {
             (Some(name), None) => {
                 if g.tolerance.is_some() {
@@ -898,6 +904,56 @@ impl Loader<'_> {
                 "needs object (with center and radius) or configuration",
             )),
         }
+    }
+
+    /// `goal: {grasp: OBJECT, object_may_move: false}`: reach one of the object's grasps.
+    fn grasp_goal(
+        &self,
+        g: &GoalSpec,
+        name: &str,
+        objects: &[MovableObject],
+        table: &Table,
+        robot: &Robot,
+    ) -> Result<Goal> {
+        if g.object.is_some()
+            || g.center.is_some()
+            || g.radius.is_some()
+            || g.margin.is_some()
+            || g.configuration.is_some()
+            || g.tolerance.is_some()
+        {
+            return Err(self.invalid(
+                "goal",
+                "a grasp goal has grasp and object_may_move only (no object, center, radius, margin, configuration or tolerance)",
+            ));
+        }
+        let graspable = || {
+            name_list(
+                objects
+                    .iter()
+                    .filter(|o| !o.grasps.is_empty())
+                    .map(|o| o.name.as_str()),
+            )
+        };
+        let object = objects
+            .iter()
+            .position(|o| o.name == name && !o.grasps.is_empty())
+            .ok_or_else(|| {
+                self.invalid(
+                    "goal.grasp",
+                    format!(
+                        "no movable object '{name}' with grasps; objects with grasps: {}",
+                        graspable()
+                    ),
+                )
+            })?;
+        Ok(Goal::Grasp {
+            object,
+            grasps: objects[object].grasps.clone(),
+            object_may_move: g.object_may_move.unwrap_or(false),
+            table_top: table.top,
+            robot: crate::scene::SharedRobot(std::sync::Arc::new(robot.clone())),
+        })
     }
 
     fn planner(&self, p: &PlannerSpec) -> Result<PlannerSpec> {

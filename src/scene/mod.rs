@@ -175,6 +175,29 @@ pub enum Goal {
     },
     /// The robot within `tolerance` (Euclidean, joint space) of a configuration.
     Configuration { q: DVector<f64>, tolerance: f64 },
+    /// The tool inside one of an object's grasp regions (its `grasps`, where the object is
+    /// in the state), within [`crate::reach::GRASP_TOLERANCE`] of the lecture's distance;
+    /// clutter may be pushed aside on the way, and the object itself if `object_may_move`.
+    Grasp {
+        object: usize,
+        grasps: Vec<Grasp>,
+        object_may_move: bool,
+        /// Table top (m, world z): where the object frames stand.
+        table_top: f64,
+        /// The robot whose tool the regions hold (the scene's).
+        robot: SharedRobot,
+    },
+}
+
+/// The scene's robot shared with a goal measured at its tool; two are equal when they are
+/// the same robot.
+#[derive(Clone, Debug)]
+pub struct SharedRobot(pub std::sync::Arc<crate::robot::Robot>);
+
+impl PartialEq for SharedRobot {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 impl Goal {
@@ -195,6 +218,29 @@ impl Goal {
                 margin,
             } => (state.objects[*object].translation() - center).norm() - (radius - margin),
             Goal::Configuration { q, tolerance } => (&state.q - q).norm() - tolerance,
+            Goal::Grasp {
+                object,
+                grasps,
+                table_top,
+                robot,
+                ..
+            } => {
+                let x_0e = robot.0.tool_pose(&robot.0.link_poses(&state.q));
+                let pose = &state.objects[*object];
+                grasps
+                    .iter()
+                    .map(|g| g.region(pose, *table_top).distance_from_pose(&x_0e))
+                    .fold(f64::INFINITY, f64::min)
+                    - crate::reach::GRASP_TOLERANCE
+            }
+        }
+    }
+
+    /// The object the goal is about (the goal object, or the one to grasp).
+    pub fn object(&self) -> Option<usize> {
+        match self {
+            Goal::ObjectInDisc { object, .. } | Goal::Grasp { object, .. } => Some(*object),
+            Goal::Configuration { .. } => None,
         }
     }
 }
@@ -205,7 +251,7 @@ impl Goal {
     pub fn task_distance(&self, state: &State) -> f64 {
         match self {
             Goal::ObjectInDisc { margin, .. } => self.distance(state) - margin,
-            Goal::Configuration { .. } => self.distance(state),
+            Goal::Configuration { .. } | Goal::Grasp { .. } => self.distance(state),
         }
     }
 }
@@ -214,10 +260,7 @@ impl Scene {
     /// The scene of the Static RRT baseline: every movable object except the goal object
     /// becomes a static obstacle where it starts.
     pub fn with_static_clutter(&self) -> Scene {
-        let keep = match self.goal {
-            Goal::ObjectInDisc { object, .. } => Some(object),
-            Goal::Configuration { .. } => None,
-        };
+        let keep = self.goal.object();
         let mut scene = self.clone();
         scene.name = format!("{} (static clutter)", self.name);
         scene.objects.clear();
@@ -234,7 +277,7 @@ impl Scene {
                 });
             }
         }
-        if let Goal::ObjectInDisc { object, .. } = &mut scene.goal {
+        if let Goal::ObjectInDisc { object, .. } | Goal::Grasp { object, .. } = &mut scene.goal {
             *object = 0;
         }
         scene.clearances = Clearances::at_start(&scene);

@@ -2,6 +2,7 @@
 // - every planner kind has the CLI's name, and a name gives the kind back;
 // - progress reaches Options::on_progress; a semi-dynamic scene plans;
 // - Planner::reach reaches a grasp behind a wall with IK-BiRRT, and after a pushing plan;
+//   a grasp goal's samples (inverse kinematics of its regions) satisfy it;
 // - OMPL's process-wide log level is as the application left it after solve();
 // - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
 //   whose paths are not controls, a bad scene, the model failing inside solve() and
@@ -12,6 +13,7 @@
 #include <pushplan/ompl.h>
 #include <pushplan/pushplan.h>
 
+#include <ompl/base/goals/GoalSampleableRegion.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include <ompl/util/Console.h>
@@ -246,5 +248,21 @@ int main()
     expect(throwsError([] { pushplan::StateAccess(std::make_shared<ompl::base::RealVectorStateSpace>(3)); },
                        "not pushplan's state space"),
            "StateAccess refuses another state space");
+    {
+        // A grasp goal (goal: {grasp: ...}) is a GoalSampleableRegion sampling the grasp
+        // regions through inverse kinematics: most samples lie inside the goal region.
+        const ompl::control::SimpleSetupPtr grasping =
+            pushplan::makeSetup(pushplan::Planner("scenes/grasp_through_clutter.yaml"));
+        const auto *goal = grasping->getGoal()->as<ompl::base::GoalSampleableRegion>();
+        ompl::base::State *sample = grasping->getStateSpace()->allocState();
+        int inside = 0;
+        for (int i = 0; i < 20; ++i)
+        {
+            goal->sampleGoal(sample);
+            inside += goal->isSatisfied(sample) ? 1 : 0;
+        }
+        grasping->getStateSpace()->freeState(sample);
+        expect(inside >= 10, "a grasp goal's samples (IK of its regions) satisfy it: " + std::to_string(inside) + " of 20");
+    }
     return failures == 0 ? 0 : 1;
 }
