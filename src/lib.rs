@@ -23,6 +23,7 @@ pub mod execute;
 pub mod ffi;
 pub mod input;
 pub mod install;
+pub mod manipulation;
 pub mod math;
 pub mod path;
 pub mod physics;

@@ -4,8 +4,8 @@
 use clap::{Parser, Subcommand};
 use pushplan::benchmark::grid::{Grid, Shard};
 use pushplan::cli::{
-    bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, plan, plots,
-    robot, BenchOptions, PlanOptions, RobotQuery,
+    bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
+    plan, plots, robot, BenchOptions, PickPlaceOptions, PlanOptions, RobotQuery,
 };
 use pushplan::planner::PlannerKind;
 use pushplan::scene::builtin;
@@ -220,6 +220,32 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+    /// Pick and place one object with the arm's hand: the lecture's manipulation graph
+    /// (placements x grasps x inverse kinematics; transfer and transit edges) searched by
+    /// a two-level Fuzzy PRM; the path is checked and written as JSON.
+    PickPlace {
+        /// Scene file (YAML); default: the built-in Fig. 1 scene.
+        scene: Option<PathBuf>,
+        /// The object to move (it needs `grasps` in the scene).
+        #[arg(long)]
+        object: String,
+        /// Where to put it: X,Y[,YAW] (m, m, rad); default: the scene's goal disc centre,
+        /// the object's start yaw.
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        to: Option<Vec<f64>>,
+        /// Grasps drawn from each of the object's grasp regions.
+        #[arg(long, default_value_t = 8)]
+        grasps: usize,
+        /// Seed of the grasps and the Fuzzy PRMs' samples.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Validity checks the search may spend.
+        #[arg(long, default_value_t = 200_000)]
+        budget: usize,
+        /// Where to write the path.
+        #[arg(long, default_value = "pick_place.json")]
+        out: PathBuf,
+    },
     /// Draw a plan: snapshots.svg, timeline.svg and animation.html.
     Render {
         /// Plan file (JSON, written by `plan`).
@@ -362,6 +388,25 @@ fn run(command: Command) -> Result<ExitCode, String> {
             render.as_deref(),
         ),
         Command::Render { plan, out, times } => draw(&plan, &out, &times),
+        Command::PickPlace {
+            scene,
+            object,
+            to,
+            grasps,
+            seed,
+            budget,
+            out,
+        } => pick_place(
+            &scene_or_default(scene)?,
+            &PickPlaceOptions {
+                object,
+                to,
+                grasps,
+                seed,
+                budget,
+            },
+            &out,
+        ),
         Command::Robot {
             scene,
             joints,

@@ -6,6 +6,7 @@ mod bench;
 mod check;
 mod execute;
 mod files;
+mod pick_place;
 mod plan;
 mod progress;
 mod robot;
@@ -14,6 +15,7 @@ pub use bench::{bench, bench_merge, bench_scene, plots, BenchOptions};
 pub use check::check;
 pub use execute::execute;
 pub use files::{draw, generate_scenes, install};
+pub use pick_place::{pick_place, PickPlaceOptions};
 pub use plan::{grasp_goal, plan, PlanOptions};
 pub use robot::{robot, RobotQuery};
 
