@@ -234,7 +234,7 @@ enum Command {
         #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         to: Option<Vec<f64>>,
         /// Grasps drawn from each of the object's grasp regions.
-        #[arg(long, default_value_t = 8)]
+        #[arg(long, default_value_t = 16)]
         grasps: usize,
         /// Seed of the grasps and the Fuzzy PRMs' samples.
         #[arg(long, default_value_t = 1)]
@@ -245,6 +245,9 @@ enum Command {
         /// Where to write the path.
         #[arg(long, default_value = "pick_place.json")]
         out: PathBuf,
+        /// Also draw the path (snapshots, timeline, animation) into this folder.
+        #[arg(long)]
+        render: Option<PathBuf>,
     },
     /// Draw a plan: snapshots.svg, timeline.svg and animation.html.
     Render {
@@ -396,6 +399,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             seed,
             budget,
             out,
+            render,
         } => pick_place(
             &scene_or_default(scene)?,
             &PickPlaceOptions {
@@ -404,6 +408,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 grasps,
                 seed,
                 budget,
+                render,
             },
             &out,
         ),

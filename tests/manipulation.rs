@@ -137,7 +137,7 @@ fn pick_and_place_moves_the_can_into_the_disc() {
         .contains("goal placement"));
 }
 
-/// The command: solved, written, and the same seed writes the same file.
+/// The command: solved, written, drawn, and the same seed writes the same file.
 #[test]
 fn pick_place_writes_the_same_path_for_the_same_seed() {
     let scratch = common::Scratch::new("pick-place");
@@ -155,12 +155,27 @@ fn pick_place_writes_the_same_path_for_the_same_seed() {
             .unwrap()
     };
     let (a, b) = (scratch.join("a.json"), scratch.join("b.json"));
-    let out = run(&a);
+    let pictures = scratch.join("pictures");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .args([
+            "pick-place",
+            "scenes/pick_and_place.yaml",
+            "--object",
+            "red_can",
+            "--render",
+        ])
+        .arg(&pictures)
+        .arg("--out")
+        .arg(&a)
+        .output()
+        .unwrap();
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    let animation = std::fs::read_to_string(pictures.join("animation.html")).unwrap();
+    assert!(animation.contains("red_can"));
     assert!(String::from_utf8_lossy(&out.stdout).contains("transfer through"));
     assert!(run(&b).status.success());
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());

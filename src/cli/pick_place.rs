@@ -19,6 +19,8 @@ pub struct PickPlaceOptions {
     pub grasps: usize,
     pub seed: u64,
     pub budget: usize,
+    /// Also draw the path into this folder.
+    pub render: Option<std::path::PathBuf>,
 }
 
 /// The file `pick-place` writes.
@@ -114,6 +116,11 @@ pub fn pick_place(
         graph.total_time
     );
     let Some(segments) = found else {
+        if graph.runs == 0 {
+            println!(
+                "no path in the manipulation graph: no grasp holds the object validly at both placements (more --grasps may find one)"
+            );
+        }
         return Ok(ExitCode::FAILURE);
     };
     problem
@@ -169,5 +176,21 @@ pub fn pick_place(
     std::fs::write(out, text + "\n")
         .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
     println!("pick-and-place path written to {}", out.display());
+    if let Some(dir) = &run.render {
+        // Frames one Transit step (0.02 rad) apart, drawn 0.02 s apart.
+        let (states, control_starts) = problem.states(&segments);
+        let film = crate::render::Film {
+            contacts: vec![Vec::new(); states.len() - 1],
+            states,
+            control_starts,
+            dt: 0.02,
+            scene: problem.scene.clone(),
+            executed: Vec::new(),
+        };
+        let files = crate::render::write_pictures(&film, dir, &[])?;
+        for path in [files.snapshots, files.timeline, files.animation] {
+            println!("wrote {}", path.display());
+        }
+    }
     Ok(ExitCode::SUCCESS)
 }

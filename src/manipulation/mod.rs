@@ -276,6 +276,42 @@ impl PickAndPlace {
         Ok(())
     }
 
+    /// The states along a path at the Transit resolution, for pictures: the object where
+    /// it rests, or while carried where the hand holds it (seen from above: the planar
+    /// pose of its 3D pose). Also each segment's first state index.
+    pub fn states(&self, segments: &[Segment]) -> (Vec<State>, Vec<usize>) {
+        let robot = &self.scene.robot;
+        let mut placement = 0;
+        let mut states: Vec<State> = Vec::new();
+        let mut starts = Vec::new();
+        for s in segments {
+            starts.push(states.len().saturating_sub(1));
+            let state_at = |q: DVector<f64>| {
+                let mut objects = self.objects_at(placement);
+                if let Motion::Transfer { grasp, .. } = s.motion {
+                    let x_0o =
+                        robot.tool_pose(&robot.link_poses(&q)) * self.grasps[grasp].inverse();
+                    objects[self.object] = Pose2::from_isometry(&x_0o);
+                }
+                State { q, objects }
+            };
+            if states.is_empty() {
+                states.push(state_at(s.waypoints[0].clone()));
+            }
+            for pair in s.waypoints.windows(2) {
+                let n = transit_segments(&pair[0], &pair[1]);
+                for step in 1..=n {
+                    states.push(state_at(pair[0].lerp(&pair[1], step as f64 / n as f64)));
+                }
+            }
+            if let Motion::Transfer { to, .. } = s.motion {
+                placement = to;
+            }
+        }
+        starts.push(states.len() - 1);
+        (states, starts)
+    }
+
     /// Does `q` hold `grasp` on the object at `placement` (tool within 1 mm, 1 mrad)?
     fn holds(&self, grasp: usize, placement: usize, q: &DVector<f64>) -> bool {
         let robot = &self.scene.robot;

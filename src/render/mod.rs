@@ -272,7 +272,12 @@ pub fn render(
     dir: &Path,
     times: &[f64],
 ) -> Result<Rendered, String> {
-    let film = Film::of(plan, plan_path)?;
+    write_pictures(&Film::of(plan, plan_path)?, dir, times)
+}
+
+/// Writes `snapshots.svg`, `timeline.svg` and `animation.html` of `film` into `dir`.
+/// `times` are the snapshot times (s); empty for the default.
+pub fn write_pictures(film: &Film, dir: &Path, times: &[f64]) -> Result<Rendered, String> {
     let times = if times.is_empty() {
         film.default_times()
     } else {
@@ -295,8 +300,8 @@ pub fn render(
         Ok::<PathBuf, String>(path)
     };
     Ok(Rendered {
-        snapshots: write("snapshots.svg", svg::snapshots(&film, &times))?,
-        timeline: write("timeline.svg", svg::timeline(&film))?,
-        animation: write("animation.html", html::animation(&film))?,
+        snapshots: write("snapshots.svg", svg::snapshots(film, &times))?,
+        timeline: write("timeline.svg", svg::timeline(film))?,
+        animation: write("animation.html", html::animation(film))?,
     })
 }
