@@ -137,9 +137,10 @@ fn pick_and_place_moves_the_can_into_the_disc() {
         .contains("goal placement"));
 }
 
-/// The command: solved, written, drawn, and the same seed writes the same file.
+/// The command: solved, written, drawn; the same seed writes the same file; `check`
+/// checks it again and refuses a broken or malformed one.
 #[test]
-fn pick_place_writes_the_same_path_for_the_same_seed() {
+fn pick_place_writes_draws_and_checks_its_path() {
     let scratch = common::Scratch::new("pick-place");
     let run = |out: &std::path::Path| {
         std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
@@ -181,6 +182,43 @@ fn pick_place_writes_the_same_path_for_the_same_seed() {
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
     let text = std::fs::read_to_string(&a).unwrap();
     assert!(text.contains("\"format\": \"pushplan-pick-place/1\""));
+
+    // `check` checks the file again; a transfer cut short of its placement does not check;
+    // a segment naming a grasp the file lacks is refused as malformed.
+    let check = |file: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
+            .arg("check")
+            .arg(file)
+            .output()
+            .unwrap()
+    };
+    let checked = check(&a);
+    assert!(
+        checked.status.success(),
+        "{}",
+        String::from_utf8_lossy(&checked.stdout)
+    );
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let transfer = json["segments"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|s| s["motion"] == "transfer")
+        .unwrap();
+    let waypoints = transfer["waypoints"].as_array_mut().unwrap();
+    waypoints.pop();
+    let short = scratch.join("short.json");
+    std::fs::write(&short, json.to_string()).unwrap();
+    let refused = check(&short);
+    assert_eq!(refused.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&refused.stdout).contains("does not hold grasp"));
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    json["segments"][0]["placement"] = serde_json::json!(7);
+    let malformed = scratch.join("malformed.json");
+    std::fs::write(&malformed, json.to_string()).unwrap();
+    let refused = check(&malformed);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("segments[0]"));
     let missing = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
         .args([
             "pick-place",

@@ -6,7 +6,26 @@ use crate::robustness::Noise;
 use std::path::Path;
 use std::process::ExitCode;
 
+/// Does the file say it is a `pick-place` path (its `format`)?
+fn is_pick_place_file(path: &Path) -> bool {
+    #[derive(serde::Deserialize)]
+    struct Format {
+        format: Option<String>,
+    }
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|text| serde_json::from_str::<Format>(&text).ok())
+        .and_then(|f| f.format)
+        .is_some_and(|f| f == super::PICK_PLACE_FORMAT)
+}
+
 pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
+    if is_pick_place_file(path) {
+        if noise > 0 {
+            return Err("--noise applies to pushing plans, not to pick-and-place paths".into());
+        }
+        return super::check_pick_place(path);
+    }
     let plan = PlanFile::read(path)?;
     let report = plan.check(path)?;
     if noise > 0 {

@@ -15,7 +15,7 @@ pub use bench::{bench, bench_merge, bench_scene, plots, BenchOptions};
 pub use check::check;
 pub use execute::execute;
 pub use files::{draw, generate_scenes, install};
-pub use pick_place::{pick_place, PickPlaceOptions};
+pub use pick_place::{check_pick_place, pick_place, PickPlaceOptions, PICK_PLACE_FORMAT};
 pub use plan::{grasp_goal, plan, PlanOptions};
 pub use robot::{robot, RobotQuery};
 

@@ -4,9 +4,9 @@
 use crate::manipulation::graph::INITIAL_PROBABILITY;
 use crate::manipulation::{EdgeKind, ManipulationGraph, Motion, PickAndPlace, Settings};
 use crate::math::Pose2;
-use crate::robot::wgr::displacement;
 use crate::scene::{Goal, Scene};
-use serde::Serialize;
+use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -23,26 +23,33 @@ pub struct PickPlaceOptions {
     pub render: Option<std::path::PathBuf>,
 }
 
+/// The format `pick-place` files name.
+pub const PICK_PLACE_FORMAT: &str = "pushplan-pick-place/1";
+
 /// The file `pick-place` writes.
-#[derive(Serialize)]
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct PickPlaceFile {
-    /// Always "pushplan-pick-place/1".
-    format: &'static str,
+    /// Always [`PICK_PLACE_FORMAT`].
+    format: String,
     scene: String,
     object: String,
     /// Placements `[x, y, yaw]`: the start, the goal.
     placements: Vec<[f64; 3]>,
-    /// Grasps: the tool in the object frame, `[x, y, z, roll, pitch, yaw]` (m, rad).
-    grasps: Vec<[f64; 6]>,
+    /// Grasps: the tool in the object frame, `[x, y, z, qx, qy, qz, qw]` (m; a unit
+    /// quaternion: roll, pitch and yaw lose the rotation at a quarter turn of pitch,
+    /// where side grasps are).
+    grasps: Vec<[f64; 7]>,
     segments: Vec<SegmentRecord>,
     graph: GraphRecord,
 }
 
-#[derive(Serialize)]
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct SegmentRecord {
     /// "transit" (the object rests at `placement`) or "transfer" (carried in `grasp`
     /// from placement `from` to `to`).
-    motion: &'static str,
+    motion: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     placement: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -55,7 +62,8 @@ struct SegmentRecord {
     waypoints: Vec<Vec<f64>>,
 }
 
-#[derive(Serialize)]
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct GraphRecord {
     nodes: usize,
     transfer_edges: usize,
@@ -127,7 +135,7 @@ pub fn pick_place(
         .check(&segments)
         .map_err(|why| format!("internal error: the path found does not check: {why}"))?;
     let file = PickPlaceFile {
-        format: "pushplan-pick-place/1",
+        format: PICK_PLACE_FORMAT.into(),
         scene: crate::plan::PlanFile::scene_reference(scene_path, out),
         object: run.object.clone(),
         placements: problem
@@ -135,14 +143,14 @@ pub fn pick_place(
             .iter()
             .map(|p| [p.x, p.y, p.theta])
             .collect(),
-        grasps: problem.grasps.iter().map(displacement).collect(),
+        grasps: problem.grasps.iter().map(grasp_record).collect(),
         segments: segments
             .iter()
             .map(|s| {
                 let waypoints = s.waypoints.iter().map(|q| q.as_slice().to_vec()).collect();
                 match s.motion {
                     Motion::Transit { placement } => SegmentRecord {
-                        motion: "transit",
+                        motion: "transit".into(),
                         placement: Some(placement),
                         grasp: None,
                         from: None,
@@ -150,7 +158,7 @@ pub fn pick_place(
                         waypoints,
                     },
                     Motion::Transfer { grasp, from, to } => SegmentRecord {
-                        motion: "transfer",
+                        motion: "transfer".into(),
                         placement: None,
                         grasp: Some(grasp),
                         from: Some(from),
@@ -193,4 +201,104 @@ pub fn pick_place(
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `pushplan check` of a pick-and-place file: its path checked again in its scene, as
+/// `pick-place` checked it before writing it.
+pub fn check_pick_place(path: &Path) -> Result<ExitCode, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let file: PickPlaceFile =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let scene_path = path.parent().unwrap_or(Path::new(".")).join(&file.scene);
+    let scene = Scene::load(&scene_path).map_err(|e| e.to_string())?;
+    let object = crate::reach::graspable_object(&scene, &file.object)?;
+    let placement = |i: usize| file.placements.get(i).copied();
+    let problem = PickAndPlace {
+        object,
+        placements: file
+            .placements
+            .iter()
+            .map(|p| Pose2::new(p[0], p[1], p[2]))
+            .collect(),
+        grasps: file.grasps.iter().map(grasp_of_record).collect(),
+        scene,
+    };
+    let bad = |i: usize, what: &str| format!("{}: segments[{i}]: {what}", path.display());
+    let mut segments = Vec::new();
+    for (i, s) in file.segments.iter().enumerate() {
+        let motion = match (s.motion.as_str(), s.placement, s.grasp, s.from, s.to) {
+            ("transit", Some(placement), None, None, None) => Motion::Transit { placement },
+            ("transfer", None, Some(grasp), Some(from), Some(to)) => {
+                Motion::Transfer { grasp, from, to }
+            }
+            _ => {
+                return Err(bad(
+                    i,
+                    "a transit with its placement, or a transfer with grasp, from and to",
+                ))
+            }
+        };
+        let indices_exist = match motion {
+            Motion::Transit { placement: p } => placement(p).is_some(),
+            Motion::Transfer { grasp, from, to } => {
+                grasp < problem.grasps.len() && placement(from).is_some() && placement(to).is_some()
+            }
+        };
+        if !indices_exist {
+            return Err(bad(i, "names a placement or grasp the file does not have"));
+        }
+        let dof = problem.scene.robot.dof();
+        if s.waypoints
+            .iter()
+            .any(|q| q.len() != dof || q.iter().any(|v| !v.is_finite()))
+        {
+            return Err(bad(
+                i,
+                &format!("waypoints must be {dof} finite joint values"),
+            ));
+        }
+        segments.push(crate::manipulation::Segment {
+            motion,
+            waypoints: s
+                .waypoints
+                .iter()
+                .map(|q| nalgebra::DVector::from_column_slice(q))
+                .collect(),
+        });
+    }
+    if problem.placements.len() < 2 || problem.placements[0] != problem.scene.start.objects[object]
+    {
+        return Err(format!(
+            "{}: placements: the first must be the object's start in the scene, then the goal",
+            path.display()
+        ));
+    }
+    match problem.check(&segments) {
+        Ok(()) => {
+            println!(
+                "{}: {} segments; every line valid at 0.02 rad, grasps held at both placements, the object ends at the goal placement\npick-and-place OK",
+                path.display(),
+                segments.len()
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(why) => {
+            println!("{}: {why}\npick-and-place FAILED", path.display());
+            Ok(ExitCode::FAILURE)
+        }
+    }
+}
+
+/// A grasp `X_OE` as the file holds it.
+fn grasp_record(x: &Isometry3<f64>) -> [f64; 7] {
+    let (t, q) = (x.translation.vector, x.rotation.into_inner());
+    [t.x, t.y, t.z, q.i, q.j, q.k, q.w]
+}
+
+/// A grasp from the file (its quaternion normalised).
+fn grasp_of_record(g: &[f64; 7]) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(g[0], g[1], g[2]),
+        UnitQuaternion::from_quaternion(Quaternion::new(g[6], g[3], g[4], g[5])),
+    )
 }
