@@ -1,18 +1,21 @@
 //! `pushplan check`: re-simulate a plan file, optionally under parameter noise.
 
+use crate::input::MAX_PLAN_BYTES;
 use crate::plan::PlanFile;
 use crate::planner::Problem;
 use crate::robustness::Noise;
 use std::path::Path;
 use std::process::ExitCode;
 
-/// Does the file say it is a `pick-place` path (its `format`)?
+/// Does the file say it is a `pick-place` path (its `format`)? Read as every input is
+/// (a regular file of bounded size); what cannot be read is left to the plan reader's
+/// error.
 fn is_pick_place_file(path: &Path) -> bool {
     #[derive(serde::Deserialize)]
     struct Format {
         format: Option<String>,
     }
-    std::fs::read_to_string(path)
+    crate::input::read_text(path, MAX_PLAN_BYTES)
         .ok()
         .and_then(|text| serde_json::from_str::<Format>(&text).ok())
         .and_then(|f| f.format)

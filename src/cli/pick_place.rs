@@ -206,7 +206,8 @@ pub fn pick_place(
 /// `pushplan check` of a pick-and-place file: its path checked again in its scene, as
 /// `pick-place` checked it before writing it.
 pub fn check_pick_place(path: &Path) -> Result<ExitCode, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::input::read_text(path, crate::input::MAX_PLAN_BYTES)
+        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
     let file: PickPlaceFile =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let scene_path = path.parent().unwrap_or(Path::new(".")).join(&file.scene);

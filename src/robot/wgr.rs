@@ -2,7 +2,7 @@
 //! manipulation-planning lecture's definition): a frame `w` in the world, the end
 //! effector's pose `T_e^w` relative to `w` at the nominal grasp, and bounds `B^w` on the six
 //! displacement coordinates (x, y, z in m; roll, pitch, yaw in rad) of the grasp within
-//! `w`. Issue 15, first part: the region, its sampling and its distance.
+//! `w`. Issue 15: the region, its sampling and its distance.
 //!
 //! Frames, Drake style: `X_0W` is `w` in the world (`T_w^0`), `X_WS` a displacement
 //! sample in `w` (`T_sample^w`), `X_SE` the end effector in the displaced grasp frame

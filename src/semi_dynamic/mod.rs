@@ -1,8 +1,8 @@
-//! The workshop paper's semi-dynamic transition function (issue 14, first part): the
-//! table seen from above as a 2D rigid-body world (rapier2d), objects as dynamic bodies
-//! that may be struck, slide, push one another and coast, a pusher as a kinematic body.
-//! An action moves the pusher for its duration; then the world runs on with the pusher
-//! still until every object rests, or the state is invalid after `t_max`. States stay
+//! The workshop paper's semi-dynamic transition function (issue 14): the table seen from
+//! above as a 2D rigid-body world (rapier2d), objects as dynamic bodies that may be
+//! struck, slide, push one another and coast, pushers as kinematic bodies. An action moves
+//! the pushers for its duration; then the world runs on with them still until every object
+//! rests, or the state is invalid after `t_max`. States stay
 //! configurations only (no velocities), as in the paper.
 //!
 //! Support friction against the table is Coulomb friction, not damping: rapier has no
@@ -13,8 +13,8 @@
 //! Half the step's friction acts before the engine's step and half after, so positions
 //! integrate the mid-step velocity (exact for a constant deceleration).
 //!
-//! Pushers are kinematic bodies: the planar hand's outline, or each arm link's cut at the
-//! objects' heights ([`sweep`]). Objects of different heights are kept in height classes,
+//! Pushers are kinematic bodies: each link's cut at the objects' heights ([`sweep`]; the
+//! planar hand's is its outline). Objects of different heights are kept in height classes,
 //! and a link's cut for a class meets only that class's objects, so that a forearm above a
 //! short can still pushes a tall bottle. Obstacles are fixed outlines: what an obstacle
 //! covers of the objects' height range, seen from above.
