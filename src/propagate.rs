@@ -15,8 +15,10 @@
 use crate::collision::section::slab_section;
 use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact, ObjectContacts};
 use crate::math::Pose2;
-use crate::physics::tipping::{largest_tipping_moment, pusher_forces, support_balance};
-use crate::physics::{object_motion, LimitSurface, PusherForce};
+use crate::physics::tipping::{
+    largest_tipping_moment, pusher_forces, sliding_push_tips, support_balance, ContactElevation,
+};
+use crate::physics::{object_motion, LimitSurface, PlanarContact, PusherForce};
 use crate::robot::EeAction;
 use crate::scene::file::PhysicsModel;
 use crate::scene::{Goal, Scene};
@@ -395,6 +397,41 @@ impl Propagator {
                 object: scene.objects[u.object].name.clone(),
                 speed: u.speed,
             })?;
+        // Tipping, as the quasistatic model decides it for a push that slides the object
+        // (`physics::tipping::sliding_push_tips`): the push along the impulse's direction
+        // at the link's lowest point on the object's side. Strikes add inertia the check
+        // leaves out.
+        for push in &rest.pushes {
+            let body = &scene.objects[push.object];
+            let sweep = &model.buffer[push.pusher];
+            let turn = nalgebra::Rotation2::new(-state.objects[push.object].theta);
+            let contact = PlanarContact {
+                // With a level push only the force's height and direction matter.
+                point: body.footprint.centroid(),
+                normal: turn * push.direction,
+                pusher_velocity: Vector2::zeros(),
+                gap: 0.0,
+            };
+            let elevation = ContactElevation {
+                height: (sweep.lowest - scene.table.top).max(0.0),
+                slope: 0.0,
+            };
+            if push.direction != Vector2::zeros()
+                && sliding_push_tips(
+                    body.mass,
+                    body.mu_g,
+                    &body.footprint,
+                    &contact,
+                    &elevation,
+                    scene.physics.tipping_margin,
+                )
+            {
+                return Err(Invalid::Tips {
+                    object: body.name.clone(),
+                    link: scene.robot.chain.links[sweep.link].name.clone(),
+                });
+            }
+        }
         let pushes = rest
             .pushes
             .iter()

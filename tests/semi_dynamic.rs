@@ -682,3 +682,38 @@ fn render_draws_objects_coasting_after_the_action() {
     );
     pushplan::render::render(&plan, &plan_path, &scratch.join("pictures"), &[]).unwrap();
 }
+
+/// Tipping in the semi-dynamic model, against the closed form of a level push that slides
+/// the object: it tips when its lowest contact is higher than b (1 - margin) / mu_g. A
+/// 6 cm wide, 30 cm tall box (b = 3 cm, mu_g 0.5, margin 0.2: 4.8 cm) pushed by the
+/// planar hand (8 cm tall) whose bottom is 1 cm or 4 cm up slides; with its bottom 5.8 cm
+/// or 16 cm up, it tips.
+#[test]
+fn a_semi_dynamic_push_high_on_a_tall_box_tips_it() {
+    use pushplan::{EeAction, Invalid, Propagator};
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml")
+        .unwrap()
+        .replace("size: [0.1, 0.1, 0.14]", "size: [0.06, 0.06, 0.3]")
+        .replace("mu_g: 0.4", "mu_g: 0.5")
+        + "physics: {model: semi_dynamic, object_clearance: 0}\n";
+    let push = EeAction::planar(0.2, 0.0, 0.0);
+    for (hand_height, tips) in [(0.05, false), (0.08, false), (0.098, true), (0.2, true)] {
+        let scene = pushplan::Scene::from_yaml(
+            &text.replace("height: 0.05", &format!("height: {hand_height}")),
+            std::path::Path::new("scenes/x.yaml"),
+        )
+        .unwrap();
+        let run = Propagator::new(&scene).propagate(&scene.start, &push, 1.2);
+        match (&run.stopped_by, tips) {
+            (Some(Invalid::Tips { object, link }), true) => {
+                assert_eq!((object.as_str(), link.as_str()), ("box", "hand"));
+                assert_eq!(
+                    run.state.objects, scene.start.objects,
+                    "it tipped on the first touch"
+                );
+            }
+            (None, false) => assert!(run.state.objects[0].x > scene.start.objects[0].x + 0.05),
+            (other, _) => panic!("hand at {hand_height} m: stopped by {other:?}"),
+        }
+    }
+}

@@ -130,8 +130,10 @@ pub struct World {
     objects: Vec<(RigidBodyHandle, Support)>,
     /// Kinematic pushers and their colliders.
     pushers: Vec<(RigidBodyHandle, ColliderHandle)>,
-    /// Normal impulse (N s) each pusher has given each object so far, `[pusher][object]`.
-    impulses: Vec<Vec<f64>>,
+    /// Normal impulse each pusher has given each object so far, `[pusher][object]`: its
+    /// magnitude summed over the steps (N s), and the sum of its vectors on the object
+    /// (N s, world frame).
+    impulses: Vec<Vec<(f64, Vector2<f64>)>>,
     /// Every step's time and object poses, when recording ([`World::record`]).
     trace: Option<Vec<TracePoint>>,
     /// Seconds simulated.
@@ -288,7 +290,7 @@ impl World {
             islands: IslandManager::new(),
             broad_phase: BroadPhaseBvh::new(),
             narrow_phase: NarrowPhase::new(),
-            impulses: vec![vec![0.0; handles.len()]; pushers.len()],
+            impulses: vec![vec![(0.0, Vector2::zeros()); handles.len()]; pushers.len()],
             bodies,
             colliders,
             impulse_joints: ImpulseJointSet::new(),
@@ -428,16 +430,20 @@ impl World {
     fn add_pusher_impulses(&mut self) {
         for (p, &(_, collider)) in self.pushers.iter().enumerate() {
             for pair in self.narrow_phase.contact_pairs_with(collider) {
-                let other = if pair.collider1 == collider {
-                    pair.collider2
+                // Manifold normals point from collider 1 to collider 2, and the impulse
+                // pushes collider 2 along them.
+                let (other, on_other) = if pair.collider1 == collider {
+                    (pair.collider2, pair.total_impulse())
                 } else {
-                    pair.collider1
+                    (pair.collider1, -pair.total_impulse())
                 };
                 let Some(object) = self.colliders.get(other).map(|c| c.user_data) else {
                     continue;
                 };
                 if object > 0 {
-                    self.impulses[p][object as usize - 1] += pair.total_impulse_magnitude();
+                    let sum = &mut self.impulses[p][object as usize - 1];
+                    sum.0 += pair.total_impulse_magnitude();
+                    sum.1 += on_other;
                 }
             }
         }
@@ -484,7 +490,12 @@ impl World {
 
     /// The normal impulse (N s) pusher `p` has given object `i` so far.
     pub fn impulse(&self, p: usize, i: usize) -> f64 {
-        self.impulses[p][i]
+        self.impulses[p][i].0
+    }
+
+    /// The sum of the impulses pusher `p` has given object `i` so far (N s, world frame).
+    pub fn impulse_vector(&self, p: usize, i: usize) -> Vector2<f64> {
+        self.impulses[p][i].1
     }
 
     /// Seconds simulated so far.
@@ -501,6 +512,9 @@ pub struct Push {
     pub object: usize,
     /// Normal impulse over the whole transition (N s).
     pub impulse: f64,
+    /// The way it pushed: the unit direction of the summed impulse on the object (world
+    /// frame; zero if the impulses cancel).
+    pub direction: Vector2<f64>,
 }
 
 /// Where a transition leaves the objects.
@@ -598,6 +612,10 @@ impl Transition {
                 pusher,
                 object,
                 impulse: world.impulse(pusher, object),
+                direction: world
+                    .impulse_vector(pusher, object)
+                    .try_normalize(1e-12)
+                    .unwrap_or_else(Vector2::zeros),
             })
             .collect();
         Ok(Rest {

@@ -30,6 +30,9 @@ pub struct Sweep {
     /// That frame's planar pose at the step's start and end (world).
     pub from: Pose2,
     pub to: Pose2,
+    /// World height of the cut's lowest point (m): where the link meets an object's side
+    /// lowest, the contact a tipping object keeps.
+    pub lowest: f64,
 }
 
 /// Which heights the links are cut at: the objects' height classes above the table.
@@ -150,5 +153,6 @@ fn fit(points: &[Point3<f64>], motion: &Isometry3<f64>) -> Option<Sweep> {
         shape: SharedShape::convex_hull(&outline)?,
         from: Pose2::new(c_before.x, c_before.y, 0.0),
         to: Pose2::new(c_after.x, c_after.y, cross.atan2(dot)),
+        lowest: points.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
     })
 }
