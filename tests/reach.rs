@@ -224,6 +224,11 @@ fn pc_rrt_reaches_a_grasp_pushing_clutter_aside() {
     );
     let (code, stdout, _) = pushplan(&["check", plan_path.to_str().unwrap()]);
     assert_eq!(code, Some(0), "{stdout}");
+    // Drawn with the box to grasp as the goal object, and no goal region in the legend.
+    let files =
+        pushplan::render::render(&plan, &plan_path, &scratch.join("pictures"), &[]).unwrap();
+    let svg = std::fs::read_to_string(files.snapshots).unwrap();
+    assert!(svg.contains("goal object") && !svg.contains("goal region"));
 }
 
 /// The planar hand drives into the box it is to grasp: with `object_may_move: false`

@@ -174,14 +174,19 @@ fn panel(film: &Film, view: &View, frame: &Frame, k: usize, out: &mut String) {
     );
 }
 
-/// The snapshots' legend: what the colours mean.
-fn legend(out: &mut String) {
+/// The snapshots' legend: what the colours mean (the goal region only where there is
+/// one; a grasp goal's object is its goal object).
+fn legend(film: &Film, out: &mut String) {
     let items = [
         ("rect", GOAL_COLOUR, "goal object"),
         ("circle", GOAL_REGION_COLOUR, "goal region"),
         ("rect", LINK_COLOUR, "arm"),
         ("rect", CONTACT_COLOUR, "link pushing"),
     ];
+    let has_region = film.goal_disc().is_some();
+    let items = items
+        .into_iter()
+        .filter(|(_, _, label)| has_region || *label != "goal region");
     let mut x = MARGIN;
     for (shape, colour, label) in items {
         let swatch = match shape {
@@ -227,7 +232,7 @@ pub fn snapshots(film: &Film, times: &[f64]) -> String {
         r##"<text x="{MARGIN}" y="18" font-size="15">{}: the plan seen from above (robot at the bottom)</text>"##,
         escape(&film.scene.name)
     );
-    legend(&mut out);
+    legend(film, &mut out);
     for (n, &t) in times.iter().enumerate() {
         let k = film.step_at(t);
         let frame = film.frame(k);
