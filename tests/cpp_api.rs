@@ -142,6 +142,18 @@ fn the_cpp_example_builds_plans_and_reports_errors() {
     );
     assert!((numbers[3] - last_q0).abs() < 1e-4, "{line} vs {last_q0}");
 
+    // Push, then grasp: Planner::reach from where the plan ends.
+    let run = Command::new(&binary)
+        .args(["scenes/herb_fig1_clutter.yaml", "5", "green_box"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(run.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("then a grasp of green_box: reached through"),
+        "{stdout}"
+    );
+
     // A scene given as text (Planner::fromYaml): relative paths resolve against the
     // working directory of the named source.
     let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();

@@ -1,9 +1,10 @@
-// A C++ application using pushplan: plan a scene and print the plan.
+// A C++ application using pushplan: plan a scene and print the plan; then, if asked,
+// reach a grasp of an object where the plan leaves it (push, then grasp).
 //
 // Build (after `cargo build --release`), from the repository root:
 //   g++ -o plan_scene examples/cpp/plan_scene.cpp $(pkg-config --cflags --libs target/release/pushplan.pc)
 // Run:
-//   ./plan_scene scenes/herb_single_object.yaml [seed]
+//   ./plan_scene scenes/herb_single_object.yaml [seed [object-to-grasp]]
 //   ./plan_scene - < scene.yaml       (a scene given as text, e.g. built by the program)
 #include <pushplan/pushplan.h>
 
@@ -44,6 +45,17 @@ int main(int argc, char **argv)
         const auto &trajectory = plan.trajectory;
         std::cout << "  trajectory: " << trajectory.times.size() << " samples at " << trajectory.rate << " Hz, "
                   << trajectory.times.back() << " s; first joint ends at " << trajectory.q.back()[0] << "\n";
+        if (argc > 3 && plan.solved)
+        {
+            // IK-BiRRT from where the plan ends, every object a static obstacle.
+            pushplan::ReachOptions reach_options;
+            reach_options.seed = options.seed;
+            const pushplan::Reach reach = planner.reach(argv[3], reach_options, &plan);
+            std::cout << "  then a grasp of " << reach.object << ": " << (reach.solved ? "reached" : "not reached")
+                      << " through " << reach.waypoints.size() << " waypoints (" << reach.goal_samples
+                      << " IK solutions in the goal tree)\n";
+            return reach.solved ? 0 : 1;
+        }
         return plan.solved ? 0 : 1;
     }
     catch (const pushplan::Error &e)
