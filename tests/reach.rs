@@ -10,18 +10,10 @@ use pushplan::plan::PlanFile;
 use pushplan::reach::{check_reach, grasp_distance, graspable_object, GRASP_TOLERANCE};
 use pushplan::{Scene, State};
 use std::path::Path;
-use std::process::Command;
 
-fn pushplan(args: &[&str]) -> (Option<i32>, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_pushplan"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+/// The `pushplan` command run here: its exit code, stdout and stderr.
+fn pushplan(args: &[&str]) -> (i32, String, String) {
+    common::pushplan_in(Path::new("."), args)
 }
 
 /// The wall stands between the arm and the can: the straight joint-space line from the
@@ -47,7 +39,7 @@ fn ik_birrt_reaches_a_grasp_behind_a_wall() {
         ])
     };
     let (code, stdout, stderr) = reach_into(&plan_path);
-    assert_eq!(code, Some(0), "{stdout}{stderr}");
+    assert_eq!(code, 0, "{stdout}{stderr}");
     let plan = PlanFile::read(&plan_path).unwrap();
     assert!(plan.solved && plan.controls.is_empty());
     let reach = plan.reach.as_ref().expect("the plan holds the reach");
@@ -74,13 +66,13 @@ fn ik_birrt_reaches_a_grasp_behind_a_wall() {
 
     // `check` agrees; the trajectory plays the reach at the joints' limits and ends there.
     let (code, stdout, _) = pushplan(&["check", plan_path.to_str().unwrap()]);
-    assert_eq!(code, Some(0), "{stdout}");
+    assert_eq!(code, 0, "{stdout}");
     let last = plan.trajectory.q.last().unwrap();
     assert_eq!(DVector::from_column_slice(last), end.q);
     // The same seed gives the same reach, byte for byte.
     let again = scratch.join("again.json");
     let (code, _, _) = reach_into(&again);
-    assert_eq!(code, Some(0));
+    assert_eq!(code, 0);
     assert_eq!(
         std::fs::read_to_string(&again).unwrap(),
         std::fs::read_to_string(&plan_path).unwrap()
@@ -111,7 +103,7 @@ fn push_then_grasp_solves_the_default_scene() {
         "--out",
         plan_path.to_str().unwrap(),
     ]);
-    assert_eq!(code, Some(0), "{stdout}{stderr}");
+    assert_eq!(code, 0, "{stdout}{stderr}");
     assert!(stdout.contains("then a grasp of 'green_box'"), "{stdout}");
     let plan = PlanFile::read(&plan_path).unwrap();
     assert!(plan.solved && !plan.controls.is_empty());
@@ -121,7 +113,7 @@ fn push_then_grasp_solves_the_default_scene() {
     assert!(scene.goal.is_satisfied(&end));
     check_reach(&scene, &end, green, &plan.reach_waypoints()).unwrap();
     let (code, stdout, _) = pushplan(&["check", plan_path.to_str().unwrap()]);
-    assert_eq!(code, Some(0), "{stdout}");
+    assert_eq!(code, 0, "{stdout}");
 
     // A reach that ends outside the grasp region does not check.
     let mut broken = plan.clone();
@@ -164,7 +156,7 @@ fn grasp_goals_name_what_is_wrong() {
             "--out",
             "/dev/null",
         ]);
-        assert_ne!(code, Some(0), "{goal}: {stdout}");
+        assert_ne!(code, 0, "{goal}: {stdout}");
         assert!(stderr.contains(expected), "{goal}: {stderr}");
     }
     let (code, _, stderr) = pushplan(&[
@@ -178,7 +170,7 @@ fn grasp_goals_name_what_is_wrong() {
         "--out",
         "/dev/null",
     ]);
-    assert_ne!(code, Some(0));
+    assert_ne!(code, 0);
     assert!(
         stderr.contains("--sample-probability must be in [0, 1]"),
         "{stderr}"
@@ -206,7 +198,7 @@ fn pc_rrt_reaches_a_grasp_pushing_clutter_aside() {
         "--out",
         plan_path.to_str().unwrap(),
     ]);
-    assert_eq!(code, Some(0), "{stdout}{stderr}");
+    assert_eq!(code, 0, "{stdout}{stderr}");
     let plan = PlanFile::read(&plan_path).unwrap();
     assert!(plan.solved && !plan.controls.is_empty() && plan.reach.is_none());
     let scene = Scene::load(scene_path).unwrap();
@@ -223,7 +215,7 @@ fn pc_rrt_reaches_a_grasp_pushing_clutter_aside() {
         "no clutter pushed"
     );
     let (code, stdout, _) = pushplan(&["check", plan_path.to_str().unwrap()]);
-    assert_eq!(code, Some(0), "{stdout}");
+    assert_eq!(code, 0, "{stdout}");
     // Drawn with the box to grasp as the goal object, and no goal region in the legend.
     let files =
         pushplan::render::render(&plan, &plan_path, &scratch.join("pictures"), &[]).unwrap();
