@@ -6,10 +6,12 @@
 
 use crate::contact::ArmBounds;
 use crate::darrt::check_transit;
-use crate::darrt::transit::transit_segments;
+use crate::darrt::transit::transit_points;
+use crate::math::Pose2;
 use crate::random::SplitMix64;
 use crate::robot::wgr::Wgr;
-use crate::scene::Scene;
+use crate::robot::Robot;
+use crate::scene::{Grasp, Scene};
 use crate::state::State;
 use crate::validity::{check_robot, check_state};
 use nalgebra::DVector;
@@ -56,10 +58,30 @@ pub fn graspable_object(scene: &Scene, name: &str) -> Result<usize, String> {
 
 /// The distance from `state`'s configuration to the nearest grasp region of `object`.
 pub fn grasp_distance(scene: &Scene, state: &State, object: usize) -> Result<f64, String> {
-    Ok(grasp_regions(scene, state, object)?
+    grasp_regions(scene, state, object)?;
+    Ok(distance_to_grasps(
+        &scene.robot,
+        scene.table.top,
+        &scene.objects[object].grasps,
+        &state.objects[object],
+        &state.q,
+    ))
+}
+
+/// The lecture's distance from configuration `q` of `robot` to the nearest of `grasps`
+/// of an object at `pose` on a table at `table_top` (forward kinematics once).
+pub fn distance_to_grasps(
+    robot: &Robot,
+    table_top: f64,
+    grasps: &[Grasp],
+    pose: &Pose2,
+    q: &DVector<f64>,
+) -> f64 {
+    let x_0e = robot.tool_pose(&robot.link_poses(q));
+    grasps
         .iter()
-        .map(|r| r.distance(&scene.robot, &state.q))
-        .fold(f64::INFINITY, f64::min))
+        .map(|g| g.region(pose, table_top).distance_from_pose(&x_0e))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// What a grasp sample must be valid against.
@@ -153,13 +175,10 @@ pub fn check_reach(
 pub fn reach_states(from: &State, waypoints: &[DVector<f64>]) -> Vec<State> {
     let mut states = vec![from.clone()];
     for pair in waypoints.windows(2) {
-        let segments = transit_segments(&pair[0], &pair[1]);
-        for k in 1..=segments {
-            states.push(State {
-                q: pair[0].lerp(&pair[1], k as f64 / segments as f64),
-                objects: from.objects.clone(),
-            });
-        }
+        states.extend(transit_points(&pair[0], &pair[1]).map(|q| State {
+            q,
+            objects: from.objects.clone(),
+        }));
     }
     states
 }

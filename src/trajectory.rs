@@ -162,13 +162,7 @@ fn poses_at(trace: &[TracePoint], time: f64) -> Vec<Pose2> {
             a.poses
                 .iter()
                 .zip(&b.poses)
-                .map(|(p, q)| {
-                    Pose2::new(
-                        p.x + f * (q.x - p.x),
-                        p.y + f * (q.y - p.y),
-                        wrap_angle(p.theta + f * wrap_angle(q.theta - p.theta)),
-                    )
-                })
+                .map(|(p, q)| p.lerp(q, f))
                 .collect()
         }
         (Some(a), None) => a.poses.clone(),
@@ -243,11 +237,8 @@ pub fn time_parameterise(
                 .iter()
                 .zip(&b.objects)
                 .map(|(p, r)| {
-                    [
-                        p.x + s * (r.x - p.x),
-                        p.y + s * (r.y - p.y),
-                        wrap_angle(p.theta + s * wrap_angle(r.theta - p.theta)),
-                    ]
+                    let at = p.lerp(r, s);
+                    [at.x, at.y, at.theta]
                 })
                 .collect(),
         );

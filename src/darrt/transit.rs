@@ -15,14 +15,22 @@ pub fn transit_segments(from: &DVector<f64>, to: &DVector<f64>) -> usize {
     ((longest / TRANSIT_RESOLUTION).ceil() as usize).max(1)
 }
 
+/// The configurations of the straight line from `from` to `to` after `from`, at
+/// [`TRANSIT_RESOLUTION`]: [`transit_segments`] equal steps, `to` last.
+pub fn transit_points<'a>(
+    from: &'a DVector<f64>,
+    to: &'a DVector<f64>,
+) -> impl Iterator<Item = DVector<f64>> + 'a {
+    let segments = transit_segments(from, to);
+    (1..=segments).map(move |k| from.lerp(to, k as f64 / segments as f64))
+}
+
 /// Checks the straight joint-space line from `from.q` to `to` with the objects of `from`:
 /// every configuration on it (at [`TRANSIT_RESOLUTION`]) after the first is valid.
 pub fn check_transit(scene: &Scene, from: &State, to: &DVector<f64>) -> Result<(), Invalid> {
-    let segments = transit_segments(&from.q, to);
     let mut state = from.clone();
-    for k in 1..=segments {
-        let s = k as f64 / segments as f64;
-        state.q = from.q.lerp(to, s);
+    for q in transit_points(&from.q, to) {
+        state.q = q;
         check_state(scene, &state)?;
     }
     Ok(())

@@ -16,7 +16,7 @@ pub use graph::{EdgeKind, ManipulationGraph, Settings};
 
 use crate::collision::query::overlaps_beyond;
 use crate::contact::ArmBounds;
-use crate::darrt::transit::transit_segments;
+use crate::darrt::transit::{transit_points, transit_segments};
 use crate::math::Pose2;
 use crate::random::SplitMix64;
 use crate::robot::IkSettings;
@@ -257,8 +257,9 @@ impl PickAndPlace {
             }
             for (k, pair) in s.waypoints.windows(2).enumerate() {
                 let n = transit_segments(&pair[0], &pair[1]);
-                for step in 0..=n {
-                    let q = pair[0].lerp(&pair[1], step as f64 / n as f64);
+                let line =
+                    std::iter::once(pair[0].clone()).chain(transit_points(&pair[0], &pair[1]));
+                for (step, q) in line.enumerate() {
                     if !self.valid(s.motion, &q) {
                         return Err(format!(
                             "segment {i}, line {k}: invalid at {:.0} % of it ({:?})",
@@ -299,10 +300,7 @@ impl PickAndPlace {
                 states.push(state_at(s.waypoints[0].clone()));
             }
             for pair in s.waypoints.windows(2) {
-                let n = transit_segments(&pair[0], &pair[1]);
-                for step in 1..=n {
-                    states.push(state_at(pair[0].lerp(&pair[1], step as f64 / n as f64)));
-                }
+                states.extend(transit_points(&pair[0], &pair[1]).map(state_at));
             }
             if let Motion::Transfer { to, .. } = s.motion {
                 placement = to;

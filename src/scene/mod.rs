@@ -225,13 +225,13 @@ impl Goal {
                 robot,
                 ..
             } => {
-                let x_0e = robot.0.tool_pose(&robot.0.link_poses(&state.q));
-                let pose = &state.objects[*object];
-                grasps
-                    .iter()
-                    .map(|g| g.region(pose, *table_top).distance_from_pose(&x_0e))
-                    .fold(f64::INFINITY, f64::min)
-                    - crate::reach::GRASP_TOLERANCE
+                crate::reach::distance_to_grasps(
+                    &robot.0,
+                    *table_top,
+                    grasps,
+                    &state.objects[*object],
+                    &state.q,
+                ) - crate::reach::GRASP_TOLERANCE
             }
         }
     }

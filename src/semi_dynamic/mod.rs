@@ -595,14 +595,9 @@ impl Transition {
         if record {
             world.record();
         }
-        let motions: Vec<(Pose2, Pose2)> = sweeps
-            .iter()
-            .map(|s| {
-                let mut to = s.to;
-                to.theta = s.from.theta + crate::math::wrap_angle(s.to.theta - s.from.theta);
-                (s.from, to)
-            })
-            .collect();
+        // A sweep's frame starts at yaw 0 and turns by less than a half turn: its yaws
+        // need no unwrapping.
+        let motions: Vec<(Pose2, Pose2)> = sweeps.iter().map(|s| (s.from, s.to)).collect();
         world.move_pushers(&motions, dt);
         let settle_time = world.settle(&self.rest)?;
         let pushes = (0..sweeps.len())
