@@ -17,21 +17,62 @@ pub const GOAL_RADIUS: f64 = 0.1;
 /// The region objects are placed in (x, y ranges, m): in the arm's reach on the table.
 const REGION: ([f64; 2], [f64; 2]) = ([0.45, 0.95], [-0.45, 0.5]);
 
-/// Clutter of HERB's experiments: (kind, shape YAML, mass kg).
-const CLUTTER: [(&str, &str, f64); 4] = [
-    ("box", "{type: box, size: [0.10, 0.10, 0.14]}", 1.0),
-    (
-        "glass",
-        "{type: cylinder, radius: 0.035, height: 0.15}",
-        0.3,
-    ),
-    (
-        "bottle",
-        "{type: cylinder, radius: 0.045, height: 0.25}",
-        0.6,
-    ),
-    ("bowl", "{type: cylinder, radius: 0.08, height: 0.06}", 0.5),
+/// A kind of clutter of HERB's experiments.
+struct Clutter {
+    kind: &'static str,
+    /// Its shape, as scene YAML.
+    shape: &'static str,
+    /// kg.
+    mass: f64,
+    /// Half width and height (m) if the hand can hold it from the side.
+    side_grasps: Option<(f64, f64)>,
+}
+
+const CLUTTER: [Clutter; 4] = [
+    Clutter {
+        kind: "box",
+        shape: "{type: box, size: [0.10, 0.10, 0.14]}",
+        mass: 1.0,
+        side_grasps: Some((0.05, 0.14)),
+    },
+    Clutter {
+        kind: "glass",
+        shape: "{type: cylinder, radius: 0.035, height: 0.15}",
+        mass: 0.3,
+        side_grasps: Some((0.035, 0.15)),
+    },
+    Clutter {
+        kind: "bottle",
+        shape: "{type: cylinder, radius: 0.045, height: 0.25}",
+        mass: 0.6,
+        side_grasps: Some((0.045, 0.25)),
+    },
+    // Too low for the hand to close round it above the table.
+    Clutter {
+        kind: "bowl",
+        shape: "{type: cylinder, radius: 0.08, height: 0.06}",
+        mass: 0.5,
+        side_grasps: None,
+    },
 ];
+
+/// The goal object's half width and height (m): `goal_box`, 0.102 x 0.102 x 0.215.
+const GOAL_BOX: (f64, f64) = (0.051, 0.215);
+
+/// The hand's centre keeps this far from a grasped object's side (m): its fingers reach
+/// 8 cm in front of the tool frame, and 1 cm is left clear.
+const GRASP_STANDOFF: f64 = 0.09;
+
+/// Side grasps of an upright object (half width `b`, height `h`), as the default scene's
+/// goal box has: the hand level at half height (±3 cm), its approach axis at the object's
+/// axis, from any direction; inverse kinematics keeps those the hand clears.
+fn grasps_of_side((b, h): (f64, f64)) -> String {
+    format!(
+        ", grasps: [{{frame: {{xyz: [0, 0, {}]}}, end_effector: {{xyz: [{}, 0, 0], rpy: [0, 1.5707963267948966, 0]}}, bounds: {{z: [-0.03, 0.03], yaw: [-3.141592653589793, 3.141592653589793]}}}}]",
+        h / 2.0,
+        -(b + GRASP_STANDOFF)
+    )
+}
 
 /// Which scene set to generate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -248,16 +289,23 @@ robot:
   pushing_plane: {{height: 0.08, orientation_rpy: [0, 2.0, 0]}}
 table: {{height: 0.76, x: [0.27, 1.03], y: [-0.93, 0.93]}}
 objects:
-  - {{name: goal_box, shape: {{type: box, size: [0.102, 0.102, 0.215]}}, pose: {}, mass: 1.0, mu_g: 0.4, mu_c: 0.3}}
+  - {{name: goal_box, shape: {{type: box, size: [0.102, 0.102, 0.215]}}, pose: {}, mass: 1.0, mu_g: 0.4, mu_c: 0.3{}}}
 ",
-            fmt(&self.goal)
+            fmt(&self.goal),
+            grasps_of_side(GOAL_BOX)
         );
         for (k, (kind, pose)) in self.clutter.iter().enumerate() {
-            let (kind, shape, mass) = CLUTTER[*kind];
+            let Clutter {
+                kind,
+                shape,
+                mass,
+                side_grasps,
+            } = &CLUTTER[*kind];
             yaml += &format!(
-                "  - {{name: {kind}_{}, shape: {shape}, pose: {}, mass: {mass}, mu_g: 0.4, mu_c: 0.3}}\n",
+                "  - {{name: {kind}_{}, shape: {shape}, pose: {}, mass: {mass}, mu_g: 0.4, mu_c: 0.3{}}}\n",
                 k + 1,
-                fmt(pose)
+                fmt(pose),
+                side_grasps.map(grasps_of_side).unwrap_or_default()
             );
         }
         yaml += &format!(
