@@ -100,6 +100,7 @@ namespace pushplan::bridge
                 const PathMetrics &m = primitives->report().metrics;
                 props["objects moved INTEGER"] = std::to_string(m.objects_moved);
                 props["links in contact INTEGER"] = std::to_string(m.links_in_contact);
+                props["pick places INTEGER"] = std::to_string(primitives->report().pick_places);
                 measured(m, "");
                 return;
             }

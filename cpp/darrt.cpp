@@ -42,8 +42,9 @@ namespace pushplan::detail
     }  // namespace
 
     PrimitivePath::PrimitivePath(const oc::SpaceInformationPtr &si, ModelHandlePtr model,
-                                 const std::vector<double> &states, bridge::PrimitiveCheck report)
-      : oc::PathControl(si), model_(std::move(model)), flat_(states), report_(std::move(report))
+                                 const std::vector<double> &states, const std::vector<std::int64_t> &held,
+                                 bridge::PrimitiveCheck report)
+      : oc::PathControl(si), model_(std::move(model)), flat_(states), held_(held), report_(std::move(report))
     {
         const std::size_t n = model_->stateSize();
         ob::State *state = si->allocState();
@@ -72,7 +73,7 @@ namespace pushplan::detail
 
     bool PrimitivePath::check() const
     {
-        return bridge::darrt_check(model_->model(), slice(flat_)).valid;
+        return bridge::darrt_check(model_->model(), slice(flat_), slice(held_)).valid;
     }
 
     ArmTransit::ArmTransit(ModelHandlePtr model, double time_cap)
@@ -118,6 +119,7 @@ namespace pushplan::detail
         specs_.directed = true;
         declareParam<double>("goal_bias", this, &Darrt::setGoalBias, &Darrt::getGoalBias, "0.:.05:1.");
         declareParam<double>("transit_time", this, &Darrt::setTransitTime, &Darrt::getTransitTime, "0.:1.:60.");
+        declareParam<double>("pick_place", this, &Darrt::setPickPlace, &Darrt::getPickPlace, "0.:.1:1.");
     }
 
     Darrt::~Darrt()
@@ -138,14 +140,17 @@ namespace pushplan::detail
         nodes_.clear();
     }
 
-    int Darrt::addNode(int parent, std::vector<FlatState> motion)
+    int Darrt::addNode(int parent, std::vector<FlatState> motion, std::vector<std::int64_t> held)
     {
+        if (held.empty())
+            held.assign(motion.size(), -1);
         Node node;
         node.state = motion.back();
         node.ompl_state = si_->allocState();
         model_->write(node.state, node.ompl_state);
         node.parent = parent;
         node.motion = std::move(motion);
+        node.held = std::move(held);
         nodes_.push_back(std::move(node));
         return static_cast<int>(nodes_.size()) - 1;
     }
@@ -206,6 +211,12 @@ namespace pushplan::detail
             else if (d == best && rng_.uniformInt(0, ties++) == 0)
                 nearest = static_cast<int>(n);
         }
+        if (pick_place_ > 0.0 && rng_.uniform01() < pick_place_)
+        {
+            const int placed = pickPlace(nearest, object, target);
+            if (placed >= 0)
+                return placed;
+        }
         const rust::Slice<const double> target_pose = view(target.data(), 3);
         FlatState caged(model_->stateSize());
         if (!model_->model().darrt_approach(slice(nodes_[nearest].state), object, target_pose,
@@ -223,6 +234,20 @@ namespace pushplan::detail
         for (std::size_t k = 0; k < carried.size(); k += n)
             motion.emplace_back(carried.begin() + k, carried.begin() + k + n);
         return addNode(nearest, std::move(motion));
+    }
+
+    int Darrt::pickPlace(int from, int object, const std::array<double, 3> &target)
+    {
+        const auto seed = static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()));
+        const bridge::HeldStates placed =
+            bridge::darrt_pick_place(model_->model(), slice(nodes_[from].state), object, view(target.data(), 3), seed);
+        if (placed.held.empty())
+            return -1;
+        const std::size_t n = model_->stateSize();
+        std::vector<FlatState> motion;
+        for (std::size_t k = 0; k < placed.states.size(); k += n)
+            motion.emplace_back(placed.states.begin() + k, placed.states.begin() + k + n);
+        return addNode(from, std::move(motion), std::vector<std::int64_t>(placed.held.begin(), placed.held.end()));
     }
 
     ob::PlannerStatus Darrt::solve(const ob::PlannerTerminationCondition &ptc)
@@ -270,10 +295,14 @@ namespace pushplan::detail
         for (int n = goal_node; n >= 0; n = nodes_[n].parent)
             chain.push_back(n);
         std::vector<double> states(nodes_[0].state);
+        std::vector<std::int64_t> held{-1};
         for (auto it = chain.rbegin() + 1; it != chain.rend(); ++it)
+        {
             for (const FlatState &s : nodes_[*it].motion)
                 states.insert(states.end(), s.begin(), s.end());
-        bridge::PrimitiveCheck check = bridge::darrt_check(model_->model(), slice(states));
+            held.insert(held.end(), nodes_[*it].held.begin(), nodes_[*it].held.end());
+        }
+        bridge::PrimitiveCheck check = bridge::darrt_check(model_->model(), slice(states), slice(held));
         if (!check.valid || !check.goal_reached)
         {
             // A primitive the model accepted fails its own check: a bug, never a plan.
@@ -282,7 +311,7 @@ namespace pushplan::detail
             return ob::PlannerStatus::CRASH;
         }
         auto path = std::make_shared<PrimitivePath>(std::static_pointer_cast<oc::SpaceInformation>(si_), model_,
-                                                    states, std::move(check));
+                                                    states, held, std::move(check));
         pdef_->addSolutionPath(path, false, 0.0, getName());
         return ob::PlannerStatus::EXACT_SOLUTION;
     }

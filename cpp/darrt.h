@@ -11,6 +11,7 @@
 #include <ompl/control/SpaceInformation.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -25,8 +26,10 @@ namespace pushplan::detail
     {
     public:
         /// `states` (flat, one after another) must have been checked: `report.valid`.
+        /// `held[k]` is what the hand holds in state k (an object index, or -1).
         PrimitivePath(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model,
-                      const std::vector<double> &states, bridge::PrimitiveCheck report);
+                      const std::vector<double> &states, const std::vector<std::int64_t> &held,
+                      bridge::PrimitiveCheck report);
         double length() const override;
         bool check() const override;
         const bridge::PrimitiveCheck &report() const { return report_; }
@@ -34,6 +37,7 @@ namespace pushplan::detail
     private:
         ModelHandlePtr model_;
         std::vector<double> flat_;
+        std::vector<std::int64_t> held_;
         bridge::PrimitiveCheck report_;
     };
 
@@ -57,10 +61,11 @@ namespace pushplan::detail
         double time_cap_;
     };
 
-    /// DARRT with three primitives (Transit, RRTTransit, Push). Each iteration samples,
-    /// with equal probability, a new arm configuration, a new pose of the goal object or
-    /// a new pose of one other object, extends the nearest tree node towards it with the
-    /// primitives, and stops when a node satisfies the goal.
+    /// DARRT with three primitives (Transit, RRTTransit, Push), and optionally a fourth,
+    /// PickPlace (the paper's suggestion). Each iteration samples, with equal probability,
+    /// a new arm configuration, a new pose of the goal object or a new pose of one other
+    /// object, extends the nearest tree node towards it with the primitives, and stops
+    /// when a node satisfies the goal.
     class Darrt : public ompl::base::Planner
     {
     public:
@@ -78,6 +83,11 @@ namespace pushplan::detail
         /// RRTTransit's time cap (s); the paper's is 15 s.
         void setTransitTime(double seconds) { transit_.setTimeCap(seconds); }
         double getTransitTime() const { return transit_.timeCap(); }
+        /// Probability that a new object pose is reached by PickPlace (grasp, carry, set
+        /// down) rather than Push; an object without grasps is pushed. 0: DARRT as in the
+        /// paper.
+        void setPickPlace(double probability) { pick_place_ = probability; }
+        double getPickPlace() const { return pick_place_; }
 
     private:
         struct Node
@@ -87,13 +97,19 @@ namespace pushplan::detail
             int parent;
             /// The states after the parent's, ending with this node's.
             std::vector<FlatState> motion;
+            /// What the hand holds in each of them (an object index, or -1).
+            std::vector<std::int64_t> held;
         };
 
-        int addNode(int parent, std::vector<FlatState> motion);
+        /// `held` empty: the hand holds nothing along the motion.
+        int addNode(int parent, std::vector<FlatState> motion, std::vector<std::int64_t> held = {});
         /// A new arm configuration: Transit, else RRTTransit. Returns the new node or -1.
         int extendArm(const ompl::base::PlannerTerminationCondition &ptc);
-        /// A new pose of `object`: RRTTransit to the hand's place at it, then Push.
+        /// A new pose of `object`: PickPlace (with probability pick_place_), else RRTTransit
+        /// to the hand's place at it, then Push.
         int extendObject(int object, const ompl::base::PlannerTerminationCondition &ptc);
+        /// PickPlace of `object` from node `from` to `target`; the new node or -1.
+        int pickPlace(int from, int object, const std::array<double, 3> &target);
         /// RRTTransit from node `from` to `to` (same objects); appends the waypoints.
         bool rrtTransit(int from, const FlatState &to, const ompl::base::PlannerTerminationCondition &ptc,
                         std::vector<FlatState> &motion);
@@ -103,6 +119,7 @@ namespace pushplan::detail
         ArmTransit transit_;
         ompl::RNG rng_;
         double goal_bias_;
+        double pick_place_ = 0.0;
         std::vector<Node> nodes_;
         std::uint64_t transit_calls_ = 0;
     };

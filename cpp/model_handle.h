@@ -93,4 +93,9 @@ namespace pushplan::detail
     {
         return rust::Slice<const std::size_t>(v.data(), v.size());
     }
+
+    inline rust::Slice<const std::int64_t> slice(const std::vector<std::int64_t> &v)
+    {
+        return rust::Slice<const std::int64_t>(v.data(), v.size());
+    }
 }  // namespace pushplan::detail

@@ -136,7 +136,7 @@ namespace pushplan
             using detail::checked;
             const Source &source = this->source();
             detail::checkedKind(options.planner);
-            if (options.planner == PlannerKind::Darrt)
+            if (options.planner == PlannerKind::Darrt || options.planner == PlannerKind::DarrtPickPlace)
                 throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
                             "(measure DARRT with `pushplan bench`)");
             // One search per thread, each with its own model and seed (detail::Portfolio).

@@ -115,9 +115,16 @@ namespace pushplan::detail
                 return rrt;
             }
             case PlannerKind::Darrt:
+            case PlannerKind::DarrtPickPlace:
             {
                 auto darrt = std::make_shared<Darrt>(si, problem.model, subSeed(seed, 3));
                 darrt->setGoalBias(goal_bias);
+                if (kind == PlannerKind::DarrtPickPlace)
+                {
+                    darrt->setName("DARRTPickPlace");
+                    // Half the object extensions try PickPlace first (objects with grasps).
+                    darrt->setPickPlace(0.5);
+                }
                 return darrt;
             }
             case PlannerKind::Kpiece:

@@ -15,8 +15,9 @@ pub use entry::{
 use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
 use convert::{
-    add_search_stats, darrt_check, finish, nearest_tree, planner_kind, planner_name, scene_info,
-    search_stats, trajectory, tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
+    add_search_stats, darrt_check, darrt_pick_place, finish, nearest_tree, planner_kind,
+    planner_name, scene_info, search_stats, trajectory, tree_add, tree_nearest, tree_nearest_k,
+    tree_nearest_r,
 };
 
 // SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
@@ -110,6 +111,13 @@ pub mod bridge {
         pub robustness: f64,
     }
 
+    /// Part of a DARRT path: flat states one after another, and what the hand holds in
+    /// each (an object index, or -1).
+    pub struct HeldStates {
+        pub states: Vec<f64>,
+        pub held: Vec<i64>,
+    }
+
     /// `darrt::check_path`'s verdict; `message` says why an invalid path is invalid.
     pub struct PrimitiveCheck {
         pub valid: bool,
@@ -117,6 +125,7 @@ pub mod bridge {
         pub message: String,
         pub metrics: PathMetrics,
         pub durations: Vec<f64>,
+        pub pick_places: usize,
     }
 
     /// `planner::SearchStats`; the reasons and their counts in the same order.
@@ -188,7 +197,14 @@ pub mod bridge {
             out: &mut [f64],
         ) -> Result<bool>;
         fn darrt_carry(self: &Model, x: &[f64], object: usize, target: &[f64]) -> Result<Vec<f64>>;
-        fn darrt_check(model: &Model, states: &[f64]) -> Result<PrimitiveCheck>;
+        fn darrt_pick_place(
+            model: &Model,
+            x: &[f64],
+            object: usize,
+            target: &[f64],
+            seed: u64,
+        ) -> Result<HeldStates>;
+        fn darrt_check(model: &Model, states: &[f64], held: &[i64]) -> Result<PrimitiveCheck>;
         fn graspable_object(self: &Model, name: &str) -> Result<usize>;
         fn grasp_sample(
             self: &Model,

@@ -140,7 +140,7 @@ enum Command {
         /// Scene files.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
-        /// Planners: pcrrt, static, darrt, kpiece, est, pdst, sst.
+        /// Planners: pcrrt, static, darrt, kpiece, est, pdst, sst, darrt_pick (DARRT with PickPlace).
         #[arg(
             long,
             value_delimiter = ',',

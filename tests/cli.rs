@@ -404,7 +404,7 @@ fn every_planner_kind_is_chosen_by_its_name() {
     assert_eq!(code, 2);
     assert!(
         stderr.contains(
-            "unknown planner 'rrtstar' (known: pcrrt, static, darrt, kpiece, est, pdst, sst)"
+            "unknown planner 'rrtstar' (known: pcrrt, static, darrt, kpiece, est, pdst, sst, darrt_pick)"
         ),
         "{stderr}"
     );

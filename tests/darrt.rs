@@ -6,7 +6,7 @@ mod common;
 
 use common::{herb_scene, object};
 use pushplan::collision::query::signed_distance;
-use pushplan::darrt::{self, cage::CAGE_CLEARANCE, Cage, PrimitiveFailure};
+use pushplan::darrt::{self, cage::CAGE_CLEARANCE, Cage, PathState, PrimitiveFailure};
 use pushplan::math::Pose2;
 use pushplan::validity::Invalid;
 use pushplan::{Scene, State};
@@ -19,6 +19,11 @@ fn single_object() -> Scene {
         "/scenes/herb_single_object.yaml"
     ))
     .unwrap()
+}
+
+/// A path of states in which the hand holds nothing.
+fn resting(states: &[State]) -> Vec<PathState> {
+    states.iter().cloned().map(PathState::resting).collect()
 }
 
 /// The world pose of object `i` relative to the tool, computed from the 3D poses.
@@ -169,7 +174,7 @@ fn transit_and_push(scene: &Scene) -> Vec<State> {
 fn a_path_of_primitives_checks_and_reaches_the_goal() {
     let scene = single_object();
     let path = transit_and_push(&scene);
-    let checked = darrt::check_path(&scene, &path).expect("valid");
+    let checked = darrt::check_path(&scene, &resting(&path)).expect("valid");
     assert!(checked.goal_reached);
     assert_eq!(checked.durations.len(), path.len() - 1);
     let m = checked.metrics;
@@ -196,7 +201,7 @@ fn paths_that_break_a_primitive_are_refused() {
     for s in &mut teleport[1..] {
         s.objects[0].x += 0.005;
     }
-    let err = darrt::check_path(&scene, &teleport).unwrap_err();
+    let err = darrt::check_path(&scene, &resting(&teleport)).unwrap_err();
     assert!(
         err.contains("step 0 -> 1") && err.contains("slips"),
         "{err}"
@@ -205,18 +210,93 @@ fn paths_that_break_a_primitive_are_refused() {
     // A carry step longer than the primitive's resolution.
     let mut skipping = path.clone();
     skipping.remove(path.len() - 5);
-    let err = darrt::check_path(&scene, &skipping).unwrap_err();
+    let err = darrt::check_path(&scene, &resting(&skipping)).unwrap_err();
     assert!(err.contains("more than one carry step"), "{err}");
 
     // A path that does not start at the start.
-    let err = darrt::check_path(&scene, &path[1..]).unwrap_err();
+    let err = darrt::check_path(&scene, &resting(&path[1..])).unwrap_err();
     assert!(err.contains("start"), "{err}");
 
     // A transit through the table.
     let mut through = vec![scene.start.clone(), scene.start.clone()];
     through[1].q[1] += 0.9;
-    let err = darrt::check_path(&scene, &through).unwrap_err();
+    let err = darrt::check_path(&scene, &resting(&through)).unwrap_err();
     assert!(err.contains("transit") && err.contains("table"), "{err}");
+}
+
+/// PickPlace, the paper's suggested primitive: on the pick-and-place scene the hand takes
+/// the can, carries it past the tall box and sets it down in the goal disc. The path
+/// says what the hand holds in every state and checks; each broken rule of a hold is
+/// refused.
+#[test]
+fn pick_place_carries_an_object_and_its_path_checks() {
+    let scene = Scene::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/pick_and_place.yaml"
+    ))
+    .unwrap();
+    let can = scene
+        .objects
+        .iter()
+        .position(|o| o.name == "red_can")
+        .unwrap();
+    let target = Pose2::new(0.8, -0.2, 0.0);
+    let settings = darrt::PickPlaceSettings::default();
+    let after = darrt::pick_place(&scene, &scene.start, can, &target, &settings, 1, None)
+        .expect("a way to pick the can up and set it down");
+    let mut path = vec![PathState::resting(scene.start.clone())];
+    path.extend(after);
+    let checked = darrt::check_path(&scene, &path).expect("valid");
+    assert!(checked.goal_reached);
+    assert_eq!(checked.pick_places, 1);
+    assert_eq!(checked.metrics.objects_moved, 1);
+    // The hand takes the can once, carries it, and lets go.
+    let held: Vec<Option<usize>> = path.iter().map(|p| p.held).collect();
+    let first = held.iter().position(Option::is_some).expect("a hold");
+    let last = held.iter().rposition(Option::is_some).unwrap();
+    assert!(held[first..=last].iter().all(|&h| h == Some(can)));
+    assert!(last - first >= 2, "carried through at least one line");
+    assert_eq!(
+        path[first].state,
+        path[first - 1].state,
+        "taken standing still"
+    );
+    assert_eq!(
+        path[last].state,
+        path[last + 1].state,
+        "let go standing still"
+    );
+    let end = path.last().unwrap().state.objects[can];
+    assert!((end.translation() - target.translation()).norm() < 1e-3);
+    // The tall box never moves.
+    let others_still = path
+        .iter()
+        .all(|p| p.state.objects[1 - can] == scene.start.objects[1 - can]);
+    assert!(others_still);
+
+    // Letting go while the arm moves (the can in the air).
+    let mut dropped = path.clone();
+    dropped[first + 1].held = None;
+    let err = darrt::check_path(&scene, &dropped).unwrap_err();
+    assert!(err.contains("lets go while moving"), "{err}");
+    // The carried can is not where the hand holds it.
+    let mut slipping = path.clone();
+    slipping[first + 1].state.objects[can].x += 0.01;
+    let err = darrt::check_path(&scene, &slipping).unwrap_err();
+    assert!(err.contains("from where the hand holds it"), "{err}");
+    // Taking the can with the hand far from any grasp.
+    let grabbing = vec![
+        PathState::resting(scene.start.clone()),
+        PathState {
+            state: scene.start.clone(),
+            held: Some(can),
+        },
+    ];
+    let err = darrt::check_path(&scene, &grabbing).unwrap_err();
+    assert!(err.contains("outside its grasp regions"), "{err}");
+    // A path may not end holding it.
+    let err = darrt::check_path(&scene, &path[..=first + 1]).unwrap_err();
+    assert!(err.contains("ends with the hand holding"), "{err}");
 }
 
 /// The planner end to end (through OMPL's benchmark tooling): where a clutter object
@@ -227,12 +307,43 @@ fn paths_that_break_a_primitive_are_refused() {
 /// (RRT-Connect and DARRT are seeded, and neither reaches a time limit).
 #[test]
 fn darrt_clears_the_goal_before_pushing_the_goal_object_in() {
-    let scratch = common::Scratch::new("darrt");
+    let runs = bench_runs(
+        "tests/data/clutter_on_goal.yaml",
+        "darrt",
+        3,
+        "solved, correct_solution, objects_moved, graph_states",
+    );
+    assert_eq!(
+        runs,
+        ["1 1 2 61"],
+        "solved, correct, objects moved, tree size"
+    );
+}
+
+/// DARRT with PickPlace end to end: on the pick-and-place scene (a tall box between the
+/// can and the disc) it picks the can up on its way to the goal disc, and the solution
+/// passed the path check with its holds.
+#[test]
+fn darrt_with_pick_place_carries_the_can_to_the_goal() {
+    let runs = bench_runs(
+        "scenes/pick_and_place.yaml",
+        "darrt_pick",
+        1,
+        "solved, correct_solution, pick_places",
+    );
+    let row: Vec<u32> = runs[0].split(' ').map(|v| v.parse().unwrap()).collect();
+    assert_eq!(row[..2], [1, 1], "solved and correct: {runs:?}");
+    assert!(row[2] >= 1, "the solution picks the can up: {runs:?}");
+}
+
+/// One `bench` run (run 0) of `planner` on `scene` with `seed`, 60 s: the `columns` of the
+/// results database's row, space-separated.
+fn bench_runs(scene: &str, planner: &str, seed: u64, columns: &str) -> Vec<String> {
+    let scratch = common::Scratch::new(planner);
     let out = scratch.path().to_path_buf();
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
-        .args(["bench", "tests/data/clutter_on_goal.yaml"])
-        .args(["--planners", "darrt", "--runs", "1", "--seed", "3"])
-        .args(["--time", "60", "--out"])
+        .args(["bench", scene, "--planners", planner, "--runs", "1"])
+        .args(["--seed", &seed.to_string(), "--time", "60", "--out"])
         .arg(&out)
         .output()
         .unwrap();
@@ -241,23 +352,21 @@ fn darrt_clears_the_goal_before_pushing_the_goal_object_in() {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let query = r#"
+    let query = format!(
+        r#"
 import sqlite3, sys
 c = sqlite3.connect(sys.argv[1])
-for row in c.execute("select solved, correct_solution, objects_moved, graph_states from runs"):
+for row in c.execute("select {columns} from runs"):
     print(*row)
-"#;
+"#
+    );
     let answer = std::process::Command::new("python3")
-        .args(["-c", query])
+        .args(["-c", &query])
         .arg(out.join("results.db"))
         .output()
         .unwrap();
-    let text = String::from_utf8_lossy(&answer.stdout);
-    let runs: Vec<&str> = text.lines().collect();
-    assert_eq!(
-        runs,
-        ["1 1 2 61"],
-        "solved, correct, objects moved, tree size"
-    );
-    let _ = std::fs::remove_dir_all(&out);
+    String::from_utf8_lossy(&answer.stdout)
+        .lines()
+        .map(str::to_string)
+        .collect()
 }

@@ -48,7 +48,15 @@ fn problem() -> PickAndPlace {
     let scene = Scene::load("scenes/pick_and_place.yaml").unwrap();
     let can = pushplan::reach::graspable_object(&scene, "red_can").unwrap();
     let theta = scene.start.objects[can].theta;
-    PickAndPlace::new(&scene, can, Pose2::new(0.8, -0.2, theta), 8, 1).unwrap()
+    PickAndPlace::new(
+        &scene,
+        &scene.start,
+        can,
+        Pose2::new(0.8, -0.2, theta),
+        8,
+        1,
+    )
+    .unwrap()
 }
 
 /// Nodes hold their grasp where they say; transfer edges join nodes of one grasp at two

@@ -60,6 +60,9 @@ namespace pushplan
         Pdst,
         /// OMPL's SST (asymptotically near-optimal: searches the whole time limit). "sst"
         Sst,
+        /// DARRT with a fourth primitive, PickPlace: the hand grasps an object (its scene
+        /// `grasps`), carries it and sets it down (the paper's suggestion). "darrt_pick"
+        DarrtPickPlace,
     };
 
     /// The planner's name ("pcrrt", "static", ...).

@@ -49,7 +49,7 @@ impl Planner {
 
     /// One colour per planner kind, the same in every plot.
     fn colour(&self, index: usize) -> RGBColor {
-        const COLOURS: [RGBColor; 7] = [
+        const COLOURS: [RGBColor; 8] = [
             RGBColor(0x1e, 0x7b, 0x1e),
             RGBColor(0x7b, 0x32, 0x94),
             RGBColor(0xd8, 0x45, 0x3b),
@@ -57,6 +57,7 @@ impl Planner {
             RGBColor(0xff, 0x7f, 0x00),
             RGBColor(0x17, 0xbe, 0xcf),
             RGBColor(0x55, 0x55, 0x55),
+            RGBColor(0x8c, 0x56, 0x4b),
         ];
         let k = self
             .kind

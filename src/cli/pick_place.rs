@@ -95,7 +95,7 @@ pub fn pick_place(
     if run.grasps == 0 || run.budget == 0 {
         return Err("--grasps and --budget must be positive".into());
     }
-    let problem = PickAndPlace::new(&scene, object, goal, run.grasps, run.seed)?;
+    let problem = PickAndPlace::new(&scene, &scene.start, object, goal, run.grasps, run.seed)?;
     let settings = Settings {
         budget: run.budget,
         seed: run.seed,
@@ -222,6 +222,7 @@ pub fn check_pick_place(path: &Path) -> Result<ExitCode, String> {
             .map(|p| Pose2::new(p[0], p[1], p[2]))
             .collect(),
         grasps: file.grasps.iter().map(grasp_of_record).collect(),
+        start: scene.start.clone(),
         scene,
     };
     let bad = |i: usize, what: &str| format!("{}: segments[{i}]: {what}", path.display());
@@ -267,8 +268,7 @@ pub fn check_pick_place(path: &Path) -> Result<ExitCode, String> {
                 .collect(),
         });
     }
-    if problem.placements.len() < 2 || problem.placements[0] != problem.scene.start.objects[object]
-    {
+    if problem.placements.len() < 2 || problem.placements[0] != problem.start.objects[object] {
         return Err(format!(
             "{}: placements: the first must be the object's start in the scene, then the goal",
             path.display()

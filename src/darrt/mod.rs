@@ -9,20 +9,26 @@
 //!   with the tool along a straight line in SE(2) while the tool stays on its pushing
 //!   plane. Nothing but the hand may touch the carried object beyond the usual contact,
 //!   and the carried object must stay clear of the other objects and the obstacles.
+//! - **PickPlace** ([`pick_place`]): the hand grasps one object, carries it through the
+//!   air and sets it down elsewhere, by the manipulation graph (the paper's suggestion,
+//!   Sec. V-A; the planner `darrt_pick`, measured beside DARRT without it).
 //!
 //! Unlike PC RRT's plans, DARRT's are not pushing-model controls: a caged object follows
 //! the hand by assumption, not by the physics. A DARRT path is a sequence of states in
-//! which each consecutive pair is one Transit motion or one step of a Push
+//! which each consecutive pair is one Transit motion, one step of a Push, or a pick-up,
+//! carrying line or set-down of a PickPlace, each state saying what the hand holds
 //! ([`check::check_path`]).
 
 pub mod cage;
 pub mod carry;
 pub mod check;
+pub mod pick_place;
 pub mod transit;
 
 pub use cage::{approach, Cage};
 pub use carry::{carry, check_carrying};
 pub use check::{check_path, PrimitivePath};
+pub use pick_place::{pick_place, PathState, PickPlaceSettings};
 pub use transit::check_transit;
 
 use crate::robot::Robot;
@@ -39,6 +45,10 @@ pub enum PrimitiveFailure {
     /// Following the line would make a joint jump (rad, or m): a singularity or a
     /// branch change of the inverse kinematics.
     JointJump { joint: usize, step: f64 },
+    /// PickPlace: the manipulation graph found no way within its budget.
+    NoPath,
+    /// PickPlace: the manipulation graph's way fails the path check (why).
+    Refused(String),
 }
 
 impl fmt::Display for PrimitiveFailure {
@@ -49,6 +59,8 @@ impl fmt::Display for PrimitiveFailure {
             Self::JointJump { joint, step } => {
                 write!(f, "joint {joint} would jump {step:.3} in one step")
             }
+            Self::NoPath => write!(f, "no way to pick the object up and set it down was found"),
+            Self::Refused(why) => write!(f, "the way to pick the object up fails its check: {why}"),
         }
     }
 }

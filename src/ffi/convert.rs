@@ -36,8 +36,24 @@ pub(super) fn trajectory(
     model.trajectory(controls, steps).map(Trajectory::from)
 }
 
-pub(super) fn darrt_check(model: &Model, states: &[f64]) -> Result<PrimitiveCheck, String> {
-    model.darrt_check(states).map(PrimitiveCheck::from)
+pub(super) fn darrt_check(
+    model: &Model,
+    states: &[f64],
+    held: &[i64],
+) -> Result<PrimitiveCheck, String> {
+    model.darrt_check(states, held).map(PrimitiveCheck::from)
+}
+
+pub(super) fn darrt_pick_place(
+    model: &Model,
+    state: &[f64],
+    object: usize,
+    target: &[f64],
+    seed: u64,
+) -> Result<bridge::HeldStates, String> {
+    model
+        .darrt_pick_place(state, object, target, seed)
+        .map(|(states, held)| bridge::HeldStates { states, held })
 }
 
 pub(super) fn planner_name(kind: PlannerKind) -> &'static str {
@@ -256,6 +272,7 @@ impl From<Result<PrimitivePath, String>> for bridge::PrimitiveCheck {
                 message: String::new(),
                 metrics: path.metrics,
                 durations: path.durations,
+                pick_places: path.pick_places,
             },
             Err(message) => bridge::PrimitiveCheck {
                 valid: false,
@@ -263,6 +280,7 @@ impl From<Result<PrimitivePath, String>> for bridge::PrimitiveCheck {
                 message,
                 metrics: PathMetrics::default(),
                 durations: vec![],
+                pick_places: 0,
             },
         }
     }

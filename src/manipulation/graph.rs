@@ -16,6 +16,7 @@ use super::{Motion, PickAndPlace, Segment};
 use crate::darrt::transit::TRANSIT_RESOLUTION;
 use crate::random::SplitMix64;
 use nalgebra::DVector;
+use std::time::Instant;
 
 /// The query loop's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,6 +28,9 @@ pub struct Settings {
     /// `P*`'s scale: joint motion (rad) an unchecked edge is free for with probability 1/e.
     pub free_length: f64,
     pub seed: u64,
+    /// When to give up whatever the budget left (a caller's time limit; `None`: never).
+    /// The budget alone keeps a search repeatable; a deadline it meets first does not.
+    pub deadline: Option<Instant>,
 }
 
 impl Default for Settings {
@@ -36,6 +40,7 @@ impl Default for Settings {
             budget: 200_000,
             free_length: 1.0,
             seed: 1,
+            deadline: None,
         }
     }
 }
@@ -93,7 +98,7 @@ impl ManipulationGraph {
         let mut nodes = vec![Node {
             placement: 0,
             grasp: None,
-            q: problem.scene.start.q.clone(),
+            q: problem.start.q.clone(),
         }];
         for placement in 0..problem.placements.len() {
             for grasp in 0..problem.grasps.len() {
@@ -167,10 +172,10 @@ impl ManipulationGraph {
         most_probable_path(self.nodes.len(), &edges, 0, is_goal)
     }
 
-    /// The query loop: a path for the problem, or `None` when no path remains or the
-    /// budget of validity checks is spent.
+    /// The query loop: a path for the problem, or `None` when no path remains, the
+    /// budget of validity checks is spent or the deadline has passed.
     pub fn solve(&mut self) -> Option<Vec<Segment>> {
-        while self.total_time < self.settings.budget {
+        while self.total_time < self.settings.budget && !self.past_deadline() {
             let path = self.most_probable_path()?;
             if path.iter().all(|&(e, _)| self.edges[e].probability == 1.0) {
                 return Some(self.segments(&path));
@@ -203,6 +208,9 @@ impl ManipulationGraph {
         let checks_before = roadmap.checks;
         let mut found = None;
         for _ in 0..settings.samples_per_round {
+            if self.past_deadline() {
+                break;
+            }
             let q = DVector::from_iterator(
                 limits.len(),
                 limits.iter().map(|(lo, hi)| self.rng.uniform(*lo, *hi)),
@@ -245,6 +253,10 @@ impl ManipulationGraph {
                     (1.0 - edge.time as f64 / self.total_time as f64).max(f64::MIN_POSITIVE);
             }
         }
+    }
+
+    fn past_deadline(&self) -> bool {
+        self.settings.deadline.is_some_and(|d| Instant::now() >= d)
     }
 
     /// The segments of a path of certain edges.

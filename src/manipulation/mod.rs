@@ -32,6 +32,9 @@ pub const IK_SEEDS: usize = 20;
 #[derive(Clone, Debug)]
 pub struct PickAndPlace {
     pub scene: Scene,
+    /// Where the arm starts and every object rests (the scene's start, or a state part
+    /// way through a plan).
+    pub start: State,
     pub object: usize,
     /// Placements of the object: its start first, the goal second, then any others
     /// (places to put it down and grasp it anew).
@@ -61,11 +64,13 @@ pub struct Segment {
 }
 
 impl PickAndPlace {
-    /// Moving `object` of `scene` to `goal` with grasps sampled from its grasp regions:
-    /// `grasps_per_region` displacements of each, drawn from `seed`. An error if the
-    /// object has no grasps or the goal is not a valid placement.
+    /// Moving `object` of `scene` from where it rests in `start` to `goal`, the arm
+    /// starting at `start`'s configuration, with grasps sampled from the object's grasp
+    /// regions: `grasps_per_region` displacements of each, drawn from `seed`. An error if
+    /// the object has no grasps or the goal is not a valid placement.
     pub fn new(
         scene: &Scene,
+        start: &State,
         object: usize,
         goal: Pose2,
         grasps_per_region: usize,
@@ -75,7 +80,7 @@ impl PickAndPlace {
         if o.grasps.is_empty() {
             return Err(format!("object '{}' has no grasps", o.name));
         }
-        let mut placed = scene.start.objects.clone();
+        let mut placed = start.objects.clone();
         placed[object] = goal;
         check_objects(scene, &placed, |i| i == object)
             .map_err(|why| format!("the goal placement of '{}' is not valid: {why}", o.name))?;
@@ -92,15 +97,16 @@ impl PickAndPlace {
             .collect();
         Ok(PickAndPlace {
             scene: scene.clone(),
+            start: start.clone(),
             object,
-            placements: vec![scene.start.objects[object], goal],
+            placements: vec![start.objects[object], goal],
             grasps,
         })
     }
 
     /// The objects with this one at `placement`.
     pub fn objects_at(&self, placement: usize) -> Vec<Pose2> {
-        let mut objects = self.scene.start.objects.clone();
+        let mut objects = self.start.objects.clone();
         objects[self.object] = self.placements[placement];
         objects
     }
@@ -125,7 +131,7 @@ impl PickAndPlace {
                 limits.iter().map(|(lo, hi)| rng.uniform(*lo, *hi)),
             )
         };
-        std::iter::once(self.scene.start.q.clone())
+        std::iter::once(self.start.q.clone())
             .chain((0..IK_SEEDS).map(|_| random(&mut rng)))
             .filter_map(|seed| robot.reach_tool_pose(&target, &seed, &IkSettings::default()))
             .find(|q| self.transit_valid(placement, q) && self.transfer_valid(grasp, q))
@@ -143,71 +149,15 @@ impl PickAndPlace {
         .is_ok()
     }
 
-    /// Is `q` valid with the object held in `grasp`: the arm within its limits and clear
-    /// of itself, the table, obstacles and the other objects; the carried object clear of
-    /// the table, obstacles, the other objects and every link but the hand holding it.
+    /// Is `q` valid with the object held in `grasp` ([`holding_valid`])?
     pub fn transfer_valid(&self, grasp: usize, q: &DVector<f64>) -> bool {
-        let scene = &self.scene;
-        let robot = &scene.robot;
-        let poses = robot.link_poses(q);
-        let mut bounds = ArmBounds::default();
-        ArmBounds::compute(scene, &poses, &mut bounds);
-        if check_robot(scene, q, &poses, &bounds).is_err() {
-            return false;
-        }
-        let top = scene.table.top;
-        let (arm_depth, depth) = (
-            scene.physics.penetration_tolerance,
-            scene.physics.overlap_tolerance,
-        );
-        let carried = &scene.objects[self.object];
-        let x_0o = robot.tool_pose(&poses) * self.grasps[grasp].inverse();
-        let identity = Isometry3::identity();
-        if overlaps_beyond(
-            &carried.geometry,
-            &x_0o,
-            &scene.table.geometry,
-            &identity,
-            depth,
-        ) {
-            return false;
-        }
-        if scene
-            .obstacles
-            .iter()
-            .any(|o| overlaps_beyond(&carried.geometry, &x_0o, &o.geometry, &o.pose, depth))
-        {
-            return false;
-        }
-        let links = &robot.chain.links;
-        for (j, (other, pose)) in scene.objects.iter().zip(&scene.start.objects).enumerate() {
-            if j == self.object {
-                continue;
-            }
-            let x_0j = pose.to_isometry(top);
-            if overlaps_beyond(&carried.geometry, &x_0o, &other.geometry, &x_0j, depth) {
-                return false;
-            }
-            let hits = links.iter().zip(&poses).any(|(link, x)| {
-                link.geometry
-                    .iter()
-                    .any(|g| overlaps_beyond(g, x, &other.geometry, &x_0j, arm_depth))
-            });
-            if hits {
-                return false;
-            }
-        }
-        links
-            .iter()
-            .zip(&poses)
-            .enumerate()
-            .filter(|(l, _)| *l != robot.ee_link)
-            .all(|(_, (link, x))| {
-                !link
-                    .geometry
-                    .iter()
-                    .any(|g| overlaps_beyond(g, x, &carried.geometry, &x_0o, arm_depth))
-            })
+        holding_valid(
+            &self.scene,
+            &self.start.objects,
+            self.object,
+            &self.grasps[grasp],
+            q,
+        )
     }
 
     /// Is `q` valid in the motion `motion`?
@@ -224,7 +174,7 @@ impl PickAndPlace {
     /// and ends holding its grasp (within 1 mm and 1 mrad) at its placements; a transit's
     /// object rests where the previous segment left it.
     pub fn check(&self, segments: &[Segment]) -> Result<(), String> {
-        let mut at_q = self.scene.start.q.clone();
+        let mut at_q = self.start.q.clone();
         let mut placement = 0;
         for (i, s) in segments.iter().enumerate() {
             let first = s.waypoints.first().ok_or(format!("segment {i} is empty"))?;
@@ -317,4 +267,77 @@ impl PickAndPlace {
         let error = (self.x_0o(placement) * self.grasps[grasp]).inverse() * tool;
         error.translation.vector.norm() <= 1e-3 && error.rotation.angle() <= 1e-3
     }
+}
+
+/// Is `q` valid with `object` held in the grasp `x_oe` (the tool in the object frame) and
+/// the other objects resting at `objects`: the arm within its limits and clear of itself,
+/// the table, obstacles and the other objects; the carried object clear of the table,
+/// obstacles, the other objects and every link but the hand holding it.
+pub fn holding_valid(
+    scene: &Scene,
+    objects: &[Pose2],
+    object: usize,
+    x_oe: &Isometry3<f64>,
+    q: &DVector<f64>,
+) -> bool {
+    let robot = &scene.robot;
+    let poses = robot.link_poses(q);
+    let mut bounds = ArmBounds::default();
+    ArmBounds::compute(scene, &poses, &mut bounds);
+    if check_robot(scene, q, &poses, &bounds).is_err() {
+        return false;
+    }
+    let top = scene.table.top;
+    let (arm_depth, depth) = (
+        scene.physics.penetration_tolerance,
+        scene.physics.overlap_tolerance,
+    );
+    let carried = &scene.objects[object];
+    let x_0o = robot.tool_pose(&poses) * x_oe.inverse();
+    let identity = Isometry3::identity();
+    if overlaps_beyond(
+        &carried.geometry,
+        &x_0o,
+        &scene.table.geometry,
+        &identity,
+        depth,
+    ) {
+        return false;
+    }
+    if scene
+        .obstacles
+        .iter()
+        .any(|o| overlaps_beyond(&carried.geometry, &x_0o, &o.geometry, &o.pose, depth))
+    {
+        return false;
+    }
+    let links = &robot.chain.links;
+    for (j, (other, pose)) in scene.objects.iter().zip(objects).enumerate() {
+        if j == object {
+            continue;
+        }
+        let x_0j = pose.to_isometry(top);
+        if overlaps_beyond(&carried.geometry, &x_0o, &other.geometry, &x_0j, depth) {
+            return false;
+        }
+        let hits = links.iter().zip(&poses).any(|(link, x)| {
+            link.geometry
+                .iter()
+                .any(|g| overlaps_beyond(g, x, &other.geometry, &x_0j, arm_depth))
+        });
+        if hits {
+            return false;
+        }
+    }
+    links
+        .iter()
+        .zip(&poses)
+        .enumerate()
+        .filter(|(l, _)| *l != robot.ee_link)
+        .all(|(_, (link, x))| {
+            !link
+                .geometry
+                .iter()
+                .any(|g| overlaps_beyond(g, x, &carried.geometry, &x_0o, arm_depth))
+        })
 }

@@ -17,11 +17,13 @@ pub enum PlannerKind {
     Est = 4,
     Pdst = 5,
     Sst = 6,
+    /// DARRT with the PickPlace primitive beside Push (the paper's suggestion, Sec. V-A).
+    DarrtPickPlace = 7,
 }
 
 impl PlannerKind {
     /// Every planner, in the order the CLI lists them.
-    pub const ALL: [PlannerKind; 7] = [
+    pub const ALL: [PlannerKind; 8] = [
         PlannerKind::PcRrt,
         PlannerKind::StaticRrt,
         PlannerKind::Darrt,
@@ -29,6 +31,7 @@ impl PlannerKind {
         PlannerKind::Est,
         PlannerKind::Pdst,
         PlannerKind::Sst,
+        PlannerKind::DarrtPickPlace,
     ];
 
     /// The planner's name.
@@ -37,6 +40,7 @@ impl PlannerKind {
             PlannerKind::PcRrt => "pcrrt",
             PlannerKind::StaticRrt => "static",
             PlannerKind::Darrt => "darrt",
+            PlannerKind::DarrtPickPlace => "darrt_pick",
             PlannerKind::Kpiece => "kpiece",
             PlannerKind::Est => "est",
             PlannerKind::Pdst => "pdst",
@@ -50,6 +54,7 @@ impl PlannerKind {
             PlannerKind::PcRrt => "PC RRT",
             PlannerKind::StaticRrt => "Static RRT",
             PlannerKind::Darrt => "DARRT",
+            PlannerKind::DarrtPickPlace => "DARRT + PickPlace",
             PlannerKind::Kpiece => "KPIECE1",
             PlannerKind::Est => "EST",
             PlannerKind::Pdst => "PDST",
@@ -63,6 +68,7 @@ impl PlannerKind {
             PlannerKind::PcRrt => "PCRRT",
             PlannerKind::StaticRrt => "StaticRRT",
             PlannerKind::Darrt => "DARRT",
+            PlannerKind::DarrtPickPlace => "DARRTPickPlace",
             PlannerKind::Kpiece => "KPIECE1",
             PlannerKind::Est => "EST",
             PlannerKind::Pdst => "PDST",
@@ -90,7 +96,7 @@ impl PlannerKind {
     /// Are its solutions control paths (a plan file holds controls)? DARRT's are
     /// sequences of primitives.
     pub fn yields_controls(self) -> bool {
-        self != PlannerKind::Darrt
+        !matches!(self, PlannerKind::Darrt | PlannerKind::DarrtPickPlace)
     }
 
     /// The names, comma-separated (for messages).

@@ -499,14 +499,71 @@ impl Model {
         })
     }
 
-    /// Checks a DARRT path (flat states one after another) and measures it: the outer
-    /// error is a malformed call, the inner one why the path is invalid.
+    /// DARRT's PickPlace: grasps `object` where it rests in `state`, carries it and sets it
+    /// down at `target` (`[x, y, yaw]`), drawn from `seed`. Returns the states after
+    /// `state` (flat, one after another) and what the hand holds in each (an object
+    /// index, or -1), both empty if no way is found.
+    pub fn darrt_pick_place(
+        &self,
+        state: &[f64],
+        object: usize,
+        target: &[f64],
+        seed: u64,
+    ) -> Result<(Vec<f64>, Vec<i64>), String> {
+        guarded("darrt_pick_place", || {
+            let state = self.state(state)?;
+            let (object, target) = self.object_target(object, target)?;
+            let settings = darrt::PickPlaceSettings::default();
+            let path = darrt::pick_place(
+                self.scene(),
+                &state,
+                object,
+                &target,
+                &settings,
+                seed,
+                self.deadline,
+            )
+            .unwrap_or_default();
+            Ok((
+                path.iter().flat_map(|p| p.state.to_flat()).collect(),
+                path.iter().map(|p| held_to_flat(p.held)).collect(),
+            ))
+        })
+    }
+
+    /// Checks a DARRT path (flat states one after another, and what the hand holds in
+    /// each: an object index or -1) and measures it: the outer error is a malformed call,
+    /// the inner one why the path is invalid.
     pub fn darrt_check(
         &self,
         states: &[f64],
+        held: &[i64],
     ) -> Result<Result<darrt::PrimitivePath, String>, String> {
         guarded("darrt_check", || {
-            Ok(darrt::check_path(self.scene(), &self.states(states)?))
+            let states = self.states(states)?;
+            if held.len() != states.len() {
+                return Err(format!(
+                    "{} states but {} entries of what the hand holds",
+                    states.len(),
+                    held.len()
+                ));
+            }
+            let objects = self.scene().objects.len();
+            let path = states
+                .into_iter()
+                .zip(held)
+                .map(|(state, &h)| match h {
+                    -1 => Ok(darrt::PathState::resting(state)),
+                    h if (0..objects as i64).contains(&h) => Ok(darrt::PathState {
+                        state,
+                        held: Some(h as usize),
+                    }),
+                    h => Err(format!(
+                        "the hand holds object {h}, not -1 or an object index"
+                    )),
+                })
+                .collect::<Result<Vec<_>, String>>()?;
+            Ok(darrt::check_path(self.scene(), &path))
         })
     }
 
@@ -593,4 +650,9 @@ impl Model {
             )),
         }
     }
+}
+
+/// What the hand holds, as the bridge passes it: the object's index, or -1.
+fn held_to_flat(held: Option<usize>) -> i64 {
+    held.map_or(-1, |i| i as i64)
 }

@@ -58,10 +58,11 @@ namespace
 int main()
 {
     using pushplan::PlannerKind;
-    const PlannerKind all[] = {PlannerKind::PcRrt, PlannerKind::StaticRrt, PlannerKind::Darrt, PlannerKind::Kpiece,
-                               PlannerKind::Est,   PlannerKind::Pdst,      PlannerKind::Sst};
-    const char *names[] = {"pcrrt", "static", "darrt", "kpiece", "est", "pdst", "sst"};
-    for (int i = 0; i < 7; ++i)
+    const PlannerKind all[] = {PlannerKind::PcRrt, PlannerKind::StaticRrt, PlannerKind::Darrt,
+                               PlannerKind::Kpiece, PlannerKind::Est,       PlannerKind::Pdst,
+                               PlannerKind::Sst,    PlannerKind::DarrtPickPlace};
+    const char *names[] = {"pcrrt", "static", "darrt", "kpiece", "est", "pdst", "sst", "darrt_pick"};
+    for (int i = 0; i < 8; ++i)
     {
         expect(pushplan::plannerName(all[i]) == names[i], std::string("plannerName -> ") + names[i]);
         expect(pushplan::plannerKind(names[i]) == all[i], std::string("plannerKind(") + names[i] + ")");
@@ -152,6 +153,9 @@ int main()
     options.time_limit = 1.0;
     options.planner = PlannerKind::Darrt;
     expect(throwsError([&] { planner.solve(options); }, "DARRT"), "DARRT through solve() throws pushplan::Error");
+    options.planner = PlannerKind::DarrtPickPlace;
+    expect(throwsError([&] { planner.solve(options); }, "DARRT"),
+           "DARRT with PickPlace through solve() throws pushplan::Error");
     expect(throwsError([] { pushplan::Planner("scenes/none.yaml"); }, "none.yaml"),
            "a missing scene throws pushplan::Error");
     // Every option is checked before the search, a bad one named.
