@@ -30,7 +30,8 @@ namespace pushplan
         /// reach Rust, where an unknown discriminant is undefined behaviour.
         PlannerKind checkedKind(PlannerKind kind)
         {
-            if (static_cast<unsigned>(kind) > static_cast<unsigned>(PlannerKind::Sst))
+            // DarrtPickPlace is the enum's last value.
+            if (static_cast<unsigned>(kind) > static_cast<unsigned>(PlannerKind::DarrtPickPlace))
                 throw Error("unknown planner kind " + std::to_string(static_cast<unsigned>(kind)));
             return kind;
         }
