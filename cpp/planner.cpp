@@ -137,7 +137,7 @@ namespace pushplan
             using detail::checked;
             const Source &source = this->source();
             detail::checkedKind(options.planner);
-            if (options.planner == PlannerKind::Darrt || options.planner == PlannerKind::DarrtPickPlace)
+            if (!bridge::planner_yields_controls(options.planner))
                 throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
                             "(measure DARRT with `pushplan bench`)");
             // One search per thread, each with its own model and seed (detail::Portfolio).

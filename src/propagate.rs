@@ -21,7 +21,7 @@ use crate::physics::tipping::{
 use crate::physics::{object_motion, LimitSurface, PlanarContact, PusherForce};
 use crate::robot::EeAction;
 use crate::scene::file::PhysicsModel;
-use crate::scene::{Goal, Scene};
+use crate::scene::Scene;
 use crate::semi_dynamic::{Body, Rest, RestSettings, Sweep, Sweeps, Transition, Unsettled};
 use crate::state::State;
 use crate::validity::{check_arm_objects, check_objects, check_robot, Invalid};
@@ -345,18 +345,6 @@ impl Propagator {
         )?;
         let moved = &self.moved;
         check_objects(scene, &self.objects_new, |i| moved[i])?;
-        if let Goal::Grasp {
-            object,
-            object_may_move: false,
-            ..
-        } = scene.goal
-        {
-            if moved[object] {
-                return Err(Invalid::MovesObjectToGrasp {
-                    object: scene.objects[object].name.clone(),
-                });
-            }
-        }
 
         state.q.copy_from(&self.q_new);
         state.objects.clone_from(&self.objects_new);

@@ -4,7 +4,6 @@
 //! is the model's side of it: sampling the regions' configurations by inverse kinematics,
 //! the distance to them, and the check of a reach that plan files and the C++ API return.
 
-use crate::contact::ArmBounds;
 use crate::darrt::check_transit;
 use crate::darrt::transit::transit_points;
 use crate::math::Pose2;
@@ -13,7 +12,7 @@ use crate::robot::wgr::Wgr;
 use crate::robot::Robot;
 use crate::scene::{Grasp, Scene};
 use crate::state::State;
-use crate::validity::{check_robot, check_state};
+use crate::validity::{check_arm, check_state};
 use nalgebra::DVector;
 
 /// A configuration is inside a grasp region within this distance (the lecture's
@@ -117,12 +116,7 @@ pub fn sample_grasp(
             },
         )
         .is_ok(),
-        GraspSampling::ArmOnly => {
-            let poses = scene.robot.link_poses(q);
-            let mut bounds = ArmBounds::default();
-            ArmBounds::compute(scene, &poses, &mut bounds);
-            check_robot(scene, q, &poses, &bounds).is_ok()
-        }
+        GraspSampling::ArmOnly => check_arm(scene, q).is_ok(),
     };
     Ok(region.sample_configuration(&scene.robot, &state.q, &mut rng, 1, valid))
 }

@@ -195,10 +195,7 @@ impl std::error::Error for Invalid {}
 
 /// Checks every validity rule for `state`.
 pub fn check_state(scene: &Scene, state: &State) -> Result<(), Invalid> {
-    let poses = scene.robot.link_poses(&state.q);
-    let mut bounds = ArmBounds::default();
-    ArmBounds::compute(scene, &poses, &mut bounds);
-    check_robot(scene, &state.q, &poses, &bounds)?;
+    let (poses, bounds) = check_arm(scene, &state.q)?;
     let mut contacts = Vec::new();
     let mut boxes = Vec::new();
     object_bounds(scene, &state.objects, &mut boxes);
@@ -211,6 +208,19 @@ pub fn check_state(scene: &Scene, state: &State) -> Result<(), Invalid> {
         &mut contacts,
     )?;
     check_objects(scene, &state.objects, |_| true)
+}
+
+/// The arm alone at `q` ([`check_robot`]); its link poses (world) and bounds if valid,
+/// for the checks against objects.
+pub fn check_arm(
+    scene: &Scene,
+    q: &DVector<f64>,
+) -> Result<(Vec<Isometry3<f64>>, ArmBounds), Invalid> {
+    let poses = scene.robot.link_poses(q);
+    let mut bounds = ArmBounds::default();
+    ArmBounds::compute(scene, &poses, &mut bounds);
+    check_robot(scene, q, &poses, &bounds)?;
+    Ok((poses, bounds))
 }
 
 /// Joint limits, self-collision, table and obstacles.
@@ -335,8 +345,8 @@ pub fn check_arm_contacts(scene: &Scene, contacts: &[ArmContact]) -> Result<(), 
 }
 
 /// Objects on the table, apart from each other and from obstacles, and no closer to them
-/// than the clearance. Only pairs with at least one object for which `moved` is true are
-/// checked.
+/// than the clearance; a grasp goal's object that must stay put where it starts. Only
+/// pairs with at least one object for which `moved` is true are checked.
 pub fn check_objects(
     scene: &Scene,
     objects: &[Pose2],
@@ -389,6 +399,13 @@ pub fn check_objects(
                     obstacle: obstacle.name.clone(),
                 },
             )?;
+        }
+    }
+    if let Some(i) = scene.goal.pinned_object() {
+        if moved(i) && objects[i] != scene.start.objects[i] {
+            return Err(Invalid::MovesObjectToGrasp {
+                object: scene.objects[i].name.clone(),
+            });
         }
     }
     Ok(())

@@ -2,11 +2,11 @@
 //! with the tool, whose configuration follows by inverse kinematics step by step.
 
 use super::{hand_links, Cage, PrimitiveFailure};
-use crate::contact::{find_arm_contacts, object_bounds, ArmBounds};
+use crate::contact::{find_arm_contacts, object_bounds};
 use crate::math::{wrap_angle, Pose2};
 use crate::robot::IkSettings;
 use crate::state::State;
-use crate::validity::{check_arm_contacts, check_objects, check_robot, Invalid};
+use crate::validity::{check_arm, check_arm_contacts, check_objects, Invalid};
 use crate::Scene;
 
 /// The longest object translation of one carry step (m).
@@ -60,10 +60,7 @@ pub fn carry(
 /// State validity while the hand carries `object`: every rule of
 /// [`crate::validity::check_state`] except that the hand may overlap the object it cages.
 pub fn check_carrying(scene: &Scene, state: &State, object: usize) -> Result<(), Invalid> {
-    let poses = scene.robot.link_poses(&state.q);
-    let mut bounds = ArmBounds::default();
-    ArmBounds::compute(scene, &poses, &mut bounds);
-    check_robot(scene, &state.q, &poses, &bounds)?;
+    let (poses, bounds) = check_arm(scene, &state.q)?;
     let mut boxes = Vec::new();
     object_bounds(scene, &state.objects, &mut boxes);
     let mut contacts = Vec::new();

@@ -3,10 +3,10 @@
 //! the benchmark).
 
 use super::carry::{carry_steps, check_carrying, CARRY_MAX_JOINT_STEP};
-use super::pick_place::{carried_pose, PathState};
+use super::pick_place::PathState;
 use super::transit::{check_transit, transit_points};
 use super::Cage;
-use crate::manipulation::holding_valid;
+use crate::manipulation::{carried_pose, holding_valid};
 use crate::path::PathMetrics;
 use crate::reach::distance_to_grasps;
 use crate::state::State;

@@ -11,11 +11,10 @@
 
 use super::check::check_motion;
 use super::PrimitiveFailure;
-use crate::manipulation::{ManipulationGraph, Motion, PickAndPlace, Settings};
+use crate::manipulation::{carried_pose, ManipulationGraph, Motion, PickAndPlace, Settings};
 use crate::math::Pose2;
 use crate::scene::Scene;
 use crate::state::State;
-use nalgebra::{DVector, Isometry3};
 use std::time::Instant;
 
 /// A state of a DARRT path and what the hand holds in it.
@@ -96,8 +95,7 @@ pub fn pick_place(
     let segments = graph.solve().ok_or(PrimitiveFailure::NoPath)?;
     let problem = &graph.problem;
     let robot = &scene.robot;
-    let mut placement = 0;
-    let mut path = Vec::new();
+    let mut path = vec![PathState::resting(state.clone())];
     let mut at = state.clone();
     for segment in &segments {
         match segment.motion {
@@ -107,7 +105,7 @@ pub fn pick_place(
                     path.push(PathState::resting(at.clone()));
                 }
             }
-            Motion::Transfer { grasp, to, .. } => {
+            Motion::Transfer { grasp, .. } => {
                 let x_oe = problem.grasps[grasp];
                 // Picked up where it rests, carried, set down.
                 path.push(PathState {
@@ -122,24 +120,15 @@ pub fn pick_place(
                         held: Some(object),
                     });
                 }
-                placement = to;
                 path.push(PathState::resting(at.clone()));
             }
         }
     }
-    debug_assert_eq!(placement, 1, "the graph's paths end at the goal placement");
     // The graph checks its lines at dyadic points and with the sampled grasp; the path
     // check walks them at the Transit resolution with the grasp the hand took. A line
     // that grazes something between the two point sets is refused here, not in the
     // finished path.
-    let mut motion = vec![PathState::resting(state.clone())];
-    motion.extend(path);
-    check_motion(scene, &motion).map_err(PrimitiveFailure::Refused)?;
-    motion.remove(0);
-    Ok(motion)
-}
-
-/// The planar pose (seen from above) of an object held in grasp `x_oe` by configuration `q`.
-pub fn carried_pose(robot: &crate::robot::Robot, q: &DVector<f64>, x_oe: &Isometry3<f64>) -> Pose2 {
-    Pose2::from_isometry(&(robot.tool_pose(&robot.link_poses(q)) * x_oe.inverse()))
+    check_motion(scene, &path).map_err(PrimitiveFailure::Refused)?;
+    path.remove(0);
+    Ok(path)
 }

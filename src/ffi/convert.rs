@@ -60,6 +60,10 @@ pub(super) fn planner_name(kind: PlannerKind) -> &'static str {
     kind.name()
 }
 
+pub(super) fn planner_yields_controls(kind: PlannerKind) -> bool {
+    kind.yields_controls()
+}
+
 pub(super) fn planner_kind(name: &str) -> Result<PlannerKind, String> {
     name.parse()
 }

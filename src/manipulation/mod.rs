@@ -15,14 +15,13 @@ pub mod graph;
 pub use graph::{EdgeKind, ManipulationGraph, Settings};
 
 use crate::collision::query::overlaps_beyond;
-use crate::contact::ArmBounds;
 use crate::darrt::transit::{transit_points, transit_segments};
 use crate::math::Pose2;
 use crate::random::SplitMix64;
-use crate::robot::IkSettings;
+use crate::robot::{IkSettings, Robot};
 use crate::scene::Scene;
 use crate::state::State;
-use crate::validity::{check_objects, check_robot, check_state};
+use crate::validity::{check_arm, check_objects, check_state};
 use nalgebra::{DVector, Isometry3};
 
 /// Random seeds inverse kinematics tries for a node after the start configuration.
@@ -240,9 +239,7 @@ impl PickAndPlace {
             let state_at = |q: DVector<f64>| {
                 let mut objects = self.objects_at(placement);
                 if let Motion::Transfer { grasp, .. } = s.motion {
-                    let x_0o =
-                        robot.tool_pose(&robot.link_poses(&q)) * self.grasps[grasp].inverse();
-                    objects[self.object] = Pose2::from_isometry(&x_0o);
+                    objects[self.object] = carried_pose(robot, &q, &self.grasps[grasp]);
                 }
                 State { q, objects }
             };
@@ -281,12 +278,9 @@ pub fn holding_valid(
     q: &DVector<f64>,
 ) -> bool {
     let robot = &scene.robot;
-    let poses = robot.link_poses(q);
-    let mut bounds = ArmBounds::default();
-    ArmBounds::compute(scene, &poses, &mut bounds);
-    if check_robot(scene, q, &poses, &bounds).is_err() {
+    let Ok((poses, _)) = check_arm(scene, q) else {
         return false;
-    }
+    };
     let top = scene.table.top;
     let (arm_depth, depth) = (
         scene.physics.penetration_tolerance,
@@ -340,4 +334,10 @@ pub fn holding_valid(
                 .iter()
                 .any(|g| overlaps_beyond(g, x, &carried.geometry, &x_0o, arm_depth))
         })
+}
+
+/// The planar pose (seen from above) of an object held in grasp `x_oe` (the tool in the
+/// object frame) by configuration `q` of `robot`.
+pub fn carried_pose(robot: &Robot, q: &DVector<f64>, x_oe: &Isometry3<f64>) -> Pose2 {
+    Pose2::from_isometry(&(robot.tool_pose(&robot.link_poses(q)) * x_oe.inverse()))
 }

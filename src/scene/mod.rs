@@ -236,6 +236,18 @@ impl Goal {
         }
     }
 
+    /// The object that must stay where it starts: a grasp goal's, unless it may move.
+    pub fn pinned_object(&self) -> Option<usize> {
+        match self {
+            Goal::Grasp {
+                object,
+                object_may_move: false,
+                ..
+            } => Some(*object),
+            _ => None,
+        }
+    }
+
     /// The object the goal is about (the goal object, or the one to grasp).
     pub fn object(&self) -> Option<usize> {
         match self {
