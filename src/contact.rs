@@ -178,6 +178,77 @@ pub fn planar_contacts(
     }
 }
 
+/// A contact between two objects seen from above, world frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectPairContact {
+    /// The object the normal points out of, and the one it points into.
+    pub from: usize,
+    pub into: usize,
+    /// Midpoint of the two surface points (m).
+    pub point: Vector2<f64>,
+    /// Horizontal unit normal from `from` into `into`.
+    pub normal: Vector2<f64>,
+    /// Distance between the surfaces (m); negative when overlapping.
+    pub gap: f64,
+}
+
+/// Appends the contacts of object `from` with every other object closer than `margin`
+/// (m): upright prisms on one table touch along vertical lines, so each contact is a
+/// point seen from above (stacked points of one face contact merged, as for the arm).
+pub fn object_pair_contacts(
+    scene: &Scene,
+    objects: &[Pose2],
+    from: usize,
+    margin: f64,
+    scratch: &mut Vec<ContactPoint>,
+    out: &mut Vec<ObjectPairContact>,
+) {
+    let top = scene.table.top;
+    let object = &scene.objects[from];
+    let iso = objects[from].to_isometry(top);
+    for (into, other) in scene.objects.iter().enumerate() {
+        let reach = object.bounding_radius + other.bounding_radius + margin;
+        if into == from
+            || (objects[from].translation() - objects[into].translation()).norm() >= reach
+        {
+            continue;
+        }
+        scratch.clear();
+        let other_iso = objects[into].to_isometry(top);
+        contact_points(
+            &object.geometry,
+            &iso,
+            &other.geometry,
+            &other_iso,
+            margin,
+            scratch,
+        );
+        let first = out.len();
+        for c in scratch.iter() {
+            let horizontal = c.normal_a.xy();
+            let length = horizontal.norm();
+            if length < 1e-6 {
+                continue; // stacked, which upright prisms on one table are not
+            }
+            let contact = ObjectPairContact {
+                from,
+                into,
+                point: (c.point_a.xy().coords + c.point_b.xy().coords) / 2.0,
+                normal: horizontal / length,
+                gap: c.distance,
+            };
+            let duplicate = out[first..].iter_mut().find(|o| {
+                (o.point - contact.point).norm() < 1e-3 && o.normal.dot(&contact.normal) > 0.99
+            });
+            match duplicate {
+                Some(o) if contact.gap < o.gap => *o = contact,
+                Some(_) => {}
+                None => out.push(contact),
+            }
+        }
+    }
+}
+
 /// One object's planar contacts, with the link and the 3D elevation of each.
 #[derive(Clone, Debug, Default)]
 pub struct ObjectContacts {

@@ -52,6 +52,16 @@ impl Pose2 {
         self.rotation().transpose() * v
     }
 
+    /// Object-frame vector expressed in the world frame.
+    pub fn vector_to_world(&self, v: Vector2<f64>) -> Vector2<f64> {
+        self.rotation() * v
+    }
+
+    /// Object-frame point expressed in the world frame.
+    pub fn point_to_world(&self, p: Vector2<f64>) -> Vector2<f64> {
+        self.translation() + self.rotation() * p
+    }
+
     /// World-frame point expressed in the object frame.
     pub fn point_to_local(&self, p: Vector2<f64>) -> Vector2<f64> {
         self.vector_to_local(p - self.translation())

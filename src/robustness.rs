@@ -67,7 +67,8 @@ impl Noise {
     /// A copy of `scene` with every object's start pose and parameters perturbed, drawn
     /// from `rng`: a possible real world. The planner's reserves (tipping margin, object
     /// and arm clearance) are off in it, since the perturbation stands for what they reserve
-    /// against. Perturbed start poses that would be invalid (overlapping objects) are
+    /// against, and objects push one another (`physics.object_pushing`): a real object a
+    /// neighbour drifts into is pushed along, which may or may not spoil the plan. Perturbed start poses that would be invalid (overlapping objects) are
     /// drawn again, up to 100 times, before the error is returned.
     pub fn perturb(&self, scene: &Scene, rng: &mut SplitMix64) -> Result<Scene, Invalid> {
         let mut last = None;
@@ -76,6 +77,7 @@ impl Noise {
             s.physics.tipping_margin = 0.0;
             s.physics.object_clearance = 0.0;
             s.physics.arm_clearance = 0.0;
+            s.physics.object_pushing = true;
             for object in &mut s.objects {
                 let mut scale = |spread: f64| rng.uniform(1.0 - spread, 1.0 + spread);
                 let mass = scale(self.mass);

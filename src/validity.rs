@@ -481,7 +481,8 @@ pub struct Clearances {
 }
 
 impl Clearances {
-    /// The clearances of `scene` from its start state.
+    /// The clearances of `scene` from its start state (between objects none, when they
+    /// push one another).
     pub fn at_start(scene: &Scene) -> Clearances {
         let clearance = scene.physics.object_clearance;
         let top = scene.table.top;
@@ -495,11 +496,16 @@ impl Clearances {
             signed_distance(a, pa, b, pb, clearance).map_or(clearance, |d| d.min(clearance))
         };
         let objects = &scene.objects;
+        // Objects that push one another touch: only overlapping beyond the tolerance is
+        // invalid between them.
+        let touching = -scene.physics.overlap_tolerance;
         let between_objects = (0..objects.len())
             .flat_map(|i| (0..objects.len()).map(move |j| (i, j)))
             .map(|(i, j)| {
                 if i == j {
                     0.0
+                } else if scene.physics.object_pushing {
+                    touching
                 } else {
                     gap(
                         &objects[i].geometry,

@@ -105,41 +105,21 @@ pub fn object_motion(
         .map(|c| c.wrench(c.tangent(), centre))
         .collect();
 
-    // Blocks of M: rows/cols ordered (fn, fl, fr, lambda), each of size m.
-    let mut mat = DMatrix::<f64>::zeros(4 * m, 4 * m);
-    let mut q = DVector::<f64>::zeros(4 * m);
-    for i in 0..m {
-        let (ni, ti) = (normals[i], tangents[i]);
-        for j in 0..m {
-            let (nj, tj) = (normals[j], tangents[j]);
-            let nn = ni.dot(&(a * nj));
-            let nt = ni.dot(&(a * tj));
-            let tn = ti.dot(&(a * nj));
-            let tt = ti.dot(&(a * tj));
-            mat[(i, j)] = nn;
-            mat[(i, m + j)] = nt;
-            mat[(i, 2 * m + j)] = -nt;
-            mat[(m + i, j)] = tn;
-            mat[(m + i, m + j)] = tt;
-            mat[(m + i, 2 * m + j)] = -tt;
-            mat[(2 * m + i, j)] = -tn;
-            mat[(2 * m + i, m + j)] = -tt;
-            mat[(2 * m + i, 2 * m + j)] = tt;
-        }
-        mat[(m + i, 3 * m + i)] = 1.0;
-        mat[(2 * m + i, 3 * m + i)] = 1.0;
-        mat[(3 * m + i, i)] = mu_c;
-        mat[(3 * m + i, m + i)] = -1.0;
-        mat[(3 * m + i, 2 * m + i)] = -1.0;
-
-        let c = &contacts[i];
-        let vt = c.tangent().dot(&c.pusher_velocity);
-        q[i] = -approach(c);
-        q[m + i] = -vt;
-        q[2 * m + i] = vt;
-    }
-
-    let z = lcp::solve(&mat, &q).ok_or(Jammed)?;
+    let gram = |i: usize, di: Direction, j: usize, dj: Direction| {
+        let pick = |k: usize, d: Direction| match d {
+            Direction::Normal => normals[k],
+            Direction::Tangent => tangents[k],
+        };
+        pick(i, di).dot(&(a * pick(j, dj)))
+    };
+    let z = coulomb_lcp(
+        m,
+        |_| mu_c,
+        gram,
+        |i| approach(&contacts[i]),
+        |i| contacts[i].tangent().dot(&contacts[i].pusher_velocity),
+    )
+    .ok_or(Jammed)?;
     let mut wrench = Vector3::zeros();
     for i in 0..m {
         wrench += normals[i] * z[i] + tangents[i] * (z[m + i] - z[2 * m + i]);
@@ -163,4 +143,58 @@ pub fn object_motion(
         normal_forces: (0..m).map(|i| z[i] * scale).collect(),
         friction_forces: (0..m).map(|i| (z[m + i] - z[2 * m + i]) * scale).collect(),
     })
+}
+
+/// The direction of a contact's force or relative motion: along its normal or its tangent.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Direction {
+    Normal,
+    Tangent,
+}
+
+/// The complementarity problem of `m` Coulomb contacts (unknowns ordered `fn, fl, fr,
+/// lambda`, each block of size `m`, as in the module's doc), solved by Lemke's method.
+///
+/// `gram(i, di, j, dj)` is the relative velocity along contact `i`'s direction `di` that
+/// a unit force along contact `j`'s direction `dj` causes (`u_i^T A u_j` with the bodies'
+/// mobility `A`); `approach(i)` the speed at which contact `i` would close without any
+/// force, gap included (m/s); `sliding(i)` the pusher's own speed along its tangent.
+pub(super) fn coulomb_lcp(
+    m: usize,
+    mu: impl Fn(usize) -> f64,
+    gram: impl Fn(usize, Direction, usize, Direction) -> f64,
+    approach: impl Fn(usize) -> f64,
+    sliding: impl Fn(usize) -> f64,
+) -> Option<DVector<f64>> {
+    use Direction::{Normal, Tangent};
+    let mut mat = DMatrix::<f64>::zeros(4 * m, 4 * m);
+    let mut q = DVector::<f64>::zeros(4 * m);
+    for i in 0..m {
+        for j in 0..m {
+            let nn = gram(i, Normal, j, Normal);
+            let nt = gram(i, Normal, j, Tangent);
+            let tn = gram(i, Tangent, j, Normal);
+            let tt = gram(i, Tangent, j, Tangent);
+            mat[(i, j)] = nn;
+            mat[(i, m + j)] = nt;
+            mat[(i, 2 * m + j)] = -nt;
+            mat[(m + i, j)] = tn;
+            mat[(m + i, m + j)] = tt;
+            mat[(m + i, 2 * m + j)] = -tt;
+            mat[(2 * m + i, j)] = -tn;
+            mat[(2 * m + i, m + j)] = -tt;
+            mat[(2 * m + i, 2 * m + j)] = tt;
+        }
+        mat[(m + i, 3 * m + i)] = 1.0;
+        mat[(2 * m + i, 3 * m + i)] = 1.0;
+        mat[(3 * m + i, i)] = mu(i);
+        mat[(3 * m + i, m + i)] = -1.0;
+        mat[(3 * m + i, 2 * m + i)] = -1.0;
+
+        let vt = sliding(i);
+        q[i] = -approach(i);
+        q[m + i] = -vt;
+        q[2 * m + i] = vt;
+    }
+    lcp::solve(&mat, &q)
 }

@@ -332,6 +332,12 @@ pub struct PhysicsSpec {
     /// the support's centre of pressure (the tipping balance's), instead of staying where
     /// a uniform pressure puts it.
     pub pressure_shift: bool,
+    /// Quasistatic model: an object pushed against another pushes it along
+    /// (`physics::chain`), instead of the state being invalid (the whole-arm paper's
+    /// rule). Off by default: plans keep `object_clearance`; the perturbed worlds that
+    /// judge a plan's robustness turn it on, since a real object touched by its
+    /// neighbour moves.
+    pub object_pushing: bool,
 }
 
 impl Default for PhysicsSpec {
@@ -350,6 +356,7 @@ impl Default for PhysicsSpec {
             model: PhysicsModel::Quasistatic,
             t_max: 8.0,
             pressure_shift: true,
+            object_pushing: false,
         }
     }
 }

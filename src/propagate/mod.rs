@@ -12,6 +12,8 @@
 //! per call) skips preparing it again. Results depend only on the start state and the
 //! action: propagation is deterministic bit for bit.
 
+mod cluster;
+
 use crate::collision::section::slab_section;
 use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact, ObjectContacts};
 use crate::math::Pose2;
@@ -200,13 +202,20 @@ impl Propagator {
             return self.semi_dynamic_step(state, action);
         }
         self.project(state, action)?;
-        let scene = &*self.scene;
-        let dt = self.dt;
-
-        // Physics: every object with contacts.
         self.objects_new.clone_from(&state.objects);
         self.object_boxes_new.clone_from(&self.object_boxes);
         self.moved.iter_mut().for_each(|m| *m = false);
+        if self.scene.physics.object_pushing {
+            if let Some(cluster) = self.find_cluster(state) {
+                let pushes = self.push_cluster(state, &cluster)?;
+                self.accept(state)?;
+                return Ok(pushes);
+            }
+        }
+        let scene = &*self.scene;
+        let dt = self.dt;
+
+        // Physics: every object with contacts, each alone.
         let mut pushes = Vec::new();
         let mut start = 0;
         while start < self.contacts.len() {
@@ -293,19 +302,7 @@ impl Propagator {
                 });
             }
             for (&link, &force) in contacts.links.iter().zip(&motion.normal_forces) {
-                if force > 0.0 {
-                    match pushes
-                        .iter_mut()
-                        .find(|p: &&mut Contact| p.link == link && p.object == object)
-                    {
-                        Some(p) => p.force += force,
-                        None => pushes.push(Contact {
-                            link,
-                            object,
-                            force,
-                        }),
-                    }
-                }
+                record_push(&mut pushes, link, object, force);
             }
             start = end;
         }
@@ -518,6 +515,24 @@ impl SemiDynamic {
         self.sweeps
             .sweeps(&scene.robot.chain.links, from, to, &mut self.buffer);
         self.transition.step(objects, &self.buffer, dt, record)
+    }
+}
+
+/// Adds a link's normal force on an object to the step's pushes (if it pushes).
+fn record_push(pushes: &mut Vec<Contact>, link: usize, object: usize, force: f64) {
+    if force <= 0.0 {
+        return;
+    }
+    match pushes
+        .iter_mut()
+        .find(|p| p.link == link && p.object == object)
+    {
+        Some(p) => p.force += force,
+        None => pushes.push(Contact {
+            link,
+            object,
+            force,
+        }),
     }
 }
 
