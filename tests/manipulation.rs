@@ -44,6 +44,32 @@ fn the_low_level_roadmap_refutes_an_edge_and_certifies_a_detour() {
     assert_eq!(edge_probability(1.0, 6, lambda, resolution), 1.0);
 }
 
+#[test]
+fn an_edge_certified_at_dyadic_points_is_walked_where_every_line_is_checked() {
+    // A thin wall across x in [0.039, 0.041]: an edge from 0 to 0.1 is certain at level 3
+    // (spacing 0.0125), whose points 0.0125 k all miss the wall; the line's points at the
+    // Transit resolution (0.02 k) hit it at 0.04.
+    let wall = |q: &DVector<f64>| !(0.039..=0.041).contains(&q[0]);
+    let lambda = 1.0;
+    let resolution = pushplan::darrt::transit::TRANSIT_RESOLUTION;
+    let mut dyadic = FuzzyRoadmap::new(dvector![0.0], dvector![0.1], lambda, resolution);
+    assert_eq!(
+        dyadic.query(wall),
+        Query::Found(vec![0, 1]),
+        "dyadic points miss the wall"
+    );
+    let mut walked = FuzzyRoadmap::new(dvector![0.0], dvector![0.1], lambda, resolution);
+    let line = |a: &DVector<f64>, b: &DVector<f64>| {
+        pushplan::darrt::transit::transit_points(a, b).collect()
+    };
+    assert_eq!(walked.query_walked(wall, line), Query::Failed);
+    assert_eq!(walked.probability(0, 1), None, "the refuted edge is gone");
+    // Without the wall the walk adds the line's five points to the seven dyadic ones.
+    let mut free = FuzzyRoadmap::new(dvector![0.0], dvector![0.1], lambda, resolution);
+    assert_eq!(free.query_walked(|_| true, line), Query::Found(vec![0, 1]));
+    assert_eq!(free.checks, 7 + 5);
+}
+
 fn problem() -> PickAndPlace {
     let scene = Scene::load("scenes/pick_and_place.yaml").unwrap();
     let can = pushplan::reach::graspable_object(&scene, "red_can").unwrap();

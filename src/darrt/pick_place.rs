@@ -124,10 +124,9 @@ pub fn pick_place(
             }
         }
     }
-    // The graph checks its lines at dyadic points and with the sampled grasp; the path
-    // check walks them at the Transit resolution with the grasp the hand took. A line
-    // that grazes something between the two point sets is refused here, not in the
-    // finished path.
+    // The graph checks its lines with the sampled grasp; the path check with the grasp
+    // the hand took. A line that grazes something with the one and not the other is
+    // refused here, not in the finished path.
     check_motion(scene, &path).map_err(PrimitiveFailure::Refused)?;
     path.remove(0);
     Ok(path)

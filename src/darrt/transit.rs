@@ -22,7 +22,15 @@ pub fn transit_points<'a>(
     to: &'a DVector<f64>,
 ) -> impl Iterator<Item = DVector<f64>> + 'a {
     let segments = transit_segments(from, to);
-    (1..=segments).map(move |k| from.lerp(to, k as f64 / segments as f64))
+    (1..=segments).map(move |k| {
+        let mut q = from.lerp(to, k as f64 / segments as f64);
+        // A point of the line lies between its ends; rounding must not carry it past
+        // them (a joint held at its limit along the line would leave its range).
+        for ((x, a), b) in q.iter_mut().zip(from.iter()).zip(to.iter()) {
+            *x = x.clamp(a.min(*b), a.max(*b));
+        }
+        q
+    })
 }
 
 /// Checks the straight joint-space line from `from.q` to `to` with the objects of `from`:
@@ -34,4 +42,22 @@ pub fn check_transit(scene: &Scene, from: &State, to: &DVector<f64>) -> Result<(
         check_state(scene, &state)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_joint_held_at_its_limit_stays_exactly_there_along_a_line() {
+        // (1 - t) (-1.6) + t (-1.6) rounds below -1.6 for many t: the lower limit of the
+        // WAM's j6, where a PickPlace transit was once refused as "outside its limits".
+        for end in 1..200 {
+            let from = DVector::from_vec(vec![-1.6, 0.0]);
+            let to = DVector::from_vec(vec![-1.6, 0.02 * end as f64]);
+            for q in transit_points(&from, &to) {
+                assert!(q[0] == -1.6, "{} on a line ending {end}", q[0]);
+            }
+        }
+    }
 }

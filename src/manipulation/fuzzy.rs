@@ -138,6 +138,34 @@ impl FuzzyRoadmap {
         }
     }
 
+    /// QUERY, then every edge of the path found walked at the points `line` gives (those
+    /// the rest of the planner checks a line at, which dyadic levels need not include): an
+    /// edge with an invalid point is removed and the query fails.
+    pub fn query_walked(
+        &mut self,
+        mut valid: impl FnMut(&DVector<f64>) -> bool,
+        line: impl Fn(&DVector<f64>, &DVector<f64>) -> Vec<DVector<f64>>,
+    ) -> Query {
+        let Query::Found(samples) = self.query(&mut valid) else {
+            return Query::Failed;
+        };
+        for pair in samples.windows(2) {
+            let (a, b) = (&self.samples[pair[0]], &self.samples[pair[1]]);
+            let checks = &mut self.checks;
+            let free = line(a, b).iter().all(|q| {
+                *checks += 1;
+                valid(q)
+            });
+            if !free {
+                let (a, b) = (pair[0], pair[1]);
+                self.edges
+                    .retain(|e| !((e.a == a && e.b == b) || (e.a == b && e.b == a)));
+                return Query::Failed;
+            }
+        }
+        Query::Found(samples)
+    }
+
     /// The samples along a path of edges from sample 0.
     fn path_samples(&self, path: &[usize]) -> Vec<usize> {
         let mut nodes = vec![0];

@@ -13,7 +13,7 @@
 
 use super::fuzzy::{most_probable_path, FuzzyRoadmap, Query};
 use super::{Motion, PickAndPlace, Segment};
-use crate::darrt::transit::TRANSIT_RESOLUTION;
+use crate::darrt::transit::{transit_points, TRANSIT_RESOLUTION};
 use crate::random::SplitMix64;
 use nalgebra::DVector;
 use std::time::Instant;
@@ -221,7 +221,8 @@ impl ManipulationGraph {
             }
             // Query until a path holds, or none is left of those not yet refuted.
             for _ in 0..roadmap.edges.len() + 1 {
-                match roadmap.query(|q| problem.valid(motion, q)) {
+                let line = |a: &DVector<f64>, b: &DVector<f64>| transit_points(a, b).collect();
+                match roadmap.query_walked(|q| problem.valid(motion, q), line) {
                     Query::Found(samples) => {
                         found = Some(
                             samples
