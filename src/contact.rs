@@ -10,6 +10,7 @@ use crate::scene::MovableObject;
 use crate::scene::Scene;
 use nalgebra::{Isometry3, Vector2};
 use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
+use std::ops::Range;
 
 /// One contact point between a link and an object, world frame.
 #[derive(Clone, Copy, Debug)]
@@ -96,6 +97,23 @@ pub fn find_arm_contacts(
             }
         }
     }
+}
+
+/// The runs of `contacts` (grouped by object, as [`find_arm_contacts`] appends them) that
+/// touch one object: the object and the run's index range.
+pub fn by_object(contacts: &[ArmContact]) -> impl Iterator<Item = (usize, Range<usize>)> + '_ {
+    let mut start = 0;
+    std::iter::from_fn(move || {
+        let object = contacts.get(start)?.object;
+        let end = start
+            + contacts[start..]
+                .iter()
+                .take_while(|c| c.object == object)
+                .count();
+        let run = (object, start..end);
+        start = end;
+        Some(run)
+    })
 }
 
 /// Reduces one object's 3D contacts to planar contacts in the object frame.

@@ -9,7 +9,9 @@
 #![allow(non_snake_case)] // frame-named quantities: v_WO, the origin's velocity in the world
 
 use super::{Contact, Propagator};
-use crate::contact::{object_pair_contacts, planar_contacts, ObjectContacts, ObjectPairContact};
+use crate::contact::{
+    by_object, object_pair_contacts, planar_contacts, ObjectContacts, ObjectPairContact,
+};
 use crate::math::{Pose2, Twist2};
 use crate::physics::tipping::{largest_tipping_moment, pusher_forces, support_balance};
 use crate::physics::{
@@ -102,18 +104,11 @@ impl Propagator {
         // The arm's contacts, per touched member, in the world frame.
         let mut arm = Vec::with_capacity(cluster.touched);
         let mut contacts = Vec::new();
-        let mut start = 0;
-        while start < self.contacts.len() {
-            let object = self.contacts[start].object;
-            let end = start
-                + self.contacts[start..]
-                    .iter()
-                    .take_while(|c| c.object == object)
-                    .count();
+        for (object, run) in by_object(&self.contacts) {
             let pose = state.objects[object];
             let mut planar = ObjectContacts::default();
             planar_contacts(
-                &self.contacts[start..end],
+                &self.contacts[run],
                 &pose,
                 scene.table.top,
                 &self.poses,
@@ -136,7 +131,6 @@ impl Propagator {
                 contacts: planar,
                 first,
             });
-            start = end;
         }
         // Between objects: friction the mean of the two surfaces' (rapier's rule too).
         contacts.extend(cluster.pairs.iter().map(|p| ClusterContact {

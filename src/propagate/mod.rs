@@ -15,7 +15,9 @@
 mod cluster;
 
 use crate::collision::section::slab_section;
-use crate::contact::{object_bounds, planar_contacts, ArmBounds, ArmContact, ObjectContacts};
+use crate::contact::{
+    by_object, object_bounds, planar_contacts, ArmBounds, ArmContact, ObjectContacts,
+};
 use crate::math::Pose2;
 use crate::physics::tipping::{
     largest_tipping_moment, pusher_forces, sliding_push_tips, support_balance, ContactElevation,
@@ -217,17 +219,10 @@ impl Propagator {
 
         // Physics: every object with contacts, each alone.
         let mut pushes = Vec::new();
-        let mut start = 0;
-        while start < self.contacts.len() {
-            let object = self.contacts[start].object;
-            let end = start
-                + self.contacts[start..]
-                    .iter()
-                    .take_while(|c| c.object == object)
-                    .count();
+        for (object, run) in by_object(&self.contacts) {
             let pose = state.objects[object];
             planar_contacts(
-                &self.contacts[start..end],
+                &self.contacts[run],
                 &pose,
                 scene.table.top,
                 &self.poses,
@@ -304,7 +299,6 @@ impl Propagator {
             for (&link, &force) in contacts.links.iter().zip(&motion.normal_forces) {
                 record_push(&mut pushes, link, object, force);
             }
-            start = end;
         }
 
         self.accept(state)?;
