@@ -272,11 +272,11 @@ fn toward_robustness_a_push_that_ends_against_a_neighbour_is_stopped_earlier() {
     use pushplan::robustness::{reaches, PerturbedWorld};
     use pushplan::shortcut::{shortcut_by, Criterion};
     use pushplan::EeAction;
-    // A thin hand pushes a box along +x toward a second box, with no clearance required;
-    // the one control pushes it as far as it can go, 1-2 mm short of the neighbour (the
-    // goal disc is reached all along). In perturbed worlds the neighbour stands +-5 mm
-    // elsewhere: the boxes overlap in some. No shortcut exists for one control; a nudge
-    // stops the push earlier.
+    // A thin hand pushes a box along +x toward a second box that stands 1 mm in front of
+    // a fixed block, with no clearance required; the one control pushes it as far as it
+    // can go, up to the neighbour (the goal disc is reached all along). In perturbed
+    // worlds the neighbour stands up to 5 mm further back: the box pushes it into the
+    // block in some. No shortcut exists for one control; a nudge stops the push earlier.
     let yaml = "robot:
   type: planar_hand
   shape: {type: box, size: [0.04, 0.12, 0.01]}
@@ -286,6 +286,8 @@ table: {height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}
 objects:
   - {name: pushed, shape: {type: box, size: [0.1, 0.1, 0.1]}, pose: [0.5, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}
   - {name: neighbour, shape: {type: box, size: [0.1, 0.1, 0.1]}, pose: [0.75, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}
+obstacles:
+  - {name: block, shape: {type: box, size: [0.1, 0.1, 0.1]}, pose: {xyz: [0.851, 0.0, 0.81]}}
 goal: {object: pushed, center: [0.62, 0.0], radius: 0.1, margin: 0.0}
 physics: {object_clearance: 0.0}
 ";
