@@ -1,7 +1,8 @@
 //! Propagation steps per second for the WAM with 1, 7 and 20 objects, in free space and
 //! while the hand pushes a box with a two-point (face) contact (with the support pressure
 //! the push loads, and with a uniform one); and the WAM with primitive collision shapes
-//! against the same WAM with tessellated meshes (`robots/wam7_mesh.urdf`).
+//! against the same WAM with tessellated meshes (`robots/wam7_mesh.urdf`); and a push
+//! into a neighbour with objects pushing objects (`physics.object_pushing`).
 //!
 //! Run: `cargo bench --bench propagation`. Each measured iteration holds one action for 50
 //! steps from the same state; criterion reports time per step (throughput: steps/s).
@@ -132,5 +133,45 @@ fn propagation(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, propagation);
+/// Pushing the goal box into a second box 2 mm ahead of it, 3 cm to the side (objects
+/// push objects: a cluster solved every step), beside the same push with the second box
+/// away, with the rule on and off: what perturbed worlds pay for pushing chains.
+fn object_pushing(c: &mut Criterion) {
+    let mut group = c.benchmark_group("object_pushing");
+    group.throughput(Throughput::Elements(STEPS as u64));
+    // A light neighbour (0.3 kg), and no tipping margin as in perturbed worlds: the
+    // goal box pushed at the hand's height with a 1 kg box ahead of it tips.
+    let neighbour = |x: f64, y: f64| {
+        format!(
+            "  - {{name: neighbour, shape: {{type: box, size: [0.1, 0.1, 0.14]}}, \
+             pose: [{x}, {y}, 0.0], mass: 0.3, mu_g: 0.4, mu_c: 0.3}}\n"
+        )
+    };
+    let physics = |on: bool| format!("physics: {{object_pushing: {on}, tipping_margin: 0.0}}");
+    for (name, second, physics) in [
+        ("alone", neighbour(0.9, -0.5), physics(false)),
+        ("alone_rule_on", neighbour(0.9, -0.5), physics(true)),
+        ("into_a_neighbour", neighbour(0.822, 0.18), physics(true)),
+    ] {
+        let objects = objects(pushed_box() + &second, 7);
+        let scene = common::herb_scene(common::HAND_NEAR, &objects, &physics).unwrap();
+        let push = EeAction::planar(0.1, 0.0, 0.0);
+        let start = in_contact(&scene, &push);
+        let mut p = Propagator::new(&scene);
+        let check = p.propagate_steps(&start, &push, STEPS);
+        assert!(check.stopped_by.is_none(), "{name}: {:?}", check.stopped_by);
+        let moved = check.state.objects[1] != start.objects[1];
+        assert_eq!(
+            moved,
+            name == "into_a_neighbour",
+            "{name}: the neighbour moved: {moved}"
+        );
+        group.bench_with_input(BenchmarkId::new("push", name), &start, |b, start| {
+            b.iter(|| p.propagate_steps(start, &push, STEPS))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, propagation, object_pushing);
 criterion_main!(benches);
