@@ -68,8 +68,9 @@ impl Noise {
     /// from `rng`: a possible real world. The planner's reserves (tipping margin, object
     /// and arm clearance) are off in it, since the perturbation stands for what they reserve
     /// against, and objects push one another (`physics.object_pushing`): a real object a
-    /// neighbour drifts into is pushed along, which may or may not spoil the plan. Perturbed start poses that would be invalid (overlapping objects) are
-    /// drawn again, up to 100 times, before the error is returned.
+    /// neighbour drifts into is pushed along, which may or may not spoil the plan.
+    /// Perturbed start poses that would be invalid (overlapping objects) are drawn again,
+    /// up to 100 times, before the error is returned.
     pub fn perturb(&self, scene: &Scene, rng: &mut SplitMix64) -> Result<Scene, Invalid> {
         let mut last = None;
         for _ in 0..100 {

@@ -4,19 +4,18 @@
 
 use nalgebra::{Vector2, Vector3};
 use pushplan::physics::{
-    cluster_motion, object_motion, ClusterBody, ClusterContact, LimitSurface, PlanarContact, Pusher,
+    cluster_motion, object_motion, ClusterContact, LimitSurface, PlanarContact, Pusher,
 };
 
 const DT: f64 = 0.01;
 const G: f64 = 9.81;
 
-fn body(centre: [f64; 2], mass: f64, mu_g: f64) -> ClusterBody {
-    ClusterBody {
-        surface: LimitSurface {
-            c: 0.038,
-            f_max: mu_g * mass * G,
-            centre: Vector2::new(centre[0], centre[1]),
-        },
+/// A body's limit surface, its centre of friction in the world frame.
+fn body(centre: [f64; 2], mass: f64, mu_g: f64) -> LimitSurface {
+    LimitSurface {
+        c: 0.038,
+        f_max: mu_g * mass * G,
+        centre: Vector2::new(centre[0], centre[1]),
     }
 }
 
@@ -112,7 +111,7 @@ fn an_object_without_friction_passes_the_push_on_as_the_arm_would() {
         .collect();
     let surface = LimitSurface {
         centre: Vector2::zeros(),
-        ..bodies[1].surface
+        ..bodies[1]
     };
     let alone = object_motion(&direct, &surface, mu, DT).unwrap().twist;
     let want = Vector3::new(alone.vx, alone.vy, alone.omega);

@@ -18,16 +18,8 @@
 #![allow(non_snake_case)] // frame-named points: p_WC, a centre in the world frame
 
 use super::limit_surface::LimitSurface;
-use super::pushing::{coulomb_lcp, Direction, Jammed, REST_SPEED};
+use super::pushing::{coulomb_lcp, wrench, Direction, Jammed, REST_SPEED};
 use nalgebra::{Vector2, Vector3};
-
-/// One object of a cluster.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ClusterBody {
-    /// The object's limit surface; its `centre` is the centre of friction in the world
-    /// frame here (m).
-    pub surface: LimitSurface,
-}
 
 /// What pushes at a contact: the arm, moving at a known velocity, or another object of
 /// the cluster.
@@ -74,12 +66,6 @@ pub struct ClusterMotion {
 }
 
 impl ClusterMotion {
-    /// The force contact `k` applies to its pushed object (N, world frame); its pusher,
-    /// if an object, feels the opposite.
-    pub fn force(&self, contacts: &[ClusterContact], k: usize) -> Vector2<f64> {
-        contacts[k].normal * self.normal_forces[k] + contacts[k].tangent() * self.friction_forces[k]
-    }
-
     /// The velocity (m/s) of body `b`'s material point at `p_W`, given its centre `p_WC`.
     pub fn point_velocity(&self, b: usize, p_WC: Vector2<f64>, p_W: Vector2<f64>) -> Vector2<f64> {
         let v = self.twists[b];
@@ -88,23 +74,42 @@ impl ClusterMotion {
     }
 }
 
-/// Wrench about `centre` of a unit force `f` at `point`: (fx, fy, r x f).
-fn wrench(f: Vector2<f64>, point: Vector2<f64>, centre: Vector2<f64>) -> Vector3<f64> {
-    let r = point - centre;
-    Vector3::new(f.x, f.y, r.x * f.y - r.y * f.x)
+/// A unit force along one of a contact's directions, as wrenches on the bodies it acts
+/// on: the pushed body, and the pushing one (the opposite wrench) between objects.
+struct UnitLoad {
+    on_body: (usize, Vector3<f64>),
+    on_pusher: Option<(usize, Vector3<f64>)>,
 }
 
-/// Solves the twists of a cluster of objects under its contacts for a step of `dt`
+impl UnitLoad {
+    fn new(c: &ClusterContact, d: Vector2<f64>, surfaces: &[LimitSurface]) -> Self {
+        let on = |b: usize| wrench(d, c.point, surfaces[b].centre);
+        UnitLoad {
+            on_body: (c.body, on(c.body)),
+            on_pusher: match c.pusher {
+                Pusher::Moving(_) => None,
+                Pusher::Body(p) => Some((p, -on(p))),
+            },
+        }
+    }
+
+    fn parts(&self) -> impl Iterator<Item = &(usize, Vector3<f64>)> {
+        std::iter::once(&self.on_body).chain(&self.on_pusher)
+    }
+}
+
+/// Solves the twists of a cluster of objects, given their limit surfaces (each `centre`,
+/// the centre of friction, in the world frame), under its contacts for a step of `dt`
 /// seconds: no contact penetrates at the end of the step, friction opposes slip within
 /// each contact's cone. `Jammed` when no motion satisfies every contact.
 pub fn cluster_motion(
-    bodies: &[ClusterBody],
+    surfaces: &[LimitSurface],
     contacts: &[ClusterContact],
     dt: f64,
 ) -> Result<ClusterMotion, Jammed> {
     let m = contacts.len();
     let still = || ClusterMotion {
-        twists: vec![Vector3::zeros(); bodies.len()],
+        twists: vec![Vector3::zeros(); surfaces.len()],
         normal_forces: vec![0.0; m],
         friction_forces: vec![0.0; m],
     };
@@ -120,42 +125,29 @@ pub fn cluster_motion(
         return Ok(still());
     }
 
-    // Each contact's unit normal and tangent forces as wrenches on the bodies they touch:
-    // (pushed body, its wrench) and, for a contact between objects, (pusher, the opposite).
-    type Entries = [(usize, Vector3<f64>); 2];
-    let entries = |c: &ClusterContact, d: Vector2<f64>| -> (Entries, usize) {
-        let on_body = (c.body, wrench(d, c.point, bodies[c.body].surface.centre));
-        match c.pusher {
-            Pusher::Moving(_) => ([on_body, on_body], 1),
-            Pusher::Body(p) => (
-                [on_body, (p, -wrench(d, c.point, bodies[p].surface.centre))],
-                2,
-            ),
-        }
-    };
-    let normals: Vec<(Entries, usize)> = contacts.iter().map(|c| entries(c, c.normal)).collect();
-    let tangents: Vec<(Entries, usize)> =
-        contacts.iter().map(|c| entries(c, c.tangent())).collect();
-    // Mobility per body: A_b / f_b.
-    let mobility: Vec<Vector3<f64>> = bodies
+    let normals: Vec<UnitLoad> = contacts
         .iter()
-        .map(|b| {
-            let s = &b.surface;
-            Vector3::new(1.0, 1.0, 1.0 / (s.c * s.c)) / s.f_max
-        })
+        .map(|c| UnitLoad::new(c, c.normal, surfaces))
+        .collect();
+    let tangents: Vec<UnitLoad> = contacts
+        .iter()
+        .map(|c| UnitLoad::new(c, c.tangent(), surfaces))
+        .collect();
+    // Mobility per body: A_b / f_b.
+    let mobility: Vec<Vector3<f64>> = surfaces
+        .iter()
+        .map(|s| s.mobility().diagonal() / s.f_max)
         .collect();
     let pick = |k: usize, d: Direction| match d {
         Direction::Normal => &normals[k],
         Direction::Tangent => &tangents[k],
     };
     let gram = |i: usize, di: Direction, j: usize, dj: Direction| {
-        let ((ui, ni), (uj, nj)) = (pick(i, di), pick(j, dj));
+        let (ui, uj) = (pick(i, di), pick(j, dj));
         let mut sum = 0.0;
-        for (bi, wi) in &ui[..*ni] {
-            for (bj, wj) in &uj[..*nj] {
-                if bi == bj {
-                    sum += wi.component_mul(&mobility[*bi]).dot(wj);
-                }
+        for (bi, wi) in ui.parts() {
+            for (_, wj) in uj.parts().filter(|(bj, _)| bj == bi) {
+                sum += wi.component_mul(&mobility[*bi]).dot(wj);
             }
         }
         sum
@@ -169,11 +161,11 @@ pub fn cluster_motion(
     )
     .ok_or(Jammed)?;
 
-    let mut wrenches = vec![Vector3::zeros(); bodies.len()];
+    let mut wrenches = vec![Vector3::zeros(); surfaces.len()];
     for k in 0..m {
         let (fl, fr) = (z[m + k], z[2 * m + k]);
-        for (d, force) in [(&normals[k], z[k]), (&tangents[k], fl - fr)] {
-            for (b, w) in &d.0[..d.1] {
+        for (load, force) in [(&normals[k], z[k]), (&tangents[k], fl - fr)] {
+            for (b, w) in load.parts() {
                 wrenches[*b] += w * force;
             }
         }
@@ -187,12 +179,8 @@ pub fn cluster_motion(
     // (F^T A F = f_max^2); the others are on the same scale.
     let load = wrenches
         .iter()
-        .zip(bodies)
-        .map(|(w, b)| {
-            let s = &b.surface;
-            let a = Vector3::new(1.0, 1.0, 1.0 / (s.c * s.c));
-            w.dot(&w.component_mul(&a)).sqrt() / s.f_max
-        })
+        .zip(surfaces)
+        .map(|(w, s)| w.dot(&(s.mobility() * w)).sqrt() / s.f_max)
         .fold(0.0, f64::max);
     let scale = if load > 0.0 { 1.0 / load } else { 0.0 };
     Ok(ClusterMotion {

@@ -13,7 +13,7 @@ pub mod limit_surface;
 pub mod pushing;
 pub mod tipping;
 
-pub use chain::{cluster_motion, ClusterBody, ClusterContact, ClusterMotion, Pusher};
+pub use chain::{cluster_motion, ClusterContact, ClusterMotion, Pusher};
 pub use limit_surface::{Footprint, LimitSurface, LoadedSupport, SupportGrid};
 pub use pushing::{object_motion, Jammed, ObjectMotion, PlanarContact};
 pub use tipping::{sliding_push_tips, ContactElevation, PusherForce, SupportBalance};

@@ -46,9 +46,14 @@ impl PlanarContact {
     /// Wrench of a unit force `f` at the contact point about `centre`:
     /// (fx, fy, x fy - y fx) with (x, y) the point relative to the centre.
     fn wrench(&self, f: Vector2<f64>, centre: Vector2<f64>) -> Vector3<f64> {
-        let r = self.point - centre;
-        Vector3::new(f.x, f.y, r.x * f.y - r.y * f.x)
+        wrench(f, self.point, centre)
     }
+}
+
+/// Wrench about `centre` of a force `f` at `point`: (fx, fy, r x f), r = point - centre.
+pub(super) fn wrench(f: Vector2<f64>, point: Vector2<f64>, centre: Vector2<f64>) -> Vector3<f64> {
+    let r = point - centre;
+    Vector3::new(f.x, f.y, r.x * f.y - r.y * f.x)
 }
 
 /// The pushers hold the object from opposing sides: no motion satisfies every contact.

@@ -8,15 +8,14 @@
 
 #![allow(non_snake_case)] // frame-named quantities: v_WO, the origin's velocity in the world
 
-use super::{Contact, Propagator};
+use super::{keeps_flat, no_link_closes_in, Contact, Propagator};
 use crate::contact::{
     by_object, object_pair_contacts, planar_contacts, ObjectContacts, ObjectPairContact,
 };
 use crate::math::{Pose2, Twist2};
-use crate::physics::tipping::{largest_tipping_moment, pusher_forces, support_balance};
+use crate::physics::tipping::{pusher_forces, support_balance};
 use crate::physics::{
-    cluster_motion, ClusterBody, ClusterContact, ClusterMotion, LimitSurface, ObjectMotion, Pusher,
-    PusherForce,
+    cluster_motion, ClusterContact, ClusterMotion, LimitSurface, ObjectMotion, Pusher, PusherForce,
 };
 use crate::state::State;
 use crate::validity::Invalid;
@@ -25,10 +24,9 @@ use std::sync::Arc;
 /// The objects of a cluster and the contacts between them.
 #[derive(Default)]
 pub(super) struct Cluster {
-    /// Scene indices of the members: those the arm touches first.
+    /// Scene indices of the members: those the arm touches first, in the order of its
+    /// contacts.
     members: Vec<usize>,
-    /// Members touched by the arm.
-    touched: usize,
     pairs: Vec<ObjectPairContact>,
 }
 
@@ -60,7 +58,6 @@ impl Propagator {
                 cluster.members.push(c.object);
             }
         }
-        cluster.touched = cluster.members.len();
         let mut scratch = Vec::new();
         let mut found = Vec::new();
         let mut k = 0;
@@ -102,7 +99,7 @@ impl Propagator {
         let dt = self.dt;
 
         // The arm's contacts, per touched member, in the world frame.
-        let mut arm = Vec::with_capacity(cluster.touched);
+        let mut arm = Vec::new();
         let mut contacts = Vec::new();
         for (object, run) in by_object(&self.contacts) {
             let pose = state.objects[object];
@@ -142,20 +139,20 @@ impl Propagator {
             mu: 0.5 * (scene.objects[p.from].mu_c + scene.objects[p.into].mu_c),
         }));
 
-        let mut bodies: Vec<ClusterBody> = cluster
+        // Limit surfaces with their centres of friction in the world frame.
+        let in_world = |object: usize, surface: LimitSurface| LimitSurface {
+            centre: state.objects[object].point_to_world(surface.centre),
+            ..surface
+        };
+        let mut surfaces: Vec<LimitSurface> = cluster
             .members
             .iter()
-            .map(|&o| ClusterBody {
-                surface: LimitSurface {
-                    centre: state.objects[o].point_to_world(scene.objects[o].limit_surface.centre),
-                    ..scene.objects[o].limit_surface
-                },
-            })
+            .map(|&o| in_world(o, scene.objects[o].limit_surface))
             .collect();
         let jammed = |_| Invalid::Jammed {
             object: scene.objects[cluster.members[0]].name.clone(),
         };
-        let mut motion = cluster_motion(&bodies, &contacts, dt).map_err(jammed)?;
+        let mut motion = cluster_motion(&surfaces, &contacts, dt).map_err(jammed)?;
         if scene.physics.pressure_shift {
             // As for one object: the centre of friction follows the centre of pressure
             // the arm's pushes load; one re-solve.
@@ -170,16 +167,12 @@ impl Propagator {
                 if motion.twists[member] != nalgebra::Vector3::zeros()
                     && balance.stays_flat(&body.footprint, 0.0)
                 {
-                    let shift = balance.p_OP - body.footprint.centroid();
-                    let pose = &state.objects[push.object];
-                    let surface = &mut bodies[member].surface;
-                    surface.centre = pose.point_to_world(body.limit_surface.centre + shift);
-                    surface.c = body.limit_surface.c * body.support.c_ratio(shift);
+                    surfaces[member] = in_world(push.object, body.loaded_surface(&balance));
                     shifted = true;
                 }
             }
             if shifted {
-                motion = cluster_motion(&bodies, &contacts, dt).map_err(jammed)?;
+                motion = cluster_motion(&surfaces, &contacts, dt).map_err(jammed)?;
             }
         }
 
@@ -188,30 +181,11 @@ impl Propagator {
             let body = &scene.objects[push.object];
             let forces = self.arm_forces(push, &motion);
             let balance = support_balance(body.mass, body.footprint.centroid(), &forces);
-            if motion.twists[member] != nalgebra::Vector3::zeros()
-                && !balance.stays_flat(&body.footprint, scene.physics.tipping_margin)
-            {
-                let pusher = largest_tipping_moment(&forces).unwrap_or(0);
-                return Err(Invalid::Tips {
-                    object: body.name.clone(),
-                    link: scene.robot.chain.links[push.contacts.links[pusher]]
-                        .name
-                        .clone(),
-                });
+            if motion.twists[member] != nalgebra::Vector3::zeros() {
+                keeps_flat(scene, push.object, &push.contacts, &balance, &forces)?;
             }
             let normal_forces = &motion.normal_forces[push.first..][..push.contacts.planar.len()];
-            if let Some((link, distance)) = push.contacts.closing_in_at_tipping_height(
-                body,
-                normal_forces,
-                scene.physics.arm_clearance,
-                scene.physics.tipping_margin,
-            ) {
-                return Err(Invalid::ClosesInAtTippingHeight {
-                    link: scene.robot.chain.links[link].name.clone(),
-                    object: body.name.clone(),
-                    distance,
-                });
-            }
+            no_link_closes_in(scene, push.object, &push.contacts, normal_forces)?;
             for (&link, &force) in push.contacts.links.iter().zip(normal_forces) {
                 super::record_push(&mut pushes, link, push.object, force);
             }
@@ -224,8 +198,7 @@ impl Propagator {
             }
             let pose = state.objects[object];
             // The origin moves at v_C + omega z x (p_WO - p_WC); integrate in the body frame.
-            let v_WO =
-                motion.point_velocity(member, bodies[member].surface.centre, pose.translation());
+            let v_WO = motion.point_velocity(member, surfaces[member].centre, pose.translation());
             let v_O = pose.vector_to_local(v_WO);
             let twist = Twist2 {
                 vx: v_O.x,

@@ -22,7 +22,7 @@ use crate::math::Pose2;
 use crate::physics::tipping::{
     largest_tipping_moment, pusher_forces, sliding_push_tips, support_balance, ContactElevation,
 };
-use crate::physics::{object_motion, LimitSurface, PlanarContact, PusherForce};
+use crate::physics::{object_motion, PlanarContact, PusherForce, SupportBalance};
 use crate::robot::EeAction;
 use crate::scene::file::PhysicsModel;
 use crate::scene::Scene;
@@ -248,15 +248,9 @@ impl Propagator {
                 let mut balance = support_balance(body.mass, centroid, &self.forces);
                 if scene.physics.pressure_shift && balance.stays_flat(&body.footprint, 0.0) {
                     // The pushes move the centre of pressure by p_OP - p_OG; the centre of
-                    // friction (the pressure-weighted centroid) moves with it. One
-                    // re-solve: the forces barely change with the centre.
-                    let shift = balance.p_OP - centroid;
-                    let c = body.support.c_ratio(shift);
-                    let surface = LimitSurface {
-                        centre: body.limit_surface.centre + shift,
-                        c: body.limit_surface.c * c,
-                        ..body.limit_surface
-                    };
+                    // friction moves with it. One re-solve: the forces barely change with
+                    // the centre.
+                    let surface = body.loaded_surface(&balance);
                     motion =
                         object_motion(&contacts.planar, &surface, body.mu_c, dt).map_err(jammed)?;
                     pusher_forces(
@@ -267,35 +261,14 @@ impl Propagator {
                     );
                     balance = support_balance(body.mass, centroid, &self.forces);
                 }
-                if !balance.stays_flat(&body.footprint, scene.physics.tipping_margin) {
-                    let pusher = largest_tipping_moment(&self.forces).unwrap_or(0);
-                    return Err(Invalid::Tips {
-                        object: body.name.clone(),
-                        link: scene.robot.chain.links[contacts.links[pusher]].name.clone(),
-                    });
-                }
+                keeps_flat(scene, object, contacts, &balance, &self.forces)?;
                 let moved = pose.integrate(&motion.twist, dt);
                 self.objects_new[object] = moved;
                 self.object_boxes_new[object] =
                     body.geometry.aabb(&moved.to_isometry(scene.table.top));
                 self.moved[object] = true;
             }
-            // A link closing in on the object without pushing it, where a push that slid
-            // it would tip it: the plan would hang on the touch never happening, or on
-            // its turning the object rather than sliding it, and a few millimetres
-            // elsewhere in the world it happens.
-            if let Some((link, distance)) = contacts.closing_in_at_tipping_height(
-                body,
-                &motion.normal_forces,
-                scene.physics.arm_clearance,
-                scene.physics.tipping_margin,
-            ) {
-                return Err(Invalid::ClosesInAtTippingHeight {
-                    link: scene.robot.chain.links[link].name.clone(),
-                    object: body.name.clone(),
-                    distance,
-                });
-            }
+            no_link_closes_in(scene, object, contacts, &motion.normal_forces)?;
             for (&link, &force) in contacts.links.iter().zip(&motion.normal_forces) {
                 record_push(&mut pushes, link, object, force);
             }
@@ -509,6 +482,52 @@ impl SemiDynamic {
         self.sweeps
             .sweeps(&scene.robot.chain.links, from, to, &mut self.buffer);
         self.transition.step(objects, &self.buffer, dt, record)
+    }
+}
+
+/// The table keeps pushed `object` flat under the links' `forces` (`balance`, theirs),
+/// with the tipping margin; otherwise the link with the largest tipping moment tips it.
+fn keeps_flat(
+    scene: &Scene,
+    object: usize,
+    contacts: &ObjectContacts,
+    balance: &SupportBalance,
+    forces: &[PusherForce],
+) -> Result<(), Invalid> {
+    let body = &scene.objects[object];
+    if balance.stays_flat(&body.footprint, scene.physics.tipping_margin) {
+        return Ok(());
+    }
+    let pusher = largest_tipping_moment(forces).unwrap_or(0);
+    Err(Invalid::Tips {
+        object: body.name.clone(),
+        link: scene.robot.chain.links[contacts.links[pusher]].name.clone(),
+    })
+}
+
+/// No link closes in on `object` without pushing it (`normal_forces`, per contact) where a
+/// push that slid it would tip it: the plan would hang on the touch never happening, or
+/// on its turning the object rather than sliding it, and a few millimetres elsewhere in
+/// the world it happens.
+fn no_link_closes_in(
+    scene: &Scene,
+    object: usize,
+    contacts: &ObjectContacts,
+    normal_forces: &[f64],
+) -> Result<(), Invalid> {
+    let body = &scene.objects[object];
+    match contacts.closing_in_at_tipping_height(
+        body,
+        normal_forces,
+        scene.physics.arm_clearance,
+        scene.physics.tipping_margin,
+    ) {
+        Some((link, distance)) => Err(Invalid::ClosesInAtTippingHeight {
+            link: scene.robot.chain.links[link].name.clone(),
+            object: body.name.clone(),
+            distance,
+        }),
+        None => Ok(()),
     }
 }
 

@@ -12,7 +12,7 @@ pub use load::{MAX_CONTROL_STEPS, MAX_FRICTION, MAX_K, MAX_MASS, MAX_OBJECTS, MA
 
 use crate::collision::Geometry;
 use crate::math::Pose2;
-use crate::physics::{Footprint, LimitSurface, LoadedSupport};
+use crate::physics::{Footprint, LimitSurface, LoadedSupport, SupportBalance};
 use crate::robot::Robot;
 use crate::state::State;
 use crate::validity::Clearances;
@@ -158,6 +158,18 @@ impl MovableObject {
     /// The object frame's world pose for a planar pose (its base on the table top).
     pub fn isometry(&self, pose: &Pose2, table_top: f64) -> Isometry3<f64> {
         pose.to_isometry(table_top)
+    }
+
+    /// The limit surface (object frame) under the support pressure `balance` gives: the
+    /// centre of friction (the pressure-weighted centroid) moves with the centre of
+    /// pressure, `c` with the pressure's spread (`physics.pressure_shift`).
+    pub fn loaded_surface(&self, balance: &SupportBalance) -> LimitSurface {
+        let shift = balance.p_OP - self.footprint.centroid();
+        LimitSurface {
+            centre: self.limit_surface.centre + shift,
+            c: self.limit_surface.c * self.support.c_ratio(shift),
+            ..self.limit_surface
+        }
     }
 }
 
