@@ -1,5 +1,7 @@
 #include "control.h"
 
+#include "sampling.h"
+
 namespace ob = ompl::base;
 namespace oc = ompl::control;
 
@@ -54,5 +56,52 @@ namespace pushplan::detail
     void EeControlSampler::sampleNext(oc::Control *control, const oc::Control *, const ob::State *)
     {
         sample(control);
+    }
+}  // namespace pushplan::detail
+
+namespace pushplan::detail
+{
+    void EeControlSampler::setVelocity(oc::Control *control, const double heading[2], double speed)
+    {
+        double *values = control->as<oc::RealVectorControlSpace::ControlType>()->values;
+        values[0] = speed * heading[0];
+        values[1] = speed * heading[1];
+    }
+
+    PushControlSampler::PushControlSampler(const oc::ControlSpace *space, std::uint_fast32_t seed,
+                                           ModelHandlePtr model, PushMix mix)
+      : EeControlSampler(space, seed), model_(std::move(model)), mix_(mix)
+    {
+    }
+
+    void PushControlSampler::sample(oc::Control *control, const ob::State *state)
+    {
+        EeControlSampler::sample(control);
+        const bridge::SceneInfo &info = model_->info();
+        if (info.goal_object < 0 || rng_.uniform01() >= mix_.guided)
+            return;
+        // A push: a blocker out of the goal object's way, or the goal object toward the goal
+        // disc, or (a detour) toward anywhere on the table.
+        bridge::PushTarget push{static_cast<std::size_t>(info.goal_object), {}};
+        const rust::Vec<bridge::PushTarget> blockers = model_->pushBlockers(state);
+        if (!blockers.empty() && rng_.uniform01() < mix_.clear)
+            push = blockers[rng_.uniformInt(0, static_cast<int>(blockers.size()) - 1)];
+        else
+        {
+            const std::array<double, 2> p =
+                rng_.uniform01() < mix_.to_goal ? sampleInGoalDisc(info, rng_) : sampleOnTable(info, rng_);
+            push.target = {p[0], p[1]};
+        }
+        const std::optional<std::array<double, 2>> heading =
+            model_->pushHeading(state, push.object, {push.target[0], push.target[1]});
+        if (!heading)
+            return;
+        const double max_speed = info.planner.max_ee_speed;
+        setVelocity(control, heading->data(), rng_.uniformReal(0.5 * max_speed, max_speed));
+    }
+
+    void PushControlSampler::sampleNext(oc::Control *control, const oc::Control *, const ob::State *state)
+    {
+        sample(control, state);
     }
 }  // namespace pushplan::detail

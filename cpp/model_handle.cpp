@@ -129,6 +129,23 @@ namespace pushplan::detail
         return {p[0], p[1], p[2], p[3]};
     }
 
+    std::optional<std::array<double, 2>> ModelHandle::pushHeading(const ob::State *state, std::size_t object,
+                                                                  const std::array<double, 2> &target) const
+    {
+        read(state, a_);
+        const rust::Vec<double> h =
+            model_->push_heading(slice(a_), object, rust::Slice<const double>(target.data(), target.size()));
+        if (h.empty())
+            return std::nullopt;
+        return std::array<double, 2>{h[0], h[1]};
+    }
+
+    rust::Vec<bridge::PushTarget> ModelHandle::pushBlockers(const ob::State *state) const
+    {
+        read(state, a_);
+        return bridge::push_blockers(*model_, slice(a_));
+    }
+
     bool ModelHandle::propagate(const ob::State *state, const oc::Control *control, std::size_t steps,
                                 ob::State *result) const
     {

@@ -10,6 +10,7 @@
 #include <ompl/control/PathControl.h>
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace pushplan::detail
@@ -53,6 +54,12 @@ namespace pushplan::detail
 
         /// End-effector xy and goal-object xy (m): the benchmark planners' projection.
         std::array<double, 4> project(const ompl::base::State *state) const;
+        /// Which way the tool should move to push `object` toward `target` (world xy, m):
+        /// unit xy in the world frame; none if the object is at the target.
+        std::optional<std::array<double, 2>> pushHeading(const ompl::base::State *state, std::size_t object,
+                                                         const std::array<double, 2> &target) const;
+        /// The objects in the goal object's way, each with a place out of it.
+        rust::Vec<bridge::PushTarget> pushBlockers(const ompl::base::State *state) const;
 
         /// A control path, flat: the controls one after another, their step counts, and
         /// the states at the start and after each control.

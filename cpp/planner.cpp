@@ -30,8 +30,8 @@ namespace pushplan
         /// reach Rust, where an unknown discriminant is undefined behaviour.
         PlannerKind checkedKind(PlannerKind kind)
         {
-            // DarrtPickPlace is the enum's last value.
-            if (static_cast<unsigned>(kind) > static_cast<unsigned>(PlannerKind::DarrtPickPlace))
+            // PushKpiece is the enum's last value.
+            if (static_cast<unsigned>(kind) > static_cast<unsigned>(PlannerKind::PushKpiece))
                 throw Error("unknown planner kind " + std::to_string(static_cast<unsigned>(kind)));
             return kind;
         }

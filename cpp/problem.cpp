@@ -128,13 +128,26 @@ namespace pushplan::detail
                 return darrt;
             }
             case PlannerKind::Kpiece:
-                return std::make_shared<oc::KPIECE1>(si);
+                return std::make_shared<Seeded<oc::KPIECE1>>(si, subSeed(seed, 3));
+            case PlannerKind::PushKpiece:
+            {
+                // Most controls along push headings, each sampler with its own stream.
+                auto count = std::make_shared<std::uint64_t>(0);
+                si->getControlSpace()->setControlSamplerAllocator(
+                    [seed, count, model = problem.model](const oc::ControlSpace *c) {
+                        return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), model,
+                                                                    PushMix{});
+                    });
+                auto kpiece = std::make_shared<Seeded<oc::KPIECE1>>(si, subSeed(seed, 3));
+                kpiece->setName("PushKPIECE");
+                return kpiece;
+            }
             case PlannerKind::Est:
-                return std::make_shared<oc::EST>(si);
+                return std::make_shared<Seeded<oc::EST>>(si, subSeed(seed, 3));
             case PlannerKind::Pdst:
-                return std::make_shared<oc::PDST>(si);
+                return std::make_shared<Seeded<oc::PDST>>(si, subSeed(seed, 3));
             case PlannerKind::Sst:
-                return std::make_shared<oc::SST>(si);
+                return std::make_shared<Seeded<oc::SST>>(si, subSeed(seed, 3));
         }
         throw Error("unknown planner kind " + std::to_string(static_cast<int>(kind)));
     }

@@ -29,6 +29,19 @@ namespace pushplan::detail
         std::size_t treeSize() const { return nn_ ? nn_->size() : 0; }
     };
 
+    /// One of OMPL's control planners (KPIECE1, EST, PDST, SST) whose own random numbers
+    /// come from a given seed: OMPL would draw it from its process-wide generator, and a
+    /// plan would depend on what the process made before.
+    template <class OmplPlanner>
+    class Seeded : public OmplPlanner
+    {
+    public:
+        Seeded(const ompl::control::SpaceInformationPtr &si, std::uint_fast32_t seed) : OmplPlanner(si)
+        {
+            this->rng_.setLocalSeed(seed);
+        }
+    };
+
     /// Projection for OMPL's projection-based planners (KPIECE1, EST, PDST): the
     /// end-effector's xy and the goal object's xy (m), cells of 5 cm.
     class PushProjection : public ompl::base::ProjectionEvaluator

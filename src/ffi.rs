@@ -16,8 +16,8 @@ use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
 use convert::{
     add_search_stats, darrt_check, darrt_pick_place, finish, nearest_tree, planner_kind,
-    planner_name, planner_yields_controls, scene_info, search_stats, trajectory, tree_add,
-    tree_nearest, tree_nearest_k, tree_nearest_r,
+    planner_name, planner_yields_controls, push_blockers, scene_info, search_stats, trajectory,
+    tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
 };
 
 // SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
@@ -128,6 +128,13 @@ pub mod bridge {
         pub pick_places: usize,
     }
 
+    /// `planner::PushTarget`: a push worth trying, `object` toward `target` (world xy, m).
+    #[derive(Debug, Clone, Copy)]
+    pub struct PushTarget {
+        pub object: usize,
+        pub target: [f64; 2],
+    }
+
     /// `planner::SearchStats`; the reasons and their counts in the same order.
     #[derive(Debug, Clone)]
     pub struct SearchStats {
@@ -163,6 +170,13 @@ pub mod bridge {
         fn particle_len(self: &Model) -> usize;
         fn start_particles(self: &Model) -> Vec<f64>;
         fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
+        fn push_heading(
+            self: &Model,
+            state: &[f64],
+            object: usize,
+            target: &[f64],
+        ) -> Result<Vec<f64>>;
+        fn push_blockers(model: &Model, state: &[f64]) -> Result<Vec<PushTarget>>;
         fn propagation_steps(self: &Model) -> u64;
         /// The smallest goal distance of a state so far (progress reports).
         fn closest_goal_distance(self: &Model) -> f64;

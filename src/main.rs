@@ -39,9 +39,10 @@ enum Command {
         /// Control samples per extension; default: the scene's planner.k.
         #[arg(long)]
         k: Option<u32>,
-        /// pcrrt (pushes objects), static (only the goal object moves), or one of OMPL's
-        /// control planners on the same problem: kpiece, est, pdst, sst.
-        #[arg(long, default_value_t = PlannerKind::PcRrt)]
+        /// push_kpiece (KPIECE1 guided by push headings), pcrrt (the paper's RRT), static
+        /// (only the goal object moves), or one of OMPL's control planners on the same
+        /// problem: kpiece, est, pdst, sst.
+        #[arg(long, default_value_t = PlannerKind::PushKpiece)]
         planner: PlannerKind,
         /// Where to write the plan.
         #[arg(long, default_value = "plan.json")]
@@ -141,11 +142,12 @@ enum Command {
         /// Scene files.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
-        /// Planners: pcrrt, static, darrt, kpiece, est, pdst, sst, darrt_pick (DARRT with PickPlace).
+        /// Planners: push_kpiece, pcrrt, static, darrt, kpiece, est, pdst, sst, darrt_pick (DARRT
+        /// with PickPlace).
         #[arg(
             long,
             value_delimiter = ',',
-            default_value = "pcrrt,static,kpiece,est,pdst,sst"
+            default_value = "push_kpiece,pcrrt,static,kpiece,est,pdst,sst"
         )]
         planners: Vec<PlannerKind>,
         /// Runs per planner and scene.

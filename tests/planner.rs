@@ -155,6 +155,61 @@ fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
 }
 
 #[test]
+fn push_kpiece_solves_the_clutter_scene_the_same_way_for_the_same_seed() {
+    let scene = "scenes/herb_fig1_clutter.yaml";
+    let a = solve(Path::new(scene), &options("push_kpiece", 2, 60.0), |_| {}).unwrap();
+    assert!(a.exact);
+    let plan = plan_file(scene, "push_kpiece", 2, &a);
+    assert!(plan.check(Path::new("plan.json")).unwrap().passed());
+    assert!(plan
+        .controls
+        .iter()
+        .flat_map(|c| &c.contacts)
+        .any(|c| c.object == "green_box"));
+    // Its random numbers come from the plan's seed only, as do KPIECE1's: OMPL would seed
+    // them from the process (what ran before would change the plan).
+    for planner in ["push_kpiece", "kpiece"] {
+        let once = solve(Path::new(scene), &options(planner, 2, 60.0), |_| {}).unwrap();
+        let again = solve(Path::new(scene), &options(planner, 2, 60.0), |_| {}).unwrap();
+        assert!(once.exact, "{planner}");
+        assert_eq!(
+            (&once.states, &once.controls, &once.steps, once.tree_size),
+            (
+                &again.states,
+                &again.controls,
+                &again.steps,
+                again.tree_size
+            ),
+            "{planner}"
+        );
+    }
+}
+
+#[test]
+fn push_kpiece_pushes_the_goal_object_far_more_often_than_kpiece() {
+    // The same search with and without push headings: the share of propagations that
+    // move the goal object, until each solves the clutter scene.
+    let moved_share = |planner: &str| {
+        let scene = Path::new("scenes/herb_fig1_clutter.yaml");
+        let out = solve(scene, &options(planner, 1, 60.0), |_| {}).unwrap();
+        assert!(
+            out.search.propagations >= 100,
+            "{planner}: {:?}",
+            out.search
+        );
+        out.search.moved_goal_object as f64 / out.search.propagations as f64
+    };
+    let guided = moved_share("push_kpiece");
+    let unguided = moved_share("kpiece");
+    assert!(
+        guided > 3.0 * unguided && guided > 0.1,
+        "goal object moved in {:.1} % of Push KPIECE's propagations, {:.1} % of KPIECE1's",
+        100.0 * guided,
+        100.0 * unguided
+    );
+}
+
+#[test]
 fn bad_scenes_and_options_are_errors_not_crashes() {
     let err = solve(
         Path::new("scenes/missing.yaml"),

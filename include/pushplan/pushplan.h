@@ -63,6 +63,10 @@ namespace pushplan
         /// DARRT with a fourth primitive, PickPlace: the hand grasps an object (its scene
         /// `grasps`), carries it and sets it down (the paper's suggestion). "darrt_pick"
         DarrtPickPlace,
+        /// OMPL's KPIECE1 whose controls follow the push heading half the time: the tool
+        /// walks round the goal object and pushes it toward the goal (pushplan's own
+        /// planner). "push_kpiece"
+        PushKpiece,
     };
 
     /// The planner's name ("pcrrt", "static", ...).
@@ -93,7 +97,7 @@ namespace pushplan
         std::optional<std::uint64_t> seed;    ///< random seed
         std::optional<unsigned> k;            ///< control samples per extension
         std::optional<double> goal_bias;      ///< probability of sampling the goal
-        PlannerKind planner = PlannerKind::PcRrt;
+        PlannerKind planner = PlannerKind::PushKpiece;
         /// Shortcutting budget after an exact solution, in seconds of work (counted in
         /// propagation steps, so the result is deterministic); 0 turns it off.
         double shortcut = 3.0;

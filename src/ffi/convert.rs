@@ -56,6 +56,20 @@ pub(super) fn darrt_pick_place(
         .map(|(states, held)| bridge::HeldStates { states, held })
 }
 
+pub(super) fn push_blockers(
+    model: &Model,
+    state: &[f64],
+) -> Result<Vec<bridge::PushTarget>, String> {
+    Ok(model
+        .push_blockers(state)?
+        .into_iter()
+        .map(|b| bridge::PushTarget {
+            object: b.object,
+            target: [b.target.x, b.target.y],
+        })
+        .collect())
+}
+
 pub(super) fn planner_name(kind: PlannerKind) -> &'static str {
     kind.name()
 }

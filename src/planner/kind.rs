@@ -19,11 +19,15 @@ pub enum PlannerKind {
     Sst = 6,
     /// DARRT with the PickPlace primitive beside Push (the paper's suggestion, Sec. V-A).
     DarrtPickPlace = 7,
+    /// KPIECE1 whose controls follow the push heading half the time
+    /// ([`super::PushHeading`]): pushplan's own planner.
+    PushKpiece = 8,
 }
 
 impl PlannerKind {
     /// Every planner, in the order the CLI lists them.
-    pub const ALL: [PlannerKind; 8] = [
+    pub const ALL: [PlannerKind; 9] = [
+        PlannerKind::PushKpiece,
         PlannerKind::PcRrt,
         PlannerKind::StaticRrt,
         PlannerKind::Darrt,
@@ -42,6 +46,7 @@ impl PlannerKind {
             PlannerKind::Darrt => "darrt",
             PlannerKind::DarrtPickPlace => "darrt_pick",
             PlannerKind::Kpiece => "kpiece",
+            PlannerKind::PushKpiece => "push_kpiece",
             PlannerKind::Est => "est",
             PlannerKind::Pdst => "pdst",
             PlannerKind::Sst => "sst",
@@ -56,6 +61,7 @@ impl PlannerKind {
             PlannerKind::Darrt => "DARRT",
             PlannerKind::DarrtPickPlace => "DARRT + PickPlace",
             PlannerKind::Kpiece => "KPIECE1",
+            PlannerKind::PushKpiece => "Push KPIECE",
             PlannerKind::Est => "EST",
             PlannerKind::Pdst => "PDST",
             PlannerKind::Sst => "SST",
@@ -70,6 +76,7 @@ impl PlannerKind {
             PlannerKind::Darrt => "DARRT",
             PlannerKind::DarrtPickPlace => "DARRTPickPlace",
             PlannerKind::Kpiece => "KPIECE1",
+            PlannerKind::PushKpiece => "PushKPIECE",
             PlannerKind::Est => "EST",
             PlannerKind::Pdst => "PDST",
             PlannerKind::Sst => "SST",

@@ -4,6 +4,7 @@
 //! planners' trees' nearest neighbours in the model's metric ([`NearestTree`]).
 
 mod finish;
+mod heading;
 mod kind;
 mod model;
 mod nearest;
@@ -14,6 +15,7 @@ mod stats;
 pub use finish::{
     deadline, finish, FinishSettings, FinishedPath, RobustRequirement, ShortcutReport,
 };
+pub use heading::{PushHeading, PushTarget};
 pub use kind::PlannerKind;
 pub use model::Model;
 pub use nearest::NearestTree;

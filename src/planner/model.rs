@@ -4,6 +4,7 @@
 //! C++ (nothing may unwind across the bridge).
 
 use super::finish::{FinishSettings, FinishedPath};
+use super::heading::{PushHeading, PushTarget};
 use super::particles::ParticleWorlds;
 use super::{NearestTree, PlannerKind, Problem, SearchCounter, SearchStats};
 use crate::darrt;
@@ -29,6 +30,8 @@ pub struct Model {
     static_view: StaticClutter,
     static_mode: bool,
     metric: DistanceMetric,
+    /// Which way the tool should go to push an object toward a target.
+    push_heading: PushHeading,
     /// Robust planning's perturbed worlds, carried along every state (none by default).
     particles: ParticleWorlds,
     /// The last state `propagate` produced and whether it was valid: OMPL asks
@@ -66,6 +69,7 @@ impl Model {
     pub fn new(scene: Scene) -> Model {
         Model {
             metric: DistanceMetric::from_scene(&scene),
+            push_heading: PushHeading::new(&scene),
             search: SearchCounter::new(&scene),
             static_view: StaticClutter::new(&scene),
             static_mode: false,
@@ -366,6 +370,47 @@ impl Model {
                 None => nalgebra::Vector2::zeros(),
             };
             Ok(vec![tool.x, tool.y, goal.x, goal.y])
+        })
+    }
+
+    /// The push heading at a state for pushing `object` toward `target` (world xy, m):
+    /// unit xy in the world frame (see [`PushHeading`]), or no values when the object is
+    /// at the target.
+    pub fn push_heading(
+        &self,
+        state: &[f64],
+        object: usize,
+        target: &[f64],
+    ) -> Result<Vec<f64>, String> {
+        guarded("push_heading", || {
+            let state = self.state(state)?;
+            if object >= state.objects.len() || target.len() != 2 {
+                return Err(format!(
+                    "push_heading: object {object} of {}, a target of {} values (needs 2)",
+                    state.objects.len(),
+                    target.len()
+                ));
+            }
+            let robot = &self.scene().robot;
+            let tool = robot.tool_pose(&robot.link_poses(&state.q)).translation;
+            let target = nalgebra::Vector2::new(target[0], target[1]);
+            Ok(self
+                .push_heading
+                .heading(
+                    &state,
+                    nalgebra::Vector2::new(tool.x, tool.y),
+                    object,
+                    target,
+                )
+                .map_or_else(Vec::new, |h| vec![h.x, h.y]))
+        })
+    }
+
+    /// The objects in the goal object's way at a state, each with a place out of it
+    /// ([`PushHeading::blockers`]).
+    pub fn push_blockers(&self, state: &[f64]) -> Result<Vec<PushTarget>, String> {
+        guarded("push_blockers", || {
+            Ok(self.push_heading.blockers(&self.state(state)?))
         })
     }
 

@@ -60,9 +60,9 @@ int main()
     using pushplan::PlannerKind;
     const PlannerKind all[] = {PlannerKind::PcRrt, PlannerKind::StaticRrt, PlannerKind::Darrt,
                                PlannerKind::Kpiece, PlannerKind::Est,       PlannerKind::Pdst,
-                               PlannerKind::Sst,    PlannerKind::DarrtPickPlace};
-    const char *names[] = {"pcrrt", "static", "darrt", "kpiece", "est", "pdst", "sst", "darrt_pick"};
-    for (int i = 0; i < 8; ++i)
+                               PlannerKind::Sst,    PlannerKind::DarrtPickPlace, PlannerKind::PushKpiece};
+    const char *names[] = {"pcrrt", "static", "darrt", "kpiece", "est", "pdst", "sst", "darrt_pick", "push_kpiece"};
+    for (int i = 0; i < 9; ++i)
     {
         expect(pushplan::plannerName(all[i]) == names[i], std::string("plannerName -> ") + names[i]);
         expect(pushplan::plannerKind(names[i]) == all[i], std::string("plannerKind(") + names[i] + ")");

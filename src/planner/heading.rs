@@ -1,0 +1,275 @@
+//! The push heading: which way the tool should move, from a state, to bring an object
+//! toward a target. It is what a person would do with one hand: walk round the object to
+//! the side away from the target, then push it toward the target. The guided planner
+//! ([`super::PlannerKind::PushKpiece`]) samples some of its controls along headings; the
+//! physics decides what the push really does, so a heading only biases the search.
+//!
+//! All positions are world-frame xy on the table (m); headings are unit vectors.
+
+#![allow(non_snake_case)] // frame-named points: p_WT, the tool point in the world frame
+
+use crate::robot::Robot;
+use crate::scene::{Goal, Scene};
+use crate::state::State;
+use nalgebra::{Isometry3, Vector2};
+
+/// Within this angle (rad) of straight behind the object, seen from its centre away from
+/// the goal, the tool pushes instead of walking round.
+const BEHIND_HALF_ANGLE: f64 = std::f64::consts::FRAC_PI_6;
+
+/// How much farther than the standoff (m) the tool still counts as at the object when
+/// behind it (beyond it, it first closes in).
+const PUSH_RANGE: f64 = 0.1;
+
+/// How much room (m) a blocker is given beyond touching the goal object's way.
+const CLEAR_BY: f64 = 0.05;
+
+/// The geometry push headings need, fixed per scene.
+#[derive(Clone, Debug)]
+pub struct PushHeading {
+    /// Per object: tool point to object centre when the hand stands just behind it (m),
+    /// the object's bounding radius plus the end effector's reach about the tool point.
+    standoffs: Vec<f64>,
+    /// Per object: the bounding radius of its footprint (m).
+    radii: Vec<f64>,
+    /// The least gap between two objects a plan keeps (m, `physics.object_clearance`).
+    clearance: f64,
+    /// The goal object and the disc its centre must reach, if the goal is one.
+    goal: Option<GoalDisc>,
+}
+
+/// Where the goal object's centre must end: within `radius` of `center` (the disc less
+/// its margin).
+#[derive(Clone, Copy, Debug)]
+struct GoalDisc {
+    object: usize,
+    center: Vector2<f64>,
+    radius: f64,
+}
+
+/// A push worth trying: `object` toward `target` (world xy, m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PushTarget {
+    pub object: usize,
+    pub target: Vector2<f64>,
+}
+
+impl PushHeading {
+    pub fn new(scene: &Scene) -> PushHeading {
+        let reach = tool_reach(&scene.robot);
+        let goal = match &scene.goal {
+            Goal::ObjectInDisc {
+                object,
+                center,
+                radius,
+                margin,
+            } => Some(GoalDisc {
+                object: *object,
+                center: *center,
+                radius: radius - margin,
+            }),
+            _ => None,
+        };
+        PushHeading {
+            standoffs: scene
+                .objects
+                .iter()
+                .map(|o| o.bounding_radius + reach)
+                .collect(),
+            radii: scene.objects.iter().map(|o| o.bounding_radius).collect(),
+            clearance: scene.physics.object_clearance,
+            goal,
+        }
+    }
+
+    /// The objects in the goal object's way, each with a place out of it: an object the
+    /// goal object could touch anywhere in the goal disc goes radially out of the disc's
+    /// reach; one the goal object would touch on the straight line to the goal centre goes
+    /// sideways off that line. Empty without an object goal.
+    pub fn blockers(&self, state: &State) -> Vec<PushTarget> {
+        let Some(goal) = self.goal else {
+            return Vec::new();
+        };
+        let p_WO = state.objects[goal.object].translation();
+        let r_goal_object = self.radii[goal.object];
+        let route = goal.center - p_WO;
+        let mut blockers = Vec::new();
+        for (object, pose) in state.objects.iter().enumerate() {
+            if object == goal.object {
+                continue;
+            }
+            let p_WB = pose.translation();
+            // Centre distance at which the two never touch.
+            let apart = r_goal_object + self.radii[object] + self.clearance;
+            let from_center = p_WB - goal.center;
+            let disc_reach = goal.radius + apart;
+            if from_center.norm() < disc_reach {
+                let out = from_center.try_normalize(1e-9).unwrap_or(Vector2::x());
+                blockers.push(PushTarget {
+                    object,
+                    target: goal.center + out * (disc_reach + CLEAR_BY),
+                });
+                continue;
+            }
+            // Along the route: the nearest point of the segment, ahead of the goal object.
+            let length2 = route.norm_squared();
+            if length2 < 1e-12 {
+                continue;
+            }
+            let t = ((p_WB - p_WO).dot(&route) / length2).min(1.0);
+            if t <= 0.0 {
+                continue;
+            }
+            let p_WC = p_WO + route * t;
+            let side = p_WB - p_WC;
+            if side.norm() < apart {
+                let normal = Vector2::new(-route.y, route.x).normalize();
+                let out = side.try_normalize(1e-9).unwrap_or(normal);
+                blockers.push(PushTarget {
+                    object,
+                    target: p_WC + out * (apart + CLEAR_BY),
+                });
+            }
+        }
+        blockers
+    }
+
+    /// The unit heading for the tool at `p_WT` (world xy) to push `object` toward
+    /// `p_WG` (world xy), or `None` when the object is already there.
+    pub fn heading(
+        &self,
+        state: &State,
+        p_WT: Vector2<f64>,
+        object: usize,
+        p_WG: Vector2<f64>,
+    ) -> Option<Vector2<f64>> {
+        let standoff = self.standoffs[object];
+        let p_WO = state.objects[object].translation();
+        // d: the way the object should go.
+        let d = (p_WG - p_WO).try_normalize(1e-9)?;
+        let from_object = p_WT - p_WO;
+        let distance = from_object.norm();
+        let behind = -d;
+        let cos_behind = if distance > 1e-9 {
+            from_object.dot(&behind) / distance
+        } else {
+            1.0
+        };
+        if cos_behind >= BEHIND_HALF_ANGLE.cos() {
+            if distance <= standoff + PUSH_RANGE {
+                // Push: halfway between through the object's centre (no turning) and
+                // toward the target (corrects a tool that stands off the line).
+                return (-from_object.normalize() + d)
+                    .try_normalize(1e-9)
+                    .or(Some(d));
+            }
+            // Close in on the point behind it.
+            return (p_WO + behind * standoff - p_WT).try_normalize(1e-9);
+        }
+        if distance < standoff + PUSH_RANGE {
+            // Walk round, on the shorter side, keeping the standoff: the tangent turning
+            // toward `behind`, pulled outward while nearer than the standoff.
+            let outward = from_object / distance.max(1e-9);
+            let left = Vector2::new(-outward.y, outward.x);
+            let tangent = if left.dot(&behind) >= 0.0 {
+                left
+            } else {
+                -left
+            };
+            let push_out = ((standoff - distance) / standoff).max(0.0);
+            return (tangent + outward * push_out).try_normalize(1e-9);
+        }
+        // Far away: straight to the point behind it.
+        (p_WO + behind * standoff - p_WT).try_normalize(1e-9)
+    }
+}
+
+/// How far the end effector's collision geometry reaches from the tool point (m): the
+/// bounding spheres of the end-effector link's shapes about the tool point.
+fn tool_reach(robot: &Robot) -> f64 {
+    let X_LT: Isometry3<f64> = robot.tool;
+    robot.chain.links[robot.ee_link]
+        .geometry
+        .iter()
+        .map(|g| {
+            let sphere = g.shape.compute_bounding_sphere(&g.local);
+            (sphere.center().coords - X_LT.translation.vector).norm() + sphere.radius()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn heading_at(object: Vector2<f64>, tool: Vector2<f64>) -> Vector2<f64> {
+        let h = PushHeading {
+            standoffs: vec![0.1],
+            radii: vec![0.05],
+            clearance: 0.01,
+            goal: None,
+        };
+        let state = State::from_flat(&[0.0, object.x, object.y, 0.0], 1);
+        h.heading(&state, tool, 0, Vector2::new(1.0, 0.0)).unwrap()
+    }
+
+    #[test]
+    fn behind_the_object_it_pushes_toward_the_goal() {
+        let h = heading_at(Vector2::new(0.5, 0.0), Vector2::new(0.4, 0.0));
+        assert!((h - Vector2::new(1.0, 0.0)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn far_away_it_heads_for_the_point_behind_the_object() {
+        // The point behind is (0.4, 0): from (0.4, 0.5) straight down.
+        let h = heading_at(Vector2::new(0.5, 0.0), Vector2::new(0.4, 0.5));
+        assert!((h - Vector2::new(0.0, -1.0)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn in_front_of_the_object_it_walks_round_not_through() {
+        // The tool between the object and the goal: moving along the tangent, never
+        // toward the object.
+        let object = Vector2::new(0.5, 0.0);
+        let tool = Vector2::new(0.6, 0.01);
+        let h = heading_at(object, tool);
+        assert!(h.dot(&(object - tool)) <= 1e-9, "{h}");
+        assert!(h.y > 0.9, "goes round on the side it stands on: {h}");
+    }
+
+    #[test]
+    fn blockers_are_the_objects_in_the_goal_disc_or_on_the_route_and_go_out_of_reach() {
+        // The goal object at the origin, the goal disc (less margin) of 0.1 m at (1, 0);
+        // all radii 0.05, clearance 0.01: apart = 0.11.
+        let h = PushHeading {
+            standoffs: vec![0.2; 4],
+            radii: vec![0.05; 4],
+            clearance: 0.01,
+            goal: Some(GoalDisc {
+                object: 0,
+                center: Vector2::new(1.0, 0.0),
+                radius: 0.1,
+            }),
+        };
+        let state = State::from_flat(
+            &[
+                0.0, // one joint
+                0.0, 0.0, 0.0, // the goal object
+                1.05, 0.1, 0.0, // in the disc's reach (0.21): goes radially out
+                0.5, -0.05, 0.0, // on the route: goes sideways, to -y
+                -0.05, 0.0, 0.0, // behind the goal object: not in the way
+            ],
+            1,
+        );
+        let blockers = h.blockers(&state);
+        assert_eq!(blockers.len(), 2, "{blockers:?}");
+        let disc = blockers[0];
+        assert_eq!(disc.object, 1);
+        let out = disc.target - Vector2::new(1.0, 0.0);
+        assert!((out.norm() - 0.26).abs() < 1e-12);
+        assert!((out.normalize() - Vector2::new(0.05, 0.1).normalize()).norm() < 1e-12);
+        let route = blockers[1];
+        assert_eq!(route.object, 2);
+        assert!((route.target - Vector2::new(0.5, -0.16)).norm() < 1e-12);
+    }
+}
