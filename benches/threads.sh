@@ -2,7 +2,9 @@
 # Parallel search (BENCHMARKS.md, "Every core"): `plan --threads 1` and `--threads N`
 # interleaved scene by scene in one run (nothing else should run meanwhile), no
 # shortcutting; prints each pair's times to solve and the median speedup over the pairs
-# solved by both (a run not solved counts as the time limit).
+# solved by both (a run not solved counts as the time limit). PLANNER picks the planner
+# (default: plan's own, push_kpiece; the figures of BENCHMARKS.md before 2026-11-23 are
+# PC RRT's: PLANNER=pcrrt).
 #
 #   benches/threads.sh [N] [SECONDS] [SEEDS] [PUSHPLAN_BINARY] [SCENES...]
 set -u
@@ -17,7 +19,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 solve_time() {  # threads, scene, seed
   local line
-  line=$("$bin" plan "$2" --threads "$1" --seed "$3" --time "$time" --shortcut 0 --quiet --out "$tmp/plan.json" | head -1)
+  line=$("$bin" plan "$2" --planner "${PLANNER:-push_kpiece}" --threads "$1" --seed "$3" --time "$time" --shortcut 0 --quiet --out "$tmp/plan.json" | head -1)
   case "$line" in
     "solved in "*) awk '{print $3}' <<< "$line" ;;
     *) echo "$time" ;;
