@@ -57,10 +57,7 @@ namespace pushplan::detail
     {
         sample(control);
     }
-}  // namespace pushplan::detail
 
-namespace pushplan::detail
-{
     void EeControlSampler::setVelocity(oc::Control *control, const double heading[2], double speed)
     {
         double *values = control->as<oc::RealVectorControlSpace::ControlType>()->values;

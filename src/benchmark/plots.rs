@@ -49,7 +49,7 @@ impl Planner {
 
     /// One colour per planner kind, the same in every plot.
     fn colour(&self, index: usize) -> RGBColor {
-        const COLOURS: [RGBColor; 8] = [
+        const COLOURS: [RGBColor; 9] = [
             RGBColor(0x1e, 0x7b, 0x1e),
             RGBColor(0x7b, 0x32, 0x94),
             RGBColor(0xd8, 0x45, 0x3b),
@@ -58,6 +58,7 @@ impl Planner {
             RGBColor(0x17, 0xbe, 0xcf),
             RGBColor(0x55, 0x55, 0x55),
             RGBColor(0x8c, 0x56, 0x4b),
+            RGBColor(0xe3, 0x77, 0xc2),
         ];
         let k = self
             .kind
