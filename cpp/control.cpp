@@ -58,13 +58,6 @@ namespace pushplan::detail
         sample(control);
     }
 
-    void EeControlSampler::setVelocity(oc::Control *control, const double heading[2], double speed)
-    {
-        double *values = control->as<oc::RealVectorControlSpace::ControlType>()->values;
-        values[0] = speed * heading[0];
-        values[1] = speed * heading[1];
-    }
-
     PushControlSampler::PushControlSampler(const oc::ControlSpace *space, std::uint_fast32_t seed,
                                            ModelHandlePtr model, PushMix mix)
       : EeControlSampler(space, seed), model_(std::move(model)), mix_(mix)
@@ -93,8 +86,12 @@ namespace pushplan::detail
             model_->pushHeading(state, push.object, {push.target[0], push.target[1]});
         if (!heading)
             return;
+        // The end-effector velocity (m/s) along the heading.
         const double max_speed = info.planner.max_ee_speed;
-        setVelocity(control, heading->data(), rng_.uniformReal(0.5 * max_speed, max_speed));
+        const double speed = rng_.uniformReal(0.5 * max_speed, max_speed);
+        double *values = control->as<oc::RealVectorControlSpace::ControlType>()->values;
+        values[0] = speed * (*heading)[0];
+        values[1] = speed * (*heading)[1];
     }
 
     void PushControlSampler::sampleNext(oc::Control *control, const oc::Control *, const ob::State *state)

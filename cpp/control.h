@@ -22,10 +22,6 @@ namespace pushplan::detail
         void sampleNext(ompl::control::Control *control, const ompl::control::Control *previous) override;
         void sampleNext(ompl::control::Control *control, const ompl::control::Control *previous,
                         const ompl::base::State *state) override;
-
-    protected:
-        /// Sets the end-effector velocity of `control` to `speed` (m/s) along the unit `heading`.
-        static void setVelocity(ompl::control::Control *control, const double heading[2], double speed);
     };
 
     /// How PushControlSampler mixes its controls (probabilities). Measured on the 35

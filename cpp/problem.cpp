@@ -33,9 +33,8 @@ namespace pushplan::detail
 
     SeededRRT::SeededRRT(const oc::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed,
                          const std::string &name)
-      : oc::RRT(si)
+      : Seeded<oc::RRT>(si, seed)
     {
-        rng_.setLocalSeed(seed);
         setName(name);
         nn_ = std::make_shared<ModelNearestNeighbors<Motion>>(std::move(model));
     }
@@ -103,12 +102,14 @@ namespace pushplan::detail
                                bool intermediate_states)
     {
         const oc::SpaceInformationPtr &si = problem.setup->getSpaceInformation();
+        // The planner's own random numbers (the samplers have streams of their own).
+        const std::uint_fast32_t planner_seed = subSeed(seed, 3);
         switch (kind)
         {
             case PlannerKind::PcRrt:
             case PlannerKind::StaticRrt:
             {
-                auto rrt = std::make_shared<SeededRRT>(si, problem.model, subSeed(seed, 3),
+                auto rrt = std::make_shared<SeededRRT>(si, problem.model, planner_seed,
                                                        kind == PlannerKind::StaticRrt ? "StaticRRT" : "PCRRT");
                 rrt->setGoalBias(goal_bias);
                 rrt->setIntermediateStates(intermediate_states);
@@ -117,7 +118,7 @@ namespace pushplan::detail
             case PlannerKind::Darrt:
             case PlannerKind::DarrtPickPlace:
             {
-                auto darrt = std::make_shared<Darrt>(si, problem.model, subSeed(seed, 3));
+                auto darrt = std::make_shared<Darrt>(si, problem.model, planner_seed);
                 darrt->setGoalBias(goal_bias);
                 if (kind == PlannerKind::DarrtPickPlace)
                 {
@@ -128,7 +129,7 @@ namespace pushplan::detail
                 return darrt;
             }
             case PlannerKind::Kpiece:
-                return std::make_shared<Seeded<oc::KPIECE1>>(si, subSeed(seed, 3));
+                return std::make_shared<Seeded<oc::KPIECE1>>(si, planner_seed);
             case PlannerKind::PushKpiece:
             {
                 // Most controls along push headings, each sampler with its own stream.
@@ -138,16 +139,16 @@ namespace pushplan::detail
                         return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), model,
                                                                     PushMix{});
                     });
-                auto kpiece = std::make_shared<Seeded<oc::KPIECE1>>(si, subSeed(seed, 3));
+                auto kpiece = std::make_shared<Seeded<oc::KPIECE1>>(si, planner_seed);
                 kpiece->setName("PushKPIECE");
                 return kpiece;
             }
             case PlannerKind::Est:
-                return std::make_shared<Seeded<oc::EST>>(si, subSeed(seed, 3));
+                return std::make_shared<Seeded<oc::EST>>(si, planner_seed);
             case PlannerKind::Pdst:
-                return std::make_shared<Seeded<oc::PDST>>(si, subSeed(seed, 3));
+                return std::make_shared<Seeded<oc::PDST>>(si, planner_seed);
             case PlannerKind::Sst:
-                return std::make_shared<Seeded<oc::SST>>(si, subSeed(seed, 3));
+                return std::make_shared<Seeded<oc::SST>>(si, planner_seed);
         }
         throw Error("unknown planner kind " + std::to_string(static_cast<int>(kind)));
     }

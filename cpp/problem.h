@@ -18,20 +18,9 @@ namespace pushplan::detail
     /// Independent 32-bit seeds for the random sources of one plan.
     std::uint_fast32_t subSeed(std::uint64_t seed, std::uint64_t stream);
 
-    /// oc::RRT whose own random numbers (goal bias) come from a given seed, and whose
-    /// nearest neighbours are the model's (ModelNearestNeighbors).
-    class SeededRRT : public ompl::control::RRT
-    {
-    public:
-        SeededRRT(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed,
-                  const std::string &name);
-        void reseed(std::uint_fast32_t seed) { rng_.setLocalSeed(seed); }
-        std::size_t treeSize() const { return nn_ ? nn_->size() : 0; }
-    };
-
-    /// One of OMPL's control planners (KPIECE1, EST, PDST, SST) whose own random numbers
-    /// come from a given seed: OMPL would draw it from its process-wide generator, and a
-    /// plan would depend on what the process made before.
+    /// One of OMPL's control planners (RRT, KPIECE1, EST, PDST, SST) whose own random
+    /// numbers come from a given seed: OMPL would draw it from its process-wide generator,
+    /// and a plan would depend on what the process made before.
     template <class OmplPlanner>
     class Seeded : public OmplPlanner
     {
@@ -40,6 +29,16 @@ namespace pushplan::detail
         {
             this->rng_.setLocalSeed(seed);
         }
+    };
+
+    /// Seeded oc::RRT (its random numbers: the goal bias) whose nearest neighbours are the
+    /// model's (ModelNearestNeighbors).
+    class SeededRRT : public Seeded<ompl::control::RRT>
+    {
+    public:
+        SeededRRT(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed,
+                  const std::string &name);
+        std::size_t treeSize() const { return nn_ ? nn_->size() : 0; }
     };
 
     /// Projection for OMPL's projection-based planners (KPIECE1, EST, PDST): the

@@ -63,9 +63,9 @@ namespace pushplan
         /// DARRT with a fourth primitive, PickPlace: the hand grasps an object (its scene
         /// `grasps`), carries it and sets it down (the paper's suggestion). "darrt_pick"
         DarrtPickPlace,
-        /// OMPL's KPIECE1 whose controls follow the push heading half the time: the tool
-        /// walks round the goal object and pushes it toward the goal (pushplan's own
-        /// planner). "push_kpiece"
+        /// OMPL's KPIECE1 whose controls mostly follow push headings: the tool walks round
+        /// the goal object and pushes it toward the goal, or pushes what stands in its way
+        /// aside (pushplan's own planner; the default). "push_kpiece"
         PushKpiece,
     };
 

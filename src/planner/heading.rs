@@ -8,10 +8,9 @@
 
 #![allow(non_snake_case)] // frame-named points: p_WT, the tool point in the world frame
 
-use crate::robot::Robot;
 use crate::scene::{Goal, Scene};
 use crate::state::State;
-use nalgebra::{Isometry3, Vector2};
+use nalgebra::Vector2;
 
 /// Within this angle (rad) of straight behind the object, seen from its centre away from
 /// the goal, the tool pushes instead of walking round.
@@ -27,9 +26,9 @@ const CLEAR_BY: f64 = 0.05;
 /// The geometry push headings need, fixed per scene.
 #[derive(Clone, Debug)]
 pub struct PushHeading {
-    /// Per object: tool point to object centre when the hand stands just behind it (m),
-    /// the object's bounding radius plus the end effector's reach about the tool point.
-    standoffs: Vec<f64>,
+    /// How far the end effector reaches from the tool point (m,
+    /// [`crate::robot::Robot::tool_reach`]).
+    tool_reach: f64,
     /// Per object: the bounding radius of its footprint (m).
     radii: Vec<f64>,
     /// The least gap between two objects a plan keeps (m, `physics.object_clearance`).
@@ -56,7 +55,6 @@ pub struct PushTarget {
 
 impl PushHeading {
     pub fn new(scene: &Scene) -> PushHeading {
-        let reach = tool_reach(&scene.robot);
         let goal = match &scene.goal {
             Goal::ObjectInDisc {
                 object,
@@ -71,11 +69,7 @@ impl PushHeading {
             _ => None,
         };
         PushHeading {
-            standoffs: scene
-                .objects
-                .iter()
-                .map(|o| o.bounding_radius + reach)
-                .collect(),
+            tool_reach: scene.robot.tool_reach(),
             radii: scene.objects.iter().map(|o| o.bounding_radius).collect(),
             clearance: scene.physics.object_clearance,
             goal,
@@ -143,7 +137,8 @@ impl PushHeading {
         object: usize,
         p_WG: Vector2<f64>,
     ) -> Option<Vector2<f64>> {
-        let standoff = self.standoffs[object];
+        // Tool point to object centre when the hand stands just behind the object.
+        let standoff = self.radii[object] + self.tool_reach;
         let p_WO = state.objects[object].translation();
         // d: the way the object should go.
         let d = (p_WG - p_WO).try_normalize(1e-9)?;
@@ -155,18 +150,15 @@ impl PushHeading {
         } else {
             1.0
         };
-        if cos_behind >= BEHIND_HALF_ANGLE.cos() {
-            if distance <= standoff + PUSH_RANGE {
-                // Push: halfway between through the object's centre (no turning) and
-                // toward the target (corrects a tool that stands off the line).
-                return (-from_object.normalize() + d)
-                    .try_normalize(1e-9)
-                    .or(Some(d));
-            }
-            // Close in on the point behind it.
-            return (p_WO + behind * standoff - p_WT).try_normalize(1e-9);
+        let is_behind = cos_behind >= BEHIND_HALF_ANGLE.cos();
+        if is_behind && distance <= standoff + PUSH_RANGE {
+            // Push: halfway between through the object's centre (no turning) and toward
+            // the target (corrects a tool that stands off the line).
+            return (-from_object.normalize() + d)
+                .try_normalize(1e-9)
+                .or(Some(d));
         }
-        if distance < standoff + PUSH_RANGE {
+        if !is_behind && distance < standoff + PUSH_RANGE {
             // Walk round, on the shorter side, keeping the standoff: the tangent turning
             // toward `behind`, pulled outward while nearer than the standoff.
             let outward = from_object / distance.max(1e-9);
@@ -179,23 +171,9 @@ impl PushHeading {
             let push_out = ((standoff - distance) / standoff).max(0.0);
             return (tangent + outward * push_out).try_normalize(1e-9);
         }
-        // Far away: straight to the point behind it.
+        // Away from the object: straight to the point behind it.
         (p_WO + behind * standoff - p_WT).try_normalize(1e-9)
     }
-}
-
-/// How far the end effector's collision geometry reaches from the tool point (m): the
-/// bounding spheres of the end-effector link's shapes about the tool point.
-fn tool_reach(robot: &Robot) -> f64 {
-    let X_LT: Isometry3<f64> = robot.tool;
-    robot.chain.links[robot.ee_link]
-        .geometry
-        .iter()
-        .map(|g| {
-            let sphere = g.shape.compute_bounding_sphere(&g.local);
-            (sphere.center().coords - X_LT.translation.vector).norm() + sphere.radius()
-        })
-        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]
@@ -204,7 +182,7 @@ mod tests {
 
     fn heading_at(object: Vector2<f64>, tool: Vector2<f64>) -> Vector2<f64> {
         let h = PushHeading {
-            standoffs: vec![0.1],
+            tool_reach: 0.05,
             radii: vec![0.05],
             clearance: 0.01,
             goal: None,
@@ -242,7 +220,7 @@ mod tests {
         // The goal object at the origin, the goal disc (less margin) of 0.1 m at (1, 0);
         // all radii 0.05, clearance 0.01: apart = 0.11.
         let h = PushHeading {
-            standoffs: vec![0.2; 4],
+            tool_reach: 0.15,
             radii: vec![0.05; 4],
             clearance: 0.01,
             goal: Some(GoalDisc {

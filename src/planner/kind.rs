@@ -19,8 +19,8 @@ pub enum PlannerKind {
     Sst = 6,
     /// DARRT with the PickPlace primitive beside Push (the paper's suggestion, Sec. V-A).
     DarrtPickPlace = 7,
-    /// KPIECE1 whose controls follow the push heading half the time
-    /// ([`super::PushHeading`]): pushplan's own planner.
+    /// KPIECE1 whose controls mostly follow push headings ([`super::PushHeading`]):
+    /// pushplan's own planner.
     PushKpiece = 8,
 }
 

@@ -81,6 +81,20 @@ impl Robot {
         poses
     }
 
+    /// How far the end effector's collision geometry reaches from the tool point (m): the
+    /// bounding spheres of the end-effector link's shapes, about the tool point.
+    pub fn tool_reach(&self) -> f64 {
+        let tool = self.tool.translation.vector; // in the end-effector link frame
+        self.chain.links[self.ee_link]
+            .geometry
+            .iter()
+            .map(|g| {
+                let sphere = g.shape.compute_bounding_sphere(&g.local);
+                (sphere.center().coords - tool).norm() + sphere.radius()
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// Indices of links that have collision geometry.
     pub fn solid_links(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.chain.links.len()).filter(|&l| !self.chain.links[l].geometry.is_empty())
