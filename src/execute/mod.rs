@@ -7,6 +7,7 @@
 //! trajectory at `speed` times its planned pace, lets the objects settle, and compares
 //! with the plan's predicted object poses.
 
+mod fresh_contacts;
 pub mod world;
 
 use crate::math::Pose2;

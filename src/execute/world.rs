@@ -6,6 +6,7 @@
 //! the table top (`Pose2::to_isometry`), so its planar pose is read straight back. The
 //! prism stands on small feet spread over its footprint ([`support_points`]).
 
+use super::fresh_contacts::FreshContacts;
 use crate::math::Pose2;
 use crate::physics::Footprint;
 use crate::robot::KinematicChain;
@@ -261,7 +262,7 @@ impl World {
             params,
             islands: IslandManager::new(),
             broad_phase: BroadPhaseBvh::new(),
-            narrow_phase: NarrowPhase::new(),
+            narrow_phase: NarrowPhase::with_query_dispatcher(FreshContacts),
             bodies,
             colliders,
             impulse_joints: ImpulseJointSet::new(),
