@@ -6,6 +6,7 @@
 
 #include "darrt.h"
 #include "problem.h"
+#include "restarts.h"
 #include "pushplan/pushplan.h"
 #include "pushplan/src/ffi.rs.h"
 #include "pushplan/src/ffi/entry.rs.h"
@@ -67,7 +68,8 @@ namespace pushplan::bridge
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
         benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.planner.k));
-        benchmark.addPlanner(detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false));
+        benchmark.addPlanner(
+            detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps));
 
         std::uint64_t steps_before = 0;
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &) {
@@ -75,8 +77,9 @@ namespace pushplan::bridge
             // As in Planner::solve: no propagation past the run's time limit.
             model->model().set_time_limit(options.time_limit);
         });
-        benchmark.setPostRunEvent([&](const ob::PlannerPtr &, ompl::tools::Benchmark::RunProperties &props) {
+        benchmark.setPostRunEvent([&](const ob::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &props) {
             props["run INTEGER"] = std::to_string(options.run);
+            props["restarts INTEGER"] = std::to_string(detail::restartsOf(planner));
             // Only the planners that propagate controls through the model have a rate.
             const double propagated = static_cast<double>(model->model().propagation_steps() - steps_before);
             const double time = std::stod(props["time REAL"]);

@@ -165,6 +165,8 @@ namespace pushplan
                     options.robust_particles <= 64 &&
                         (options.robust_particles == 0 ||
                          (options.robust_trials > 0 && options.planner != PlannerKind::StaticRrt)));
+            const std::uint64_t restart_steps =
+                options.restart_steps.value_or(bridge::planner_restart_steps(options.planner));
             for (unsigned i = 0; i < threads; ++i)
                 models[i]->setParticles(options.robust_particles, detail::searchSeed(seed, i));
 
@@ -183,7 +185,8 @@ namespace pushplan
                 const std::uint64_t search_seed = detail::searchSeed(seed, i);
                 detail::Problem problem = detail::makeProblem(models[i], search_seed, k);
                 ob::PlannerPtr planner =
-                    detail::makePlanner(options.planner, problem, search_seed, goal_bias, options.intermediate_states);
+                    detail::makePlanner(options.planner, problem, search_seed, goal_bias, options.intermediate_states,
+                                      restart_steps);
                 problem.setup->setPlanner(planner);
                 problem.setup->setup();
                 searches.push_back(detail::Search{std::move(problem), std::move(planner)});
@@ -302,6 +305,7 @@ namespace pushplan
             plan.propagation_steps = portfolio.propagationSteps();
             plan.search = detail::searchStats(models);
             plan.threads = threads;
+            plan.restarts = portfolio.restarts();
             plan.step = info.planner.step;
             for (std::size_t i = 0; i < portfolio.size(); ++i)
             {

@@ -1,5 +1,7 @@
 #include "portfolio.h"
 
+#include "restarts.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -117,12 +119,20 @@ namespace pushplan::detail
         return closest;
     }
 
+    std::uint64_t Portfolio::restarts() const
+    {
+        std::uint64_t restarts = 0;
+        for (const Search &s : searches_)
+            restarts += restartsOf(s.planner);
+        return restarts;
+    }
+
     std::optional<std::size_t> Portfolio::treeStates() const
     {
         std::size_t states = 0;
         for (const Search &s : searches_)
         {
-            const auto *rrt = dynamic_cast<const SeededRRT *>(s.planner.get());
+            const auto *rrt = dynamic_cast<const SeededRRT *>(&innerPlanner(s.planner));
             if (rrt == nullptr)
                 return std::nullopt;
             states += rrt->treeSize();

@@ -56,6 +56,8 @@ namespace pushplan::detail
         double closestGoalDistance() const;
         /// States in the searches' trees, for the planners that report it cheaply (RRT).
         std::optional<std::size_t> treeStates() const;
+        /// Attempts started over for lack of a solution (Restarting), all searches.
+        std::uint64_t restarts() const;
 
     private:
         void advance(std::size_t i, const std::function<bool()> &out_of_time);

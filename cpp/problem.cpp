@@ -5,6 +5,7 @@
 #include "goal.h"
 #include "nearest.h"
 #include "propagator.h"
+#include "restarts.h"
 #include "validity.h"
 
 #include "pushplan/pushplan.h"
@@ -98,8 +99,9 @@ namespace pushplan::detail
         return Problem{std::move(model), std::move(space), std::move(setup)};
     }
 
-    ob::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
-                               bool intermediate_states)
+    /// The planner of one kind, without restarts.
+    static ob::PlannerPtr makeSearch(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
+                                     bool intermediate_states)
     {
         const oc::SpaceInformationPtr &si = problem.setup->getSpaceInformation();
         // The planner's own random numbers (the samplers have streams of their own).
@@ -151,5 +153,14 @@ namespace pushplan::detail
                 return std::make_shared<Seeded<oc::SST>>(si, planner_seed);
         }
         throw Error("unknown planner kind " + std::to_string(static_cast<int>(kind)));
+    }
+
+    ob::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
+                               bool intermediate_states, std::uint64_t restart_steps)
+    {
+        ob::PlannerPtr search = makeSearch(kind, problem, seed, goal_bias, intermediate_states);
+        if (restart_steps == 0)
+            return search;
+        return std::make_shared<Restarting>(std::move(search), problem.model, restart_steps);
     }
 }  // namespace pushplan::detail

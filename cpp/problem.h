@@ -67,7 +67,8 @@ namespace pushplan::detail
     Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k);
 
     /// A planner of the problem. Static RRT is the same RRT as PC RRT; the model decides
-    /// that the clutter is static (ModelHandle's static-clutter mode).
+    /// that the clutter is static (ModelHandle's static-clutter mode). With restart_steps
+    /// > 0 the search starts over when an attempt finds no solution (Restarting).
     ompl::base::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed,
-                                       double goal_bias, bool intermediate_states);
+                                       double goal_bias, bool intermediate_states, std::uint64_t restart_steps);
 }  // namespace pushplan::detail

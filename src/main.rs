@@ -81,6 +81,12 @@ enum Command {
         /// (the same seed and thread count give the same plan); default: one per core.
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
         threads: Option<u32>,
+        /// A search that finds no solution within this many propagation steps starts over
+        /// with a new tree, later attempts with Luby multiples (1, 1, 2, 1, 1, 2, 4, ...);
+        /// 0: never. Default: the planner's (push_kpiece: 400000, about 2 s; the others
+        /// never).
+        #[arg(long, value_name = "STEPS")]
+        restart: Option<u64>,
         /// The goal instead of the scene's: `grasp:OBJECT` reaches a grasp of OBJECT (its
         /// scene `grasps`) with IK-BiRRT, every object a static obstacle, no pushing.
         #[arg(long, value_name = "grasp:OBJECT")]
@@ -171,6 +177,10 @@ enum Command {
         /// Run only shard K of N (1 <= K <= N) of the runs, e.g. a Slurm array task's.
         #[arg(long, default_value = "1/1")]
         shard: Shard,
+        /// Every planner's first restart budget in propagation steps (0: never), instead
+        /// of its own (as `plan --restart`).
+        #[arg(long, value_name = "STEPS")]
+        restart: Option<u64>,
     },
     /// Draw the benchmark plots from the OMPL logs in DIR (written by `bench`) into DIR/plots.
     Plots {
@@ -191,6 +201,8 @@ enum Command {
         shortcut: f64,
         #[arg(long)]
         seed: u64,
+        #[arg(long)]
+        restart: Option<u64>,
         #[arg(long)]
         log: PathBuf,
     },
@@ -350,6 +362,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             robust_shortcut,
             particles,
             threads,
+            restart,
             goal,
             grasp,
             sample_probability,
@@ -364,6 +377,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 robust_shortcut,
                 particles,
                 threads: threads.unwrap_or_else(pushplan::cli::cores),
+                restart,
                 time,
                 seed,
                 k,
@@ -455,6 +469,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             shortcut,
             seed,
             shard,
+            restart,
         } => {
             let grid = Grid {
                 scenes,
@@ -463,6 +478,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 time,
                 shortcut,
                 seed,
+                restart,
             };
             let out = out.expect("clap requires --out without a subcommand");
             bench(&grid, shard, &out, jobs)
@@ -476,6 +492,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             time,
             shortcut,
             seed,
+            restart,
             log,
         } => {
             let options = BenchOptions {
@@ -484,6 +501,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 time_limit: time,
                 seed,
                 shortcut,
+                restart_steps: restart.unwrap_or(planner.restart_steps()),
                 log: log.to_string_lossy().into_owned(),
             };
             bench_scene(&scene, &options)

@@ -35,6 +35,10 @@ pub struct PlanSettings {
     /// Searches run in parallel (absent in files from before there were several: 1).
     #[serde(default = "one_search")]
     pub threads: u32,
+    /// The search's first restart budget in propagation steps, 0: no restarts (absent in
+    /// files from before there were restarts: 0).
+    #[serde(default)]
+    pub restart_steps: u64,
 }
 
 fn one_search() -> u32 {

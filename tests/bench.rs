@@ -32,6 +32,7 @@ fn shards_partition_the_grid() {
         time: 1.0,
         shortcut: 0.0,
         seed: 1,
+        restart: None,
     };
     let all: Vec<_> = grid.cells().collect();
     assert_eq!(all.len(), 30);

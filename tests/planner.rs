@@ -11,12 +11,13 @@ use pushplan::Scene;
 use std::path::Path;
 
 fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
+    let planner: PlannerKind = planner.parse().unwrap();
     SolveOptions {
         time_limit,
         seed,
         k: 3,
         goal_bias: 0.05,
-        planner: planner.parse().unwrap(),
+        planner,
         intermediate_states: false,
         progress: false,
         robust_trials: 0,
@@ -24,6 +25,7 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
         robust_shortcut: 3.0,
         robust_particles: 0,
         threads: 1,
+        restart_steps: planner.restart_steps(),
     }
 }
 
@@ -183,6 +185,63 @@ fn push_kpiece_solves_the_clutter_scene_the_same_way_for_the_same_seed() {
             "{planner}"
         );
     }
+}
+
+/// Term `i` (from 1) of Luby's sequence by its recursive definition (Luby, Sinclair and
+/// Zuckerman 1993): `2^(k-1)` if `i = 2^k - 1`, else term `i - 2^(k-1) + 1` for
+/// `2^(k-1) <= i < 2^k - 1`.
+fn luby(i: u64) -> u64 {
+    let k = 64 - i.leading_zeros(); // 2^(k-1) <= i < 2^k
+    if i == (1 << k) - 1 {
+        1 << (k - 1)
+    } else {
+        luby(i - (1 << (k - 1)) + 1)
+    }
+}
+
+#[test]
+fn a_search_without_a_solution_starts_over_with_luby_budgets() {
+    let scene = "scenes/herb_fig1_clutter.yaml";
+    let base = 2_000;
+    let restarting = SolveOptions {
+        restart_steps: base,
+        ..options("push_kpiece", 1, 60.0)
+    };
+    let a = solve(Path::new(scene), &restarting, |_| {}).unwrap();
+    assert!(a.exact);
+    assert!(a.restarts >= 2, "{} restarts", a.restarts);
+    // Each attempt but the last spent its budget (and at most one extension more: OMPL
+    // asks whether to stop between extensions); the last solved within its own.
+    let budgets = |attempts: u64| (1..=attempts).map(|i| base * luby(i)).sum::<u64>();
+    // Steps of one extension at most: k = 3 controls of up to 0.5 s in 0.01 s steps.
+    let longest_extension = 3 * 50;
+    assert!(a.propagation_steps >= budgets(a.restarts));
+    assert!(
+        a.propagation_steps < budgets(a.restarts + 1) + (a.restarts + 1) * longest_extension,
+        "{} steps in {} attempts",
+        a.propagation_steps,
+        a.restarts + 1
+    );
+    let plan = plan_file(scene, "push_kpiece", 1, &a);
+    assert!(plan.check(Path::new("plan.json")).unwrap().passed());
+    // Counted in steps: the same attempts and plan again.
+    let b = solve(Path::new(scene), &restarting, |_| {}).unwrap();
+    assert_eq!(
+        (&a.states, &a.controls, a.restarts, a.propagation_steps),
+        (&b.states, &b.controls, b.restarts, b.propagation_steps)
+    );
+    // A budget the search never reaches changes nothing.
+    let never = |restart_steps| SolveOptions {
+        restart_steps,
+        ..options("push_kpiece", 1, 60.0)
+    };
+    let without = solve(Path::new(scene), &never(0), |_| {}).unwrap();
+    let unreached = solve(Path::new(scene), &never(u64::MAX / 4), |_| {}).unwrap();
+    assert_eq!(unreached.restarts, 0);
+    assert_eq!(
+        (&without.states, without.propagation_steps),
+        (&unreached.states, unreached.propagation_steps)
+    );
 }
 
 #[test]

@@ -126,6 +126,10 @@ namespace pushplan
         /// propagation steps: the same scene, seed and thread count give the same plan.
         /// Default: one per core.
         std::optional<unsigned> threads;
+        /// A search that finds no solution within this many propagation steps starts over
+        /// with a new tree, attempt i with Luby(i) times as many (1, 1, 2, 1, 1, 2, 4, ...);
+        /// 0: never. Default: the planner's (Push KPIECE restarts, the others do not).
+        std::optional<std::uint64_t> restart_steps;
     };
 
     /// A link pushing an object during one propagation step.
@@ -190,6 +194,9 @@ namespace pushplan
         std::uint64_t propagation_steps = 0;
         SearchStats search;           ///< summed over the searches
         unsigned threads = 1;         ///< searches run in parallel
+        /// Attempts that found no solution within their budget and started over
+        /// (Options::restart_steps), all searches.
+        std::uint64_t restarts = 0;
         double step = 0.0;            ///< propagation step (s)
         std::vector<std::string> joint_names;
         std::vector<std::string> object_names;

@@ -23,6 +23,11 @@ pub struct Grid {
     pub shortcut: f64,
     /// Every run's seeds derive from it and the run's index.
     pub seed: u64,
+    /// Every planner's first restart budget (propagation steps; 0: never) instead of its
+    /// own (`PlannerKind::restart_steps`). Absent in grids from before restarts: the
+    /// planners' own.
+    #[serde(default)]
+    pub restart: Option<u64>,
 }
 
 /// One run of one planner on one scene (indices into the grid's lists).

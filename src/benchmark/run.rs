@@ -97,6 +97,11 @@ fn spawn_cell(exe: &Path, grid: &Grid, cell: Cell, out: &Path) -> Result<Child, 
         .args(["--time", &grid.time.to_string()])
         .args(["--shortcut", &grid.shortcut.to_string()])
         .args(["--seed", &grid.seed.to_string()])
+        .args(
+            grid.restart
+                .into_iter()
+                .flat_map(|steps| ["--restart".to_string(), steps.to_string()]),
+        )
         .arg("--log")
         .arg(&log)
         .stdout(Stdio::null())

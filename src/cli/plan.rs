@@ -28,6 +28,8 @@ pub struct PlanOptions {
     pub quiet: bool,
     /// Searches in parallel, one per thread.
     pub threads: u32,
+    /// First restart budget (propagation steps; 0: never); default: the planner's.
+    pub restart: Option<u64>,
     /// `--goal grasp:OBJECT`: reach a grasp of this object instead of pushing.
     pub grasp_goal: Option<String>,
     /// `--grasp`: after pushing, reach a grasp of the goal object.
@@ -110,6 +112,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         robust_shortcut: run.robust_shortcut,
         robust_particles: run.particles,
         threads: run.threads,
+        restart_steps: run.restart.unwrap_or(planner.restart_steps()),
     };
     if !(0.0..=1.0).contains(&run.robust_rate) {
         return Err(format!(
@@ -153,6 +156,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         time_limit: options.time_limit,
         shortcut: run.shortcut,
         threads: options.threads,
+        restart_steps: options.restart_steps,
     };
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
@@ -273,11 +277,16 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         "not solved"
     };
     println!(
-        "{status} in {:.2} s: tree of {} states, {} propagation steps ({:.0} steps/s)",
+        "{status} in {:.2} s: tree of {} states, {} propagation steps ({:.0} steps/s){}",
         solution.planning_time,
         solution.tree_size,
         solution.propagation_steps,
-        solution.propagation_steps as f64 / solution.planning_time.max(1e-9)
+        solution.propagation_steps as f64 / solution.planning_time.max(1e-9),
+        match solution.restarts {
+            0 => String::new(),
+            1 => ", 1 restart".to_string(),
+            n => format!(", {n} restarts"),
+        }
     );
     if !solution.exact && !found.is_empty() {
         let goal = &problem.scene().goal;

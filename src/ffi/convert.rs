@@ -74,6 +74,10 @@ pub(super) fn planner_name(kind: PlannerKind) -> &'static str {
     kind.name()
 }
 
+pub(super) fn planner_restart_steps(kind: PlannerKind) -> u64 {
+    kind.restart_steps()
+}
+
 pub(super) fn planner_yields_controls(kind: PlannerKind) -> bool {
     kind.yields_controls()
 }

@@ -24,6 +24,9 @@ pub mod bridge {
         pub robust_particles: u32,
         /// Searches in parallel (pushplan::Options::threads); at least 1.
         pub threads: u32,
+        /// First restart budget in propagation steps (pushplan::Options::restart_steps);
+        /// 0: never.
+        pub restart_steps: u64,
     }
 
     /// The outcome of one search and the path found: controls, their step counts and the
@@ -36,6 +39,8 @@ pub mod bridge {
         pub tree_size: usize,
         pub propagation_steps: u64,
         pub search: SearchStats,
+        /// Attempts started over for lack of a solution (pushplan::Plan::restarts).
+        pub restarts: u64,
         pub controls: Vec<f64>,
         pub steps: Vec<usize>,
         pub states: Vec<f64>,
@@ -68,6 +73,8 @@ pub mod bridge {
         pub seed: u64,
         /// Shortcutting budget (s of work) measured after a solved run.
         pub shortcut: f64,
+        /// First restart budget in propagation steps; 0: never.
+        pub restart_steps: u64,
         pub log: String,
     }
 

@@ -5,6 +5,10 @@
 use std::fmt;
 use std::str::FromStr;
 
+/// Push KPIECE's first restart budget: about 2 s of its search on the benchmark scenes
+/// (BENCHMARKS.md, "Restarts").
+const PUSH_KPIECE_RESTART_STEPS: u64 = 400_000;
+
 /// A planner. C++'s `pushplan::PlannerKind` (`include/pushplan/pushplan.h`) is the same
 /// type, value for value: the bridge passes it as is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -104,6 +108,16 @@ impl PlannerKind {
     /// sequences of primitives.
     pub fn yields_controls(self) -> bool {
         !matches!(self, PlannerKind::Darrt | PlannerKind::DarrtPickPlace)
+    }
+
+    /// Propagation steps the first attempt of a search may take before it starts over
+    /// (`Restarting` in `cpp/restarts.h`; later attempts get Luby multiples of it), or 0:
+    /// never. Push KPIECE restarts; the paper's planners and OMPL's run as published.
+    pub fn restart_steps(self) -> u64 {
+        match self {
+            PlannerKind::PushKpiece => PUSH_KPIECE_RESTART_STEPS,
+            _ => 0,
+        }
     }
 
     /// The names, comma-separated (for messages).

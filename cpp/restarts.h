@@ -1,0 +1,61 @@
+// Restarts: a search that has found no solution within a budget of propagation steps
+// starts over with a new tree. A sampling-based search of this problem has a
+// heavy-tailed time to solve: the same scene solved in 0.1-5 s from five seeds may take
+// more than a minute from a sixth, whose tree has grown into a corner it does not leave
+// (BENCHMARKS.md, "Restarts"). Budgets follow the Luby sequence times a base (Luby,
+// Sinclair and Zuckerman 1993: within a log factor of the best fixed cutoff, whatever
+// the distribution), counted in propagation steps, so restarts happen at the same
+// iteration whatever the timing.
+#pragma once
+
+#include "model_handle.h"
+
+#include <ompl/base/Planner.h>
+
+#include <cstdint>
+#include <optional>
+
+namespace pushplan::detail
+{
+    /// Term i (from 1) of the Luby sequence 1, 1, 2, 1, 1, 2, 4, 1, 1, 2, 1, 1, 2, 4, 8, ...
+    std::uint64_t luby(std::uint64_t i);
+
+    /// A planner that restarts another (its `search`) when an attempt ends without an exact
+    /// solution: attempt i may take `base_steps * luby(i)` propagation steps. Approximate
+    /// solutions of earlier attempts stay in the problem definition, so the closest path
+    /// over all attempts is kept. It carries the search's name and parameters.
+    class Restarting : public ompl::base::Planner
+    {
+    public:
+        Restarting(ompl::base::PlannerPtr search, ModelHandlePtr model, std::uint64_t base_steps);
+
+        ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
+        /// Clears the search and starts the budgets over.
+        void clear() override;
+        void setup() override;
+        void setProblemDefinition(const ompl::base::ProblemDefinitionPtr &pdef) override;
+        void getPlannerData(ompl::base::PlannerData &data) const override;
+        void checkValidity() override;
+
+        const ompl::base::PlannerPtr &search() const { return search_; }
+        /// Attempts started over for lack of a solution since construction (clear() starts
+        /// the budgets over, but does not forget them).
+        std::uint64_t restarts() const { return restarts_; }
+
+    private:
+        ompl::base::PlannerPtr search_;
+        ModelHandlePtr model_;
+        std::uint64_t base_steps_;
+        /// The current attempt's index in the Luby sequence.
+        std::uint64_t attempt_ = 1;
+        /// The model's step count at which the current attempt ends (unset: not started).
+        std::optional<std::uint64_t> attempt_end_;
+        std::uint64_t restarts_ = 0;
+    };
+
+    /// Restarts of a planner (0 if it is not a Restarting).
+    std::uint64_t restartsOf(const ompl::base::PlannerPtr &planner);
+
+    /// The planner a search runs, a Restarting's own search if it is one.
+    const ompl::base::Planner &innerPlanner(const ompl::base::PlannerPtr &planner);
+}  // namespace pushplan::detail
