@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <limits>
 
+#include <condition_variable>
 #include <exception>
+#include <mutex>
 #include <thread>
 
 namespace ob = ompl::base;
@@ -21,54 +23,122 @@ namespace pushplan::detail
     {
     }
 
-    void Portfolio::advance(std::size_t i, const std::function<bool()> &out_of_time)
+    namespace
     {
-        bridge::Model &model = searches_[i].problem.model->model();
-        const std::uint64_t round_end = model.propagation_steps() + kRoundSteps;
-        // Counted in steps, so the round ends at the same iteration whatever the timing.
-        const ob::PlannerTerminationCondition round(
-            [&] { return model.propagation_steps() >= round_end || out_of_time(); });
-        // The solutions accumulate in the problem definition, the best first (OMPL keeps
-        // exact before approximate, approximate by their distance to the goal).
-        searches_[i].planner->solve(round);
-    }
+        /// Where the searches meet at the end of each round. A search pauses in `pause`
+        /// (from its termination condition) or leaves for good in `leave` (its solve()
+        /// returned); the coordinator waits in `await` until every search still running
+        /// has paused, then `release`s them all to go on or to stop.
+        class Rendezvous
+        {
+        public:
+            explicit Rendezvous(std::size_t searches) : running_(searches) {}
+
+            /// Blocks until the coordinator's decision; returns whether to stop.
+            bool pause()
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                ++paused_;
+                const std::uint64_t round = round_;
+                changed_.notify_all();
+                changed_.wait(lock, [&] { return round_ != round; });
+                return stop_;
+            }
+
+            void leave()
+            {
+                const std::lock_guard<std::mutex> lock(mutex_);
+                --running_;
+                changed_.notify_all();
+            }
+
+            /// Blocks until every running search has paused; returns how many still run.
+            std::size_t await()
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                changed_.wait(lock, [&] { return paused_ == running_; });
+                return running_;
+            }
+
+            void release(bool stop)
+            {
+                const std::lock_guard<std::mutex> lock(mutex_);
+                stop_ = stop;
+                paused_ = 0;
+                ++round_;
+                changed_.notify_all();
+            }
+
+        private:
+            std::mutex mutex_;
+            std::condition_variable changed_;
+            std::size_t running_;
+            std::size_t paused_ = 0;
+            std::uint64_t round_ = 0;
+            bool stop_ = false;
+        };
+    }  // namespace
 
     std::optional<std::size_t> Portfolio::solve(const std::function<bool()> &out_of_time,
                                                 const std::function<void()> &after_round)
     {
         const std::size_t n = searches_.size();
-        for (;;)
-        {
-            // Search 0 on this thread, the others on threads of their own; a failure in any
-            // is raised here after the round.
-            std::vector<std::exception_ptr> failures(n);
-            const auto run = [&](std::size_t i) {
-                try
-                {
-                    advance(i, out_of_time);
-                }
-                catch (...)
-                {
-                    failures[i] = std::current_exception();
-                }
-            };
-            std::vector<std::thread> threads;
-            for (std::size_t i = 1; i < n; ++i)
-                threads.emplace_back(run, i);
-            run(0);
-            for (std::thread &t : threads)
-                t.join();
-            for (const std::exception_ptr &failure : failures)
-                if (failure)
-                    std::rethrow_exception(failure);
+        Rendezvous rendezvous(n);
+        std::vector<std::exception_ptr> failures(n);
+        const auto run = [&](std::size_t i) {
+            bridge::Model &model = searches_[i].problem.model->model();
+            // Rounds are counted in steps, so each ends at the same iteration whatever the
+            // timing; the search pauses there without leaving solve().
+            std::uint64_t round_end = model.propagation_steps() + kRoundSteps;
+            bool stopped = false;
+            const ob::PlannerTerminationCondition ptc([&] {
+                if (stopped || out_of_time())
+                    return true;
+                if (model.propagation_steps() < round_end)
+                    return false;
+                round_end += kRoundSteps;
+                return stopped = rendezvous.pause();
+            });
+            try
+            {
+                // The solutions accumulate in the problem definition, the best first (OMPL
+                // keeps exact before approximate, approximate by their distance to the goal).
+                searches_[i].planner->solve(ptc);
+            }
+            catch (...)
+            {
+                failures[i] = std::current_exception();
+            }
+            rendezvous.leave();
+        };
+        std::vector<std::thread> threads;
+        for (std::size_t i = 0; i < n; ++i)
+            threads.emplace_back(run, i);
 
-            after_round();
+        const auto first_solved = [&]() -> std::optional<std::size_t> {
             for (std::size_t i = 0; i < n; ++i)
                 if (searches_[i].problem.setup->haveExactSolutionPath())
                     return i;
-            if (out_of_time())
-                return std::nullopt;
+            return std::nullopt;
+        };
+        const auto failed = [&] {
+            return std::any_of(failures.begin(), failures.end(), [](const std::exception_ptr &f) { return bool(f); });
+        };
+        for (;;)
+        {
+            const std::size_t running = rendezvous.await();
+            after_round();
+            const bool stop = running == 0 || first_solved() || failed() || out_of_time();
+            rendezvous.release(stop);
+            if (stop)
+                break;
         }
+        for (std::thread &t : threads)
+            t.join();
+        for (const std::exception_ptr &failure : failures)
+            if (failure)
+                std::rethrow_exception(failure);
+        return first_solved();
     }
 
     void Portfolio::restart(std::size_t i)

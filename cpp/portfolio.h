@@ -1,6 +1,11 @@
 // Several independent searches of one problem, one per thread, advancing in lock-step
 // rounds of a fixed number of propagation steps: which search finds the plan, and the
 // plan, depend on the seeds and the number of searches, never on thread scheduling.
+//
+// A round ends inside each search's termination condition: the search pauses there,
+// within one call of its planner's solve(), until every search has paused or returned.
+// So a planner runs as if uninterrupted (OMPL's KPIECE1 keeps its goal-bias samples only
+// within one call), and one search is the planner exactly, as `bench` measures it.
 #pragma once
 
 #include "problem.h"
@@ -26,16 +31,18 @@ namespace pushplan::detail
     class Portfolio
     {
     public:
-        /// Propagation steps each search takes per round: about 20 ms of work. A round
+        /// Propagation steps each search takes per round: about 5 ms of work. A round
         /// ends when every search has taken them (or solved), so a search that solves
-        /// waits for the rest of the round: short rounds waste little.
-        static constexpr std::uint64_t kRoundSteps = 5000;
+        /// waits for the rest of the round: short rounds waste little, and a pause costs
+        /// no measurable time at this length (BENCHMARKS.md, "Every core").
+        static constexpr std::uint64_t kRoundSteps = 1000;
 
         explicit Portfolio(std::vector<Search> searches);
 
         /// Runs rounds until one ends with an exact solution or `out_of_time` (asked from
-        /// every thread) says stop; `after_round` runs on the calling thread after each
-        /// round. Returns the lowest-numbered search holding an exact solution.
+        /// every thread) says stop; every search runs on a thread of its own, and
+        /// `after_round` on the calling thread after each round, while every search is
+        /// paused. Returns the lowest-numbered search holding an exact solution.
         std::optional<std::size_t> solve(const std::function<bool()> &out_of_time,
                                          const std::function<void()> &after_round);
 
@@ -60,8 +67,6 @@ namespace pushplan::detail
         std::uint64_t restarts() const;
 
     private:
-        void advance(std::size_t i, const std::function<bool()> &out_of_time);
-
         std::vector<Search> searches_;
     };
 }  // namespace pushplan::detail

@@ -247,16 +247,19 @@ fn a_search_without_a_solution_starts_over_with_luby_budgets() {
 #[test]
 fn push_kpiece_pushes_the_goal_object_far_more_often_than_kpiece() {
     // The same search with and without push headings: the share of propagations that
-    // move the goal object, until each solves the clutter scene.
+    // move the goal object, until each solves the clutter scene, averaged over three
+    // seeds (one search's share varies two- to fourfold from seed to seed).
     let moved_share = |planner: &str| {
         let scene = Path::new("scenes/herb_fig1_clutter.yaml");
-        let out = solve(scene, &options(planner, 1, 60.0), |_| {}).unwrap();
-        assert!(
-            out.search.propagations >= 100,
-            "{planner}: {:?}",
-            out.search
-        );
-        out.search.moved_goal_object as f64 / out.search.propagations as f64
+        let shares: Vec<f64> = (1..=3)
+            .map(|seed| {
+                let out = solve(scene, &options(planner, seed, 60.0), |_| {}).unwrap();
+                assert!(out.exact, "{planner}, seed {seed}: not solved");
+                assert!(out.search.propagations >= 50, "{planner}: {:?}", out.search);
+                out.search.moved_goal_object as f64 / out.search.propagations as f64
+            })
+            .collect();
+        shares.iter().sum::<f64>() / shares.len() as f64
     };
     let guided = moved_share("push_kpiece");
     let unguided = moved_share("kpiece");

@@ -277,7 +277,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         "not solved"
     };
     println!(
-        "{status} in {:.2} s: tree of {} states, {} propagation steps ({:.0} steps/s){}",
+        "{status} in {:.3} s: tree of {} states, {} propagation steps ({:.0} steps/s){}",
         solution.planning_time,
         solution.tree_size,
         solution.propagation_steps,
