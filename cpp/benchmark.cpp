@@ -73,7 +73,7 @@ namespace pushplan::bridge
 
         std::uint64_t steps_before = 0;
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &) {
-            steps_before = model->model().propagation_steps();
+            steps_before = model->propagationSteps();
             // As in Planner::solve: no propagation past the run's time limit.
             model->model().set_time_limit(options.time_limit);
         });
@@ -81,7 +81,7 @@ namespace pushplan::bridge
             props["run INTEGER"] = std::to_string(options.run);
             props["restarts INTEGER"] = std::to_string(detail::restartsOf(planner));
             // Only the planners that propagate controls through the model have a rate.
-            const double propagated = static_cast<double>(model->model().propagation_steps() - steps_before);
+            const double propagated = static_cast<double>(model->propagationSteps() - steps_before);
             const double time = std::stod(props["time REAL"]);
             if (propagated > 0)
             {

@@ -8,7 +8,10 @@
 #include <ompl/base/State.h>
 #include <ompl/control/Control.h>
 #include <ompl/control/PathControl.h>
+#include <algorithm>
 #include <array>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -77,6 +80,21 @@ namespace pushplan::detail
 
         bridge::Model &model() const { return *model_; }
 
+        /// The propagation steps and seconds of this model's search: its own, and those a
+        /// parallel search's lanes credited to it as their iterations joined its tree
+        /// (ParallelKPIECE). What termination conditions and progress reports count.
+        std::uint64_t propagationSteps() const { return model_->propagation_steps() + credited_steps_; }
+        double propagationSeconds() const { return model_->propagation_seconds() + credited_seconds_; }
+        void credit(std::uint64_t steps, double seconds)
+        {
+            credited_steps_ += steps;
+            credited_seconds_ += seconds;
+        }
+        /// The smallest goal distance this model's search has met (m or rad), its own or
+        /// credited by lanes.
+        double closestGoalDistance() const { return std::min(model_->closest_goal_distance(), credited_closest_); }
+        void creditGoalDistance(double distance) { credited_closest_ = std::min(credited_closest_, distance); }
+
     private:
         /// The perturbed worlds' poses within a state's block (empty without worlds).
         rust::Slice<const double> particles(const ompl::base::State *state) const;
@@ -86,6 +104,9 @@ namespace pushplan::detail
         bridge::SceneInfo info_;
         StateLayout layout_;
         bool layout_fixed_ = false;
+        std::uint64_t credited_steps_ = 0;
+        double credited_seconds_ = 0.0;
+        double credited_closest_ = std::numeric_limits<double>::infinity();
         mutable std::vector<double> a_, b_, control_, particles_;
     };
 

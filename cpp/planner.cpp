@@ -140,15 +140,23 @@ namespace pushplan
             if (!bridge::planner_yields_controls(options.planner))
                 throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
                             "(measure DARRT with `pushplan bench`)");
-            // One search per thread, each with its own model and seed (detail::Portfolio).
+            // The KPIECE planners run one search whose propagations use every thread
+            // (detail::ParallelKPIECE); the others one search per thread (detail::Portfolio).
+            // Each search and each propagation lane has a model of its own.
             const unsigned threads = options.threads.value_or(detail::defaultThreads());
             checked("threads", threads, threads >= 1 && threads <= 256);
-            std::vector<detail::ModelHandlePtr> models;
-            for (unsigned i = 0; i < threads; ++i)
+            const bool lanes_per_search = threads > 1 && bridge::planner_shares_one_search(options.planner);
+            const unsigned search_count = lanes_per_search ? 1 : threads;
+            const unsigned lane_count = lanes_per_search ? threads : 0;
+            std::vector<detail::ModelHandlePtr> models, lane_models;
+            for (unsigned i = 0; i < search_count + lane_count; ++i)
             {
-                models.push_back(std::make_shared<detail::ModelHandle>(source.load()));
+                (i < search_count ? models : lane_models)
+                    .push_back(std::make_shared<detail::ModelHandle>(source.load()));
                 // Static RRT's problem: the same states, the clutter pinned where it starts.
-                models.back()->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
+                (i < search_count ? models.back() : lane_models.back())
+                    ->model()
+                    .set_static_clutter(options.planner == PlannerKind::StaticRrt);
             }
             const bridge::SceneInfo &info = models[0]->info();
             const double time_limit = options.time_limit.value_or(info.planner.time_limit);
@@ -167,8 +175,11 @@ namespace pushplan
                          (options.robust_trials > 0 && options.planner != PlannerKind::StaticRrt)));
             const std::uint64_t restart_steps =
                 options.restart_steps.value_or(bridge::planner_restart_steps(options.planner));
-            for (unsigned i = 0; i < threads; ++i)
+            for (unsigned i = 0; i < search_count; ++i)
                 models[i]->setParticles(options.robust_particles, detail::searchSeed(seed, i));
+            // A lane propagates the states of search 0: the same perturbed worlds.
+            for (const detail::ModelHandlePtr &m : lane_models)
+                m->setParticles(options.robust_particles, detail::searchSeed(seed, 0));
 
             // OMPL's log level is process-wide: quiet below warnings while planning, then put
             // back as the application had it.
@@ -180,13 +191,16 @@ namespace pushplan
             } log_level;
             // Set up on this thread, in order: OMPL's planners draw their seeds as they are made.
             std::vector<detail::Search> searches;
-            for (unsigned i = 0; i < threads; ++i)
+            for (unsigned i = 0; i < search_count; ++i)
             {
                 const std::uint64_t search_seed = detail::searchSeed(seed, i);
                 detail::Problem problem = detail::makeProblem(models[i], search_seed, k);
+                std::vector<detail::Lane> lanes;
+                for (std::size_t l = 0; l < lane_models.size(); ++l)
+                    lanes.push_back(detail::makeLane(lane_models[l], search_seed, l, k));
                 ob::PlannerPtr planner =
                     detail::makePlanner(options.planner, problem, search_seed, goal_bias, options.intermediate_states,
-                                      restart_steps);
+                                        restart_steps, std::move(lanes));
                 problem.setup->setPlanner(planner);
                 problem.setup->setup();
                 searches.push_back(detail::Search{std::move(problem), std::move(planner)});
@@ -202,6 +216,8 @@ namespace pushplan
             // The models refuse to propagate past the limit: an extension of k long controls
             // (OMPL checks the limit only between extensions) ends on time.
             for (const detail::ModelHandlePtr &m : models)
+                m->model().set_time_limit(time_limit);
+            for (const detail::ModelHandlePtr &m : lane_models)
                 m->model().set_time_limit(time_limit);
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
@@ -225,7 +241,7 @@ namespace pushplan
                 p.steps_per_second = static_cast<double>(p.propagation_steps - last_steps) / (t - last_t);
                 p.propagating = (propagating - last_propagating) / (t - last_t);
                 p.tree_states = portfolio.treeStates();
-                p.searches = threads;
+                p.searches = search_count;
                 p.closest_goal_distance = portfolio.closestGoalDistance();
                 tell(p);
                 last_t = t, last_steps = p.propagation_steps, last_propagating = propagating;
@@ -278,7 +294,7 @@ namespace pushplan
                     Progress p;
                     p.seconds = elapsed();
                     p.propagation_steps = portfolio.propagationSteps();
-                    p.searches = threads;
+                    p.searches = search_count;
                     p.closest_goal_distance = portfolio.closestGoalDistance();
                     char note[256];
                     std::snprintf(note, sizeof note,
@@ -303,7 +319,9 @@ namespace pushplan
 
             plan.planning_time = elapsed();
             plan.propagation_steps = portfolio.propagationSteps();
-            plan.search = detail::searchStats(models);
+            std::vector<detail::ModelHandlePtr> every_model = models;
+            every_model.insert(every_model.end(), lane_models.begin(), lane_models.end());
+            plan.search = detail::searchStats(every_model);
             plan.threads = threads;
             plan.restarts = portfolio.restarts();
             plan.step = info.planner.step;

@@ -86,15 +86,15 @@ namespace pushplan::detail
         Rendezvous rendezvous(n);
         std::vector<std::exception_ptr> failures(n);
         const auto run = [&](std::size_t i) {
-            bridge::Model &model = searches_[i].problem.model->model();
+            const ModelHandle &model = *searches_[i].problem.model;
             // Rounds are counted in steps, so each ends at the same iteration whatever the
             // timing; the search pauses there without leaving solve().
-            std::uint64_t round_end = model.propagation_steps() + kRoundSteps;
+            std::uint64_t round_end = model.propagationSteps() + kRoundSteps;
             bool stopped = false;
             const ob::PlannerTerminationCondition ptc([&] {
                 if (stopped || out_of_time())
                     return true;
-                if (model.propagation_steps() < round_end)
+                if (model.propagationSteps() < round_end)
                     return false;
                 round_end += kRoundSteps;
                 return stopped = rendezvous.pause();
@@ -169,7 +169,7 @@ namespace pushplan::detail
     {
         std::uint64_t steps = 0;
         for (const Search &s : searches_)
-            steps += s.problem.model->model().propagation_steps();
+            steps += s.problem.model->propagationSteps();
         return steps;
     }
 
@@ -177,7 +177,7 @@ namespace pushplan::detail
     {
         double seconds = 0.0;
         for (const Search &s : searches_)
-            seconds += s.problem.model->model().propagation_seconds();
+            seconds += s.problem.model->propagationSeconds();
         return seconds;
     }
 
@@ -185,7 +185,7 @@ namespace pushplan::detail
     {
         double closest = std::numeric_limits<double>::infinity();
         for (const Search &s : searches_)
-            closest = std::min(closest, s.problem.model->model().closest_goal_distance());
+            closest = std::min(closest, s.problem.model->closestGoalDistance());
         return closest;
     }
 

@@ -4,6 +4,7 @@
 #include "darrt.h"
 #include "goal.h"
 #include "nearest.h"
+#include "parallel_kpiece.h"
 #include "propagator.h"
 #include "restarts.h"
 #include "validity.h"
@@ -99,9 +100,37 @@ namespace pushplan::detail
         return Problem{std::move(model), std::move(space), std::move(setup)};
     }
 
+    /// Push KPIECE's controls: most along push headings, each sampler with its own stream.
+    static void usePushControls(const oc::SpaceInformationPtr &si, std::uint64_t seed, const ModelHandlePtr &model)
+    {
+        auto count = std::make_shared<std::uint64_t>(0);
+        si->getControlSpace()->setControlSamplerAllocator([seed, count, model](const oc::ControlSpace *c) {
+            return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), model, PushMix{});
+        });
+    }
+
+    Lane makeLane(ModelHandlePtr model, std::uint64_t search_seed, std::size_t index, unsigned k)
+    {
+        // Lane 0 draws the search's own streams: one lane is the search exactly.
+        const std::uint64_t seed = index == 0 ? search_seed : subSeed(search_seed, 9500 + index);
+        const Problem problem = makeProblem(model, seed, k);
+        const oc::SpaceInformationPtr &si = problem.setup->getSpaceInformation();
+        si->setup();
+        return Lane{si, std::move(model), problem.setup->getProblemDefinition()->getGoal(), seed};
+    }
+
+    /// OMPL's KPIECE1, or with lanes the same search with its propagations on their threads.
+    static ob::PlannerPtr kpiece(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed, const ModelHandlePtr &model,
+                                 std::vector<Lane> lanes)
+    {
+        if (lanes.empty())
+            return std::make_shared<Seeded<oc::KPIECE1>>(si, seed);
+        return std::make_shared<ParallelKPIECE>(si, seed, model, std::move(lanes));
+    }
+
     /// The planner of one kind, without restarts.
     static ob::PlannerPtr makeSearch(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
-                                     bool intermediate_states)
+                                     bool intermediate_states, std::vector<Lane> lanes)
     {
         const oc::SpaceInformationPtr &si = problem.setup->getSpaceInformation();
         // The planner's own random numbers (the samplers have streams of their own).
@@ -131,19 +160,15 @@ namespace pushplan::detail
                 return darrt;
             }
             case PlannerKind::Kpiece:
-                return std::make_shared<Seeded<oc::KPIECE1>>(si, planner_seed);
+                return kpiece(si, planner_seed, problem.model, std::move(lanes));
             case PlannerKind::PushKpiece:
             {
-                // Most controls along push headings, each sampler with its own stream.
-                auto count = std::make_shared<std::uint64_t>(0);
-                si->getControlSpace()->setControlSamplerAllocator(
-                    [seed, count, model = problem.model](const oc::ControlSpace *c) {
-                        return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), model,
-                                                                    PushMix{});
-                    });
-                auto kpiece = std::make_shared<Seeded<oc::KPIECE1>>(si, planner_seed);
-                kpiece->setName("PushKPIECE");
-                return kpiece;
+                usePushControls(si, seed, problem.model);
+                for (const Lane &lane : lanes)
+                    usePushControls(lane.si, lane.seed, lane.model);
+                ob::PlannerPtr push_kpiece = kpiece(si, planner_seed, problem.model, std::move(lanes));
+                push_kpiece->setName("PushKPIECE");
+                return push_kpiece;
             }
             case PlannerKind::Est:
                 return std::make_shared<Seeded<oc::EST>>(si, planner_seed);
@@ -156,9 +181,12 @@ namespace pushplan::detail
     }
 
     ob::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
-                               bool intermediate_states, std::uint64_t restart_steps)
+                               bool intermediate_states, std::uint64_t restart_steps,
+                               std::vector<Lane> lanes)
     {
-        ob::PlannerPtr search = makeSearch(kind, problem, seed, goal_bias, intermediate_states);
+        if (!lanes.empty() && !bridge::planner_shares_one_search(kind))
+            throw Error(plannerName(kind) + " runs one search per thread, not one search on several");
+        ob::PlannerPtr search = makeSearch(kind, problem, seed, goal_bias, intermediate_states, std::move(lanes));
         if (restart_steps == 0)
             return search;
         return std::make_shared<Restarting>(std::move(search), problem.model, restart_steps);

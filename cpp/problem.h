@@ -2,6 +2,7 @@
 #pragma once
 
 #include "model_handle.h"
+#include "parallel_kpiece.h"
 #include "pushplan/pushplan.h"
 #include "state_space.h"
 
@@ -66,9 +67,15 @@ namespace pushplan::detail
     /// Sets up the problem: k is the number of control samples per extension (Alg. 1).
     Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k);
 
+    /// Lane `index` of a search seeded with `search_seed` (ParallelKPIECE), on `model`.
+    Lane makeLane(ModelHandlePtr model, std::uint64_t search_seed, std::size_t index, unsigned k);
+
     /// A planner of the problem. Static RRT is the same RRT as PC RRT; the model decides
     /// that the clutter is static (ModelHandle's static-clutter mode). With restart_steps
-    /// > 0 the search starts over when an attempt finds no solution (Restarting).
+    /// > 0 the search starts over when an attempt finds no solution (Restarting). With
+    /// lanes (the KPIECE planners only) the search propagates on one thread per lane
+    /// (ParallelKPIECE).
     ompl::base::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed,
-                                       double goal_bias, bool intermediate_states, std::uint64_t restart_steps);
+                                       double goal_bias, bool intermediate_states, std::uint64_t restart_steps,
+                                       std::vector<Lane> lanes = {});
 }  // namespace pushplan::detail

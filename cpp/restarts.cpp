@@ -41,10 +41,10 @@ namespace pushplan::detail
     ob::PlannerStatus Restarting::solve(const ob::PlannerTerminationCondition &ptc)
     {
         checkValidity();
-        bridge::Model &model = model_->model();
+        const ModelHandle &model = *model_;
         for (;;)
         {
-            if (attempt_end_ && model.propagation_steps() >= *attempt_end_ && !pdef_->hasExactSolution())
+            if (attempt_end_ && model.propagationSteps() >= *attempt_end_ && !pdef_->hasExactSolution())
             {
                 // The attempt's budget is spent without a solution: a new tree.
                 search_->clear();
@@ -58,14 +58,14 @@ namespace pushplan::detail
                 constexpr std::uint64_t never = std::numeric_limits<std::uint64_t>::max();
                 const std::uint64_t factor = luby(attempt_);
                 const std::uint64_t budget = base_steps_ > never / factor ? never : base_steps_ * factor;
-                const std::uint64_t now = model.propagation_steps();
+                const std::uint64_t now = model.propagationSteps();
                 attempt_end_ = budget > never - now ? never : now + budget;
             }
             const std::uint64_t end = *attempt_end_;
             const ob::PlannerStatus status =
-                search_->solve(ob::PlannerTerminationCondition([&] { return ptc() || model.propagation_steps() >= end; }));
+                search_->solve(ob::PlannerTerminationCondition([&] { return ptc() || model.propagationSteps() >= end; }));
             // Solved, or stopped by the caller: the attempt goes on at the next call.
-            if (pdef_->hasExactSolution() || model.propagation_steps() < end || ptc())
+            if (pdef_->hasExactSolution() || model.propagationSteps() < end || ptc())
                 return status;
         }
     }

@@ -77,8 +77,9 @@ enum Command {
         /// each (0: none, only the check of each solution).
         #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
         particles: u32,
-        /// Searches in parallel, one per thread, advancing in rounds of propagation steps
-        /// (the same seed and thread count give the same plan); default: one per core.
+        /// Threads to plan on: the KPIECE planners extend one search on all of them, the
+        /// others run a search on each, in rounds of propagation steps (the same seed and
+        /// thread count give the same plan); default: one per core.
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
         threads: Option<u32>,
         /// A search that finds no solution within this many propagation steps starts over

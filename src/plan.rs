@@ -32,7 +32,7 @@ pub struct PlanSettings {
     pub time_limit: f64,
     /// Shortcutting budget (s of work; 0 = none).
     pub shortcut: f64,
-    /// Searches run in parallel (absent in files from before there were several: 1).
+    /// Threads planned on (absent in files from before there were several: 1).
     #[serde(default = "one_search")]
     pub threads: u32,
     /// The search's first restart budget in propagation steps, 0: no restarts (absent in

@@ -229,16 +229,29 @@ fn run_checks(binary: &Path, checks: usize) {
     );
 }
 
+/// The library's internal headers: cxx's generated ones and the crate's, which the build
+/// script put under OUT_DIR.
+fn internal_includes() -> [String; 2] {
+    let bridge = PathBuf::from(env!("OUT_DIR")).join("cxxbridge");
+    ["include", "crate"].map(|d| format!("-I{}", bridge.join(d).display()))
+}
+
 #[test]
 fn every_failure_leaves_the_cpp_api_as_pushplan_error() {
-    // The library's internal headers: cxx's generated ones and the crate's, which the
-    // build script put under OUT_DIR.
-    let bridge = PathBuf::from(env!("OUT_DIR")).join("cxxbridge");
-    let includes = ["include", "crate"].map(|d| format!("-I{}", bridge.join(d).display()));
     let binary = compile_with(
         "tests/cpp/error_conversion.cpp",
         "error-conversion",
-        &includes,
+        &internal_includes(),
     );
     run_checks(&binary, 4);
+}
+
+#[test]
+fn parallel_kpiece_with_one_lane_is_ompl_kpiece1_bit_for_bit() {
+    let binary = compile_with(
+        "tests/cpp/parallel_kpiece.cpp",
+        "parallel-kpiece",
+        &internal_includes(),
+    );
+    run_checks(&binary, 5);
 }

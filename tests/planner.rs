@@ -128,19 +128,19 @@ fn the_same_seed_gives_the_same_plan() {
     );
 }
 
-#[test]
-fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
-    let scene = "scenes/herb_fig1_clutter.yaml";
-    let threads = |n: u32| SolveOptions {
-        threads: n,
-        ..options("pcrrt", 1, 60.0)
-    };
-    let a = solve(Path::new(scene), &threads(3), |_| {}).unwrap();
-    // Again, while another search competes for the cores: other thread timings.
+/// Solves `scene` twice with `parallel`, the second time while a search with `noise`
+/// competes for the cores (other thread timings); asserts an exact solution, the same
+/// both times, bit for bit, and returns it.
+fn the_same_plan_under_load(
+    scene: &str,
+    parallel: &SolveOptions,
+    noise: &SolveOptions,
+) -> SolveOutput {
+    let a = solve(Path::new(scene), parallel, |_| {}).unwrap();
     let b = std::thread::scope(|s| {
-        let noise = s.spawn(|| solve(Path::new(scene), &options("pcrrt", 9, 60.0), |_| {}));
-        let b = solve(Path::new(scene), &threads(3), |_| {}).unwrap();
-        noise.join().unwrap().unwrap();
+        let competing = s.spawn(|| solve(Path::new(scene), noise, |_| {}));
+        let b = solve(Path::new(scene), parallel, |_| {}).unwrap();
+        competing.join().unwrap().unwrap();
         b
     });
     assert!(a.exact);
@@ -149,11 +149,40 @@ fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
         (&b.states, &b.controls, &b.steps, b.tree_size)
     );
     assert_eq!(a.propagation_steps, b.propagation_steps);
+    a
+}
+
+#[test]
+fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
+    let scene = "scenes/herb_fig1_clutter.yaml";
+    let threads = |n: u32| SolveOptions {
+        threads: n,
+        ..options("pcrrt", 1, 60.0)
+    };
+    let a = the_same_plan_under_load(scene, &threads(3), &options("pcrrt", 9, 60.0));
     assert!(plan_file(scene, "pcrrt", 1, &a)
         .check(Path::new("plan.json"))
         .unwrap()
         .passed());
     assert!(solve(Path::new(scene), &threads(0), |_| {}).is_err());
+}
+
+#[test]
+fn push_kpiece_on_two_threads_gives_the_same_plan_whatever_the_timing() {
+    // One search whose propagations run on both threads (ParallelKPIECE): the tree takes
+    // them in a fixed order, so thread timing cannot change the plan.
+    let scene = "scenes/herb_fig1_clutter.yaml";
+    let two = SolveOptions {
+        threads: 2,
+        ..options("push_kpiece", 2, 60.0)
+    };
+    let a = the_same_plan_under_load(scene, &two, &options("kpiece", 9, 3.0));
+    // Every propagation of both lanes is in the search's statistics.
+    assert!(a.search.steps >= a.propagation_steps);
+    assert!(plan_file(scene, "push_kpiece", 2, &a)
+        .check(Path::new("plan.json"))
+        .unwrap()
+        .passed());
 }
 
 #[test]

@@ -122,9 +122,11 @@ namespace pushplan
         /// reached only when each world's goal object is in the disc. 0: none (the check
         /// alone). Only with robust_trials > 0, in the pushing problem (not Static RRT).
         unsigned robust_particles = 0;
-        /// Searches run in parallel, one per thread, in lock-step rounds counted in
-        /// propagation steps: the same scene, seed and thread count give the same plan.
-        /// Default: one per core.
+        /// Threads to plan on; default: one per core. The KPIECE planners run one search
+        /// whose propagations run in parallel, one per thread, and join the tree in a fixed
+        /// order; the others one search per thread, in lock-step rounds counted in
+        /// propagation steps. Either way the same scene, seed and thread count give the
+        /// same plan.
         std::optional<unsigned> threads;
         /// A search that finds no solution within this many propagation steps starts over
         /// with a new tree, attempt i with Luby(i) times as many (1, 1, 2, 1, 1, 2, 4, ...);
@@ -193,7 +195,7 @@ namespace pushplan
         std::size_t tree_size = 0;    ///< tree nodes, all searches
         std::uint64_t propagation_steps = 0;
         SearchStats search;           ///< summed over the searches
-        unsigned threads = 1;         ///< searches run in parallel
+        unsigned threads = 1;         ///< threads planned on (Options::threads)
         /// Attempts that found no solution within their budget and started over
         /// (Options::restart_steps), all searches.
         std::uint64_t restarts = 0;

@@ -26,7 +26,7 @@ pub struct PlanOptions {
     pub shortcut: f64,
     pub intermediate_states: bool,
     pub quiet: bool,
-    /// Searches in parallel, one per thread.
+    /// Threads to plan on (`pushplan::Options::threads`).
     pub threads: u32,
     /// First restart budget (propagation steps; 0: never); default: the planner's.
     pub restart: Option<u64>,
@@ -180,17 +180,16 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     }
     if !quiet {
         eprintln!(
-            "planning '{}' with {} (k = {}, seed = {}, up to {} s, {} {})",
+            "planning '{}' with {} (k = {}, seed = {}, up to {} s, {})",
             scene.name,
             planner.name(),
             options.k,
             options.seed,
             options.time_limit,
-            options.threads,
-            if options.threads == 1 {
-                "search"
-            } else {
-                "searches in parallel"
+            match options.threads {
+                1 => "one search".to_string(),
+                n if planner.shares_one_search() => format!("one search on {n} threads"),
+                n => format!("{n} searches in parallel"),
             }
         );
     }

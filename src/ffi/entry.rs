@@ -22,7 +22,7 @@ pub mod bridge {
         pub robust_shortcut: f64,
         /// Perturbed worlds every tree state carries (pushplan::Options::robust_particles).
         pub robust_particles: u32,
-        /// Searches in parallel (pushplan::Options::threads); at least 1.
+        /// Threads to plan on (pushplan::Options::threads); at least 1.
         pub threads: u32,
         /// First restart budget in propagation steps (pushplan::Options::restart_steps);
         /// 0: never.

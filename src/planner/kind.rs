@@ -120,6 +120,13 @@ impl PlannerKind {
         }
     }
 
+    /// Whether the threads of a plan share one search, its propagations running in
+    /// parallel (`ParallelKPIECE`, `cpp/parallel_kpiece.h`), rather than each running a
+    /// search of its own (`Portfolio`, `cpp/portfolio.h`).
+    pub fn shares_one_search(self) -> bool {
+        matches!(self, PlannerKind::Kpiece | PlannerKind::PushKpiece)
+    }
+
     /// The names, comma-separated (for messages).
     pub fn names() -> String {
         PlannerKind::ALL.map(PlannerKind::name).join(", ")

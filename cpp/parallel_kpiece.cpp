@@ -1,0 +1,279 @@
+#include "parallel_kpiece.h"
+
+#include <ompl/base/Goal.h>
+#include <ompl/control/PathControl.h>
+
+#include <atomic>
+#include <exception>
+#include <limits>
+#include <stdexcept>
+#include <thread>
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+
+namespace pushplan::detail
+{
+    /// One iteration: the motion it extends (chosen on the tree), and what its lane made
+    /// of it: the control, the states reached with their grid coordinates, where each
+    /// new motion ends and its goal distance, and what the lane's model counted.
+    struct ParallelKPIECE::Extension
+    {
+        Motion *from = nullptr;
+        Grid::Cell *cell = nullptr;
+        oc::Control *control = nullptr;
+        std::vector<ob::State *> states;
+        unsigned reached = 0;  // valid steps
+        std::vector<Grid::Coord> coords;
+        std::vector<Grid::Cell *> cells;
+        /// Motion i spans states ends[i - 1] + 1 .. ends[i] (one run of states in a cell).
+        std::vector<unsigned> ends;
+        std::vector<double> distances;
+        std::vector<char> at_goal;
+        std::uint64_t model_steps = 0;
+        double model_seconds = 0.0;
+    };
+
+    ParallelKPIECE::ParallelKPIECE(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed,
+                                   ModelHandlePtr tree_model, std::vector<Lane> lanes)
+      : oc::KPIECE1(si), tree_model_(std::move(tree_model)), lanes_(std::move(lanes)), samplers_(lanes_.size())
+    {
+        if (lanes_.empty())
+            throw std::invalid_argument("ParallelKPIECE: at least one lane");
+        rng_.setLocalSeed(seed);
+    }
+
+    void ParallelKPIECE::clear()
+    {
+        oc::KPIECE1::clear();
+        for (oc::ControlSamplerPtr &sampler : samplers_)
+            sampler.reset();
+    }
+
+    void ParallelKPIECE::select(Extension &e, CloseSamples &close_samples)
+    {
+        tree_.iteration++;
+        e.from = nullptr;
+        e.cell = nullptr;
+        // Now and then from the motions closest to the goal, else from the grid's most
+        // important cell (KPIECE1's order of random draws).
+        if (!(close_samples.canSample() && rng_.uniform01() < goalBias_ && close_samples.selectMotion(e.from, e.cell)))
+            selectMotion(e.from, e.cell);
+        if (e.from == nullptr)
+            throw std::logic_error("ParallelKPIECE: the grid gave no motion to extend");
+        if (update_on_select_)
+        {
+            // Counted as a success until it returns (then corrected if it failed).
+            e.cell->data->score *= goodScoreFactor_;
+            tree_.grid.update(e.cell);
+        }
+    }
+
+    void ParallelKPIECE::extend(Extension &e, std::size_t lane)
+    {
+        const Lane &l = lanes_[lane];
+        oc::ControlSampler &sampler = *samplers_[lane];
+        sampler.sampleNext(e.control, e.from->control, e.from->state);
+        const unsigned steps = sampler.sampleStepCount(siC_->getMinControlDuration(), siC_->getMaxControlDuration());
+
+        bridge::Model &model = l.model->model();
+        const std::uint64_t steps_before = model.propagation_steps();
+        const double seconds_before = model.propagation_seconds();
+        e.reached = l.si->propagateWhileValid(e.from->state, e.control, static_cast<int>(steps), e.states, false);
+        e.model_steps = model.propagation_steps() - steps_before;
+        e.model_seconds = model.propagation_seconds() - seconds_before;
+
+        e.ends.clear();
+        e.distances.clear();
+        e.at_goal.clear();
+        if (e.reached < siC_->getMinControlDuration())
+            return;
+        const ob::ProjectionEvaluator &projection = *l.si->getStateSpace()->getDefaultProjection();
+        for (unsigned i = 0; i < e.reached; ++i)
+            projection.computeCoordinates(e.states[i], e.coords[i]);
+        for (unsigned index = 0; index < e.reached;)
+        {
+            const unsigned last = findNextMotion(e.coords, index, e.reached);
+            double distance = 0.0;
+            e.at_goal.push_back(l.goal->isSatisfied(e.states[last], &distance));
+            e.distances.push_back(distance);
+            e.ends.push_back(last);
+            index = last + 1;
+        }
+    }
+
+    bool ParallelKPIECE::add(Extension &e, CloseSamples &close_samples)
+    {
+        tree_model_->credit(e.model_steps, e.model_seconds);
+        if (e.reached < siC_->getMinControlDuration())
+        {
+            e.cell->data->score *= update_on_select_ ? badScoreFactor_ / goodScoreFactor_ : badScoreFactor_;
+            tree_.grid.update(e.cell);
+            return false;
+        }
+        // Worth adding if it reaches a new or sparsely covered cell (or, rarely, anyway).
+        const std::size_t two_thirds_of_average_coverage = (2 * tree_.size) / (3 * tree_.grid.size());
+        bool interesting = false;
+        for (unsigned i = 0; i < e.reached; ++i)
+        {
+            e.cells[i] = tree_.grid.getCell(e.coords[i]);
+            if (e.cells[i] == nullptr ||
+                (!interesting && e.cells[i]->data->motions.size() <= two_thirds_of_average_coverage))
+                interesting = true;
+        }
+        if (interesting || rng_.uniform01() < 0.05)
+        {
+            // One motion per run of states in the same cell, each the parent of the next.
+            Motion *parent = e.from;
+            unsigned first = 0;
+            for (std::size_t m = 0; m < e.ends.size(); ++m)
+            {
+                auto *motion = new Motion(siC_);
+                si_->copyState(motion->state, e.states[e.ends[m]]);
+                siC_->copyControl(motion->control, e.control);
+                motion->steps = e.ends[m] - first + 1;
+                motion->parent = parent;
+                const double distance = e.distances[m];
+                tree_model_->creditGoalDistance(distance);
+                Grid::Cell *cell = addMotion(motion, distance);
+                if (e.at_goal[m])
+                {
+                    solution_ = motion;
+                    approximate_distance_ = distance;
+                    return true;
+                }
+                if (distance < approximate_distance_)
+                {
+                    approximate_distance_ = distance;
+                    approximate_ = motion;
+                }
+                close_samples.consider(cell, motion, distance);
+                parent = motion;
+                first = e.ends[m] + 1;
+            }
+        }
+        if (!update_on_select_)
+            e.cell->data->score *= goodScoreFactor_;
+        tree_.grid.update(e.cell);
+        return false;
+    }
+
+    ob::PlannerStatus ParallelKPIECE::solve(const ob::PlannerTerminationCondition &ptc)
+    {
+        checkValidity();
+        while (const ob::State *start = pis_.nextStart())
+        {
+            auto *motion = new Motion(siC_);
+            si_->copyState(motion->state, start);
+            siC_->nullControl(motion->control);
+            addMotion(motion, 1.0);
+        }
+        if (tree_.grid.size() == 0)
+        {
+            OMPL_ERROR("%s: There are no valid initial states!", getName().c_str());
+            return ob::PlannerStatus::INVALID_START;
+        }
+        // Each lane samples controls with a sampler of its own problem (lane 0's draws
+        // the numbers KPIECE1's own sampler would).
+        for (std::size_t w = 0; w < lanes_.size(); ++w)
+            if (!samplers_[w])
+                samplers_[w] = lanes_[w].si->allocControlSampler();
+
+        const std::size_t window = lanes_.size();
+        update_on_select_ = window > 1;
+        solution_ = approximate_ = nullptr;
+        approximate_distance_ = std::numeric_limits<double>::infinity();
+        CloseSamples close_samples(nCloseSamples_);
+
+        std::vector<Extension> extensions(window);
+        const std::size_t most_states = siC_->getMaxControlDuration() + 1;
+        for (Extension &e : extensions)
+        {
+            e.control = siC_->allocControl();
+            e.states.resize(most_states);
+            for (ob::State *&s : e.states)
+                s = si_->allocState();
+            e.coords.assign(most_states, Grid::Coord(projectionEvaluator_->getDimension()));
+            e.cells.resize(most_states);
+        }
+
+        // The tree's turn: iteration j joins the tree when `turn` is j, then its lane
+        // selects iteration j + window, then the turn passes to j + 1.
+        std::atomic<std::uint64_t> turn{0};
+        std::atomic<bool> stop{false};
+        std::vector<std::exception_ptr> failures(window);
+        std::size_t selected = 0;
+        while (selected < window && !ptc())
+            select(extensions[selected++], close_samples);
+
+        const auto lane = [&](std::size_t w) {
+            try
+            {
+                Extension &e = extensions[w];
+                for (std::uint64_t j = w;; j += window)
+                {
+                    extend(e, w);
+                    while (turn.load(std::memory_order_acquire) != j)
+                    {
+                        if (stop.load(std::memory_order_acquire))
+                            return;
+                        std::this_thread::yield();
+                    }
+                    if (stop.load(std::memory_order_acquire))
+                        return;
+                    const bool done = add(e, close_samples) || ptc();
+                    if (!done)
+                        select(e, close_samples);
+                    if (done)
+                        stop.store(true, std::memory_order_release);
+                    turn.store(j + 1, std::memory_order_release);
+                    if (done)
+                        return;
+                }
+            }
+            catch (...)
+            {
+                failures[w] = std::current_exception();
+                stop.store(true, std::memory_order_release);
+            }
+        };
+        if (selected == window)  // else the termination condition stopped the search already
+        {
+            std::vector<std::thread> helpers;
+            for (std::size_t w = 1; w < window; ++w)
+                helpers.emplace_back(lane, w);
+            lane(0);
+            for (std::thread &t : helpers)
+                t.join();
+        }
+
+        for (Extension &e : extensions)
+        {
+            siC_->freeControl(e.control);
+            for (ob::State *s : e.states)
+                si_->freeState(s);
+        }
+        for (const std::exception_ptr &failure : failures)
+            if (failure)
+                std::rethrow_exception(failure);
+
+        const bool exact = solution_ != nullptr;
+        Motion *end = exact ? solution_ : approximate_;
+        if (end == nullptr)
+            return {false, false};
+        lastGoalMotion_ = end;
+        std::vector<Motion *> motions;
+        for (Motion *m = end; m != nullptr; m = m->parent)
+            motions.push_back(m);
+        auto path = std::make_shared<oc::PathControl>(si_);
+        for (auto m = motions.rbegin(); m != motions.rend(); ++m)
+        {
+            if ((*m)->parent)
+                path->append((*m)->state, (*m)->control, (*m)->steps * siC_->getPropagationStepSize());
+            else
+                path->append((*m)->state);
+        }
+        pdef_->addSolutionPath(path, !exact, approximate_distance_, getName());
+        return {true, !exact};
+    }
+}  // namespace pushplan::detail

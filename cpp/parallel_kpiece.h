@@ -1,0 +1,77 @@
+// KPIECE1 on several threads: one search on every core.
+//
+// An iteration of KPIECE1 selects a motion from its grid, samples a control, propagates
+// it, projects the states reached and measures their distance to the goal, and adds
+// them to the grid. All but the selection and the adding need no tree, and they are
+// nearly all of the time (for Push KPIECE in dense clutter, propagation alone is 55-60 %
+// and sampling a push most of the rest). Here `lanes` iterations are in flight at once,
+// each extended on a thread and a model of its own (a lane), while the grid is touched by
+// one thread at a time in a fixed order: iteration j joins the grid after j - 1, and the
+// iteration that takes its lane next (j + lanes) is selected right after. So the tree,
+// the random numbers and the plan depend on the seed and the number of lanes, never on
+// thread timing; with one lane the search is OMPL's KPIECE1 exactly (the same random
+// numbers in the same order: tests/cpp/parallel_kpiece.cpp).
+#pragma once
+
+#include "model_handle.h"
+
+#include <ompl/base/Goal.h>
+#include <ompl/control/planners/kpiece/KPIECE1.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace pushplan::detail
+{
+    /// One thread's means to extend a tree: a model no other thread touches, with the
+    /// space information (propagator, validity, control sampler, projection) and goal
+    /// of its own problem.
+    struct Lane
+    {
+        ompl::control::SpaceInformationPtr si;
+        ModelHandlePtr model;
+        ompl::base::GoalPtr goal;
+        /// The seed of the lane's random streams (its control sampler's).
+        std::uint64_t seed = 0;
+    };
+
+    class ParallelKPIECE : public ompl::control::KPIECE1
+    {
+    public:
+        /// `tree_model` is the model of `si`: its counts are credited with each lane's
+        /// propagation steps and goal distances as their iterations join the tree, so a
+        /// termination condition that counts steps sees the same count at the same
+        /// iteration whatever the timing.
+        ParallelKPIECE(const ompl::control::SpaceInformationPtr &si, std::uint_fast32_t seed,
+                       ModelHandlePtr tree_model, std::vector<Lane> lanes);
+
+        ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
+        /// Also drops the lanes' control samplers: the next solve() draws new ones, as
+        /// KPIECE1 draws its own sampler anew.
+        void clear() override;
+
+    private:
+        struct Extension;
+
+        /// Chooses the motion to extend (KPIECE1's selection); on the tree's turn.
+        void select(Extension &e, CloseSamples &close_samples);
+        /// Samples a control, propagates it, projects the states reached and measures the
+        /// goal distance of each motion's end; on lane `lane`, no tree needed.
+        void extend(Extension &e, std::size_t lane);
+        /// Adds an extended iteration to the tree; true if it reached the goal. On the
+        /// tree's turn.
+        bool add(Extension &e, CloseSamples &close_samples);
+
+        ModelHandlePtr tree_model_;
+        std::vector<Lane> lanes_;
+        std::vector<ompl::control::ControlSamplerPtr> samplers_;  // one per lane
+        /// Whether a selection updates its cell's importance at once (more than one lane):
+        /// the selections in flight would otherwise all take the grid's top cell.
+        bool update_on_select_ = false;
+
+        // The best so far within one solve(): exact, else closest.
+        Motion *solution_ = nullptr;
+        Motion *approximate_ = nullptr;
+        double approximate_distance_ = 0.0;
+    };
+}  // namespace pushplan::detail

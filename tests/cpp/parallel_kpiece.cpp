@@ -1,0 +1,106 @@
+// ParallelKPIECE against OMPL's KPIECE1 (run by tests/cpp_api.rs, built with the
+// library's internal headers). With one propagation lane it must be KPIECE1 exactly:
+// the same random numbers drawn in the same order, the same tree and the same path,
+// bit for bit; OMPL's own implementation is the oracle. Each search runs until a budget
+// of propagation steps, so the comparison does not depend on timing.
+#include "pushplan/cpp/parallel_kpiece.h"
+#include "pushplan/cpp/problem.h"
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/util/Console.h>
+
+#include "expect.h"
+
+#include <cstdint>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+    namespace ob = ompl::base;
+    namespace pd = pushplan::detail;
+    using pushplan::PlannerKind;
+    using test::expect;
+    using test::failures;
+
+    struct Search
+    {
+        bool exact = false;
+        pd::ModelHandle::FlatPath path;
+        unsigned tree_states = 0;
+        std::uint64_t steps = 0;
+    };
+
+    pd::ModelHandlePtr load(const std::string &scene)
+    {
+        return std::make_shared<pd::ModelHandle>(pushplan::bridge::Model::load(scene));
+    }
+
+    /// One search of `kind` with `lanes` lanes (0: OMPL's KPIECE1), until it
+    /// solves or has taken `budget` propagation steps.
+    Search search(const std::string &scene, PlannerKind kind, std::uint64_t seed, unsigned lanes,
+                  std::uint64_t budget)
+    {
+        const pd::ModelHandlePtr model = load(scene);
+        const unsigned k = model->info().planner.k;
+        std::vector<pd::Lane> extension_lanes;
+        for (unsigned i = 0; i < lanes; ++i)
+            extension_lanes.push_back(pd::makeLane(load(scene), seed, i, k));
+        const pd::Problem problem = pd::makeProblem(model, seed, k);
+        const ob::PlannerPtr planner = pd::makePlanner(kind, problem, seed, 0.05, false, 0, extension_lanes);
+        problem.setup->setPlanner(planner);
+        problem.setup->setup();
+        planner->solve(ob::PlannerTerminationCondition([&] { return model->propagationSteps() >= budget; }));
+
+        Search s;
+        s.exact = problem.setup->haveExactSolutionPath();
+        if (problem.setup->getProblemDefinition()->hasSolution())
+            s.path = model->readPath(problem.setup->getSolutionPath());
+        ob::PlannerData data(problem.setup->getSpaceInformation());
+        planner->getPlannerData(data);
+        s.tree_states = data.numVertices();
+        s.steps = model->propagationSteps();
+        return s;
+    }
+
+    bool samePath(const Search &a, const Search &b)
+    {
+        return a.path.controls == b.path.controls && a.path.steps == b.path.steps && a.path.states == b.path.states;
+    }
+}  // namespace
+
+int main()
+{
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    const std::string scene = "scenes/herb_fig1_clutter.yaml";
+
+    // Push KPIECE solves this scene from seed 2 within a few thousand steps.
+    const Search ompl_push = search(scene, PlannerKind::PushKpiece, 2, 0, 400000);
+    const Search one_lane_push = search(scene, PlannerKind::PushKpiece, 2, 1, 400000);
+    std::cout << "  Push KPIECE: " << ompl_push.steps << " steps, " << ompl_push.tree_states << " states (OMPL), "
+              << one_lane_push.steps << " steps, " << one_lane_push.tree_states << " states (one lane)\n";
+    expect(ompl_push.exact && one_lane_push.exact, "both solve the scene");
+    expect(samePath(ompl_push, one_lane_push), "one lane finds OMPL KPIECE1's path, bit for bit");
+    expect(ompl_push.tree_states == one_lane_push.tree_states && ompl_push.steps == one_lane_push.steps,
+           "with the same tree, after the same steps (the lane's steps counted on the search's model)");
+
+    // KPIECE1 with OMPL's own control sampler, stopped by the budget before it solves:
+    // the same tree and the same closest path.
+    const Search ompl_plain = search(scene, PlannerKind::Kpiece, 5, 0, 30000);
+    const Search one_lane_plain = search(scene, PlannerKind::Kpiece, 5, 1, 30000);
+    std::cout << "  KPIECE1: " << ompl_plain.tree_states << " states (OMPL), " << one_lane_plain.tree_states
+              << " states (one lane)\n";
+    expect(ompl_plain.tree_states > 100 && ompl_plain.tree_states == one_lane_plain.tree_states &&
+               samePath(ompl_plain, one_lane_plain),
+           "unsolved within a budget: the same tree and the same closest path");
+
+    // Two lanes: another search than KPIECE1's (each selection sees the tree without the
+    // extension still in flight), the same one every time.
+    const Search two = search(scene, PlannerKind::PushKpiece, 2, 2, 400000);
+    const Search two_again = search(scene, PlannerKind::PushKpiece, 2, 2, 400000);
+    expect(two.exact && samePath(two, two_again) && two.tree_states == two_again.tree_states &&
+               two.steps == two_again.steps,
+           "two lanes solve it the same way twice");
+    return failures == 0 ? 0 : 1;
+}
