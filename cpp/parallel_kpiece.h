@@ -14,6 +14,7 @@
 #pragma once
 
 #include "model_handle.h"
+#include "tree_size.h"
 
 #include <ompl/base/Goal.h>
 #include <ompl/control/planners/kpiece/KPIECE1.h>
@@ -35,7 +36,7 @@ namespace pushplan::detail
         std::uint64_t seed = 0;
     };
 
-    class ParallelKPIECE : public ompl::control::KPIECE1
+    class ParallelKPIECE : public ompl::control::KPIECE1, public TreeSize
     {
     public:
         /// `tree_model` is the model of `si`: its counts are credited with each lane's
@@ -49,6 +50,7 @@ namespace pushplan::detail
         /// Also drops the lanes' control samplers: the next solve() draws new ones, as
         /// KPIECE1 draws its own sampler anew.
         void clear() override;
+        std::size_t treeSize() const override { return tree_.size; }
 
     private:
         struct Extension;

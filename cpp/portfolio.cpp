@@ -202,10 +202,10 @@ namespace pushplan::detail
         std::size_t states = 0;
         for (const Search &s : searches_)
         {
-            const auto *rrt = dynamic_cast<const SeededRRT *>(&innerPlanner(s.planner));
-            if (rrt == nullptr)
+            const auto *tree = dynamic_cast<const TreeSize *>(&innerPlanner(s.planner));
+            if (tree == nullptr)
                 return std::nullopt;
-            states += rrt->treeSize();
+            states += tree->treeSize();
         }
         return states;
     }

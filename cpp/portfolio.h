@@ -61,7 +61,7 @@ namespace pushplan::detail
         double propagationSeconds() const;
         /// The smallest goal distance any search has reached.
         double closestGoalDistance() const;
-        /// States in the searches' trees, for the planners that report it cheaply (RRT).
+        /// States in the searches' trees, for the planners that report it cheaply (RRT, KPIECE).
         std::optional<std::size_t> treeStates() const;
         /// Attempts started over for lack of a solution (Restarting), all searches.
         std::uint64_t restarts() const;

@@ -124,7 +124,7 @@ namespace pushplan::detail
                                  std::vector<Lane> lanes)
     {
         if (lanes.empty())
-            return std::make_shared<Seeded<oc::KPIECE1>>(si, seed);
+            return std::make_shared<SeededKPIECE>(si, seed);
         return std::make_shared<ParallelKPIECE>(si, seed, model, std::move(lanes));
     }
 

@@ -8,6 +8,7 @@
 
 #include <ompl/base/ProjectionEvaluator.h>
 #include <ompl/control/SimpleSetup.h>
+#include <ompl/control/planners/kpiece/KPIECE1.h>
 #include <ompl/control/planners/rrt/RRT.h>
 
 #include <cstdint>
@@ -34,12 +35,20 @@ namespace pushplan::detail
 
     /// Seeded oc::RRT (its random numbers: the goal bias) whose nearest neighbours are the
     /// model's (ModelNearestNeighbors).
-    class SeededRRT : public Seeded<ompl::control::RRT>
+    class SeededRRT : public Seeded<ompl::control::RRT>, public TreeSize
     {
     public:
         SeededRRT(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed,
                   const std::string &name);
-        std::size_t treeSize() const { return nn_ ? nn_->size() : 0; }
+        std::size_t treeSize() const override { return nn_ ? nn_->size() : 0; }
+    };
+
+    /// Seeded oc::KPIECE1 (one lane: OMPL's class itself) that says how big its tree is.
+    class SeededKPIECE : public Seeded<ompl::control::KPIECE1>, public TreeSize
+    {
+    public:
+        using Seeded<ompl::control::KPIECE1>::Seeded;
+        std::size_t treeSize() const override { return tree_.size; }
     };
 
     /// Projection for OMPL's projection-based planners (KPIECE1, EST, PDST): the

@@ -81,7 +81,7 @@ namespace pushplan
         std::uint64_t propagation_steps = 0;    ///< in all searches
         double steps_per_second = 0.0;          ///< since the last report
         double propagating = 0.0;               ///< share of that time spent in the physics
-        std::optional<std::size_t> tree_states; ///< in all trees (RRT-based planners)
+        std::optional<std::size_t> tree_states; ///< in all trees (RRT- and KPIECE-based planners)
         unsigned searches = 1;                  ///< running in parallel
         /// The smallest distance to the goal of a state reached so far (m for a goal disc,
         /// rad for a goal configuration; zero or negative: inside).

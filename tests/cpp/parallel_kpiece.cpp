@@ -29,6 +29,8 @@ namespace
         bool exact = false;
         pd::ModelHandle::FlatPath path;
         unsigned tree_states = 0;
+        /// The planner's own count (TreeSize, for progress reports); -1 if it has none.
+        long reported_states = -1;
         std::uint64_t steps = 0;
     };
 
@@ -60,6 +62,8 @@ namespace
         ob::PlannerData data(problem.setup->getSpaceInformation());
         planner->getPlannerData(data);
         s.tree_states = data.numVertices();
+        if (const auto *tree = dynamic_cast<const pd::TreeSize *>(planner.get()))
+            s.reported_states = static_cast<long>(tree->treeSize());
         s.steps = model->propagationSteps();
         return s;
     }
@@ -102,5 +106,11 @@ int main()
     expect(two.exact && samePath(two, two_again) && two.tree_states == two_again.tree_states &&
                two.steps == two_again.steps,
            "two lanes solve it the same way twice");
+
+    // The tree size progress reports show, against OMPL's planner data.
+    bool counted = true;
+    for (const Search *s : {&ompl_push, &one_lane_push, &ompl_plain, &one_lane_plain, &two})
+        counted = counted && s->reported_states == static_cast<long>(s->tree_states);
+    expect(counted, "each reports its tree's size as OMPL's planner data counts it");
     return failures == 0 ? 0 : 1;
 }
