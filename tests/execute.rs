@@ -1,5 +1,5 @@
-//! The 3D execution engine's setup, checked against closed forms: a box pushed flat-on
-//! below `b / mu_g` slides upright and tips above it; a sliding object stops after
+//! The 3D execution engine's setup, checked against closed forms: a box or a glass pushed
+//! flat-on below `b / mu_g` slides upright and tips above it; a sliding object stops after
 //! `v^2 / (2 mu_g g)`.
 
 mod common;
@@ -60,6 +60,57 @@ fn a_box_pushed_flat_on_below_the_tipping_height_slides_and_above_it_tips() {
     // Above h_max, on a slipperier table (h_max = 0.167 m) it slides.
     let (tilt, _) = push(&scene(1.15 * h_max, 0.3));
     assert!(tilt < 0.02, "slides on a slipperier table: tilt {tilt}");
+}
+
+#[test]
+fn a_glass_pushed_flat_on_slides_below_r_over_mu_g_and_tips_above() {
+    // R / mu_g = 0.035 / 0.4 = 0.0875 m. The engine lets contacts sink up to 1 mm, so a
+    // glass pushed at 0.9 of it leans on its loaded rim by a few hundredths of a radian
+    // (the lean `physics.tipping_margin` reserves against), and slides.
+    let h_max = 0.035 / 0.4;
+    let glass = |height: f64| {
+        let shape = "{type: cylinder, radius: 0.035, height: 0.15}";
+        common::thin_hand_scene("glass", shape, 0.4555, height, 0.4, "")
+    };
+    let (tilt, x) = push(&glass(0.9 * h_max));
+    assert!(tilt < 0.1, "slides upright below h_max: tilt {tilt}");
+    assert!(
+        (x - (0.4555 + 0.175 - 0.0005)).abs() < 0.01,
+        "pushed along: x = {x}"
+    );
+    let (tilt, _) = push(&glass(1.1 * h_max));
+    assert!(tilt > TIPPED_TILT, "tips above h_max: tilt {tilt}");
+}
+
+#[test]
+fn a_box_pushed_over_the_table_edge_has_fallen_off_and_a_tipped_one_has_not() {
+    // The thin hand's push, on a table that ends 4 cm beyond the box's far face.
+    let yaml = "robot:
+  type: planar_hand
+  shape: {type: box, size: [0.04, 0.12, 0.01]}
+  start: [0.4, 0.0, 0.0]
+  height: 0.05
+table: {height: 0.76, x: [0.27, 0.56], y: [-0.6, 0.6]}
+objects:
+  - {name: box, shape: {type: box, size: [0.1, 0.1, 0.3]}, pose: [0.4705, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}
+goal: {object: box, center: [0.4, 0.3], radius: 0.1}
+";
+    let scene = Scene::from_yaml(yaml, Path::new("scenes/short-table-test.yaml")).unwrap();
+    let hand = |x: f64| DVector::from_vec(vec![x, 0.0, 0.0]);
+    let mut poses = Vec::new();
+    scene.robot.chain.forward_kinematics(&hand(0.4), &mut poses);
+    let mut world = World::new(&scene, &scene.start.objects, &poses);
+    assert!(!world.object_fell_off(0), "it starts on the table");
+    // 0.2 m in 2 s, 20 ms apart.
+    let path: Vec<DVector<f64>> = (0..=100).map(|k| hand(0.4 + 0.002 * k as f64)).collect();
+    world.follow(&scene.robot.chain, &path, 0.02);
+    assert!(world.object_fell_off(0), "pushed over the edge: {}", world.object_pose(0));
+    // Tipped over on a long table, it lies on it.
+    let tall = scene_with(1.25 * 0.125, 0.4, "{type: box, size: [0.1, 0.1, 0.3]}");
+    scene.robot.chain.forward_kinematics(&hand(0.4), &mut poses);
+    let mut world = World::new(&tall, &tall.start.objects, &poses);
+    world.follow(&tall.robot.chain, &path, 0.02);
+    assert!(world.object_tilt(0) > TIPPED_TILT && !world.object_fell_off(0));
 }
 
 #[test]

@@ -51,12 +51,13 @@ pub fn execute(
 fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {
     let n = report.trials.len();
     println!(
-        "{}: executed {n} times in 3D (rapier) at {}x speed: {} reach the goal ({:.0} %); {} tip an object; {} bring two objects into contact",
+        "{}: executed {n} times in 3D (rapier) at {}x speed: {} reach the goal ({:.0} %); {} tip an object; {} push one off the table; {} bring two objects into contact",
         path.display(),
         report.speed,
         report.trials.iter().filter(|t| t.reached).count(),
         100.0 * report.success_rate,
         report.tipped_trials,
+        report.fell_off_trials,
         report.object_contact_trials,
     );
     for (i, t) in report.trials.iter().enumerate() {
@@ -85,8 +86,15 @@ fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {
                 1e3 * error
             ),
         };
+        let mut upsets = String::new();
+        if !t.tipped.is_empty() {
+            upsets += &format!("; tipped: {}", t.tipped.join(", "));
+        }
+        if !t.fell_off.is_empty() {
+            upsets += &format!("; off the table: {}", t.fell_off.join(", "));
+        }
         println!(
-            "  trial {i}{}: {}, goal object {:.0} mm {} the disc's edge; final errors: {}; first divergence: {divergence}",
+            "  trial {i}{}: {}, goal object {:.0} mm {} the disc's edge; final errors: {}{upsets}; first divergence: {divergence}",
             if i == 0 && n > 1 { " (nominal)" } else { "" },
             if t.reached { "reached" } else { "missed" },
             1e3 * t.goal_distance.abs(),

@@ -52,6 +52,9 @@ impl Default for ExecuteSettings {
 pub const TIPPED_TILT: f64 = 0.15;
 /// Distance from the predicted position that counts as drift (m).
 pub const DRIFT: f64 = 0.02;
+/// How far below the table top an object's base must end to have fallen off it (m).
+pub const FALLEN_DROP: f64 = 0.05;
+
 /// Time the objects get to come to rest after the trajectory ends (s).
 pub const SETTLE: f64 = 1.0;
 
@@ -84,8 +87,11 @@ pub struct ExecutionTrial {
     /// Distance of the goal object's final centre from the disc's edge (m; negative inside).
     pub goal_distance: f64,
     /// Objects that tilted beyond [`TIPPED_TILT`] at some time (tipped over, or rocked
-    /// on an edge and fell back).
+    /// on an edge and fell back) and ended on the table.
     pub tipped: Vec<String>,
+    /// Objects pushed off the table: their base ended more than [`FALLEN_DROP`] below
+    /// its top (their tilt on the way down is the fall, not counted in `tipped`).
+    pub fell_off: Vec<String>,
     /// Two objects touched at some time.
     pub objects_touched: bool,
     /// Each object's final position error against the plan's prediction (m), scene order.
@@ -107,6 +113,8 @@ pub struct ExecutionReport {
     pub success_rate: f64,
     /// Trials in which some object tipped.
     pub tipped_trials: usize,
+    /// Trials in which some object was pushed off the table.
+    pub fell_off_trials: usize,
     /// Trials in which two objects touched.
     pub object_contact_trials: usize,
 }
@@ -135,6 +143,7 @@ pub fn execute(
     Ok(ExecutionReport {
         success_rate: trials.iter().filter(|t| t.reached).count() as f64 / n,
         tipped_trials: trials.iter().filter(|t| !t.tipped.is_empty()).count(),
+        fell_off_trials: trials.iter().filter(|t| !t.fell_off.is_empty()).count(),
         object_contact_trials: trials.iter().filter(|t| t.objects_touched).count(),
         speed: settings.speed,
         trials,
@@ -293,10 +302,15 @@ fn run(
         .goal
         .object()
         .is_none_or(|object| world.object_tilt(object) < TIPPED_TILT);
+    let fell_off: Vec<bool> = (0..objects).map(|i| world.object_fell_off(i)).collect();
     ExecutionTrial {
         reached: goal_distance <= 0.0 && upright,
         goal_distance,
-        tipped: (0..objects).filter(|&i| tipped[i]).map(names).collect(),
+        tipped: (0..objects)
+            .filter(|&i| tipped[i] && !fell_off[i])
+            .map(names)
+            .collect(),
+        fell_off: (0..objects).filter(|&i| fell_off[i]).map(names).collect(),
         objects_touched,
         final_errors,
         final_tilts: (0..objects).map(|i| world.object_tilt(i)).collect(),

@@ -7,6 +7,7 @@
 //! prism stands on small feet spread over its footprint ([`support_points`]).
 
 use super::fresh_contacts::FreshContacts;
+use super::FALLEN_DROP;
 use crate::math::Pose2;
 use crate::physics::Footprint;
 use crate::robot::KinematicChain;
@@ -185,6 +186,8 @@ pub struct World {
     links: Vec<(usize, RigidBodyHandle)>,
     /// Object bodies and their colliders, in scene order.
     objects: Vec<(RigidBodyHandle, ColliderHandle)>,
+    /// Height of the table top (m, world z).
+    table_top: f64,
 }
 
 impl World {
@@ -274,6 +277,7 @@ impl World {
             },
             links,
             objects: object_bodies,
+            table_top: scene.table.top,
         }
     }
 
@@ -320,6 +324,12 @@ impl World {
     /// Object `i`'s body pose `X_WO`.
     pub fn object_pose(&self, i: usize) -> Isometry3<f64> {
         *self.bodies[self.objects[i].0].position()
+    }
+
+    /// Object `i` was pushed off the table: its base is more than [`FALLEN_DROP`] below
+    /// the table top.
+    pub fn object_fell_off(&self, i: usize) -> bool {
+        self.object_pose(i).translation.z < self.table_top - FALLEN_DROP
     }
 
     /// Object `i`'s planar pose (x, y and yaw of its body frame).
