@@ -237,7 +237,7 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
     // The reserves it was planned with are in the file.
     assert_eq!(plan["margins"]["goal"], 0.03);
     assert_eq!(plan["margins"]["object_clearance"], 0.01);
-    assert_eq!(plan["margins"]["tipping"], 0.2);
+    assert_eq!(plan["margins"]["tipping"], 0.3);
     let robustness = &plan["robustness"];
     assert_eq!(robustness["trials"], 10);
     assert!(

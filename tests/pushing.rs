@@ -71,15 +71,16 @@ fn the_hand_pushes_a_box_along_the_analytic_steady_push() {
 #[test]
 fn a_forearm_sweep_moves_two_objects_in_one_propagation() {
     // The arm reaches out; two tall cylinders stand beside the sloping forearm. They
-    // stand on a slippery patch (mu_g 0.1): with 0.4 the forearm's push, 0.2 m up, would
-    // tip them (R / mu_g = 0.0875 m).
+    // stand on a slippery patch (mu_g 0.08): with 0.4 the forearm's push, 0.2-0.3 m up,
+    // would tip them (R / mu_g = 0.0875 m; 0.4375 m here, 0.306 m with the default
+    // tipping margin).
     let tall = |name: &str, x: f64, y: f64| {
         object(
             name,
             "{type: cylinder, radius: 0.035, height: 0.35}",
             [x, y, 0.0],
         )
-        .replace("mu_g: 0.4", "mu_g: 0.1")
+        .replace("mu_g: 0.4", "mu_g: 0.08")
     };
     let objects = parked_goal() + &tall("a", 0.60, 0.07) + &tall("b", 0.69, 0.06);
     let scene = herb_scene(HAND_FAR, &objects, "").unwrap();

@@ -685,7 +685,7 @@ fn render_draws_objects_coasting_after_the_action() {
 
 /// Tipping in the semi-dynamic model, against the closed form of a level push that slides
 /// the object: it tips when its lowest contact is higher than b (1 - margin) / mu_g. A
-/// 6 cm wide, 30 cm tall box (b = 3 cm, mu_g 0.5, margin 0.2: 4.8 cm) pushed by the
+/// 6 cm wide, 30 cm tall box (b = 3 cm, mu_g 0.5, margin 0.3: 4.2 cm) pushed by the
 /// planar hand (8 cm tall) whose bottom is 1 cm or 4 cm up slides; with its bottom 5.8 cm
 /// or 16 cm up, it tips.
 #[test]

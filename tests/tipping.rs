@@ -181,7 +181,7 @@ fn the_hand_slides_a_box_below_the_tipping_height_and_tips_it_above() {
     // Slipperier tables let a push go higher: mu_g 0.3 gives h_max = 0.167 m.
     let slippery = hand_scene(box_shape, 0.05, 1.03 * h_max, 0.3, 0.0);
     assert_eq!(push_with_hand(&slippery), None);
-    // The default margin (0.2) keeps the centre of pressure within 80 % of the edge.
+    // A margin of 0.2 keeps the centre of pressure within 80 % of the edge.
     let margin = hand_scene(box_shape, 0.05, 0.85 * h_max, MU_G, 0.2);
     assert!(matches!(
         push_with_hand(&margin),
@@ -193,7 +193,7 @@ fn the_hand_slides_a_box_below_the_tipping_height_and_tips_it_above() {
 fn shipped_tall_objects_tip_where_the_closed_form_says() {
     // Every object kind of the benchmark scenes, pushed flat-on by the hand just below
     // and just above b / mu_g (b: the half-width or radius), with the default margin.
-    let margin = 0.2;
+    let margin = pushplan::scene::PhysicsParams::default().tipping_margin;
     let mut kinds: Vec<String> = Vec::new();
     for entry in std::fs::read_dir("scenes/benchmark").unwrap() {
         let scene = Scene::load(entry.unwrap().path()).unwrap();
@@ -287,7 +287,8 @@ fn a_link_closing_in_where_a_sliding_push_would_tip_stops_before_the_touch() {
     // its centre. Above the sliding tipping height it must keep `arm_clearance` away,
     // below it the push goes on; with no clearance the touch itself tips the box.
     let box_shape = "{type: box, size: [0.1, 0.1, 0.3]}";
-    let h_max = 0.8 * 0.05 / MU_G + 0.005;
+    let margin = pushplan::scene::PhysicsParams::default().tipping_margin;
+    let h_max = (1.0 - margin) * 0.05 / MU_G + 0.005;
     let scene = |height: f64, clearance: f64| {
         let physics = format!("physics: {{arm_clearance: {clearance}}}");
         common::thin_hand_scene("tall", box_shape, 0.42 + 0.06, height, MU_G, &physics)
@@ -315,7 +316,7 @@ fn a_link_closing_in_where_a_sliding_push_would_tip_stops_before_the_touch() {
 fn a_link_passing_over_a_tall_object_keeps_the_clearance_a_low_one_needs_none() {
     // The 1 cm hand at 0.12 m (its underside at 0.115 m) starts over a box 0.11 m tall
     // and moves on 5 mm over its top. A narrow box (half-width 2 cm) tips when pushed that high by a sliding push
-    // (above 0.8 * 0.02 / 0.4 = 0.04 m): were it 5 mm further up or the hand lower, the
+    // (above 0.7 * 0.02 / 0.4 = 0.035 m, default margin): were it 5 mm further up or the hand lower, the
     // hand would knock it over. A wide one (half-width 10 cm) would slide.
     let scene = |half_width: f64, clearance: f64| {
         let shape = format!(

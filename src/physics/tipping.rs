@@ -90,8 +90,8 @@ pub fn support_balance<'a>(
 
 impl SupportBalance {
     /// Does the object stay flat? `margin` in [0, 1) shrinks the footprint about its
-    /// centroid by that fraction first (0.2: the centre of pressure must stay within
-    /// 80 % of the way from the centroid to the edge), a reserve for unknown friction.
+    /// centroid by that fraction first (0.3: the centre of pressure must stay within
+    /// 70 % of the way from the centroid to the edge), a reserve for unknown friction.
     pub fn stays_flat(&self, footprint: &Footprint, margin: f64) -> bool {
         let centroid = footprint.centroid();
         self.normal > 0.0 && footprint.contains(centroid + (self.p_OP - centroid) / (1.0 - margin))
