@@ -104,7 +104,11 @@ goal: {object: box, center: [0.4, 0.3], radius: 0.1}
     // 0.2 m in 2 s, 20 ms apart.
     let path: Vec<DVector<f64>> = (0..=100).map(|k| hand(0.4 + 0.002 * k as f64)).collect();
     world.follow(&scene.robot.chain, &path, 0.02);
-    assert!(world.object_fell_off(0), "pushed over the edge: {}", world.object_pose(0));
+    assert!(
+        world.object_fell_off(0),
+        "pushed over the edge: {}",
+        world.object_pose(0)
+    );
     // Tipped over on a long table, it lies on it.
     let tall = scene_with(1.25 * 0.125, 0.4, "{type: box, size: [0.1, 0.1, 0.3]}");
     scene.robot.chain.forward_kinematics(&hand(0.4), &mut poses);
