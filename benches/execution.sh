@@ -3,7 +3,8 @@
 # benchmark scene, plan once (seed 1), play the plan 10 times in the 3D engine and
 # re-simulate it 10 times with parameter noise. Extra `plan` options go in PLAN_ARGS
 # (e.g. PLAN_ARGS="--robust 20"); TIME sets the search time (default 10 s); SCENES the
-# folder of scene_*.yaml files (default scenes/benchmark).
+# folder of scene_*.yaml files (default scenes/benchmark); TRIALS the 3D trials and
+# perturbed re-simulations per plan (default 10).
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -15,17 +16,18 @@ bin=${2:-target/release/pushplan}
 mkdir -p "$out"
 : > "$out/summary.txt"
 scenes=${SCENES:-scenes/benchmark}
+trials=${TRIALS:-10}
 for scene in "$scenes"/scene_*.yaml; do
   n=$(basename "$scene" .yaml)
   # shellcheck disable=SC2086
   "$bin" plan "$scene" --seed 1 --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
   if head -1 "$out/$n.plan.txt" | grep -q '^solved'; then
-    "$bin" execute "$out/$n.json" --trials 10 --json "$out/$n.exec.json" > "$out/$n.exec.txt" 2>&1
-    "$bin" check "$out/$n.json" --noise 10 > "$out/$n.check.txt" 2>&1
+    "$bin" execute "$out/$n.json" --trials "$trials" --json "$out/$n.exec.json" > "$out/$n.exec.txt" 2>&1
+    "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1
     echo "$n: $(head -1 "$out/$n.exec.txt" | sed 's/.*speed: //') | $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
   else
     echo "$n: not solved" >> "$out/summary.txt"
   fi
 done
 reached=$(cat "$out"/*.exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
-echo "trials reaching the goal: $reached of $(( $(ls "$scenes"/scene_*.yaml | wc -l) * 10 ))" | tee -a "$out/summary.txt"
+echo "trials reaching the goal: $reached of $(( $(ls "$scenes"/scene_*.yaml | wc -l) * trials ))" | tee -a "$out/summary.txt"

@@ -62,6 +62,10 @@ pub struct PlanFile {
     /// before the semi-dynamic model).
     #[serde(default)]
     pub physics_model: crate::scene::file::PhysicsModel,
+    /// Whether pushed objects pushed other objects along (the scene's
+    /// `physics.object_pushing`; false in files from before it was recorded).
+    #[serde(default)]
+    pub object_pushing: bool,
     /// The reserves the plan was made with (absent in files from before they existed).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub margins: Option<Margins>,
@@ -448,6 +452,7 @@ impl PlanFile {
             settings: settings.clone(),
             step: scene.planner.step,
             physics_model: scene.physics.model,
+            object_pushing: scene.physics.object_pushing,
             margins: Some(Margins {
                 goal: match scene.goal {
                     crate::scene::Goal::ObjectInDisc { margin, .. } => margin,

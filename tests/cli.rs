@@ -61,6 +61,19 @@ fn plan_writes_a_plan_that_check_confirms_and_the_same_seed_gives_the_same_bytes
     assert_eq!(code, 1, "{stdout}");
     assert!(stdout.contains("plan FAILED"), "{stdout}");
 
+    // The file records whether objects pushed objects; a record the scene does not bear
+    // out is refused.
+    let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(value["object_pushing"], serde_json::json!(false), "{text}");
+    value["object_pushing"] = serde_json::json!(true);
+    std::fs::write(&tampered, serde_json::to_string_pretty(&value).unwrap()).unwrap();
+    let (code, stdout, _) = pushplan(&["check", tampered.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stdout}");
+    assert!(
+        stdout.contains("object_pushing: differs from the re-simulation"),
+        "{stdout}"
+    );
+
     // A field the format does not have, at the top or inside: refused, named.
     for (field, pointer) in [("colour", ""), ("speed", "/controls/0")] {
         let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();

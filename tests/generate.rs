@@ -28,6 +28,10 @@ fn generated_scenes_follow_the_dataset_design() {
         // Loading validates everything, the start state included.
         let scene = Scene::load(file).unwrap();
         counts.push(scene.objects.len());
+        assert!(
+            !scene.physics.object_pushing,
+            "the paper's rule: objects keep apart"
+        );
         let Goal::ObjectInDisc {
             object,
             center,
@@ -151,6 +155,10 @@ fn dense_scenes_are_dense_and_take_their_layouts_in_turn() {
     for (i, file) in files.iter().enumerate() {
         let scene = Scene::load(file).unwrap(); // valid, start state included
         counts.push(scene.objects.len());
+        assert!(
+            scene.physics.object_pushing,
+            "dense clutter: objects push objects"
+        );
         let goal_start = scene.start.objects[0].translation();
         let center = nalgebra::Vector2::new(GOAL_CENTER[0], GOAL_CENTER[1]);
         assert!((goal_start - center).norm() > GOAL_RADIUS + 0.15);
