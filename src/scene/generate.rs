@@ -275,8 +275,8 @@ fn dense_layout(
 
 /// Dense clutter is modelled with objects pushing objects: a pushed object that meets a
 /// neighbour pushes it along, as it would on a real table (executed in 3D, such plans
-/// reach the goal as often as plans that keep objects apart; `BENCHMARKS.md`). Appended
-/// after placement, so a seed's layouts do not depend on it.
+/// reach the goal at least as often as plans that keep objects apart; `BENCHMARKS.md`).
+/// Appended after placement, so a seed's layouts do not depend on it.
 const DENSE_PHYSICS: &str = "physics: {object_pushing: true}\n";
 
 impl Placement {
