@@ -406,11 +406,15 @@ fn every_planner_kind_is_chosen_by_its_name() {
         "1",
         "--time",
         "20",
+        "--k",
+        "3",
         "--quiet",
         "--out",
         out.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{stdout}{stderr}");
+    // KPIECE samples controls without a target: an option it ignores is said to be.
+    assert!(stderr.contains("--k has no effect on kpiece"), "{stderr}");
     let plan: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     assert_eq!(plan["planner"], "kpiece");

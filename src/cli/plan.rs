@@ -133,6 +133,12 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             options.k
         ));
     }
+    if run.k.is_some() && !planner.takes_best_of_k() {
+        eprintln!(
+            "note: --k has no effect on {}: only pcrrt and static choose each control as the best of k",
+            planner.name()
+        );
+    }
     if run.particles > 0 && (run.robust == 0 || planner == PlannerKind::StaticRrt) {
         return Err(format!(
             "--particles {} needs --robust, and a planner that pushes (not {})",

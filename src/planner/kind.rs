@@ -99,6 +99,12 @@ impl PlannerKind {
         self == PlannerKind::Sst
     }
 
+    /// Does it choose each control as the best of `k` sampled toward a target (OMPL's
+    /// directed control sampler, which only RRT asks for)? The others ignore `k`.
+    pub fn takes_best_of_k(self) -> bool {
+        matches!(self, PlannerKind::PcRrt | PlannerKind::StaticRrt)
+    }
+
     /// Does it treat every object but the goal object as a static obstacle (Static RRT)?
     pub fn pins_clutter(self) -> bool {
         self == PlannerKind::StaticRrt
