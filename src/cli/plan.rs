@@ -134,9 +134,15 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         ));
     }
     if run.k.is_some() && !planner.takes_best_of_k() {
+        let takers: Vec<&str> = PlannerKind::ALL
+            .into_iter()
+            .filter(|kind| kind.takes_best_of_k())
+            .map(PlannerKind::name)
+            .collect();
         eprintln!(
-            "note: --k has no effect on {}: only pcrrt and static choose each control as the best of k",
-            planner.name()
+            "note: --k has no effect on {}: only {} choose each control as the best of k",
+            planner.name(),
+            takers.join(" and ")
         );
     }
     if run.particles > 0 && (run.robust == 0 || planner == PlannerKind::StaticRrt) {
