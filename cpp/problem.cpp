@@ -119,13 +119,22 @@ namespace pushplan::detail
         return Lane{si, std::move(model), problem.setup->getProblemDefinition()->getGoal(), seed};
     }
 
+    /// `planner` after setGoalBias: every planner kind takes the scene's (or the call's) goal
+    /// bias, not only the RRTs (OMPL's own default, 0.05, is also the scene's default).
+    template <class Planner>
+    static ob::PlannerPtr withGoalBias(std::shared_ptr<Planner> planner, double goal_bias)
+    {
+        planner->setGoalBias(goal_bias);
+        return planner;
+    }
+
     /// OMPL's KPIECE1, or with lanes the same search with its propagations on their threads.
     static ob::PlannerPtr kpiece(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed, const ModelHandlePtr &model,
-                                 std::vector<Lane> lanes)
+                                 double goal_bias, std::vector<Lane> lanes)
     {
         if (lanes.empty())
-            return std::make_shared<SeededKPIECE>(si, seed);
-        return std::make_shared<ParallelKPIECE>(si, seed, model, std::move(lanes));
+            return withGoalBias(std::make_shared<SeededKPIECE>(si, seed), goal_bias);
+        return withGoalBias(std::make_shared<ParallelKPIECE>(si, seed, model, std::move(lanes)), goal_bias);
     }
 
     /// The planner of one kind, without restarts.
@@ -160,22 +169,22 @@ namespace pushplan::detail
                 return darrt;
             }
             case PlannerKind::Kpiece:
-                return kpiece(si, planner_seed, problem.model, std::move(lanes));
+                return kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes));
             case PlannerKind::PushKpiece:
             {
                 usePushControls(si, seed, problem.model);
                 for (const Lane &lane : lanes)
                     usePushControls(lane.si, lane.seed, lane.model);
-                ob::PlannerPtr push_kpiece = kpiece(si, planner_seed, problem.model, std::move(lanes));
+                ob::PlannerPtr push_kpiece = kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes));
                 push_kpiece->setName("PushKPIECE");
                 return push_kpiece;
             }
             case PlannerKind::Est:
-                return std::make_shared<Seeded<oc::EST>>(si, planner_seed);
+                return withGoalBias(std::make_shared<Seeded<oc::EST>>(si, planner_seed), goal_bias);
             case PlannerKind::Pdst:
-                return std::make_shared<Seeded<oc::PDST>>(si, planner_seed);
+                return withGoalBias(std::make_shared<Seeded<oc::PDST>>(si, planner_seed), goal_bias);
             case PlannerKind::Sst:
-                return std::make_shared<Seeded<oc::SST>>(si, planner_seed);
+                return withGoalBias(std::make_shared<Seeded<oc::SST>>(si, planner_seed), goal_bias);
         }
         throw Error("unknown planner kind " + std::to_string(static_cast<int>(kind)));
     }

@@ -282,3 +282,62 @@ fn bench_rejects_unknown_planners_and_bad_scenes() {
     assert_eq!(run.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&run.stderr).contains("scenes/none.yaml"));
 }
+
+/// The scene's `planner.goal_bias` reaches every planner, not only the RRTs: OMPL's
+/// benchmark records each planner's parameters, so the database shows what each one ran
+/// with (OMPL's own default, 0.05, would hide a planner that ignored the scene).
+#[test]
+fn every_planner_takes_the_scenes_goal_bias() {
+    let scratch = common::Scratch::new("bench_goal_bias");
+    let text = std::fs::read_to_string("scenes/benchmark/scene_00.yaml").unwrap();
+    let scene = text.replace(
+        "urdf: ../../robots/",
+        &format!("urdf: {}/robots/", env!("CARGO_MANIFEST_DIR")),
+    ) + "planner: {goal_bias: 0.25}\n";
+    let path = scratch.join("goal_bias.yaml");
+    std::fs::write(&path, scene).unwrap();
+    let out = scratch.join("out");
+    let planners = PlannerKind::ALL
+        .iter()
+        .map(|kind| kind.name())
+        .collect::<Vec<_>>()
+        .join(",");
+    let run = pushplan(
+        &[
+            "bench",
+            path.to_str().unwrap(),
+            "--planners",
+            &planners,
+            "--runs",
+            "1",
+            "--time",
+            "0.2",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[],
+    );
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let query = r#"
+import sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+for name, settings in c.execute("select name, settings from plannerConfigs order by name"):
+    bias = [s.strip() for s in settings.split(";") if s.strip().startswith("goal_bias")]
+    print(name, bias[0] if bias else "none")
+"#;
+    let answer = Command::new("python3")
+        .args(["-c", query])
+        .arg(out.join("results.db"))
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&answer.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), planners.split(',').count(), "{text}");
+    for line in lines {
+        assert!(line.ends_with("goal_bias = 0.25"), "{line}");
+    }
+}
