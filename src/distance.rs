@@ -66,15 +66,18 @@ impl DistanceMetric {
 
     /// Distance between two object poses (m).
     pub fn object_distance(&self, a: &Pose2, b: &Pose2) -> f64 {
+        self.squared_object_distance(a, b).sqrt()
+    }
+
+    fn squared_object_distance(&self, a: &Pose2, b: &Pose2) -> f64 {
         let dtheta = wrap_angle(a.theta - b.theta) * self.rotation_length;
-        ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + dtheta * dtheta).sqrt()
+        (a.x - b.x).powi(2) + (a.y - b.y).powi(2) + dtheta * dtheta
     }
 
     pub fn distance(&self, a: &State, b: &State) -> f64 {
-        self.combine(
-            (&a.q - &b.q).norm(),
-            a.objects.iter().copied().zip(b.objects.iter().copied()),
-        )
+        self.combine((&a.q - &b.q).norm(), |i| {
+            self.squared_object_distance(&a.objects[i], &b.objects[i])
+        })
     }
 
     /// The same distance for states in the flat layout `[q, x_1, y_1, theta_1, ...]`
@@ -90,8 +93,9 @@ impl DistanceMetric {
         let pose = |s: &[f64], i: usize| {
             Pose2::new(s[dof + 3 * i], s[dof + 3 * i + 1], s[dof + 3 * i + 2])
         };
-        let objects = (0..self.object_weights.len()).map(|i| (pose(a, i), pose(b, i)));
-        self.combine(robot, objects)
+        self.combine(robot, |i| {
+            self.squared_object_distance(&pose(a, i), &pose(b, i))
+        })
     }
 
     /// A lower bound of [`Self::distance_flat`] from `a` to every flat state whose numbers
@@ -99,25 +103,28 @@ impl DistanceMetric {
     /// the sum (joints, each object's pose) takes its own smallest value over the box.
     /// Nearest-neighbour search skips a box whose bound already exceeds the best distance.
     pub fn lower_bound_flat(&self, a: &[f64], lo: &[f64], hi: &[f64]) -> f64 {
-        let gap = |x: f64, lo: f64, hi: f64| (lo - x).max(x - hi).max(0.0);
+        // Finite numbers (the tree checks them): plain comparisons, no NaN handling.
+        let gap = |x: f64, lo: f64, hi: f64| {
+            if x < lo {
+                lo - x
+            } else if x > hi {
+                x - hi
+            } else {
+                0.0
+            }
+        };
         let dof = a.len() - 3 * self.object_weights.len();
         let robot = (0..dof)
             .map(|j| gap(a[j], lo[j], hi[j]).powi(2))
             .sum::<f64>()
             .sqrt();
-        let objects: f64 = self
-            .object_weights
-            .iter()
-            .enumerate()
-            .map(|(i, w)| {
-                let k = dof + 3 * i;
-                let dx = gap(a[k], lo[k], hi[k]);
-                let dy = gap(a[k + 1], lo[k + 1], hi[k + 1]);
-                let dtheta = arc_gap(a[k + 2], lo[k + 2], hi[k + 2]) * self.rotation_length;
-                w * (dx * dx + dy * dy + dtheta * dtheta).sqrt()
-            })
-            .sum();
-        self.robot_weight * robot + objects
+        self.combine(robot, |i| {
+            let k = dof + 3 * i;
+            let dx = gap(a[k], lo[k], hi[k]);
+            let dy = gap(a[k + 1], lo[k + 1], hi[k + 1]);
+            let dtheta = arc_gap(a[k + 2], lo[k + 2], hi[k + 2]) * self.rotation_length;
+            dx * dx + dy * dy + dtheta * dtheta
+        })
     }
 
     /// How much one unit of each flat number counts in the metric (1/rad for joints, 1/m
@@ -131,13 +138,23 @@ impl DistanceMetric {
         weights
     }
 
-    fn combine(&self, robot: f64, objects: impl Iterator<Item = (Pose2, Pose2)>) -> f64 {
-        let objects: f64 = self
-            .object_weights
-            .iter()
-            .zip(objects)
-            .map(|(w, (pa, pb))| w * self.object_distance(&pa, &pb))
-            .sum();
+    /// `w_q robot + sum_i w_i sqrt(squared(i))`, summed in object order. The roots are
+    /// taken a chunk at a time so that they run side by side (SIMD; a root's latency
+    /// dominated the nearest-neighbour search); each is correctly rounded and the sum keeps
+    /// its order, so the result is bit for bit that of one root after another.
+    fn combine(&self, robot: f64, squared: impl Fn(usize) -> f64) -> f64 {
+        const CHUNK: usize = 4;
+        let mut objects = 0.0;
+        for (c, weights) in self.object_weights.chunks(CHUNK).enumerate() {
+            let mut roots = [0.0; CHUNK];
+            for (j, root) in roots.iter_mut().enumerate().take(weights.len()) {
+                *root = squared(c * CHUNK + j);
+            }
+            let roots = roots.map(f64::sqrt);
+            for (w, root) in weights.iter().zip(roots) {
+                objects += w * root;
+            }
+        }
         self.robot_weight * robot + objects
     }
 }

@@ -27,7 +27,10 @@ const LEAF_SIZE: usize = 32;
 
 #[derive(Clone, Debug)]
 enum Node {
-    Leaf(Vec<u32>),
+    /// States by index, with a copy of their numbers one after another: a query reads a
+    /// leaf front to back instead of 32 states scattered over the tree's array (the
+    /// distances were waiting on cache misses, BENCHMARKS.md).
+    Leaf { ids: Vec<u32>, points: Vec<f64> },
     /// States with `state[axis] < value` go to `children[0]`, the rest to `children[1]`.
     Split {
         axis: usize,
@@ -124,7 +127,11 @@ impl NearestTree {
         self.removed.push(false);
         self.live += 1;
         if self.nodes.is_empty() {
-            self.push_node(Node::Leaf(Vec::new()), state, state);
+            let root = Node::Leaf {
+                ids: Vec::new(),
+                points: Vec::new(),
+            };
+            self.push_node(root, state, state);
         }
         let mut n = 0;
         loop {
@@ -135,8 +142,9 @@ impl NearestTree {
                     value,
                     children,
                 } => n = children[usize::from(state[*axis] >= *value)] as usize,
-                Node::Leaf(ids) => {
+                Node::Leaf { ids, points } => {
                     ids.push(id as u32);
+                    points.extend_from_slice(state);
                     if ids.len() > LEAF_SIZE {
                         self.split(n);
                     }
@@ -234,11 +242,11 @@ impl NearestTree {
             let mut n = node;
             loop {
                 match &self.nodes[n] {
-                    Node::Leaf(ids) => {
-                        for &id in ids {
+                    Node::Leaf { ids, points } => {
+                        for (&id, point) in ids.iter().zip(points.chunks_exact(self.state_len)) {
                             let id = id as usize;
                             if !self.removed[id] {
-                                let d = self.metric.distance_flat(query, self.state(id));
+                                let d = self.metric.distance_flat(query, point);
                                 prune = visit(id, d);
                                 visited += 1;
                             }
@@ -296,32 +304,36 @@ impl NearestTree {
     /// Splits a full leaf along the number whose spread counts most in the metric, at the
     /// median (at the middle of the spread if the median leaves one side empty).
     fn split(&mut self, node: usize) {
-        let Node::Leaf(ids) = &self.nodes[node] else {
+        let Node::Leaf { ids, points } = &self.nodes[node] else {
             return;
         };
-        let ids = ids.clone();
+        let len = self.state_len;
         let (lo, hi) = self.node_box(node);
-        let (axis, spread) = (0..self.state_len)
+        let (axis, spread) = (0..len)
             .map(|a| (a, (hi[a] - lo[a]) * self.weights[a]))
             .fold((0, 0.0), |best, c| if c.1 > best.1 { c } else { best });
         if spread <= 0.0 {
             return; // all its states are one: nothing to split
         }
         let middle = 0.5 * (lo[axis] + hi[axis]);
-        let mut values: Vec<f64> = ids.iter().map(|&i| self.state(i as usize)[axis]).collect();
+        let mut values: Vec<f64> = points.chunks_exact(len).map(|p| p[axis]).collect();
         let half = values.len() / 2;
         let median = *values.select_nth_unstable_by(half, f64::total_cmp).1;
-        let value = if ids.iter().any(|&i| self.state(i as usize)[axis] < median) {
+        let value = if points.chunks_exact(len).any(|p| p[axis] < median) {
             median
         } else {
             middle
         };
-        let (left, right): (Vec<u32>, Vec<u32>) = ids
-            .iter()
-            .partition(|&&i| self.state(i as usize)[axis] < value);
-        let children = [left, right].map(|side| {
-            let (lo, hi) = self.tight_box(&side);
-            self.push_node(Node::Leaf(side), &lo, &hi)
+        // Both sides keep the leaf's order of states.
+        let mut sides = [(); 2].map(|_| (Vec::new(), Vec::new()));
+        for (&id, point) in ids.iter().zip(points.chunks_exact(len)) {
+            let (side_ids, side_points) = &mut sides[usize::from(point[axis] >= value)];
+            side_ids.push(id);
+            side_points.extend_from_slice(point);
+        }
+        let children = sides.map(|(ids, points)| {
+            let (lo, hi) = self.tight_box(&points);
+            self.push_node(Node::Leaf { ids, points }, &lo, &hi)
         });
         self.nodes[node] = Node::Split {
             axis,
@@ -330,11 +342,12 @@ impl NearestTree {
         };
     }
 
-    fn tight_box(&self, ids: &[u32]) -> (Vec<f64>, Vec<f64>) {
+    /// The tight box of states laid one after another.
+    fn tight_box(&self, points: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let mut lo = vec![f64::INFINITY; self.state_len];
         let mut hi = vec![f64::NEG_INFINITY; self.state_len];
-        for &i in ids {
-            for ((l, h), &x) in lo.iter_mut().zip(hi.iter_mut()).zip(self.state(i as usize)) {
+        for point in points.chunks_exact(self.state_len) {
+            for ((l, h), &x) in lo.iter_mut().zip(hi.iter_mut()).zip(point) {
                 *l = l.min(x);
                 *h = h.max(x);
             }
