@@ -3,9 +3,9 @@
 #include <ompl/base/Goal.h>
 #include <ompl/control/PathControl.h>
 
-#include <atomic>
 #include <exception>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 
@@ -35,11 +35,17 @@ namespace pushplan::detail
     };
 
     ParallelKPIECE::ParallelKPIECE(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed,
-                                   ModelHandlePtr tree_model, std::vector<Lane> lanes)
-      : oc::KPIECE1(si), tree_model_(std::move(tree_model)), lanes_(std::move(lanes)), samplers_(lanes_.size())
+                                   ModelHandlePtr tree_model, std::vector<Lane> lanes, unsigned threads)
+      : oc::KPIECE1(si),
+        tree_model_(std::move(tree_model)),
+        lanes_(std::move(lanes)),
+        threads_(threads == 0 ? static_cast<unsigned>(lanes_.size()) : threads),
+        samplers_(lanes_.size())
     {
         if (lanes_.empty())
             throw std::invalid_argument("ParallelKPIECE: at least one lane");
+        if (threads_ > lanes_.size())
+            throw std::invalid_argument("ParallelKPIECE: more threads than lanes");
         rng_.setLocalSeed(seed);
     }
 
@@ -197,52 +203,78 @@ namespace pushplan::detail
             e.cells.resize(most_states);
         }
 
-        // The tree's turn: iteration j joins the tree when `turn` is j, then its lane
-        // selects iteration j + window, then the turn passes to j + 1.
-        std::atomic<std::uint64_t> turn{0};
-        std::atomic<bool> stop{false};
-        std::vector<std::exception_ptr> failures(window);
+        // Lane w holds iteration j = w (mod window) of turn <= j < turn + window: selected,
+        // being extended, or extended and waiting to join. Iteration `turn` joins the
+        // tree next; then its lane selects iteration turn + window and the turn passes on.
+        enum class Phase : unsigned char
+        {
+            Selected,
+            Extending,
+            Extended
+        };
+        std::vector<Phase> phases(window, Phase::Selected);
+        std::mutex work;  // guards phases, turn, joining and stop
+        std::uint64_t turn = 0;
+        bool joining = false;  // a thread has the tree
+        bool stop = false;
+        std::vector<std::exception_ptr> failures(threads_);
         std::size_t selected = 0;
         while (selected < window && !ptc())
             select(extensions[selected++], close_samples);
 
-        const auto lane = [&](std::size_t w) {
+        const auto run = [&](std::size_t thread) {
             try
             {
-                Extension &e = extensions[w];
-                for (std::uint64_t j = w;; j += window)
+                std::unique_lock<std::mutex> lock(work);
+                while (!stop)
                 {
-                    extend(e, w);
-                    while (turn.load(std::memory_order_acquire) != j)
+                    const std::size_t head = turn % window;
+                    if (!joining && phases[head] == Phase::Extended)
                     {
-                        if (stop.load(std::memory_order_acquire))
-                            return;
-                        std::this_thread::yield();
+                        joining = true;
+                        lock.unlock();
+                        Extension &e = extensions[head];
+                        const bool done = add(e, close_samples) || ptc();
+                        if (!done)
+                            select(e, close_samples);
+                        lock.lock();
+                        joining = false;
+                        phases[head] = Phase::Selected;
+                        ++turn;
+                        stop = done;
+                        continue;
                     }
-                    if (stop.load(std::memory_order_acquire))
-                        return;
-                    const bool done = add(e, close_samples) || ptc();
-                    if (!done)
-                        select(e, close_samples);
-                    if (done)
-                        stop.store(true, std::memory_order_release);
-                    turn.store(j + 1, std::memory_order_release);
-                    if (done)
-                        return;
+                    std::size_t lane = window;  // the earliest iteration not yet extended
+                    for (std::size_t i = 0; i < window && lane == window; ++i)
+                        if (phases[(turn + i) % window] == Phase::Selected)
+                            lane = (turn + i) % window;
+                    if (lane < window)
+                    {
+                        phases[lane] = Phase::Extending;
+                        lock.unlock();
+                        extend(extensions[lane], lane);
+                        lock.lock();
+                        phases[lane] = Phase::Extended;
+                        continue;
+                    }
+                    lock.unlock();
+                    std::this_thread::yield();
+                    lock.lock();
                 }
             }
             catch (...)
             {
-                failures[w] = std::current_exception();
-                stop.store(true, std::memory_order_release);
+                const std::lock_guard<std::mutex> lock(work);
+                failures[thread] = std::current_exception();
+                stop = true;
             }
         };
         if (selected == window)  // else the termination condition stopped the search already
         {
             std::vector<std::thread> helpers;
-            for (std::size_t w = 1; w < window; ++w)
-                helpers.emplace_back(lane, w);
-            lane(0);
+            for (std::size_t t = 1; t < threads_; ++t)
+                helpers.emplace_back(run, t);
+            run(0);
             for (std::thread &t : helpers)
                 t.join();
         }

@@ -5,12 +5,18 @@
 // them to the grid. All but the selection and the adding need no tree, and they are
 // nearly all of the time (for Push KPIECE in dense clutter, propagation alone is 55-60 %
 // and sampling a push most of the rest). Here `lanes` iterations are in flight at once,
-// each extended on a thread and a model of its own (a lane), while the grid is touched by
-// one thread at a time in a fixed order: iteration j joins the grid after j - 1, and the
-// iteration that takes its lane next (j + lanes) is selected right after. So the tree,
-// the random numbers and the plan depend on the seed and the number of lanes, never on
-// thread timing; with one lane the search is OMPL's KPIECE1 exactly (the same random
-// numbers in the same order: tests/cpp/parallel_kpiece.cpp).
+// iteration j on lane j mod lanes (a model and control sampler of its own), while the
+// grid is touched by one thread at a time in a fixed order: iteration j joins the grid
+// after j - 1, and the iteration that takes its lane next (j + lanes) is selected right
+// after. So the tree, the random numbers and the plan depend on the seed and the number
+// of lanes, never on thread timing or on how many threads run the lanes; with one lane
+// the search is OMPL's KPIECE1 exactly (the same random numbers in the same order:
+// tests/cpp/parallel_kpiece.cpp).
+//
+// Any thread takes any work that is ready: the next join, else the earliest lane
+// waiting for its extension. With more lanes than threads a thread rarely waits: an
+// extension's time varies tenfold (a push stopped after one step or run for fifty), and
+// with one lane per thread each join waited for the slower of the two.
 #pragma once
 
 #include "model_handle.h"
@@ -36,6 +42,9 @@ namespace pushplan::detail
         std::uint64_t seed = 0;
     };
 
+    /// Lanes per thread when one KPIECE search runs on several threads.
+    constexpr unsigned kLanesPerThread = 2;
+
     class ParallelKPIECE : public ompl::control::KPIECE1, public TreeSize
     {
     public:
@@ -43,8 +52,9 @@ namespace pushplan::detail
         /// propagation steps and goal distances as their iterations join the tree, so a
         /// termination condition that counts steps sees the same count at the same
         /// iteration whatever the timing.
+        /// `threads` threads run the lanes (0: one per lane).
         ParallelKPIECE(const ompl::control::SpaceInformationPtr &si, std::uint_fast32_t seed,
-                       ModelHandlePtr tree_model, std::vector<Lane> lanes);
+                       ModelHandlePtr tree_model, std::vector<Lane> lanes, unsigned threads = 0);
 
         ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
         /// Also drops the lanes' control samplers: the next solve() draws new ones, as
@@ -66,6 +76,7 @@ namespace pushplan::detail
 
         ModelHandlePtr tree_model_;
         std::vector<Lane> lanes_;
+        unsigned threads_;
         std::vector<ompl::control::ControlSamplerPtr> samplers_;  // one per lane
         /// Whether a selection updates its cell's importance at once (more than one lane):
         /// the selections in flight would otherwise all take the grid's top cell.

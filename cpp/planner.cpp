@@ -4,6 +4,7 @@
 #include "pushplan/pushplan.h"
 
 #include "model_handle.h"
+#include "parallel_kpiece.h"
 #include "planner_source.h"
 #include "portfolio.h"
 #include "problem.h"
@@ -147,7 +148,9 @@ namespace pushplan
             checked("threads", threads, threads >= 1 && threads <= 256);
             const bool lanes_per_search = threads > 1 && bridge::planner_shares_one_search(options.planner);
             const unsigned search_count = lanes_per_search ? 1 : threads;
-            const unsigned lane_count = lanes_per_search ? threads : 0;
+            // Two lanes per thread: a thread whose next join waits on the other's long
+            // extension extends a further lane meanwhile (detail::ParallelKPIECE).
+            const unsigned lane_count = lanes_per_search ? detail::kLanesPerThread * threads : 0;
             std::vector<detail::ModelHandlePtr> models, lane_models;
             for (unsigned i = 0; i < search_count + lane_count; ++i)
             {
@@ -200,7 +203,7 @@ namespace pushplan
                     lanes.push_back(detail::makeLane(lane_models[l], search_seed, l, k));
                 ob::PlannerPtr planner =
                     detail::makePlanner(options.planner, problem, search_seed, goal_bias, options.intermediate_states,
-                                        restart_steps, std::move(lanes));
+                                        restart_steps, std::move(lanes), threads);
                 problem.setup->setPlanner(planner);
                 problem.setup->setup();
                 searches.push_back(detail::Search{std::move(problem), std::move(planner)});

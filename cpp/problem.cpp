@@ -130,16 +130,16 @@ namespace pushplan::detail
 
     /// OMPL's KPIECE1, or with lanes the same search with its propagations on their threads.
     static ob::PlannerPtr kpiece(const oc::SpaceInformationPtr &si, std::uint_fast32_t seed, const ModelHandlePtr &model,
-                                 double goal_bias, std::vector<Lane> lanes)
+                                 double goal_bias, std::vector<Lane> lanes, unsigned threads)
     {
         if (lanes.empty())
             return withGoalBias(std::make_shared<SeededKPIECE>(si, seed), goal_bias);
-        return withGoalBias(std::make_shared<ParallelKPIECE>(si, seed, model, std::move(lanes)), goal_bias);
+        return withGoalBias(std::make_shared<ParallelKPIECE>(si, seed, model, std::move(lanes), threads), goal_bias);
     }
 
     /// The planner of one kind, without restarts.
     static ob::PlannerPtr makeSearch(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
-                                     bool intermediate_states, std::vector<Lane> lanes)
+                                     bool intermediate_states, std::vector<Lane> lanes, unsigned threads)
     {
         const oc::SpaceInformationPtr &si = problem.setup->getSpaceInformation();
         // The planner's own random numbers (the samplers have streams of their own).
@@ -169,13 +169,14 @@ namespace pushplan::detail
                 return darrt;
             }
             case PlannerKind::Kpiece:
-                return kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes));
+                return kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes), threads);
             case PlannerKind::PushKpiece:
             {
                 usePushControls(si, seed, problem.model);
                 for (const Lane &lane : lanes)
                     usePushControls(lane.si, lane.seed, lane.model);
-                ob::PlannerPtr push_kpiece = kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes));
+                ob::PlannerPtr push_kpiece =
+                    kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes), threads);
                 push_kpiece->setName("PushKPIECE");
                 return push_kpiece;
             }
@@ -191,11 +192,12 @@ namespace pushplan::detail
 
     ob::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
                                bool intermediate_states, std::uint64_t restart_steps,
-                               std::vector<Lane> lanes)
+                               std::vector<Lane> lanes, unsigned threads)
     {
         if (!lanes.empty() && !bridge::planner_shares_one_search(kind))
             throw Error(plannerName(kind) + " runs one search per thread, not one search on several");
-        ob::PlannerPtr search = makeSearch(kind, problem, seed, goal_bias, intermediate_states, std::move(lanes));
+        ob::PlannerPtr search =
+            makeSearch(kind, problem, seed, goal_bias, intermediate_states, std::move(lanes), threads);
         if (restart_steps == 0)
             return search;
         return std::make_shared<Restarting>(std::move(search), problem.model, restart_steps);

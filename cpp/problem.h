@@ -82,9 +82,10 @@ namespace pushplan::detail
     /// A planner of the problem. Static RRT is the same RRT as PC RRT; the model decides
     /// that the clutter is static (ModelHandle's static-clutter mode). With restart_steps
     /// > 0 the search starts over when an attempt finds no solution (Restarting). With
-    /// lanes (the KPIECE planners only) the search propagates on one thread per lane
-    /// (ParallelKPIECE).
+    /// lanes (the KPIECE planners only) the search extends on them (ParallelKPIECE), run
+    /// by `threads` threads (0: one per lane); the search depends on the lanes, not on the
+    /// threads.
     ompl::base::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed,
                                        double goal_bias, bool intermediate_states, std::uint64_t restart_steps,
-                                       std::vector<Lane> lanes = {});
+                                       std::vector<Lane> lanes = {}, unsigned threads = 0);
 }  // namespace pushplan::detail

@@ -253,5 +253,5 @@ fn parallel_kpiece_with_one_lane_is_ompl_kpiece1_bit_for_bit() {
         "parallel-kpiece",
         &internal_includes(),
     );
-    run_checks(&binary, 6);
+    run_checks(&binary, 7);
 }

@@ -39,10 +39,10 @@ namespace
         return std::make_shared<pd::ModelHandle>(pushplan::bridge::Model::load(scene));
     }
 
-    /// One search of `kind` with `lanes` lanes (0: OMPL's KPIECE1), until it
-    /// solves or has taken `budget` propagation steps.
+    /// One search of `kind` with `lanes` lanes (0: OMPL's KPIECE1) run by `threads`
+    /// threads (0: one per lane), until it solves or has taken `budget` propagation steps.
     Search search(const std::string &scene, PlannerKind kind, std::uint64_t seed, unsigned lanes,
-                  std::uint64_t budget)
+                  std::uint64_t budget, unsigned threads = 0)
     {
         const pd::ModelHandlePtr model = load(scene);
         const unsigned k = model->info().planner.k;
@@ -50,7 +50,7 @@ namespace
         for (unsigned i = 0; i < lanes; ++i)
             extension_lanes.push_back(pd::makeLane(load(scene), seed, i, k));
         const pd::Problem problem = pd::makeProblem(model, seed, k);
-        const ob::PlannerPtr planner = pd::makePlanner(kind, problem, seed, 0.05, false, 0, extension_lanes);
+        const ob::PlannerPtr planner = pd::makePlanner(kind, problem, seed, 0.05, false, 0, extension_lanes, threads);
         problem.setup->setPlanner(planner);
         problem.setup->setup();
         planner->solve(ob::PlannerTerminationCondition([&] { return model->propagationSteps() >= budget; }));
@@ -106,6 +106,17 @@ int main()
     expect(two.exact && samePath(two, two_again) && two.tree_states == two_again.tree_states &&
                two.steps == two_again.steps,
            "two lanes solve it the same way twice");
+
+    // Four lanes: the search depends on the lanes, not on the threads that run them.
+    const Search four = search(scene, PlannerKind::PushKpiece, 2, 4, 400000, 2);
+    bool same_on_any_threads = four.exact;
+    for (unsigned threads : {1u, 4u})
+    {
+        const Search other = search(scene, PlannerKind::PushKpiece, 2, 4, 400000, threads);
+        same_on_any_threads = same_on_any_threads && samePath(four, other) &&
+                              four.tree_states == other.tree_states && four.steps == other.steps;
+    }
+    expect(same_on_any_threads, "four lanes solve it the same way on one, two and four threads");
 
     // The tree size progress reports show, against OMPL's planner data.
     bool counted = true;
