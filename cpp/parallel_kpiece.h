@@ -42,8 +42,11 @@ namespace pushplan::detail
         std::uint64_t seed = 0;
     };
 
-    /// Lanes per thread when one KPIECE search runs on several threads.
-    constexpr unsigned kLanesPerThread = 2;
+    /// The lanes of one KPIECE search on `threads` (> 1) threads: one more than threads, so
+    /// that a thread whose next join waits on another's long extension extends the spare
+    /// lane meanwhile. More lanes keep the threads busier but make each selection blinder
+    /// to the extensions in flight (BENCHMARKS.md, "Lanes").
+    constexpr unsigned lanesFor(unsigned threads) { return threads + 1; }
 
     class ParallelKPIECE : public ompl::control::KPIECE1, public TreeSize
     {

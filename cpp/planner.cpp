@@ -148,9 +148,7 @@ namespace pushplan
             checked("threads", threads, threads >= 1 && threads <= 256);
             const bool lanes_per_search = threads > 1 && bridge::planner_shares_one_search(options.planner);
             const unsigned search_count = lanes_per_search ? 1 : threads;
-            // Two lanes per thread: a thread whose next join waits on the other's long
-            // extension extends a further lane meanwhile (detail::ParallelKPIECE).
-            const unsigned lane_count = lanes_per_search ? detail::kLanesPerThread * threads : 0;
+            const unsigned lane_count = lanes_per_search ? detail::lanesFor(threads) : 0;
             std::vector<detail::ModelHandlePtr> models, lane_models;
             for (unsigned i = 0; i < search_count + lane_count; ++i)
             {
