@@ -123,8 +123,8 @@ namespace pushplan
         /// alone). Only with robust_trials > 0, in the pushing problem (not Static RRT).
         unsigned robust_particles = 0;
         /// Threads to plan on; default: one per core. The KPIECE planners run one search
-        /// whose propagations run in parallel, one per thread, and join the tree in a fixed
-        /// order; the others one search per thread, in lock-step rounds counted in
+        /// whose extensions run in parallel on threads + 1 lanes (a model each) and join the
+        /// tree in a fixed order; the others one search per thread, in lock-step rounds counted in
         /// propagation steps. Either way the same scene, seed and thread count give the
         /// same plan.
         std::optional<unsigned> threads;
