@@ -206,11 +206,15 @@ namespace pushplan::detail
         // Lane w holds iteration j = w (mod window) of turn <= j < turn + window: selected,
         // being extended, or extended and waiting to join. Iteration `turn` joins the
         // tree next; then its lane selects iteration turn + window and the turn passes on.
+        // The join that ends the search leaves its lane idle; the iterations still in
+        // flight are extended all the same, so what the lanes' models counted (steps,
+        // stop reasons) does not depend on which thread got there first.
         enum class Phase : unsigned char
         {
             Selected,
             Extending,
-            Extended
+            Extended,
+            Idle
         };
         std::vector<Phase> phases(window, Phase::Selected);
         std::mutex work;  // guards phases, turn, joining and stop
@@ -226,10 +230,10 @@ namespace pushplan::detail
             try
             {
                 std::unique_lock<std::mutex> lock(work);
-                while (!stop)
+                while (true)
                 {
                     const std::size_t head = turn % window;
-                    if (!joining && phases[head] == Phase::Extended)
+                    if (!stop && !joining && phases[head] == Phase::Extended)
                     {
                         joining = true;
                         lock.unlock();
@@ -239,9 +243,9 @@ namespace pushplan::detail
                             select(e, close_samples);
                         lock.lock();
                         joining = false;
-                        phases[head] = Phase::Selected;
+                        phases[head] = done ? Phase::Idle : Phase::Selected;
                         ++turn;
-                        stop = done;
+                        stop = stop || done;
                         continue;
                     }
                     std::size_t lane = window;  // the earliest iteration not yet extended
@@ -257,6 +261,8 @@ namespace pushplan::detail
                         phases[lane] = Phase::Extended;
                         continue;
                     }
+                    if (stop)
+                        return;
                     lock.unlock();
                     std::this_thread::yield();
                     lock.lock();

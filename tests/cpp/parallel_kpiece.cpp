@@ -32,6 +32,8 @@ namespace
         /// The planner's own count (TreeSize, for progress reports); -1 if it has none.
         long reported_states = -1;
         std::uint64_t steps = 0;
+        /// Steps the lanes' own models took, joined to the tree or not.
+        std::uint64_t lane_steps = 0;
     };
 
     pd::ModelHandlePtr load(const std::string &scene)
@@ -65,6 +67,8 @@ namespace
         if (const auto *tree = dynamic_cast<const pd::TreeSize *>(planner.get()))
             s.reported_states = static_cast<long>(tree->treeSize());
         s.steps = model->propagationSteps();
+        for (const pd::Lane &lane : extension_lanes)
+            s.lane_steps += lane.model->propagationSteps();
         return s;
     }
 
@@ -114,9 +118,13 @@ int main()
     {
         const Search other = search(scene, PlannerKind::PushKpiece, 2, 4, 400000, threads);
         same_on_any_threads = same_on_any_threads && samePath(four, other) &&
-                              four.tree_states == other.tree_states && four.steps == other.steps;
+                              four.tree_states == other.tree_states && four.steps == other.steps &&
+                              four.lane_steps == other.lane_steps;
     }
-    expect(same_on_any_threads, "four lanes solve it the same way on one, two and four threads");
+    // The lanes' own counts too: the iterations in flight when the search ends are
+    // extended whichever thread gets there first (search statistics come from them).
+    expect(same_on_any_threads && four.lane_steps > four.steps,
+           "four lanes solve it the same way on one, two and four threads, extending the same iterations");
 
     // The tree size progress reports show, against OMPL's planner data.
     bool counted = true;
