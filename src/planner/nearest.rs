@@ -1,5 +1,5 @@
 //! Nearest neighbours in the model's metric for the planners' trees: a k-d tree over
-//! flat copies of the states, kept in one array.
+//! flat copies of the states, each leaf's one after another.
 //!
 //! The metric (`w_q ||dq|| + sum_i w_i ||do_i||`, yaws wrapped) is no norm of the flat
 //! numbers, so the tree does not split space by it: it splits boxes of flat numbers, and a
@@ -27,9 +27,9 @@ const LEAF_SIZE: usize = 32;
 
 #[derive(Clone, Debug)]
 enum Node {
-    /// States by index, with a copy of their numbers one after another: a query reads a
-    /// leaf front to back instead of 32 states scattered over the tree's array (the
-    /// distances were waiting on cache misses, BENCHMARKS.md).
+    /// States by index, with their numbers one after another: a query reads a leaf front to
+    /// back instead of 32 states scattered in insertion order (the distances were waiting
+    /// on cache misses, BENCHMARKS.md).
     Leaf { ids: Vec<u32>, points: Vec<f64> },
     /// States with `state[axis] < value` go to `children[0]`, the rest to `children[1]`.
     Split {
@@ -49,8 +49,8 @@ pub struct NearestTree {
     state_len: usize,
     /// How much a unit of each flat number counts (to choose split axes).
     weights: Vec<f64>,
-    /// State `i` is `points[i * len..(i + 1) * len]`.
-    points: Vec<f64>,
+    /// Whether state `i` was taken out (one entry per state added; the states themselves
+    /// live in the leaves).
     removed: Vec<bool>,
     live: usize,
     nodes: Vec<Node>,
@@ -68,7 +68,6 @@ impl NearestTree {
             state_len: weights.len(),
             metric,
             weights,
-            points: Vec::new(),
             removed: Vec::new(),
             live: 0,
             nodes: Vec::new(),
@@ -107,23 +106,16 @@ impl NearestTree {
     }
 
     pub fn clear(&mut self) {
-        self.points.clear();
         self.removed.clear();
         self.live = 0;
         self.nodes.clear();
         self.bounds.clear();
     }
 
-    /// State `id` as added.
-    pub fn state(&self, id: usize) -> &[f64] {
-        &self.points[id * self.state_len..(id + 1) * self.state_len]
-    }
-
     /// Adds a state of [`Self::state_len`] numbers; returns its index (0, 1, 2, ...).
     pub fn add(&mut self, state: &[f64]) -> usize {
         assert_eq!(state.len(), self.state_len, "state length");
         let id = self.removed.len();
-        self.points.extend_from_slice(state);
         self.removed.push(false);
         self.live += 1;
         if self.nodes.is_empty() {
