@@ -125,9 +125,9 @@ namespace pushplan
         unsigned robust_particles = 0;
         /// Threads to plan on; default: one per core. The KPIECE planners run one search
         /// whose extensions run in parallel on threads + 1 lanes (a model each) and join the
-        /// tree in a fixed order; the others one search per thread, in lock-step rounds counted in
-        /// propagation steps. Either way the same scene, seed and thread count give the
-        /// same plan.
+        /// tree in a fixed order; the others one search per thread, in lock-step rounds
+        /// counted in propagation steps. Either way the same scene, seed and thread count
+        /// give the same plan.
         std::optional<unsigned> threads;
         /// A search that finds no solution within this many propagation steps starts over
         /// with a new tree, attempt i with Luby(i) times as many (1, 1, 2, 1, 1, 2, 4, ...);

@@ -1,6 +1,7 @@
 // The C++ API's contract beyond planning (run by tests/cpp_api.rs):
 // - every planner kind has the CLI's name, and a name gives the kind back;
-// - progress reaches Options::on_progress; a semi-dynamic scene plans;
+// - progress reaches Options::on_progress; a semi-dynamic scene plans; a robust plan is
+//   as robust as the default rate asks;
 // - Planner::reach reaches a grasp behind a wall with IK-BiRRT, and after a pushing plan;
 //   a grasp goal's samples (inverse kinematics of its regions) satisfy it;
 // - OMPL's process-wide log level is as the application left it after solve();
@@ -95,6 +96,20 @@ int main()
         const pushplan::Plan plan = workshop.solve(o);
         expect(plan.solved && !plan.controls.empty(),
                "the semi-dynamic model plans through the C++ API (the workshop's scene two)");
+    }
+
+    {
+        // Robust planning through the API: the plan kept reaches the goal in at least the
+        // default rate of its perturbed re-simulations, and says so.
+        const pushplan::Planner hand("scenes/planar_hand_single_object.yaml");
+        pushplan::Options o;
+        o.seed = 1;
+        o.threads = 1;
+        o.time_limit = 30.0;
+        o.robust_trials = 10;
+        const pushplan::Plan plan = hand.solve(o);
+        expect(plan.solved && o.robust_rate == 0.95 && plan.robustness >= o.robust_rate,
+               "a robust plan through the API reaches the goal in 95 % of its perturbed re-simulations");
     }
 
     {
