@@ -2,6 +2,7 @@
 //! objects, and their reduction to the planar contacts of the pushing model
 //! (`physics.md`, "Whole-arm contact in 3D").
 
+use crate::collision::footprint::{self, FootprintContact};
 use crate::collision::geometry::union_aabb;
 use crate::collision::query::{contact_points, ContactPoint};
 use crate::math::Pose2;
@@ -212,18 +213,16 @@ pub struct ObjectPairContact {
 
 /// Appends the contacts of object `from` with every other object closer than `margin`
 /// (m): upright prisms on one table touch along vertical lines, so each contact is a
-/// point seen from above (stacked points of one face contact merged, as for the arm).
+/// point seen from above, between their footprints ([`footprint::contacts`]).
 pub fn object_pair_contacts(
     scene: &Scene,
     objects: &[Pose2],
     from: usize,
     margin: f64,
-    scratch: &mut Vec<ContactPoint>,
+    scratch: &mut Vec<FootprintContact>,
     out: &mut Vec<ObjectPairContact>,
 ) {
-    let top = scene.table.top;
     let object = &scene.objects[from];
-    let iso = objects[from].to_isometry(top);
     for (into, other) in scene.objects.iter().enumerate() {
         let reach = object.bounding_radius + other.bounding_radius + margin;
         if into == from
@@ -232,38 +231,21 @@ pub fn object_pair_contacts(
             continue;
         }
         scratch.clear();
-        let other_iso = objects[into].to_isometry(top);
-        contact_points(
-            &object.geometry,
-            &iso,
-            &other.geometry,
-            &other_iso,
+        footprint::contacts(
+            &object.footprint,
+            &objects[from],
+            &other.footprint,
+            &objects[into],
             margin,
             scratch,
         );
-        let first = out.len();
-        for c in scratch.iter() {
-            let horizontal = c.normal_a.xy();
-            let length = horizontal.norm();
-            if length < 1e-6 {
-                continue; // stacked, which upright prisms on one table are not
-            }
-            let contact = ObjectPairContact {
-                from,
-                into,
-                point: (c.point_a.xy().coords + c.point_b.xy().coords) / 2.0,
-                normal: horizontal / length,
-                gap: c.distance,
-            };
-            let duplicate = out[first..].iter_mut().find(|o| {
-                (o.point - contact.point).norm() < 1e-3 && o.normal.dot(&contact.normal) > 0.99
-            });
-            match duplicate {
-                Some(o) if contact.gap < o.gap => *o = contact,
-                Some(_) => {}
-                None => out.push(contact),
-            }
-        }
+        out.extend(scratch.iter().map(|c| ObjectPairContact {
+            from,
+            into,
+            point: (c.point_a + c.point_b) / 2.0,
+            normal: c.normal,
+            gap: c.gap,
+        }));
     }
 }
 

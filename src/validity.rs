@@ -7,6 +7,7 @@
 //! centre leaves the table (it would fall). Arm-object *contact* is allowed: that is how
 //! the robot pushes.
 
+use crate::collision::footprint;
 use crate::collision::query::{intersects, overlaps_beyond, signed_distance};
 use crate::collision::Geometry;
 use crate::contact::{find_arm_contacts, object_bounds, ArmBounds, ArmContact};
@@ -363,7 +364,6 @@ pub fn check_objects(
                 object: object.name.clone(),
             });
         }
-        let iso = pose.to_isometry(top);
         for (j, other_pose) in objects.iter().enumerate() {
             if j == i || (j < i && moved(j)) {
                 continue; // itself, or a pair already checked
@@ -374,26 +374,32 @@ pub fn check_objects(
             if (pose.translation() - other_pose.translation()).norm() >= reach {
                 continue;
             }
-            let other_iso = other_pose.to_isometry(top);
+            // Upright prisms on one table: their footprints decide, exactly.
+            let gap = footprint::gap(&object.footprint, pose, &other.footprint, other_pose);
             keep_apart(
-                scene,
+                separation_of_gap(scene, gap, clearance),
                 object,
-                &iso,
-                (&other.name, &other.geometry, &other_iso),
-                clearance,
+                &other.name,
                 || Invalid::ObjectsOverlap {
                     object_a: object.name.clone(),
                     object_b: other.name.clone(),
                 },
             )?;
         }
+        let iso = pose.to_isometry(top);
         for (k, obstacle) in scene.obstacles.iter().enumerate() {
+            let clearance = scene.clearances.to_obstacle(i, k);
             keep_apart(
-                scene,
+                separation(
+                    scene,
+                    &object.geometry,
+                    &iso,
+                    &obstacle.geometry,
+                    &obstacle.pose,
+                    clearance,
+                ),
                 object,
-                &iso,
-                (&obstacle.name, &obstacle.geometry, &obstacle.pose),
-                scene.clearances.to_obstacle(i, k),
+                &obstacle.name,
                 || Invalid::ObjectHitsObstacle {
                     object: object.name.clone(),
                     obstacle: obstacle.name.clone(),
@@ -411,21 +417,19 @@ pub fn check_objects(
     Ok(())
 }
 
-/// `object` at `iso` must not overlap the other solid (`overlap` says how that is
-/// reported) nor come closer to it than `clearance`.
+/// `object` must not overlap the other solid, named `other` (`overlap` says how that is
+/// reported), nor come closer to it than the clearance `separation` was measured against.
 fn keep_apart(
-    scene: &Scene,
+    separation: Separation,
     object: &MovableObject,
-    iso: &Isometry3<f64>,
-    (other_name, other, other_pose): (&str, &Geometry, &Isometry3<f64>),
-    clearance: f64,
+    other: &str,
     overlap: impl FnOnce() -> Invalid,
 ) -> Result<(), Invalid> {
-    match separation(scene, &object.geometry, iso, other, other_pose, clearance) {
+    match separation {
         Separation::Overlap => Err(overlap()),
         Separation::TooClose(distance) => Err(Invalid::TooClose {
             object: object.name.clone(),
-            other: other_name.to_string(),
+            other: other.to_string(),
             distance,
         }),
         Separation::Clear => Ok(()),
@@ -462,9 +466,20 @@ fn separation(
         };
     }
     match signed_distance(a, pose_a, b, pose_b, clearance.max(0.0)) {
-        Some(d) if d < -tolerance => Separation::Overlap,
-        Some(d) if d < clearance - CLEARANCE_SLACK => Separation::TooClose(d),
-        _ => Separation::Clear,
+        Some(d) => separation_of_gap(scene, d, clearance),
+        None => Separation::Clear,
+    }
+}
+
+/// How two solids `gap` apart (m, negative overlapping) stand, measured against a
+/// clearance.
+fn separation_of_gap(scene: &Scene, gap: f64, clearance: f64) -> Separation {
+    if gap < -scene.physics.overlap_tolerance {
+        Separation::Overlap
+    } else if gap < clearance - CLEARANCE_SLACK {
+        Separation::TooClose(gap)
+    } else {
+        Separation::Clear
     }
 }
 
@@ -507,12 +522,13 @@ impl Clearances {
                 } else if scene.physics.object_pushing {
                     touching
                 } else {
-                    gap(
-                        &objects[i].geometry,
-                        &poses[i],
-                        &objects[j].geometry,
-                        &poses[j],
+                    footprint::gap(
+                        &objects[i].footprint,
+                        &scene.start.objects[i],
+                        &objects[j].footprint,
+                        &scene.start.objects[j],
                     )
+                    .min(clearance)
                 }
             })
             .collect();

@@ -60,8 +60,10 @@ pub fn signed_distance(
 }
 
 /// Do the shapes overlap by more than `depth` (m)? Decided exactly: parry's raw answer is
-/// used where it is clearly on one side (its error is below 1e-3 m), the refined signed
-/// distance near the threshold.
+/// taken when it says apart, or overlapping by clearly more than `depth` (its error is
+/// below 1e-3 m there); otherwise the refined signed distance decides. A raw "touching" is
+/// never taken: for prisms with coplanar faces (two cylinders of one height side by side)
+/// parry's EPA answers a depth of about zero where they overlap by centimetres.
 pub fn overlaps_beyond(
     a: &Geometry,
     pose_a: &Isometry3<f64>,
@@ -69,14 +71,17 @@ pub fn overlaps_beyond(
     pose_b: &Isometry3<f64>,
     depth: f64,
 ) -> bool {
-    const RAW_ERROR: f64 = 1e-3;
     let (world_a, world_b) = (a.world_pose(pose_a), b.world_pose(pose_b));
     match query::contact(&world_a, a.shape.as_ref(), &world_b, b.shape.as_ref(), 0.0) {
         Ok(None) => false,
-        Ok(Some(c)) if (c.dist + depth).abs() > RAW_ERROR => c.dist < -depth,
+        Ok(Some(c)) if c.dist < -depth - RAW_ERROR => true,
         _ => signed_distance(a, pose_a, b, pose_b, 0.0).is_some_and(|d| d < -depth),
     }
 }
+
+/// The error of parry's raw signed distance where it is right (m); see [`overlaps_beyond`]
+/// for where it is not.
+const RAW_ERROR: f64 = 1e-3;
 
 /// Maximises the support gap over unit directions by pattern search from `normal`.
 fn refine_gap(
@@ -96,8 +101,9 @@ fn refine_gap(
         return fallback;
     };
     let mut best_gap = gap(&best);
-    if fallback < 0.0 {
-        // Overlapping: the gap is not concave and EPA's normal may sit in the wrong
+    if fallback < RAW_ERROR {
+        // Overlapping, or touching by parry's word (which may hide an overlap of
+        // centimetres): the gap is not concave and EPA's normal may sit in the wrong
         // basin; start from the best of it and 256 evenly spread directions.
         let count = 256;
         for i in 0..count {
