@@ -122,11 +122,11 @@ namespace pushplan::detail
                     flat[info_.dof + 3 * i + k] = info_.start[info_.dof + 3 * i + k];
     }
 
-    std::array<double, 4> ModelHandle::project(const ob::State *state) const
+    std::array<double, 5> ModelHandle::project(const ob::State *state) const
     {
         read(state, a_);
         const rust::Vec<double> p = model_->projection(slice(a_));
-        return {p[0], p[1], p[2], p[3]};
+        return {p[0], p[1], p[2], p[3], p[4]};
     }
 
     std::optional<std::array<double, 2>> ModelHandle::pushHeading(const ob::State *state, std::size_t object,

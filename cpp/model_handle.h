@@ -55,8 +55,9 @@ namespace pushplan::detail
         /// start pose (a sample of that problem); otherwise leaves `flat` as it is.
         void pinClutter(std::vector<double> &flat) const;
 
-        /// End-effector xy and goal-object xy (m): the benchmark planners' projection.
-        std::array<double, 4> project(const ompl::base::State *state) const;
+        /// End-effector xy, goal-object xy and the blockage of the goal object's way (m):
+        /// the projection-based planners' projection (the Rust model's `projection`).
+        std::array<double, 5> project(const ompl::base::State *state) const;
         /// Which way the tool should move to push `object` toward `target` (world xy, m):
         /// unit xy in the world frame; none if the object is at the target.
         std::optional<std::array<double, 2>> pushHeading(const ompl::base::State *state, std::size_t object,

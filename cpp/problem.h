@@ -51,8 +51,9 @@ namespace pushplan::detail
         std::size_t treeSize() const override { return tree_.size; }
     };
 
-    /// Projection for OMPL's projection-based planners (KPIECE1, EST, PDST): the
-    /// end-effector's xy and the goal object's xy (m), cells of 5 cm.
+    /// Projection for OMPL's projection-based planners (KPIECE1, Push KPIECE, EST, PDST):
+    /// the end-effector's xy, the goal object's xy and the blockage of the goal object's
+    /// way (m; ModelHandle::project), cells of 5 cm.
     class PushProjection : public ompl::base::ProjectionEvaluator
     {
     public:

@@ -473,3 +473,24 @@ fn past_its_time_limit_the_model_refuses_to_propagate() {
     assert_ne!(next, start);
     assert_eq!(model.propagation_steps(), 1);
 }
+
+#[test]
+fn the_projection_tells_a_cleared_way_from_a_blocked_one() {
+    // Benchmark scene 22: bowl_4 stands on the goal box's straight way to the goal disc and
+    // bottle_2 within the disc's reach, so the projection's fifth coordinate (the
+    // blockage, m) is positive; with both moved to the far left corner it is zero, and the
+    // end-effector and goal-object coordinates stay as they were.
+    use pushplan::planner::Model;
+    let scene = Scene::load("scenes/benchmark/scene_22.yaml").unwrap();
+    let model = Model::new(scene.clone());
+    let index = |name: &str| scene.objects.iter().position(|o| o.name == name).unwrap();
+    let blocked = model.projection(&scene.start.to_flat()).unwrap();
+    assert_eq!(blocked.len(), 5);
+    assert!(blocked[4] > 0.05, "{blocked:?}");
+    let mut cleared = scene.start.clone();
+    cleared.objects[index("bowl_4")] = pushplan::Pose2::new(0.4, 0.8, 0.0);
+    cleared.objects[index("bottle_2")] = pushplan::Pose2::new(0.6, 0.8, 0.0);
+    let projected = model.projection(&cleared.to_flat()).unwrap();
+    assert_eq!(projected[4], 0.0, "{projected:?}");
+    assert_eq!(projected[..4], blocked[..4]);
+}

@@ -13,7 +13,8 @@
 // its control sampler, the directed control sampler that keeps the best of k, the state
 // propagator (the quasistatic pushing physics), the validity checker, the start, the goal
 // (a GoalSampleableRegion: the goal object in its disc), a path-length objective and the
-// default projection (end-effector xy and goal-object xy, for KPIECE1, EST, PDST). No
+// default projection (end-effector xy, goal-object xy and the blockage of the goal object's
+// way, for KPIECE1, EST, PDST). No
 // planner is set. Objects keep their model alive: the setup may outlive the Planner.
 #pragma once
 

@@ -52,7 +52,8 @@ namespace pushplan
         /// DARRT's primitives (transit, push) searched by RRT (the paper's baseline; its
         /// paths are primitive sequences, measured by `pushplan bench`). "darrt"
         Darrt,
-        /// OMPL's KPIECE1 with pushplan's projection (end-effector and goal-object xy). "kpiece"
+        /// OMPL's KPIECE1 with pushplan's projection (end-effector and goal-object xy, the
+        /// blockage of the goal object's way). "kpiece"
         Kpiece,
         /// OMPL's EST. "est"
         Est,

@@ -81,13 +81,29 @@ impl PushHeading {
     /// reach; one the goal object would touch on the straight line to the goal centre goes
     /// sideways off that line. Empty without an object goal.
     pub fn blockers(&self, state: &State) -> Vec<PushTarget> {
+        let mut blockers = Vec::new();
+        self.for_each_blocker(state, |push, _| blockers.push(push));
+        blockers
+    }
+
+    /// How far the objects in the goal object's way ([`Self::blockers`]) reach into it,
+    /// summed (m): each into the disc's reach, or into the corridor the goal object sweeps
+    /// on the straight line to the goal centre. Zero when the way is clear.
+    pub fn blockage(&self, state: &State) -> f64 {
+        let mut sum = 0.0;
+        self.for_each_blocker(state, |_, depth| sum += depth);
+        sum
+    }
+
+    /// Calls `f` with each blocker, its place out of the way and how deep it stands in
+    /// the way (m).
+    fn for_each_blocker(&self, state: &State, mut f: impl FnMut(PushTarget, f64)) {
         let Some(goal) = self.goal else {
-            return Vec::new();
+            return;
         };
         let p_WO = state.objects[goal.object].translation();
         let r_goal_object = self.radii[goal.object];
         let route = goal.center - p_WO;
-        let mut blockers = Vec::new();
         for (object, pose) in state.objects.iter().enumerate() {
             if object == goal.object {
                 continue;
@@ -99,10 +115,11 @@ impl PushHeading {
             let disc_reach = goal.radius + apart;
             if from_center.norm() < disc_reach {
                 let out = from_center.try_normalize(1e-9).unwrap_or(Vector2::x());
-                blockers.push(PushTarget {
-                    object,
-                    target: goal.center + out * (disc_reach + CLEAR_BY),
-                });
+                let target = goal.center + out * (disc_reach + CLEAR_BY);
+                f(
+                    PushTarget { object, target },
+                    disc_reach - from_center.norm(),
+                );
                 continue;
             }
             // Along the route: the nearest point of the segment, ahead of the goal object.
@@ -119,13 +136,10 @@ impl PushHeading {
             if side.norm() < apart {
                 let normal = Vector2::new(-route.y, route.x).normalize();
                 let out = side.try_normalize(1e-9).unwrap_or(normal);
-                blockers.push(PushTarget {
-                    object,
-                    target: p_WC + out * (apart + CLEAR_BY),
-                });
+                let target = p_WC + out * (apart + CLEAR_BY);
+                f(PushTarget { object, target }, apart - side.norm());
             }
         }
-        blockers
     }
 
     /// The unit heading for the tool at `p_WT` (world xy) to push `object` toward
@@ -249,5 +263,9 @@ mod tests {
         let route = blockers[1];
         assert_eq!(route.object, 2);
         assert!((route.target - Vector2::new(0.5, -0.16)).norm() < 1e-12);
+        // Depths: the disc's reach 0.21 less 0.05^2 + 0.1^2 under the root; the corridor's
+        // half-width 0.11 less 0.05.
+        let disc_depth = 0.21 - (0.05f64.powi(2) + 0.1f64.powi(2)).sqrt();
+        assert!((h.blockage(&state) - (disc_depth + 0.06)).abs() < 1e-12);
     }
 }

@@ -358,8 +358,12 @@ impl Model {
         Ok(())
     }
 
-    /// End-effector xy and goal-object xy (m); the goal object's xy is (0, 0) for a
-    /// configuration goal.
+    /// End-effector xy and goal-object xy (m), and how deep the objects in the goal
+    /// object's way stand in it ([`PushHeading::blockage`], m): the projection of the
+    /// projection-based planners (KPIECE1, Push KPIECE, EST, PDST). The goal object's xy
+    /// is (0, 0) and the blockage 0 for a configuration goal. The blockage tells states
+    /// whose way has been cleared from the rest: a planner that explores new cells of the
+    /// projection goes on from them.
     pub fn projection(&self, state: &[f64]) -> Result<Vec<f64>, String> {
         guarded("projection", || {
             let state = self.state(state)?;
@@ -369,7 +373,8 @@ impl Model {
                 Some(object) => state.objects[object].translation(),
                 None => nalgebra::Vector2::zeros(),
             };
-            Ok(vec![tool.x, tool.y, goal.x, goal.y])
+            let blockage = self.push_heading.blockage(&state);
+            Ok(vec![tool.x, tool.y, goal.x, goal.y, blockage])
         })
     }
 
