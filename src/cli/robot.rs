@@ -6,7 +6,7 @@ use crate::random::SplitMix64;
 use crate::robot::{IkSettings, Robot};
 use crate::scene::Scene;
 use crate::state::State;
-use nalgebra::{DVector, Isometry3, Translation3, UnitQuaternion};
+use nalgebra::{DVector, Isometry3};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -169,11 +169,11 @@ fn reach_target(scene: &Scene, reach: &[f64]) -> Result<Isometry3<f64>, String> 
     if let Some(v) = reach.iter().find(|v| !v.is_finite()) {
         return Err(format!("--reach: {v} is not a finite number"));
     }
-    let yaw = UnitQuaternion::from_euler_angles(0.0, 0.0, reach.get(2).copied().unwrap_or(0.0));
-    Ok(Isometry3::from_parts(
-        Translation3::new(reach[0], reach[1], scene.robot.plane.height),
-        yaw * scene.robot.plane.orientation,
-    ))
+    let yaw = reach.get(2).copied().unwrap_or(0.0);
+    Ok(scene
+        .robot
+        .plane
+        .tool_pose_at(&crate::math::Pose2::new(reach[0], reach[1], yaw)))
 }
 
 /// Distinct configurations reaching `target`, from `first` and then random seeds within
