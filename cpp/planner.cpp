@@ -343,9 +343,13 @@ namespace pushplan
 
             // Every plan is checked (re-simulating it reproduces its states) and finished
             // (shortcut, kept robust) by the model, the same way as the CLI's and bench's.
+            // A robust solution was measured in the perturbed worlds as it was kept: without
+            // shortcutting the path stays that one, and its robustness stands.
+            const bool measured = solved && options.robust_trials > 0 && options.shortcut == 0.0;
             const bridge::FinishedPath path = model->finish(
-                found, solved, bridge::FinishSettings{options.shortcut, seed, options.robust_trials, options.robust_rate,
-                                              time_limit - elapsed()});
+                found, solved,
+                bridge::FinishSettings{options.shortcut, seed, measured ? 0u : options.robust_trials,
+                                       options.robust_rate, time_limit - elapsed()});
             plan.before_shortcut = path.before;
             plan.after_shortcut = path.after;
             if (path.robustness >= 0.0)
