@@ -262,7 +262,7 @@ fn a_missing_scene_file_is_an_io_error() {
 }
 
 #[test]
-fn non_convex_or_off_centre_polygons_are_rejected() {
+fn non_convex_degenerate_or_off_centre_polygons_are_rejected() {
     let poly = |v: &str| {
         edited(
             "{type: box, size: [0.102, 0.102, 0.215]}",
@@ -278,6 +278,14 @@ fn non_convex_or_off_centre_polygons_are_rejected() {
     );
     let (_, message) = error_of(&poly("[[0, 0], [0.1, 0], [0.1, 0.1], [0, 0.1]]"));
     assert!(message.contains("centroid"), "{message}");
+    let (_, message) = error_of(&poly(
+        "[[-0.05, -0.05], [0.05, -0.05], [0.05, -0.05], [0.05, 0.05], [-0.05, 0.05]]",
+    ));
+    assert!(
+        message.contains("objects[0].shape.vertices")
+            && message.contains("vertices 1 and 2 coincide"),
+        "{message}"
+    );
     // A clockwise triangle about its centroid is fine.
     let ok = poly("[[0.06, 0.0], [-0.03, -0.05], [-0.03, 0.05]]");
     assert!(Scene::from_yaml(&ok, Path::new("scenes/ok.yaml")).is_ok());

@@ -101,6 +101,8 @@ fn parse(text: &str, source: &Path) -> Result<SceneFile> {
 
 /// Most movable objects in a scene.
 pub const MAX_OBJECTS: usize = 64;
+/// Shortest edge of a polygon footprint (m).
+const MIN_EDGE: f64 = 1e-6;
 /// Heaviest object (kg).
 pub const MAX_MASS: f64 = 1000.0;
 /// Largest friction coefficient (`mu_g`, `mu_c`).
@@ -529,8 +531,18 @@ impl Loader<'_> {
             self.finite(&format!("{field}[{i}]"), v)?;
         }
         let mut v: Vec<Vector2<f64>> = vertices.iter().map(|p| Vector2::new(p[0], p[1])).collect();
-        let turn = |a: Vector2<f64>, b: Vector2<f64>, c: Vector2<f64>| (b - a).perp(&(c - b));
         let n = v.len();
+        // An edge needs a length to have an outward normal (the footprint queries use them).
+        if let Some(i) = (0..n).find(|&i| (v[(i + 1) % n] - v[i]).norm() < MIN_EDGE) {
+            return Err(self.invalid(
+                field,
+                format!(
+                    "vertices {i} and {} coincide (an edge needs at least {MIN_EDGE} m)",
+                    (i + 1) % n
+                ),
+            ));
+        }
+        let turn = |a: Vector2<f64>, b: Vector2<f64>, c: Vector2<f64>| (b - a).perp(&(c - b));
         let turns: Vec<f64> = (0..n)
             .map(|i| turn(v[i], v[(i + 1) % n], v[(i + 2) % n]))
             .collect();
