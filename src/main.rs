@@ -183,6 +183,10 @@ enum Command {
         /// of its own (as `plan --restart`).
         #[arg(long, value_name = "STEPS")]
         restart: Option<u64>,
+        /// Go on with an interrupted benchmark in --out (the same grid and shard): runs
+        /// whose log is there are kept, the others run.
+        #[arg(long)]
+        resume: bool,
     },
     /// Draw the benchmark plots from the OMPL logs in DIR (written by `bench`) into DIR/plots.
     Plots {
@@ -472,6 +476,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             seed,
             shard,
             restart,
+            resume,
         } => {
             let grid = Grid {
                 scenes,
@@ -483,7 +488,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 restart,
             };
             let out = out.expect("clap requires --out without a subcommand");
-            bench(&grid, shard, &out, jobs)
+            bench(&grid, shard, &out, jobs, resume)
         }
         Command::Plots { dir } => plots(&dir),
         Command::Install { prefix } => install(&prefix),

@@ -105,6 +105,52 @@ fn shards_merged_hold_the_runs_of_the_unsharded_benchmark() {
             "a shard alone is not merged"
         );
     }
+
+    // Shard 1 interrupted: one run never ended (its log only half written), the others
+    // did. --resume runs that one alone; a different grid or no benchmark is refused.
+    let cells = shards[0].join("cells");
+    let logs: Vec<PathBuf> = std::fs::read_dir(&cells)
+        .unwrap()
+        .flat_map(|scene| std::fs::read_dir(scene.unwrap().path()).unwrap())
+        .map(|f| f.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "log"))
+        .collect();
+    assert_eq!(logs.len(), 4, "{logs:?}");
+    let lost = &logs[0];
+    let text = std::fs::read_to_string(lost).unwrap();
+    std::fs::remove_file(lost).unwrap();
+    std::fs::write(lost.with_extension("log.partial"), &text[..text.len() / 2]).unwrap();
+    let mut resume = args.clone();
+    resume.splice(
+        resume.len() - 1..resume.len() - 1,
+        ["--shard", "1/3", "--resume"],
+    );
+    let run = pushplan(&resume, &[&shards[0]]);
+    let messages = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{messages}");
+    assert!(
+        messages.contains("benchmarking 1 of 12 runs") && messages.contains("3 kept from before"),
+        "{messages}"
+    );
+    assert!(lost.is_file() && !lost.with_extension("log.partial").exists());
+    let mut other_seed = resume.clone();
+    let at = other_seed.iter().position(|a| *a == "7").unwrap();
+    other_seed[at] = "8";
+    let run = pushplan(&other_seed, &[&shards[0]]);
+    let messages = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success());
+    assert!(
+        messages.contains("holds another benchmark or shard") && messages.contains("--resume"),
+        "{messages}"
+    );
+    let run = pushplan(&resume, &[&base.join("never-run")]);
+    let messages = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success());
+    assert!(
+        messages.contains("not a folder written by `pushplan bench`"),
+        "{messages}"
+    );
+
     let merged = base.join("merged");
     let dirs: Vec<&Path> = shards.iter().map(PathBuf::as_path).collect();
     let run = pushplan(

@@ -10,24 +10,42 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// Runs the cells of `shard` of `grid` into `out/cells/` with `exe bench-scene` (the
-/// `pushplan` binary), `jobs` at a time, and writes `out`'s manifest. Returns the cells
-/// whose process failed.
+/// `pushplan` binary), `jobs` at a time, and writes `out`'s manifest. With `resume`, `out`
+/// must hold the same grid and shard, and the cells whose log is there are not run again.
+/// Returns the cells whose process failed.
 pub fn run_shard(
     exe: &Path,
     grid: &Grid,
     shard: Shard,
     out: &Path,
     jobs: usize,
+    resume: bool,
 ) -> Result<Vec<Cell>, String> {
-    let cells = grid.shard(shard);
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    Manifest {
+    let manifest = Manifest {
         grid: grid.clone(),
         shard,
+    };
+    if resume {
+        let found = Manifest::read(out)?;
+        if found != manifest {
+            return Err(format!(
+                "{} holds another benchmark or shard (scenes, planners, runs, time, shortcut, seed, restart or shard differ): --resume goes on with the same one",
+                out.display()
+            ));
+        }
     }
-    .write(out)?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    manifest.write(out)?;
+    let all = grid.shard(shard);
+    // A log appears only once its run has ended (it is written under another name and
+    // renamed), so a log found here is a whole run.
+    let cells: Vec<Cell> = all
+        .iter()
+        .copied()
+        .filter(|&cell| !(resume && grid.cell_log(out, cell).is_file()))
+        .collect();
     eprintln!(
-        "benchmarking {} of {} runs ({} scenes x {} planners x {} runs{}), up to {} s each, {jobs} at a time",
+        "benchmarking {} of {} runs ({} scenes x {} planners x {} runs{}{}), up to {} s each, {jobs} at a time",
         cells.len(),
         grid.cells().count(),
         grid.scenes.len(),
@@ -37,6 +55,11 @@ pub fn run_shard(
             String::new()
         } else {
             format!("; shard {}/{}", shard.index, shard.count)
+        },
+        if resume {
+            format!("; {} kept from before", all.len() - cells.len())
+        } else {
+            String::new()
         },
         grid.time
     );
@@ -60,6 +83,8 @@ pub fn run_shard(
             done += 1;
             let log = grid.cell_log(out, cell);
             let verdict = if status.success() {
+                std::fs::rename(partial_log(&log), &log)
+                    .map_err(|e| format!("{}: {e}", log.display()))?;
                 "done".to_string()
             } else {
                 failed.push(cell);
@@ -103,11 +128,16 @@ fn spawn_cell(exe: &Path, grid: &Grid, cell: Cell, out: &Path) -> Result<Child, 
                 .flat_map(|steps| ["--restart".to_string(), steps.to_string()]),
         )
         .arg("--log")
-        .arg(&log)
+        .arg(partial_log(&log))
         .stdout(Stdio::null())
         .stderr(messages)
         .spawn()
         .map_err(|e| format!("cannot start a benchmark process: {e}"))
+}
+
+/// Where a run writes its log until it has ended.
+fn partial_log(log: &Path) -> PathBuf {
+    log.with_extension("log.partial")
 }
 
 /// What merging found.

@@ -10,12 +10,14 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// Runs `shard` of `grid` into `out`, `jobs` processes at a time. The whole grid is merged
-/// at once (`out/results.db`, the plots); a shard waits for `bench merge`.
+/// at once (`out/results.db`, the plots); a shard waits for `bench merge`. With `resume`,
+/// the runs whose log is already in `out` (a benchmark of the same grid and shard) are kept.
 pub fn bench(
     grid: &Grid,
     shard: Shard,
     out: &Path,
     jobs: Option<usize>,
+    resume: bool,
 ) -> Result<ExitCode, String> {
     if !(grid.time.is_finite() && grid.time > 0.0) || grid.runs == 0 {
         return Err("--time must be positive and --runs at least 1".into());
@@ -31,7 +33,7 @@ pub fn bench(
     }
     let jobs = jobs.unwrap_or_else(|| super::cores() as usize).max(1);
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-    let failed = run_shard(&exe, grid, shard, out, jobs)?;
+    let failed = run_shard(&exe, grid, shard, out, jobs, resume)?;
     if shard != Shard::ALL {
         println!(
             "shard {}/{} written to {}; merge every shard's folder with `pushplan bench merge DIR... --out DIR`",
