@@ -3,22 +3,30 @@
 # benchmark scene, plan once (seed 1), play the plan 10 times in the 3D engine and
 # re-simulate it 10 times with parameter noise. Extra `plan` options go in PLAN_ARGS
 # (e.g. PLAN_ARGS="--robust 20"); TIME sets the search time (default 10 s); SCENES the
-# folder of scene_*.yaml files (default scenes/benchmark); TRIALS the 3D trials and
-# perturbed re-simulations per plan (default 10).
+# scenes, folders (their scene_*.yaml) or files, separated by spaces (default
+# scenes/benchmark; e.g. SCENES="scenes/dense/scene_17.yaml scenes/benchmark"); TRIALS the
+# 3D trials and perturbed re-simulations per plan (default 10).
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
-# Writes OUT_DIR/scene_NN.{json,plan.txt,exec.json,exec.txt,check.txt} and a summary line
+# Writes OUT_DIR/FOLDER_scene_NN.{json,plan.txt,exec.json,exec.txt,check.txt} and a summary line
 # per scene in OUT_DIR/summary.txt.
 set -u
 out=${1:?usage: benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]}
 bin=${2:-target/release/pushplan}
 mkdir -p "$out"
 : > "$out/summary.txt"
-scenes=${SCENES:-scenes/benchmark}
 trials=${TRIALS:-10}
-for scene in "$scenes"/scene_*.yaml; do
-  n=$(basename "$scene" .yaml)
+scenes=()
+for s in ${SCENES:-scenes/benchmark}; do
+  if [ -d "$s" ]; then scenes+=("$s"/scene_*.yaml); else scenes+=("$s"); fi
+done
+for scene in "${scenes[@]}"; do
+  [ -f "$scene" ] || { echo "$scene: no such scene file" >&2; exit 2; }
+done
+for scene in "${scenes[@]}"; do
+  # Named by folder and file: scenes of two folders may share a file name.
+  n=$(basename "$(dirname "$scene")")_$(basename "$scene" .yaml)
   # shellcheck disable=SC2086
   "$bin" plan "$scene" --seed 1 --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
   if head -1 "$out/$n.plan.txt" | grep -q '^solved'; then
@@ -30,4 +38,4 @@ for scene in "$scenes"/scene_*.yaml; do
   fi
 done
 reached=$(cat "$out"/*.exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
-echo "trials reaching the goal: $reached of $(( $(ls "$scenes"/scene_*.yaml | wc -l) * trials ))" | tee -a "$out/summary.txt"
+echo "trials reaching the goal: $reached of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
