@@ -7,6 +7,7 @@
 #include "darrt.h"
 #include "problem.h"
 #include "restarts.h"
+#include "wrapped_search.h"
 #include "pushplan/pushplan.h"
 #include "pushplan/src/ffi.rs.h"
 #include "pushplan/src/ffi/entry.rs.h"
@@ -68,15 +69,13 @@ namespace pushplan::bridge
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
         benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.planner.k));
-        benchmark.addPlanner(
-            detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps));
+        // As in Planner::solve: no propagation past the run's time limit, while it runs.
+        benchmark.addPlanner(std::make_shared<detail::TimeLimitedSearch>(
+            detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps),
+            model, options.time_limit));
 
         std::uint64_t steps_before = 0;
-        benchmark.setPreRunEvent([&](const ob::PlannerPtr &) {
-            steps_before = model->propagationSteps();
-            // As in Planner::solve: no propagation past the run's time limit.
-            model->model().set_time_limit(options.time_limit);
-        });
+        benchmark.setPreRunEvent([&](const ob::PlannerPtr &) { steps_before = model->propagationSteps(); });
         benchmark.setPostRunEvent([&](const ob::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &props) {
             props["run INTEGER"] = std::to_string(options.run);
             props["restarts INTEGER"] = std::to_string(detail::restartsOf(planner));

@@ -1,6 +1,5 @@
 #include "restarts.h"
 
-#include <ompl/base/PlannerData.h>
 #include <ompl/base/ProblemDefinition.h>
 
 #include <limits>
@@ -27,15 +26,12 @@ namespace pushplan::detail
     }
 
     Restarting::Restarting(ob::PlannerPtr search, ModelHandlePtr model, std::uint64_t base_steps)
-      : ob::Planner(search->getSpaceInformation(), search->getName())
-      , search_(std::move(search))
+      : WrappedSearch(std::move(search))
       , model_(std::move(model))
       , base_steps_(base_steps)
     {
         if (base_steps_ == 0)
             throw std::invalid_argument("Restarting: the base budget must be at least one step");
-        specs_ = search_->getSpecs();
-        params_.include(search_->params());
     }
 
     ob::PlannerStatus Restarting::solve(const ob::PlannerTerminationCondition &ptc)
@@ -72,45 +68,20 @@ namespace pushplan::detail
 
     void Restarting::clear()
     {
-        ob::Planner::clear();
-        search_->clear();
+        WrappedSearch::clear();
         attempt_ = 1;
         attempt_end_.reset();
     }
 
-    void Restarting::setup()
-    {
-        ob::Planner::setup();
-        search_->setup();
-    }
-
-    void Restarting::setProblemDefinition(const ob::ProblemDefinitionPtr &pdef)
-    {
-        ob::Planner::setProblemDefinition(pdef);
-        search_->setProblemDefinition(pdef);
-    }
-
-    void Restarting::getPlannerData(ob::PlannerData &data) const
-    {
-        search_->getPlannerData(data);
-    }
-
-    void Restarting::checkValidity()
-    {
-        ob::Planner::checkValidity();
-        search_->checkValidity();
-    }
-
     std::uint64_t restartsOf(const ob::PlannerPtr &planner)
     {
-        const auto *restarting = dynamic_cast<const Restarting *>(planner.get());
-        return restarting ? restarting->restarts() : 0;
-    }
-
-    const ob::Planner &innerPlanner(const ob::PlannerPtr &planner)
-    {
-        if (const auto *restarting = dynamic_cast<const Restarting *>(planner.get()))
-            return *restarting->search();
-        return *planner;
+        const ob::Planner *p = planner.get();
+        while (const auto *wrapped = dynamic_cast<const WrappedSearch *>(p))
+        {
+            if (const auto *restarting = dynamic_cast<const Restarting *>(wrapped))
+                return restarting->restarts();
+            p = wrapped->search().get();
+        }
+        return 0;
     }
 }  // namespace pushplan::detail

@@ -9,8 +9,7 @@
 #pragma once
 
 #include "model_handle.h"
-
-#include <ompl/base/Planner.h>
+#include "wrapped_search.h"
 
 #include <cstdint>
 #include <optional>
@@ -20,11 +19,11 @@ namespace pushplan::detail
     /// Term i (from 1) of the Luby sequence 1, 1, 2, 1, 1, 2, 4, 1, 1, 2, 1, 1, 2, 4, 8, ...
     std::uint64_t luby(std::uint64_t i);
 
-    /// A planner that restarts another (its `search`) when an attempt ends without an exact
-    /// solution: attempt i may take `base_steps * luby(i)` propagation steps. Approximate
-    /// solutions of earlier attempts stay in the problem definition, so the closest path
-    /// over all attempts is kept. It carries the search's name and parameters.
-    class Restarting : public ompl::base::Planner
+    /// A planner that restarts its search when an attempt ends without an exact solution:
+    /// attempt i may take `base_steps * luby(i)` propagation steps. Approximate solutions
+    /// of earlier attempts stay in the problem definition, so the closest path over all
+    /// attempts is kept.
+    class Restarting : public WrappedSearch
     {
     public:
         Restarting(ompl::base::PlannerPtr search, ModelHandlePtr model, std::uint64_t base_steps);
@@ -32,18 +31,12 @@ namespace pushplan::detail
         ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
         /// Clears the search and starts the budgets over.
         void clear() override;
-        void setup() override;
-        void setProblemDefinition(const ompl::base::ProblemDefinitionPtr &pdef) override;
-        void getPlannerData(ompl::base::PlannerData &data) const override;
-        void checkValidity() override;
 
-        const ompl::base::PlannerPtr &search() const { return search_; }
         /// Attempts started over for lack of a solution since construction (clear() starts
         /// the budgets over, but does not forget them).
         std::uint64_t restarts() const { return restarts_; }
 
     private:
-        ompl::base::PlannerPtr search_;
         ModelHandlePtr model_;
         std::uint64_t base_steps_;
         /// The current attempt's index in the Luby sequence.
@@ -53,9 +46,6 @@ namespace pushplan::detail
         std::uint64_t restarts_ = 0;
     };
 
-    /// Restarts of a planner (0 if it is not a Restarting).
+    /// Restarts of a planner: of the Restarting it is or wraps (0 if none).
     std::uint64_t restartsOf(const ompl::base::PlannerPtr &planner);
-
-    /// The planner a search runs, a Restarting's own search if it is one.
-    const ompl::base::Planner &innerPlanner(const ompl::base::PlannerPtr &planner);
 }  // namespace pushplan::detail

@@ -247,6 +247,16 @@ fn every_failure_leaves_the_cpp_api_as_pushplan_error() {
 }
 
 #[test]
+fn a_time_limited_search_lifts_its_limit_when_it_returns() {
+    let binary = compile_with(
+        "tests/cpp/time_limited_search.cpp",
+        "time-limited-search",
+        &internal_includes(),
+    );
+    run_checks(&binary, 3);
+}
+
+#[test]
 fn parallel_kpiece_with_one_lane_is_ompl_kpiece1_bit_for_bit() {
     let binary = compile_with(
         "tests/cpp/parallel_kpiece.cpp",
