@@ -92,14 +92,15 @@ pub fn run_shard(
                     std::fs::read_to_string(log.with_extension("err")).unwrap_or_default();
                 format!("FAILED: {}", messages.trim())
             };
+            let spent = started.elapsed().as_secs_f64();
             eprintln!(
-                "[{done}/{}] {} {} run {} {verdict} ({:.1} s, {:.0} s in all)",
+                "[{done}/{}] {} {} run {} {verdict} ({:.1} s, {spent:.0} s in all{})",
                 cells.len(),
                 grid.scenes[cell.scene].display(),
                 grid.planners[cell.planner].name(),
                 cell.run,
                 since.elapsed().as_secs_f64(),
-                started.elapsed().as_secs_f64()
+                time_left(spent, done, cells.len())
             );
         }
     }
@@ -133,6 +134,20 @@ fn spawn_cell(exe: &Path, grid: &Grid, cell: Cell, out: &Path) -> Result<Child, 
         .stderr(messages)
         .spawn()
         .map_err(|e| format!("cannot start a benchmark process: {e}"))
+}
+
+/// `", about N min left"` (or s) at the pace so far (`spent` seconds for `done` of `all` runs),
+/// or nothing once all are done.
+fn time_left(spent: f64, done: usize, all: usize) -> String {
+    if done == 0 || done >= all {
+        return String::new();
+    }
+    let left = spent / done as f64 * (all - done) as f64;
+    if left < 90.0 {
+        format!(", about {:.0} s left", left.ceil())
+    } else {
+        format!(", about {:.0} min left", (left / 60.0).round())
+    }
 }
 
 /// Where a run writes its log until it has ended.
