@@ -174,6 +174,44 @@ fn shards_merged_hold_the_runs_of_the_unsharded_benchmark() {
     );
     assert!(merged.join("plots").join("success_vs_time.svg").is_file());
 
+    // benches/acceptance.sh's table against the database read another way (Python's
+    // sqlite3): per planner, exact solutions within 0.5 s and within the 1 s limit, and
+    // the scenes with one.
+    let table = Command::new("benches/acceptance.sh")
+        .arg(&merged)
+        .arg("0.5,1")
+        .output()
+        .unwrap();
+    assert!(
+        table.status.success(),
+        "{}",
+        String::from_utf8_lossy(&table.stderr)
+    );
+    let table = String::from_utf8_lossy(&table.stdout);
+    let count = r#"
+import sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+for (planner,) in c.execute("select name from plannerConfigs order by id"):
+    runs = c.execute("""select e.name, r.status, r.time from runs r join experiments e on e.id = r.experimentid
+        join plannerConfigs p on p.id = r.plannerid where p.name = ?""", (planner,)).fetchall()
+    exact = [r for r in runs if r[1] == 6]
+    fast = [r for r in exact if r[2] <= 0.5]
+    print(f"| {planner.replace('control_', '')} | {len(runs)} | {len(fast)} / {len(exact)} | {len({r[0] for r in fast})} / {len({r[0] for r in exact})} |")
+"#;
+    let expected = Command::new("python3")
+        .args(["-c", count])
+        .arg(merged.join("results.db"))
+        .output()
+        .unwrap();
+    let expected = String::from_utf8_lossy(&expected.stdout);
+    assert_eq!(expected.lines().count(), 2, "{expected}");
+    for row in expected.lines() {
+        assert!(
+            table.lines().any(|l| l.starts_with(row)),
+            "{row} not in\n{table}"
+        );
+    }
+
     // Merging refuses an incomplete, a doubled or a foreign set of shards.
     let out = base.join("refused");
     let run = pushplan(
