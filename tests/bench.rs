@@ -198,14 +198,9 @@ for (planner,) in c.execute("select name from plannerConfigs order by id"):
     fast = [r for r in exact if r[2] <= 0.5]
     print(f"| {planner.replace('control_', '')} | {len(runs)} | {len(fast)} / {len(exact)} | {len({r[0] for r in fast})} / {len({r[0] for r in exact})} |")
 "#;
-    let expected = Command::new("python3")
-        .args(["-c", count])
-        .arg(merged.join("results.db"))
-        .output()
-        .unwrap();
-    let expected = String::from_utf8_lossy(&expected.stdout);
-    assert_eq!(expected.lines().count(), 2, "{expected}");
-    for row in expected.lines() {
+    let expected = common::query_database(count, &merged.join("results.db"));
+    assert_eq!(expected.len(), 2, "{expected:?}");
+    for row in &expected {
         assert!(
             table.lines().any(|l| l.starts_with(row)),
             "{row} not in\n{table}"
@@ -304,19 +299,8 @@ print(*c.execute(f"""select count(*), sum(correct_solution), sum(objects_moved >
     from runs where plannerid in {darrt} and solved = 1""").fetchone())
 print(",".join(sorted({r[0] for r in c.execute("select version from experiments")})))
 "#;
-    let answer = Command::new("python3")
-        .args(["-c", query])
-        .arg(&db)
-        .output()
-        .expect("python3 runs");
-    let text = String::from_utf8_lossy(&answer.stdout);
-    let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(
-        lines.len(),
-        7,
-        "{text}{}",
-        String::from_utf8_lossy(&answer.stderr)
-    );
+    let lines = common::query_database(query, &db);
+    assert_eq!(lines.len(), 7, "{lines:?}");
     assert_eq!(lines[0], "3", "one experiment per scene");
     assert_eq!(
         lines[1],
@@ -413,14 +397,8 @@ for name, settings in c.execute("select name, settings from plannerConfigs order
     bias = [s.strip() for s in settings.split(";") if s.strip().startswith("goal_bias")]
     print(name, bias[0] if bias else "none")
 "#;
-    let answer = Command::new("python3")
-        .args(["-c", query])
-        .arg(out.join("results.db"))
-        .output()
-        .expect("python3 runs");
-    let text = String::from_utf8_lossy(&answer.stdout);
-    let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), planners.split(',').count(), "{text}");
+    let lines = common::query_database(query, &out.join("results.db"));
+    assert_eq!(lines.len(), planners.split(',').count(), "{lines:?}");
     for line in lines {
         assert!(line.ends_with("goal_bias = 0.25"), "{line}");
     }

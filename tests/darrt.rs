@@ -360,13 +360,5 @@ for row in c.execute("select {columns} from runs"):
     print(*row)
 "#
     );
-    let answer = std::process::Command::new("python3")
-        .args(["-c", &query])
-        .arg(out.join("results.db"))
-        .output()
-        .unwrap();
-    String::from_utf8_lossy(&answer.stdout)
-        .lines()
-        .map(str::to_string)
-        .collect()
+    common::query_database(&query, &out.join("results.db"))
 }

@@ -128,19 +128,27 @@ goal: {{object: {name}, center: [0.9, 0.3], radius: 0.1}}
 /// Every run of a benchmark database (`results.db`), one line each: experiment, its seed
 /// and run count, planner, run index.
 pub fn benchmark_runs(db: &Path) -> Vec<String> {
-    let query = r#"
+    query_database(
+        r#"
 import sqlite3, sys
 c = sqlite3.connect(sys.argv[1])
 for row in c.execute("""select e.name, e.seed, e.runcount, p.name, r.run from runs r
         join experiments e on e.id = r.experimentid join plannerConfigs p on p.id = r.plannerid
         order by 1, 4, 5"""):
     print(*row)
-"#;
+"#,
+        db,
+    )
+}
+
+/// What a Python `script` prints about the database `db` (its `sys.argv[1]`), line by
+/// line: benchmark databases read by another program than the one that wrote them.
+pub fn query_database(script: &str, db: &Path) -> Vec<String> {
     let answer = std::process::Command::new("python3")
-        .args(["-c", query])
+        .args(["-c", script])
         .arg(db)
         .output()
-        .unwrap();
+        .expect("python3 runs");
     assert!(
         answer.status.success(),
         "{}",
