@@ -189,16 +189,22 @@ impl Robot {
         let jac = self
             .chain
             .point_jacobian(poses, self.ee_link, &tool.translation.vector.into());
-        let jjt: Matrix6<f64> = (&jac * jac.transpose())
-            .fixed_view::<6, 6>(0, 0)
-            .into_owned()
-            + Matrix6::identity() * damping.powi(2);
+        // J J^T + damping^2 I and J z, column by column on the stack: this runs every
+        // step, and the dynamic products allocated a packing buffer each time.
+        let mut jjt = Matrix6::identity() * damping.powi(2);
+        let mut jz = Vector6::zeros();
+        for k in 0..jac.ncols() {
+            let column = jac.fixed_view::<6, 1>(0, k);
+            jjt += column * column.transpose();
+            if !z.is_empty() {
+                jz += column * z[k];
+            }
+        }
         // Damped J J^T is positive definite for finite J; NaN input ends here, not in a panic.
         let chol = jjt.cholesky().ok_or(ProjectionFailure::NotFinite)?;
-        let mut qdot = jac.transpose() * chol.solve(task);
+        let mut qdot = jac.tr_mul(&chol.solve(task));
         if !z.is_empty() {
-            let jz = Vector6::from_iterator((&jac * z).iter().copied());
-            qdot += z - jac.transpose() * chol.solve(&jz);
+            qdot += z - jac.tr_mul(&chol.solve(&jz));
         }
         Ok(qdot)
     }
