@@ -61,7 +61,15 @@ namespace pushplan::detail
         };
         model_->model().set_time_limit(seconds_);
         const Lift lift{*model_};
-        return search_->solve(ptc);
+        // Told to stop, the search only finishes its path (PDST propagates it again from
+        // its motions' starts): no limit for that.
+        const ob::PlannerTerminationCondition stop([&] {
+            if (!ptc())
+                return false;
+            model_->model().set_time_limit(std::numeric_limits<double>::infinity());
+            return true;
+        });
+        return search_->solve(stop);
     }
 
     const ob::Planner &innerPlanner(const ob::PlannerPtr &planner)
