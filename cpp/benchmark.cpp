@@ -69,10 +69,13 @@ namespace pushplan::bridge
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
         benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.planner.k));
-        // As in Planner::solve: no propagation past the run's time limit, while it runs.
-        benchmark.addPlanner(std::make_shared<detail::TimeLimitedSearch>(
-            detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps),
-            model, options.time_limit));
+        // As in Planner::solve: no propagation past the run's time limit, while it runs
+        // (not PDST's).
+        ob::PlannerPtr planner =
+            detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps);
+        if (planner_cut_at_time_limit(options.planner))
+            planner = std::make_shared<detail::TimeLimitedSearch>(std::move(planner), model, options.time_limit);
+        benchmark.addPlanner(planner);
 
         std::uint64_t steps_before = 0;
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &) { steps_before = model->propagationSteps(); });

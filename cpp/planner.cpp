@@ -215,10 +215,14 @@ namespace pushplan
             };
             const std::function<bool()> out_of_time = [&] { return elapsed() >= time_limit; };
             // The models refuse to propagate past the limit: an extension of k long controls
-            // (OMPL checks the limit only between extensions) ends on time (the searches'
-            // models armed in `search`).
-            for (const detail::ModelHandlePtr &m : lane_models)
-                m->model().set_time_limit(time_limit);
+            // (OMPL checks the limit only between extensions) ends on time. Not PDST's.
+            if (bridge::planner_cut_at_time_limit(options.planner))
+            {
+                for (const detail::ModelHandlePtr &m : models)
+                    m->model().set_time_limit(time_limit);
+                for (const detail::ModelHandlePtr &m : lane_models)
+                    m->model().set_time_limit(time_limit);
+            }
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
@@ -248,10 +252,6 @@ namespace pushplan
                 next_report = std::floor(t) + 1.0;
             };
             const auto search = [&] {
-                // A search told to stop has its model's limit lifted (Portfolio::solve): armed
-                // again for each search.
-                for (const detail::ModelHandlePtr &m : models)
-                    m->model().set_time_limit(std::max(0.0, time_limit - elapsed()));
                 try
                 {
                     return portfolio.solve(out_of_time, report);

@@ -91,22 +91,13 @@ namespace pushplan::detail
             // timing; the search pauses there without leaving solve().
             std::uint64_t round_end = model.propagationSteps() + kRoundSteps;
             bool stopped = false;
-            const auto stop = [&] {
-                // Told to stop, a search only finishes its path (PDST propagates it again
-                // from its motions' starts), which the model's time limit, there to cut an
-                // extension in flight short, would break.
-                model.model().set_time_limit(std::numeric_limits<double>::infinity());
-                return stopped = true;
-            };
             const ob::PlannerTerminationCondition ptc([&] {
-                if (stopped)
+                if (stopped || out_of_time())
                     return true;
-                if (out_of_time())
-                    return stop();
                 if (model.propagationSteps() < round_end)
                     return false;
                 round_end += kRoundSteps;
-                return rendezvous.pause() && stop();
+                return stopped = rendezvous.pause();
             });
             try
             {

@@ -61,15 +61,7 @@ namespace pushplan::detail
         };
         model_->model().set_time_limit(seconds_);
         const Lift lift{*model_};
-        // Told to stop, the search only finishes its path (PDST propagates it again from
-        // its motions' starts): no limit for that.
-        const ob::PlannerTerminationCondition stop([&] {
-            if (!ptc())
-                return false;
-            model_->model().set_time_limit(std::numeric_limits<double>::infinity());
-            return true;
-        });
-        return search_->solve(stop);
+        return search_->solve(ptc);
     }
 
     const ob::Planner &innerPlanner(const ob::PlannerPtr &planner)

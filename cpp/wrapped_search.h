@@ -30,12 +30,10 @@ namespace pushplan::detail
 
     /// The search under a time limit its model enforces: from the start of solve(), no
     /// propagation past `seconds` (an extension of k long controls ends on time, where
-    /// OMPL checks its termination condition only between extensions); lifted once the
-    /// termination condition says stop (PDST then propagates its path again to return it)
-    /// and when solve() returns. After the search, OMPL's Benchmark re-propagates the path it
-    /// checks and the tree it counts (PDST's getPlannerData propagates each motion again
-    /// from its start): refused, PDST's walk went from every motion up to the root, a
-    /// minute or two after a 60 s run.
+    /// OMPL checks its termination condition only between extensions); lifted when
+    /// solve() returns: after the search, OMPL's Benchmark re-propagates the path it
+    /// checks. PDST runs without it (`PlannerKind::cut_at_time_limit`): it propagates its
+    /// motions again within its search and to return its path.
     class TimeLimitedSearch : public WrappedSearch
     {
     public:

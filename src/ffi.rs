@@ -15,10 +15,10 @@ pub use entry::{
 use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
 use convert::{
-    add_search_stats, darrt_check, darrt_pick_place, finish, nearest_tree, planner_kind,
-    planner_name, planner_restart_steps, planner_shares_one_search, planner_yields_controls,
-    push_blockers, scene_info, search_stats, trajectory, tree_add, tree_nearest, tree_nearest_k,
-    tree_nearest_r,
+    add_search_stats, darrt_check, darrt_pick_place, finish, nearest_tree,
+    planner_cut_at_time_limit, planner_kind, planner_name, planner_restart_steps,
+    planner_shares_one_search, planner_yields_controls, push_blockers, scene_info, search_stats,
+    trajectory, tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
 };
 
 // SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
@@ -248,6 +248,7 @@ pub mod bridge {
         fn planner_yields_controls(kind: PlannerKind) -> bool;
         fn planner_restart_steps(kind: PlannerKind) -> u64;
         fn planner_shares_one_search(kind: PlannerKind) -> bool;
+        fn planner_cut_at_time_limit(kind: PlannerKind) -> bool;
         fn planner_kind(name: &str) -> Result<PlannerKind>;
     }
 

@@ -82,6 +82,10 @@ pub(super) fn planner_shares_one_search(kind: PlannerKind) -> bool {
     kind.shares_one_search()
 }
 
+pub(super) fn planner_cut_at_time_limit(kind: PlannerKind) -> bool {
+    kind.cut_at_time_limit()
+}
+
 pub(super) fn planner_yields_controls(kind: PlannerKind) -> bool {
     kind.yields_controls()
 }

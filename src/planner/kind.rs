@@ -133,6 +133,15 @@ impl PlannerKind {
         matches!(self, PlannerKind::Kpiece | PlannerKind::PushKpiece)
     }
 
+    /// Whether the model refuses propagations past the time limit while this planner
+    /// searches, so that an extension of k long controls ends on time (OMPL checks the
+    /// limit only between extensions). Not PDST's: it propagates its motions again, to
+    /// split them at cell borders and to return its path, and a propagation refused
+    /// there would put wrong states in its tree.
+    pub fn cut_at_time_limit(self) -> bool {
+        !matches!(self, PlannerKind::Pdst)
+    }
+
     /// The names, comma-separated (for messages).
     pub fn names() -> String {
         PlannerKind::ALL.map(PlannerKind::name).join(", ")
