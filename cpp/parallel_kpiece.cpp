@@ -3,6 +3,7 @@
 #include <ompl/base/Goal.h>
 #include <ompl/control/PathControl.h>
 
+#include <cmath>
 #include <exception>
 #include <limits>
 #include <mutex>
@@ -25,7 +26,6 @@ namespace pushplan::detail
         std::vector<ob::State *> states;
         unsigned reached = 0;  // valid steps
         std::vector<Grid::Coord> coords;
-        std::vector<Grid::Cell *> cells;
         /// Motion i spans states ends[i - 1] + 1 .. ends[i] (one run of states in a cell).
         std::vector<unsigned> ends;
         std::vector<double> distances;
@@ -118,14 +118,13 @@ namespace pushplan::detail
             return false;
         }
         // Worth adding if it reaches a new or sparsely covered cell (or, rarely, anyway).
+        // The states of one motion share a cell: one look-up per motion.
         const std::size_t two_thirds_of_average_coverage = (2 * tree_.size) / (3 * tree_.grid.size());
         bool interesting = false;
-        for (unsigned i = 0; i < e.reached; ++i)
+        for (std::size_t m = 0; m < e.ends.size() && !interesting; ++m)
         {
-            e.cells[i] = tree_.grid.getCell(e.coords[i]);
-            if (e.cells[i] == nullptr ||
-                (!interesting && e.cells[i]->data->motions.size() <= two_thirds_of_average_coverage))
-                interesting = true;
+            const Grid::Cell *cell = tree_.grid.getCell(e.coords[e.ends[m]]);
+            interesting = cell == nullptr || cell->data->motions.size() <= two_thirds_of_average_coverage;
         }
         if (interesting || rng_.uniform01() < 0.05)
         {
@@ -141,7 +140,7 @@ namespace pushplan::detail
                 motion->parent = parent;
                 const double distance = e.distances[m];
                 tree_model_->creditGoalDistance(distance);
-                Grid::Cell *cell = addMotion(motion, distance);
+                Grid::Cell *cell = addMotionAt(motion, e.coords[e.ends[m]], distance);
                 if (e.at_goal[m])
                 {
                     solution_ = motion;
@@ -162,6 +161,34 @@ namespace pushplan::detail
             e.cell->data->score *= goodScoreFactor_;
         tree_.grid.update(e.cell);
         return false;
+    }
+
+    ParallelKPIECE::Grid::Cell *ParallelKPIECE::addMotionAt(Motion *motion, const Grid::Coord &coord,
+                                                            double distance)
+    {
+        Grid::Cell *cell = tree_.grid.getCell(coord);
+        if (cell != nullptr)
+        {
+            cell->data->motions.push_back(motion);
+            cell->data->coverage += motion->steps;
+            tree_.grid.update(cell);
+        }
+        else
+        {
+            cell = tree_.grid.createCell(coord);
+            cell->data = new CellData();
+            cell->data->motions.push_back(motion);
+            cell->data->coverage = motion->steps;
+            cell->data->iteration = tree_.iteration;
+            cell->data->selections = 1;
+            // A new cell's importance: the later it was found and the closer to the goal,
+            // the more important.
+            cell->data->score =
+                (1.0 + std::log(static_cast<double>(tree_.iteration))) / (kGoalDistanceOffset + distance);
+            tree_.grid.add(cell);
+        }
+        tree_.size++;
+        return cell;
     }
 
     ob::PlannerStatus ParallelKPIECE::solve(const ob::PlannerTerminationCondition &ptc)
@@ -200,7 +227,6 @@ namespace pushplan::detail
             for (ob::State *&s : e.states)
                 s = si_->allocState();
             e.coords.assign(most_states, Grid::Coord(projectionEvaluator_->getDimension()));
-            e.cells.resize(most_states);
         }
 
         // Lane w holds iteration j = w (mod window) of turn <= j < turn + window: selected,

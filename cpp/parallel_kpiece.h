@@ -76,6 +76,12 @@ namespace pushplan::detail
         /// Adds an extended iteration to the tree; true if it reached the goal. On the
         /// tree's turn.
         bool add(Extension &e, CloseSamples &close_samples);
+        /// KPIECE1's addMotion at grid coordinates the lane computed already: the tree's
+        /// turn, which no other thread can share, does not project states again.
+        Grid::Cell *addMotionAt(Motion *motion, const Grid::Coord &coord, double distance);
+        /// Added to the goal distance in a new cell's importance (KPIECE1's offset): no
+        /// division by zero at the goal.
+        static constexpr double kGoalDistanceOffset = 1e-3;
 
         ModelHandlePtr tree_model_;
         std::vector<Lane> lanes_;

@@ -234,10 +234,11 @@ namespace pushplan
                 else if (options.progress)
                     detail::printProgress(p);
             };
+            const std::function<bool()> report_due = [&] {
+                return (options.progress || options.on_progress) && elapsed() >= next_report;
+            };
             const std::function<void()> report = [&] {
                 const double t = elapsed();
-                if ((!options.progress && !options.on_progress) || t < next_report)
-                    return;
                 Progress p;
                 p.seconds = t;
                 p.propagation_steps = portfolio.propagationSteps();
@@ -254,7 +255,7 @@ namespace pushplan
             const auto search = [&] {
                 try
                 {
-                    return portfolio.solve(out_of_time, report);
+                    return portfolio.solve(out_of_time, report_due, report);
                 }
                 catch (const rust::Error &e)
                 {

@@ -80,21 +80,24 @@ namespace pushplan::detail
     }  // namespace
 
     std::optional<std::size_t> Portfolio::solve(const std::function<bool()> &out_of_time,
-                                                const std::function<void()> &after_round)
+                                                const std::function<bool()> &report_due,
+                                                const std::function<void()> &report)
     {
         const std::size_t n = searches_.size();
+        const bool alone = n == 1;
         Rendezvous rendezvous(n);
         std::vector<std::exception_ptr> failures(n);
         const auto run = [&](std::size_t i) {
             const ModelHandle &model = *searches_[i].problem.model;
             // Rounds are counted in steps, so each ends at the same iteration whatever the
-            // timing; the search pauses there without leaving solve().
+            // timing; the search pauses there without leaving solve(). A lone search's
+            // timing cannot change its plan: it pauses only for a report.
             std::uint64_t round_end = model.propagationSteps() + kRoundSteps;
             bool stopped = false;
             const ob::PlannerTerminationCondition ptc([&] {
                 if (stopped || out_of_time())
                     return true;
-                if (model.propagationSteps() < round_end)
+                if (alone ? !report_due() : model.propagationSteps() < round_end)
                     return false;
                 round_end += kRoundSteps;
                 return stopped = rendezvous.pause();
@@ -127,7 +130,8 @@ namespace pushplan::detail
         for (;;)
         {
             const std::size_t running = rendezvous.await();
-            after_round();
+            if (report_due())
+                report();
             const bool stop = running == 0 || first_solved() || failed() || out_of_time();
             rendezvous.release(stop);
             if (stop)

@@ -40,11 +40,15 @@ namespace pushplan::detail
         explicit Portfolio(std::vector<Search> searches);
 
         /// Runs rounds until one ends with an exact solution or `out_of_time` (asked from
-        /// every thread) says stop; every search runs on a thread of its own, and
-        /// `after_round` on the calling thread after each round, while every search is
-        /// paused. Returns the lowest-numbered search holding an exact solution.
+        /// every thread) says stop; every search runs on a thread of its own, and `report`
+        /// on the calling thread after a round when `report_due` says so, while every
+        /// search is paused. A lone search keeps step with nobody: its rounds end only
+        /// when a report is due (a pause wakes the calling thread, which, every 1 000
+        /// steps, cost a lone search a few per cent: BENCHMARKS.md, "The tree's turn").
+        /// Returns the lowest-numbered search holding an exact solution.
         std::optional<std::size_t> solve(const std::function<bool()> &out_of_time,
-                                         const std::function<void()> &after_round);
+                                         const std::function<bool()> &report_due,
+                                         const std::function<void()> &report);
 
         /// Drops search `i`'s tree and solutions: it starts over in the next round.
         void restart(std::size_t i);
