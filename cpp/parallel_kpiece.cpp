@@ -1,9 +1,12 @@
 #include "parallel_kpiece.h"
 
+#include "helper_thread.h"
+
 #include <ompl/base/Goal.h>
 #include <ompl/control/PathControl.h>
 
 #include <cmath>
+#include <deque>
 #include <exception>
 #include <limits>
 #include <mutex>
@@ -303,12 +306,13 @@ namespace pushplan::detail
         };
         if (selected == window)  // else the termination condition stopped the search already
         {
-            std::vector<std::thread> helpers;
+            // Helpers start on other cores than this thread's, which goes on extending.
+            std::deque<HelperThread> helpers;
             for (std::size_t t = 1; t < threads_; ++t)
-                helpers.emplace_back(run, t);
+                helpers.emplace_back([&run, t] { run(t); });
             run(0);
-            for (std::thread &t : helpers)
-                t.join();
+            for (HelperThread &h : helpers)
+                h.join();
         }
 
         for (Extension &e : extensions)

@@ -229,6 +229,11 @@ fn run_checks(binary: &Path, checks: usize) {
     );
 }
 
+/// Builds a C++ test program of the library's internals and runs its checks (run_checks).
+fn run_internal_checks(source: &str, name: &str, checks: usize) {
+    run_checks(&compile_with(source, name, &internal_includes()), checks);
+}
+
 /// The library's internal headers: cxx's generated ones and the crate's, which the build
 /// script put under OUT_DIR.
 fn internal_includes() -> [String; 2] {
@@ -238,30 +243,24 @@ fn internal_includes() -> [String; 2] {
 
 #[test]
 fn every_failure_leaves_the_cpp_api_as_pushplan_error() {
-    let binary = compile_with(
-        "tests/cpp/error_conversion.cpp",
-        "error-conversion",
-        &internal_includes(),
-    );
-    run_checks(&binary, 4);
+    run_internal_checks("tests/cpp/error_conversion.cpp", "error-conversion", 4);
 }
 
 #[test]
 fn a_time_limited_search_lifts_its_limit_when_it_returns() {
-    let binary = compile_with(
+    run_internal_checks(
         "tests/cpp/time_limited_search.cpp",
         "time-limited-search",
-        &internal_includes(),
+        3,
     );
-    run_checks(&binary, 3);
 }
 
 #[test]
 fn parallel_kpiece_with_one_lane_is_ompl_kpiece1_bit_for_bit() {
-    let binary = compile_with(
-        "tests/cpp/parallel_kpiece.cpp",
-        "parallel-kpiece",
-        &internal_includes(),
-    );
-    run_checks(&binary, 7);
+    run_internal_checks("tests/cpp/parallel_kpiece.cpp", "parallel-kpiece", 7);
+}
+
+#[test]
+fn helper_threads_start_on_another_core_then_use_any() {
+    run_internal_checks("tests/cpp/helper_thread.cpp", "helper-thread", 4);
 }
