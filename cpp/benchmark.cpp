@@ -5,6 +5,7 @@
 #include "benchmark.h"
 
 #include "darrt.h"
+#include "fallback.h"
 #include "problem.h"
 #include "restarts.h"
 #include "wrapped_search.h"
@@ -72,7 +73,8 @@ namespace pushplan::bridge
         // As in Planner::solve: no propagation past the run's time limit, while it runs
         // (not PDST's).
         ob::PlannerPtr planner =
-            detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps);
+            detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps,
+                                options.fallback_steps);
         if (planner_cut_at_time_limit(options.planner))
             planner = std::make_shared<detail::TimeLimitedSearch>(std::move(planner), model, options.time_limit);
         benchmark.addPlanner(planner);
@@ -82,6 +84,7 @@ namespace pushplan::bridge
         benchmark.setPostRunEvent([&](const ob::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &props) {
             props["run INTEGER"] = std::to_string(options.run);
             props["restarts INTEGER"] = std::to_string(detail::restartsOf(planner));
+            props["fell back INTEGER"] = std::to_string(detail::fellBack(planner) ? 1 : 0);
             // Only the planners that propagate controls through the model have a rate.
             const double propagated = static_cast<double>(model->propagationSteps() - steps_before);
             const double time = std::stod(props["time REAL"]);

@@ -91,10 +91,15 @@ namespace pushplan::detail
             credited_steps_ += steps;
             credited_seconds_ += seconds;
         }
-        /// The smallest goal distance this model's search has met (m or rad), its own or
-        /// credited by lanes.
+        /// The smallest and the largest goal distance this model's search has met (m or
+        /// rad), its own or credited by lanes.
         double closestGoalDistance() const { return std::min(model_->closest_goal_distance(), credited_closest_); }
-        void creditGoalDistance(double distance) { credited_closest_ = std::min(credited_closest_, distance); }
+        double farthestGoalDistance() const { return std::max(model_->farthest_goal_distance(), credited_farthest_); }
+        void creditGoalDistance(double distance)
+        {
+            credited_closest_ = std::min(credited_closest_, distance);
+            credited_farthest_ = std::max(credited_farthest_, distance);
+        }
 
     private:
         /// The perturbed worlds' poses within a state's block (empty without worlds).
@@ -108,6 +113,7 @@ namespace pushplan::detail
         std::uint64_t credited_steps_ = 0;
         double credited_seconds_ = 0.0;
         double credited_closest_ = std::numeric_limits<double>::infinity();
+        double credited_farthest_ = -std::numeric_limits<double>::infinity();
         mutable std::vector<double> a_, b_, control_, particles_;
     };
 

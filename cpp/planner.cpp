@@ -176,6 +176,8 @@ namespace pushplan
                          (options.robust_trials > 0 && options.planner != PlannerKind::StaticRrt)));
             const std::uint64_t restart_steps =
                 options.restart_steps.value_or(bridge::planner_restart_steps(options.planner));
+            const std::uint64_t fallback_steps =
+                options.fallback_steps.value_or(bridge::planner_fallback_steps(options.planner));
             for (unsigned i = 0; i < search_count; ++i)
                 models[i]->setParticles(options.robust_particles, detail::searchSeed(seed, i));
             // A lane propagates the states of search 0: the same perturbed worlds.
@@ -201,7 +203,7 @@ namespace pushplan
                     lanes.push_back(detail::makeLane(lane_models[l], search_seed, l, k));
                 ob::PlannerPtr planner =
                     detail::makePlanner(options.planner, problem, search_seed, goal_bias, options.intermediate_states,
-                                        restart_steps, std::move(lanes), threads);
+                                        restart_steps, fallback_steps, std::move(lanes), threads);
                 problem.setup->setPlanner(planner);
                 problem.setup->setup();
                 searches.push_back(detail::Search{std::move(problem), std::move(planner)});
@@ -226,7 +228,7 @@ namespace pushplan
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
-            std::uint64_t last_steps = 0;
+            std::uint64_t last_steps = 0, told_fallbacks = 0;
             // Reports go to options.on_progress, or are printed with options.progress.
             const auto tell = [&](const Progress &p) {
                 if (options.on_progress)
@@ -239,6 +241,18 @@ namespace pushplan
             };
             const std::function<void()> report = [&] {
                 const double t = elapsed();
+                if (const std::uint64_t fallbacks = portfolio.fallbacks(); fallbacks > told_fallbacks)
+                {
+                    Progress note;
+                    note.seconds = t;
+                    note.propagation_steps = portfolio.propagationSteps();
+                    note.searches = search_count;
+                    note.closest_goal_distance = portfolio.closestGoalDistance();
+                    note.note = "the goal object has not moved in " + std::to_string(fallback_steps) +
+                                " propagation steps: PC RRT searches on";
+                    tell(note);
+                    told_fallbacks = fallbacks;
+                }
                 Progress p;
                 p.seconds = t;
                 p.propagation_steps = portfolio.propagationSteps();
@@ -329,6 +343,7 @@ namespace pushplan
             plan.search = detail::searchStats(every_model);
             plan.threads = threads;
             plan.restarts = portfolio.restarts();
+            plan.fallbacks = portfolio.fallbacks();
             plan.step = info.planner.step;
             for (std::size_t i = 0; i < portfolio.size(); ++i)
             {

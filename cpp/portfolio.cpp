@@ -1,5 +1,6 @@
 #include "portfolio.h"
 
+#include "fallback.h"
 #include "restarts.h"
 
 #include <algorithm>
@@ -199,6 +200,14 @@ namespace pushplan::detail
         for (const Search &s : searches_)
             restarts += restartsOf(s.planner);
         return restarts;
+    }
+
+    std::uint64_t Portfolio::fallbacks() const
+    {
+        std::uint64_t count = 0;
+        for (const Search &s : searches_)
+            count += fellBack(s.planner) ? 1 : 0;
+        return count;
     }
 
     std::optional<std::size_t> Portfolio::treeStates() const

@@ -69,6 +69,8 @@ namespace pushplan::detail
         std::optional<std::size_t> treeStates() const;
         /// Attempts started over for lack of a solution (Restarting), all searches.
         std::uint64_t restarts() const;
+        /// Searches that handed over to their fallback (Fallback).
+        std::uint64_t fallbacks() const;
 
     private:
         std::vector<Search> searches_;

@@ -2,6 +2,7 @@
 
 #include "control.h"
 #include "darrt.h"
+#include "fallback.h"
 #include "goal.h"
 #include "nearest.h"
 #include "parallel_kpiece.h"
@@ -65,6 +66,31 @@ namespace pushplan::detail
             projection[i] = p[i];
     }
 
+    /// PC RRT's controls: uniform, each sampler with its own stream, from `first_stream` on.
+    static void useUniformControls(const oc::ControlSpacePtr &controls, std::uint64_t seed, std::uint64_t first_stream)
+    {
+        auto count = std::make_shared<std::uint64_t>(0);
+        controls->setControlSamplerAllocator([seed, first_stream, count](const oc::ControlSpace *c) {
+            return std::make_shared<EeControlSampler>(c, subSeed(seed, first_stream + (*count)++));
+        });
+    }
+
+    /// What every space information of a problem shares: the model's propagation and
+    /// validity, the control durations, and Alg. 1's best of k sampled controls.
+    static void configure(const oc::SpaceInformationPtr &si, const ModelHandlePtr &model, unsigned k)
+    {
+        const bridge::SceneInfo &info = model->info();
+        si->setStateValidityChecker(std::make_shared<PushValidityChecker>(si, model));
+        si->setStatePropagator(std::make_shared<PushStatePropagator>(si, model));
+        si->setPropagationStepSize(info.planner.step);
+        const auto min_steps = static_cast<unsigned>(std::max(1.0, std::round(info.planner.min_duration / info.planner.step)));
+        const auto max_steps = std::max(min_steps, static_cast<unsigned>(std::round(info.planner.max_duration / info.planner.step)));
+        si->setMinMaxControlDuration(min_steps, max_steps);
+        // Alg. 1 lines 5-8: the best of k sampled actions, by the model's distance.
+        si->setDirectedControlSamplerAllocator(
+            [k](const oc::SpaceInformation *s) { return std::make_shared<oc::SimpleDirectedControlSampler>(s, k); });
+    }
+
     Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k)
     {
         const bridge::SceneInfo &info = model->info();
@@ -76,22 +102,11 @@ namespace pushplan::detail
         });
         space->registerDefaultProjection(std::make_shared<PushProjection>(space.get(), model));
         auto controls = makeControlSpace(space, info);
-        auto control_count = std::make_shared<std::uint64_t>(0);
-        controls->setControlSamplerAllocator([seed, control_count](const oc::ControlSpace *c) {
-            return std::make_shared<EeControlSampler>(c, subSeed(seed, 1000 + (*control_count)++));
-        });
+        useUniformControls(controls, seed, 1000);
 
         auto setup = std::make_shared<oc::SimpleSetup>(controls);
         const oc::SpaceInformationPtr &si = setup->getSpaceInformation();
-        setup->setStateValidityChecker(std::make_shared<PushValidityChecker>(si, model));
-        setup->setStatePropagator(std::make_shared<PushStatePropagator>(si, model));
-        si->setPropagationStepSize(info.planner.step);
-        const auto min_steps = static_cast<unsigned>(std::max(1.0, std::round(info.planner.min_duration / info.planner.step)));
-        const auto max_steps = std::max(min_steps, static_cast<unsigned>(std::round(info.planner.max_duration / info.planner.step)));
-        si->setMinMaxControlDuration(min_steps, max_steps);
-        // Alg. 1 lines 5-8: the best of k sampled actions, by the model's distance.
-        si->setDirectedControlSamplerAllocator(
-            [k](const oc::SpaceInformation *s) { return std::make_shared<oc::SimpleDirectedControlSampler>(s, k); });
+        configure(si, model, k);
 
         ob::ScopedState<> start(space);
         model->writeStart(start.get());
@@ -99,7 +114,20 @@ namespace pushplan::detail
         setup->setGoal(std::make_shared<PushGoal>(si, model, subSeed(seed, 2)));
         // Path length in the model's metric: what SST (and any optimizing planner) minimizes.
         setup->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
-        return Problem{std::move(model), std::move(space), std::move(setup)};
+        return Problem{std::move(model), std::move(space), std::move(setup), k};
+    }
+
+    /// The problem's space information again, on the same state space and model, with
+    /// control space and samplers of its own (uniform, PC RRT's): for a search that
+    /// follows one whose controls push (Fallback).
+    static oc::SpaceInformationPtr withUniformControls(const Problem &problem, std::uint64_t seed)
+    {
+        auto controls = makeControlSpace(problem.space, problem.model->info());
+        useUniformControls(controls, seed, 3000);
+        auto si = std::make_shared<oc::SpaceInformation>(problem.space, controls);
+        configure(si, problem.model, problem.k);
+        si->setup();
+        return si;
     }
 
     /// Push KPIECE's controls: most along push headings, each sampler with its own stream.
@@ -193,15 +221,25 @@ namespace pushplan::detail
     }
 
     ob::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed, double goal_bias,
-                               bool intermediate_states, std::uint64_t restart_steps,
+                               bool intermediate_states, std::uint64_t restart_steps, std::uint64_t fallback_steps,
                                std::vector<Lane> lanes, unsigned threads)
     {
         if (!lanes.empty() && !bridge::planner_shares_one_search(kind))
             throw Error(plannerName(kind) + " runs one search per thread, not one search on several");
+        if (fallback_steps > 0 && kind != PlannerKind::PushKpiece)
+            throw Error("fallback_steps: only push_kpiece falls back (to pcrrt), not " + plannerName(kind));
         ob::PlannerPtr search =
             makeSearch(kind, problem, seed, goal_bias, intermediate_states, std::move(lanes), threads);
-        if (restart_steps == 0)
+        if (restart_steps > 0)
+            search = std::make_shared<Restarting>(std::move(search), problem.model, restart_steps);
+        if (fallback_steps == 0)
             return search;
-        return std::make_shared<Restarting>(std::move(search), problem.model, restart_steps);
+        // PC RRT on the same problem, with its own uniform controls, never restarted; on
+        // one thread (the lanes are the first search's).
+        auto pc_rrt = std::make_shared<SeededRRT>(withUniformControls(problem, seed), problem.model,
+                                                  subSeed(seed, 4), "PCRRT");
+        pc_rrt->setGoalBias(goal_bias);
+        pc_rrt->setIntermediateStates(intermediate_states);
+        return std::make_shared<Fallback>(std::move(search), std::move(pc_rrt), problem.model, fallback_steps);
     }
 }  // namespace pushplan::detail

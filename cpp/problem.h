@@ -72,6 +72,8 @@ namespace pushplan::detail
         ModelHandlePtr model;
         std::shared_ptr<PushStateSpace> space;
         std::shared_ptr<ompl::control::SimpleSetup> setup;
+        /// Control samples per extension (Alg. 1's k).
+        unsigned k = 1;
     };
 
     /// Sets up the problem: k is the number of control samples per extension (Alg. 1).
@@ -83,10 +85,13 @@ namespace pushplan::detail
     /// A planner of the problem. Static RRT is the same RRT as PC RRT; the model decides
     /// that the clutter is static (ModelHandle's static-clutter mode). With restart_steps
     /// > 0 the search starts over when an attempt finds no solution (Restarting). With
+    /// fallback_steps > 0 (Push KPIECE only; others throw) it hands over to PC RRT when
+    /// that many steps have not moved the goal object (Fallback). With
     /// lanes (the KPIECE planners only) the search extends on them (ParallelKPIECE), run
     /// by `threads` threads (0: one per lane); the search depends on the lanes, not on the
     /// threads.
     ompl::base::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed,
                                        double goal_bias, bool intermediate_states, std::uint64_t restart_steps,
-                                       std::vector<Lane> lanes = {}, unsigned threads = 0);
+                                       std::uint64_t fallback_steps, std::vector<Lane> lanes = {},
+                                       unsigned threads = 0);
 }  // namespace pushplan::detail

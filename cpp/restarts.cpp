@@ -1,5 +1,7 @@
 #include "restarts.h"
 
+#include "fallback.h"
+
 #include <ompl/base/ProblemDefinition.h>
 
 #include <limits>
@@ -80,7 +82,9 @@ namespace pushplan::detail
         {
             if (const auto *restarting = dynamic_cast<const Restarting *>(wrapped))
                 return restarting->restarts();
-            p = wrapped->search().get();
+            // A fallback's restarts are its first search's, whichever runs now.
+            const auto *fallback = dynamic_cast<const Fallback *>(wrapped);
+            p = fallback ? fallback->first().get() : wrapped->search().get();
         }
         return 0;
     }

@@ -35,6 +35,7 @@ namespace pushplan::bridge
         o.robust_particles = options.robust_particles;
         o.threads = options.threads;
         o.restart_steps = options.restart_steps;
+        o.fallback_steps = options.fallback_steps;
         o.shortcut = 0.0;  // the CLI finishes the path itself (planner::finish), to report on it
 
         const Plan plan = Planner(std::string(scene_path)).solve(o);
@@ -45,6 +46,7 @@ namespace pushplan::bridge
         out.tree_size = plan.tree_size;
         out.propagation_steps = plan.propagation_steps;
         out.restarts = plan.restarts;
+        out.fallbacks = plan.fallbacks;
         out.search.propagations = plan.search.propagations;
         out.search.steps = plan.search.steps;
         out.search.moved_goal_object = plan.search.moved_goal_object;

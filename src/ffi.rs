@@ -16,9 +16,9 @@ use crate::planner::NearestTree;
 use crate::planner::{Model, PlannerKind};
 use convert::{
     add_search_stats, darrt_check, darrt_pick_place, finish, nearest_tree,
-    planner_cut_at_time_limit, planner_kind, planner_name, planner_restart_steps,
-    planner_shares_one_search, planner_yields_controls, push_blockers, scene_info, search_stats,
-    trajectory, tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
+    planner_cut_at_time_limit, planner_fallback_steps, planner_kind, planner_name,
+    planner_restart_steps, planner_shares_one_search, planner_yields_controls, push_blockers,
+    scene_info, search_stats, trajectory, tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
 };
 
 // SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
@@ -181,6 +181,8 @@ pub mod bridge {
         fn propagation_steps(self: &Model) -> u64;
         /// The smallest goal distance of a state so far (progress reports).
         fn closest_goal_distance(self: &Model) -> f64;
+        /// The largest goal distance of a state so far.
+        fn farthest_goal_distance(self: &Model) -> f64;
         fn propagation_seconds(self: &Model) -> f64;
         fn search_stats(model: &Model) -> SearchStats;
         fn add_search_stats(a: &SearchStats, b: &SearchStats) -> SearchStats;
@@ -247,6 +249,7 @@ pub mod bridge {
         fn planner_name(kind: PlannerKind) -> &'static str;
         fn planner_yields_controls(kind: PlannerKind) -> bool;
         fn planner_restart_steps(kind: PlannerKind) -> u64;
+        fn planner_fallback_steps(kind: PlannerKind) -> u64;
         fn planner_shares_one_search(kind: PlannerKind) -> bool;
         fn planner_cut_at_time_limit(kind: PlannerKind) -> bool;
         fn planner_kind(name: &str) -> Result<PlannerKind>;

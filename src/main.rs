@@ -89,6 +89,12 @@ enum Command {
         /// never).
         #[arg(long, value_name = "STEPS")]
         restart: Option<u64>,
+        /// push_kpiece only: when this many propagation steps have not moved the goal
+        /// object (the arm cannot get to it), PC RRT searches on from the start for the rest
+        /// of the time, on one thread; 0: never. Default: 1000000 (about 3 s in dense
+        /// clutter).
+        #[arg(long, value_name = "STEPS")]
+        fallback: Option<u64>,
         /// The goal instead of the scene's: `grasp:OBJECT` reaches a grasp of OBJECT (its
         /// scene `grasps`) with IK-BiRRT, every object a static obstacle, no pushing.
         #[arg(long, value_name = "grasp:OBJECT")]
@@ -183,6 +189,10 @@ enum Command {
         /// of its own (as `plan --restart`).
         #[arg(long, value_name = "STEPS")]
         restart: Option<u64>,
+        /// push_kpiece's patience before it falls back to PC RRT (as `plan --fallback`),
+        /// instead of its own; the other planners never fall back.
+        #[arg(long, value_name = "STEPS")]
+        fallback: Option<u64>,
         /// Go on with an interrupted benchmark in --out (the same grid and shard): runs
         /// whose log is there are kept, the others run.
         #[arg(long)]
@@ -209,6 +219,8 @@ enum Command {
         seed: u64,
         #[arg(long)]
         restart: Option<u64>,
+        #[arg(long)]
+        fallback: Option<u64>,
         #[arg(long)]
         log: PathBuf,
     },
@@ -369,6 +381,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             particles,
             threads,
             restart,
+            fallback,
             goal,
             grasp,
             sample_probability,
@@ -384,6 +397,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 particles,
                 threads: threads.unwrap_or_else(pushplan::cli::cores),
                 restart,
+                fallback,
                 time,
                 seed,
                 k,
@@ -476,6 +490,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             seed,
             shard,
             restart,
+            fallback,
             resume,
         } => {
             let grid = Grid {
@@ -486,6 +501,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 shortcut,
                 seed,
                 restart,
+                fallback,
             };
             let out = out.expect("clap requires --out without a subcommand");
             bench(&grid, shard, &out, jobs, resume)
@@ -500,6 +516,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             shortcut,
             seed,
             restart,
+            fallback,
             log,
         } => {
             let options = BenchOptions {
@@ -509,6 +526,11 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 seed,
                 shortcut,
                 restart_steps: restart.unwrap_or(planner.restart_steps()),
+                // The grid's patience is push_kpiece's: the others never fall back.
+                fallback_steps: match planner.fallback_steps() {
+                    0 => 0,
+                    own => fallback.unwrap_or(own),
+                },
                 log: log.to_string_lossy().into_owned(),
             };
             bench_scene(&scene, &options)

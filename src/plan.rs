@@ -39,6 +39,10 @@ pub struct PlanSettings {
     /// files from before there were restarts: 0).
     #[serde(default)]
     pub restart_steps: u64,
+    /// Push KPIECE's patience before it falls back to PC RRT, in propagation steps, 0:
+    /// never (absent in files from before the fallback: 0).
+    #[serde(default)]
+    pub fallback_steps: u64,
 }
 
 fn one_search() -> u32 {

@@ -33,6 +33,7 @@ fn shards_partition_the_grid() {
         shortcut: 0.0,
         seed: 1,
         restart: None,
+        fallback: None,
     };
     let all: Vec<_> = grid.cells().collect();
     assert_eq!(all.len(), 30);

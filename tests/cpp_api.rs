@@ -261,6 +261,11 @@ fn parallel_kpiece_with_one_lane_is_ompl_kpiece1_bit_for_bit() {
 }
 
 #[test]
+fn push_kpiece_falls_back_to_pc_rrt_only_without_progress() {
+    run_internal_checks("tests/cpp/fallback.cpp", "fallback", 7);
+}
+
+#[test]
 fn helper_threads_start_on_another_core_then_use_any() {
     run_internal_checks("tests/cpp/helper_thread.cpp", "helper-thread", 4);
 }

@@ -26,6 +26,7 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
         robust_particles: 0,
         threads: 1,
         restart_steps: planner.restart_steps(),
+        fallback_steps: planner.fallback_steps(),
     }
 }
 
@@ -522,4 +523,44 @@ fn the_projection_tells_a_cleared_way_from_a_blocked_one() {
     let projected = model.projection(&cleared.to_flat()).unwrap();
     assert_eq!(projected[4], 0.0, "{projected:?}");
     assert_eq!(projected[..4], blocked[..4]);
+}
+
+#[test]
+fn push_kpiece_hands_over_to_pc_rrt_only_where_it_makes_no_progress() {
+    // Dense 17: the goal box cannot move before the arm has swung round the clutter, and
+    // in 20 000 steps no state has moved it; PC RRT searches on.
+    // Its closest path is still a path of the model: every state valid, re-simulating its
+    // controls reproduces its states.
+    let scene = "scenes/dense/scene_17.yaml";
+    let patient = |fallback_steps, planner, time_limit| SolveOptions {
+        fallback_steps,
+        ..options(planner, 3, time_limit)
+    };
+    let out = solve(
+        Path::new(scene),
+        &patient(20_000, "push_kpiece", 1.0),
+        |_| {},
+    )
+    .unwrap();
+    assert_eq!(out.fallbacks, 1);
+    assert!(out.approximate && out.propagation_steps > 20_000);
+    let report = plan_file(scene, "push_kpiece", 3, &out)
+        .check(Path::new("plan.json"))
+        .unwrap();
+    assert!(report.all_valid && report.states_match, "{report:?}");
+    // The clutter scene: the goal object moves within the patience, no handover.
+    let clutter = "scenes/herb_fig1_clutter.yaml";
+    let kept = solve(
+        Path::new(clutter),
+        &patient(2_000, "push_kpiece", 30.0),
+        |_| {},
+    )
+    .unwrap();
+    assert!(kept.exact && kept.fallbacks == 0);
+    // Only Push KPIECE falls back: for another planner the option is an error.
+    let err = solve(Path::new(scene), &patient(5, "pcrrt", 1.0), |_| {}).unwrap_err();
+    assert!(
+        err.contains("fallback_steps") && err.contains("pcrrt"),
+        "{err}"
+    );
 }

@@ -70,6 +70,7 @@ fn the_plan_executed_in_3d_reaches_the_goal_and_matches_the_prediction() {
         shortcut: 0.0,
         threads: 1,
         restart_steps: 0,
+        fallback_steps: 0,
     };
     let plan = PlanFile::build(SCENE, scene.clone(), &settings, &controls(), None).unwrap();
     assert!(plan.solved);

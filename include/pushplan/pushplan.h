@@ -134,6 +134,12 @@ namespace pushplan
         /// with a new tree, attempt i with Luby(i) times as many (1, 1, 2, 1, 1, 2, 4, ...);
         /// 0: never. Default: the planner's (Push KPIECE restarts, the others do not).
         std::optional<std::uint64_t> restart_steps;
+        /// Push KPIECE only: when this many propagation steps have not moved the goal
+        /// object, the search hands over to PC RRT for the rest of the time, on one thread
+        /// (its guided pushes need the hand at the goal object first; PC RRT's random
+        /// targets sweep the arm's postures). 0: never. Default: the planner's (Push
+        /// KPIECE 1 000 000, the others 0; another planner with a value > 0 is an error).
+        std::optional<std::uint64_t> fallback_steps;
     };
 
     /// A link pushing an object during one propagation step.
@@ -201,6 +207,8 @@ namespace pushplan
         /// Attempts that found no solution within their budget and started over
         /// (Options::restart_steps), all searches.
         std::uint64_t restarts = 0;
+        /// Searches that handed over to PC RRT (Options::fallback_steps).
+        std::uint64_t fallbacks = 0;
         double step = 0.0;            ///< propagation step (s)
         std::vector<std::string> joint_names;
         std::vector<std::string> object_names;

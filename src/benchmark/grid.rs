@@ -28,6 +28,11 @@ pub struct Grid {
     /// planners' own.
     #[serde(default)]
     pub restart: Option<u64>,
+    /// Push KPIECE's patience before it falls back to PC RRT (propagation steps; 0:
+    /// never) instead of its own (`PlannerKind::fallback_steps`). Absent in grids from
+    /// before the fallback: its own.
+    #[serde(default)]
+    pub fallback: Option<u64>,
 }
 
 /// One run of one planner on one scene (indices into the grid's lists).

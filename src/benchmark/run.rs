@@ -29,7 +29,7 @@ pub fn run_shard(
         let found = Manifest::read(out)?;
         if found != manifest {
             return Err(format!(
-                "{} holds another benchmark or shard (scenes, planners, runs, time, shortcut, seed, restart or shard differ): --resume goes on with the same one",
+                "{} holds another benchmark or shard (scenes, planners, runs, time, shortcut, seed, restart, fallback or shard differ): --resume goes on with the same one",
                 out.display()
             ));
         }
@@ -127,6 +127,11 @@ fn spawn_cell(exe: &Path, grid: &Grid, cell: Cell, out: &Path) -> Result<Child, 
             grid.restart
                 .into_iter()
                 .flat_map(|steps| ["--restart".to_string(), steps.to_string()]),
+        )
+        .args(
+            grid.fallback
+                .into_iter()
+                .flat_map(|steps| ["--fallback".to_string(), steps.to_string()]),
         )
         .arg("--log")
         .arg(partial_log(&log))

@@ -30,6 +30,9 @@ pub struct PlanOptions {
     pub threads: u32,
     /// First restart budget (propagation steps; 0: never); default: the planner's.
     pub restart: Option<u64>,
+    /// Push KPIECE's patience before it falls back to PC RRT (propagation steps; 0:
+    /// never); default: the planner's.
+    pub fallback: Option<u64>,
     /// `--goal grasp:OBJECT`: reach a grasp of this object instead of pushing.
     pub grasp_goal: Option<String>,
     /// `--grasp`: after pushing, reach a grasp of the goal object.
@@ -113,7 +116,17 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         robust_particles: run.particles,
         threads: run.threads,
         restart_steps: run.restart.unwrap_or(planner.restart_steps()),
+        fallback_steps: run.fallback.unwrap_or(planner.fallback_steps()),
     };
+    if options.fallback_steps > 0 && planner.fallback_steps() == 0 {
+        return Err(format!(
+            "--fallback {}: only {} falls back (to {}), not {}",
+            options.fallback_steps,
+            PlannerKind::PushKpiece.name(),
+            PlannerKind::PcRrt.name(),
+            planner.name()
+        ));
+    }
     if !(0.0..=1.0).contains(&run.robust_rate) {
         return Err(format!(
             "--robust-rate must be in [0, 1], got {}",
@@ -169,6 +182,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         shortcut: run.shortcut,
         threads: options.threads,
         restart_steps: options.restart_steps,
+        fallback_steps: options.fallback_steps,
     };
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
@@ -288,7 +302,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         "not solved"
     };
     println!(
-        "{status} in {:.3} s: tree of {} states, {} propagation steps ({:.0} steps/s){}",
+        "{status} in {:.3} s: tree of {} states, {} propagation steps ({:.0} steps/s){}{}",
         solution.planning_time,
         solution.tree_size,
         solution.propagation_steps,
@@ -297,6 +311,10 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             0 => String::new(),
             1 => ", 1 restart".to_string(),
             n => format!(", {n} restarts"),
+        },
+        match solution.fallbacks {
+            0 => "",
+            _ => ", then PC RRT (the goal object had not moved)",
         }
     );
     if !solution.exact && !found.is_empty() {

@@ -78,6 +78,10 @@ pub(super) fn planner_restart_steps(kind: PlannerKind) -> u64 {
     kind.restart_steps()
 }
 
+pub(super) fn planner_fallback_steps(kind: PlannerKind) -> u64 {
+    kind.fallback_steps()
+}
+
 pub(super) fn planner_shares_one_search(kind: PlannerKind) -> bool {
     kind.shares_one_search()
 }

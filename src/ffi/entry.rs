@@ -27,6 +27,9 @@ pub mod bridge {
         /// First restart budget in propagation steps (pushplan::Options::restart_steps);
         /// 0: never.
         pub restart_steps: u64,
+        /// Push KPIECE's patience before it falls back to PC RRT, in propagation steps
+        /// (pushplan::Options::fallback_steps); 0: never.
+        pub fallback_steps: u64,
     }
 
     /// The outcome of one search and the path found: controls, their step counts and the
@@ -41,6 +44,8 @@ pub mod bridge {
         pub search: SearchStats,
         /// Attempts started over for lack of a solution (pushplan::Plan::restarts).
         pub restarts: u64,
+        /// Searches that fell back to PC RRT (pushplan::Plan::fallbacks).
+        pub fallbacks: u64,
         pub controls: Vec<f64>,
         pub steps: Vec<usize>,
         pub states: Vec<f64>,
@@ -75,6 +80,8 @@ pub mod bridge {
         pub shortcut: f64,
         /// First restart budget in propagation steps; 0: never.
         pub restart_steps: u64,
+        /// Push KPIECE's patience before it falls back to PC RRT (steps); 0: never.
+        pub fallback_steps: u64,
         pub log: String,
     }
 

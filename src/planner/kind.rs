@@ -9,6 +9,10 @@ use std::str::FromStr;
 /// (BENCHMARKS.md, "Restarts").
 const PUSH_KPIECE_RESTART_STEPS: u64 = 400_000;
 
+/// Push KPIECE's patience before it falls back to PC RRT: about 3 s of its search in
+/// dense clutter (BENCHMARKS.md, "Push KPIECE falls back to PC RRT").
+const PUSH_KPIECE_FALLBACK_STEPS: u64 = 1_000_000;
+
 /// A planner. C++'s `pushplan::PlannerKind` (`include/pushplan/pushplan.h`) is the same
 /// type, value for value: the bridge passes it as is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -122,6 +126,17 @@ impl PlannerKind {
     pub fn restart_steps(self) -> u64 {
         match self {
             PlannerKind::PushKpiece => PUSH_KPIECE_RESTART_STEPS,
+            _ => 0,
+        }
+    }
+
+    /// Propagation steps after which a search none of whose states has moved the goal
+    /// object hands over to PC RRT (`Fallback` in `cpp/fallback.h`), or 0:
+    /// never. Only Push KPIECE falls back: its guided pushes need the hand at the goal
+    /// object first, and where the arm cannot get there they build nothing.
+    pub fn fallback_steps(self) -> u64 {
+        match self {
+            PlannerKind::PushKpiece => PUSH_KPIECE_FALLBACK_STEPS,
             _ => 0,
         }
     }

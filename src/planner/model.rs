@@ -41,6 +41,8 @@ pub struct Model {
     /// The smallest goal distance asked for so far (progress reports: how close the
     /// search has come).
     closest_goal_distance: std::cell::Cell<f64>,
+    /// The largest (with the smallest: whether any state has moved the goal object).
+    farthest_goal_distance: std::cell::Cell<f64>,
     /// Wall time spent in `propagate` (progress reports: the rest is the planner's).
     propagating: Duration,
     search: SearchCounter,
@@ -78,6 +80,7 @@ impl Model {
             last_result: None,
             steps_taken: 0,
             closest_goal_distance: std::cell::Cell::new(f64::INFINITY),
+            farthest_goal_distance: std::cell::Cell::new(f64::NEG_INFINITY),
             propagating: Duration::ZERO,
             deadline: None,
         }
@@ -314,6 +317,8 @@ impl Model {
             let distance = goal.distance(&state).max(worlds);
             let closest = &self.closest_goal_distance;
             closest.set(closest.get().min(distance));
+            let farthest = &self.farthest_goal_distance;
+            farthest.set(farthest.get().max(distance));
             Ok(distance)
         })
     }
@@ -321,6 +326,11 @@ impl Model {
     /// The smallest goal distance of a state so far (m or rad; infinite before any).
     pub fn closest_goal_distance(&self) -> f64 {
         self.closest_goal_distance.get()
+    }
+
+    /// The largest goal distance of a state so far (m or rad; minus infinity before any).
+    pub fn farthest_goal_distance(&self) -> f64 {
+        self.farthest_goal_distance.get()
     }
 
     /// Robust planning: from now on every state carries `count` perturbed worlds drawn

@@ -74,6 +74,7 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::path::PathControl>
         robust_particles: 0,
         threads: 1,
         restart_steps: 0,
+        fallback_steps: 0,
     };
     let scene_file = "scenes/herb_fig1_clutter.yaml";
     let out = pushplan::ffi::solve(Path::new(scene_file), &options, |_| {}).unwrap();
@@ -96,6 +97,7 @@ pub fn plan_settings(planner: &str, seed: u64, shortcut: f64) -> pushplan::plan:
         shortcut,
         threads: 1,
         restart_steps: 0,
+        fallback_steps: 0,
     }
 }
 

@@ -10,6 +10,7 @@
 #include <ompl/util/Console.h>
 
 #include "expect.h"
+#include "search_run.h"
 
 #include <cstdint>
 #include <iostream>
@@ -36,27 +37,13 @@ namespace
         std::uint64_t lane_steps = 0;
     };
 
-    pd::ModelHandlePtr load(const std::string &scene)
-    {
-        return std::make_shared<pd::ModelHandle>(pushplan::bridge::Model::load(scene));
-    }
-
     /// One search of `kind` with `lanes` lanes (0: OMPL's KPIECE1) run by `threads`
     /// threads (0: one per lane), until it solves or has taken `budget` propagation steps.
     Search search(const std::string &scene, PlannerKind kind, std::uint64_t seed, unsigned lanes,
                   std::uint64_t budget, unsigned threads = 0)
     {
-        const pd::ModelHandlePtr model = load(scene);
-        const unsigned k = model->info().planner.k;
-        std::vector<pd::Lane> extension_lanes;
-        for (unsigned i = 0; i < lanes; ++i)
-            extension_lanes.push_back(pd::makeLane(load(scene), seed, i, k));
-        const pd::Problem problem = pd::makeProblem(model, seed, k);
-        const ob::PlannerPtr planner = pd::makePlanner(kind, problem, seed, 0.05, false, 0, extension_lanes, threads);
-        problem.setup->setPlanner(planner);
-        problem.setup->setup();
-        planner->solve(ob::PlannerTerminationCondition([&] { return model->propagationSteps() >= budget; }));
-
+        const test::SearchRun run = test::runSearch(scene, kind, seed, lanes, threads, 0, 0, budget);
+        const auto &[model, problem, extension_lanes, planner] = run;
         Search s;
         s.exact = problem.setup->haveExactSolutionPath();
         if (problem.setup->getProblemDefinition()->hasSolution())
@@ -74,7 +61,7 @@ namespace
 
     bool samePath(const Search &a, const Search &b)
     {
-        return a.path.controls == b.path.controls && a.path.steps == b.path.steps && a.path.states == b.path.states;
+        return test::samePath(a.path, b.path);
     }
 }  // namespace
 

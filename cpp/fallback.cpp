@@ -1,0 +1,86 @@
+#include "fallback.h"
+
+#include <ompl/base/ProblemDefinition.h>
+
+#include <utility>
+
+namespace ob = ompl::base;
+
+namespace pushplan::detail
+{
+    Fallback::Fallback(ob::PlannerPtr search, ob::PlannerPtr fallback, ModelHandlePtr model,
+                       std::uint64_t patience_steps)
+      : WrappedSearch(search)
+      , first_(std::move(search))
+      , fallback_(std::move(fallback))
+      , model_(std::move(model))
+      , patience_steps_(patience_steps)
+    {
+        began_at_ = model_->propagationSteps();
+    }
+
+    bool Fallback::goalObjectUnmoved() const
+    {
+        // The model keeps the least and the largest goal distance its search has met: both
+        // the start's while no state has moved the goal object.
+        return model_->propagationSteps() >= began_at_ + patience_steps_ &&
+               model_->closestGoalDistance() >= *start_distance_ &&
+               model_->farthestGoalDistance() <= *start_distance_;
+    }
+
+    ob::PlannerStatus Fallback::solve(const ob::PlannerTerminationCondition &ptc)
+    {
+        checkValidity();
+        if (!start_distance_)
+            start_distance_ = model_->goalDistance(pdef_->getStartState(0));
+        if (!fellBack())
+        {
+            const ob::PlannerStatus status =
+                search_->solve(ob::PlannerTerminationCondition([&] { return ptc() || goalObjectUnmoved(); }));
+            if (pdef_->hasExactSolution() || !goalObjectUnmoved())
+                return status;
+            // The hand never got to the goal object: the first tree goes, the fallback
+            // searches from the start.
+            search_->clear();
+            search_ = fallback_;
+            if (ptc())
+                return status;
+        }
+        return search_->solve(ptc);
+    }
+
+    void Fallback::clear()
+    {
+        ob::Planner::clear();
+        first_->clear();
+        fallback_->clear();
+        search_ = first_;
+        began_at_ = model_->propagationSteps();
+    }
+
+    void Fallback::setup()
+    {
+        ob::Planner::setup();
+        first_->setup();
+        fallback_->setup();
+    }
+
+    void Fallback::setProblemDefinition(const ob::ProblemDefinitionPtr &pdef)
+    {
+        ob::Planner::setProblemDefinition(pdef);
+        first_->setProblemDefinition(pdef);
+        fallback_->setProblemDefinition(pdef);
+    }
+
+    bool fellBack(const ob::PlannerPtr &planner)
+    {
+        const ob::Planner *p = planner.get();
+        while (const auto *wrapped = dynamic_cast<const WrappedSearch *>(p))
+        {
+            if (const auto *fallback = dynamic_cast<const Fallback *>(wrapped))
+                return fallback->fellBack();
+            p = wrapped->search().get();
+        }
+        return false;
+    }
+}  // namespace pushplan::detail

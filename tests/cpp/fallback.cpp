@@ -1,0 +1,120 @@
+// Fallback (run by tests/cpp_api.rs, built with the library's internal headers): Push
+// KPIECE hands over to PC RRT exactly when its patience is spent and no state has moved
+// the goal object, and changes nothing otherwise. The oracle for "moved" is the first
+// search's own tree, run alone for the patience: the goal object's pose in each vertex
+// (OMPL's planner data) against its pose at the start; the Fallback reads goal distances.
+#include "pushplan/cpp/fallback.h"
+#include "pushplan/cpp/problem.h"
+#include "pushplan/cpp/restarts.h"
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/util/Console.h>
+
+#include "expect.h"
+#include "search_run.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+    namespace ob = ompl::base;
+    namespace pd = pushplan::detail;
+    using pushplan::PlannerKind;
+    using test::expect;
+
+    constexpr std::uint64_t kSeed = 3;
+
+    struct Search
+    {
+        bool fell_back = false;
+        bool pc_rrt_tree = false;
+        std::uint64_t restarts = 0;
+        std::uint64_t steps = 0;
+        unsigned tree_states = 0;
+        /// Tree vertices whose goal object stands elsewhere than at the start.
+        unsigned goal_object_moved = 0;
+        pd::ModelHandle::FlatPath path;
+    };
+
+    /// Push KPIECE on `scene` with the given patience (0: no fallback) and restart base,
+    /// on `lanes` lanes (0: OMPL's KPIECE1) and `threads` threads, for `budget` steps.
+    Search search(const std::string &scene, std::uint64_t patience, std::uint64_t restart, std::uint64_t budget,
+                  unsigned lanes = 0, unsigned threads = 0)
+    {
+        const test::SearchRun run =
+            test::runSearch(scene, PlannerKind::PushKpiece, kSeed, lanes, threads, restart, patience, budget);
+        const pd::ModelHandlePtr &model = run.model;
+        const pd::Problem &problem = run.problem;
+        const ob::PlannerPtr &planner = run.planner;
+        Search s;
+        s.fell_back = pd::fellBack(planner);
+        s.pc_rrt_tree = dynamic_cast<const pd::SeededRRT *>(&pd::innerPlanner(planner)) != nullptr;
+        s.restarts = pd::restartsOf(planner);
+        s.steps = model->propagationSteps();
+        ob::PlannerData data(problem.setup->getSpaceInformation());
+        planner->getPlannerData(data);
+        s.tree_states = data.numVertices();
+        // The goal object's (x, y, yaw) follow the joints in a flat state.
+        const std::size_t at = model->info().dof + 3 * static_cast<std::size_t>(model->info().goal_object);
+        std::vector<double> start, vertex;
+        model->read(problem.setup->getProblemDefinition()->getStartState(0), start);
+        for (unsigned v = 0; v < data.numVertices(); ++v)
+        {
+            model->read(data.getVertex(v).getState(), vertex);
+            if (!std::equal(vertex.begin() + at, vertex.begin() + at + 3, start.begin() + at))
+                ++s.goal_object_moved;
+        }
+        if (problem.setup->getProblemDefinition()->hasSolution())
+            s.path = model->readPath(problem.setup->getSolutionPath());
+        return s;
+    }
+
+    bool same(const Search &a, const Search &b)
+    {
+        return a.steps == b.steps && a.tree_states == b.tree_states && test::samePath(a.path, b.path);
+    }
+}  // namespace
+
+int main()
+{
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    constexpr std::uint64_t patience = 20000, budget = 60000;
+
+    // Dense 17: the arm must swing round the clutter before the goal box can move.
+    const std::string dense = "scenes/dense/scene_17.yaml";
+    const Search alone = search(dense, 0, 0, patience);
+    std::cout << "  dense 17, Push KPIECE alone: " << alone.tree_states << " states, "
+              << alone.goal_object_moved << " with the goal object moved\n";
+    expect(alone.tree_states > 100 && alone.goal_object_moved == 0,
+           "dense 17: within the patience, no state of Push KPIECE's tree has moved the goal object");
+    const Search handed = search(dense, patience, 0, budget);
+    expect(handed.fell_back && handed.pc_rrt_tree && handed.tree_states > 1,
+           "so it hands over, and the tree searched on is PC RRT's");
+    expect(same(handed, search(dense, patience, 0, budget)), "the same handover and search again, bit for bit");
+    const Search two_lanes = search(dense, patience, 0, budget, 2, 1);
+    expect(two_lanes.fell_back && same(two_lanes, search(dense, patience, 0, budget, 2, 2)),
+           "with two lanes, the same on one thread and on two");
+    // Attempts of 3 000 x Luby(i) steps end at 3 000, 6 000, 12 000, 15 000 and 18 000.
+    const Search restarting = search(dense, patience, 3000, budget);
+    std::cout << "  with restarts: " << restarting.restarts << " before the handover\n";
+    expect(restarting.fell_back && restarting.restarts == 5,
+           "the restarts before the handover are still counted after it");
+
+    // Benchmark scene 22: Push KPIECE moves the goal box early but does not solve the
+    // scene within the budget; the fallback never fires and the search is the one without
+    // it.
+    const std::string pushed = "scenes/benchmark/scene_22.yaml";
+    const Search progress = search(pushed, 0, 0, patience);
+    std::cout << "  scene 22, Push KPIECE alone: " << progress.goal_object_moved << " of " << progress.tree_states
+              << " states with the goal object moved\n";
+    expect(progress.goal_object_moved > 0, "scene 22: within the patience, states that have moved the goal object");
+    const Search kept = search(pushed, patience, 0, budget);
+    const Search without = search(pushed, 0, 0, budget);
+    expect(!kept.fell_back && !kept.pc_rrt_tree && same(kept, without),
+           "so it keeps its search: the same tree and path as without a fallback");
+    return test::failures == 0 ? 0 : 1;
+}
