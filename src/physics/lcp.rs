@@ -22,14 +22,15 @@ pub fn solve(m: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
     // Columns: w (0..n), z (n..2n), z0 (2n), rhs (2n+1). Rows: I w - M z - 1 z0 = q.
     let z0 = 2 * n;
     let rhs = 2 * n + 1;
-    let mut t = DMatrix::<f64>::zeros(n, 2 * n + 2);
+    let mut t = Tableau::new(n, 2 * n + 2);
     for i in 0..n {
-        t[(i, i)] = 1.0;
+        let r = t.row_mut(i);
+        r[i] = 1.0;
         for j in 0..n {
-            t[(i, n + j)] = -m[(i, j)];
+            r[n + j] = -m[(i, j)];
         }
-        t[(i, z0)] = -1.0;
-        t[(i, rhs)] = q[i];
+        r[z0] = -1.0;
+        r[rhs] = q[i];
     }
     let mut basis: Vec<usize> = (0..n).collect();
 
@@ -37,7 +38,7 @@ pub fn solve(m: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
     let mut row = (0..n)
         .min_by(|&a, &b| q[a].total_cmp(&q[b]))
         .expect("n > 0");
-    pivot(&mut t, row, z0);
+    t.pivot(row, z0);
     let mut leaving = std::mem::replace(&mut basis[row], z0);
 
     for _ in 0..(50 * n + 50) {
@@ -49,15 +50,15 @@ pub fn solve(m: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
         // Minimum ratio test; prefer z0 on ties (ends the method), then larger pivots.
         let mut best: Option<(usize, f64)> = None;
         for i in 0..n {
-            let a = t[(i, entering)];
+            let a = t.at(i, entering);
             if a > PIVOT_EPS {
-                let ratio = t[(i, rhs)] / a;
+                let ratio = t.at(i, rhs) / a;
                 best = match best {
                     None => Some((i, ratio)),
                     Some((bi, br)) => {
                         let tie = (ratio - br).abs() <= 1e-12 * (1.0 + br.abs());
                         let better = if tie {
-                            basis[i] == z0 || (basis[bi] != z0 && a > t[(bi, entering)])
+                            basis[i] == z0 || (basis[bi] != z0 && a > t.at(bi, entering))
                         } else {
                             ratio < br
                         };
@@ -72,13 +73,13 @@ pub fn solve(m: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
         }
         let (r, _) = best?; // a ray: no solution
         row = r;
-        pivot(&mut t, row, entering);
+        t.pivot(row, entering);
         leaving = std::mem::replace(&mut basis[row], entering);
         if leaving == z0 {
             let mut z = DVector::zeros(n);
             for (i, &b) in basis.iter().enumerate() {
                 if (n..2 * n).contains(&b) {
-                    z[b - n] = t[(i, rhs)].max(0.0);
+                    z[b - n] = t.at(i, rhs).max(0.0);
                 }
             }
             return is_solution(m, q, &z).then_some(z);
@@ -87,18 +88,49 @@ pub fn solve(m: &DMatrix<f64>, q: &DVector<f64>) -> Option<DVector<f64>> {
     None
 }
 
-fn pivot(t: &mut DMatrix<f64>, row: usize, col: usize) {
-    let p = t[(row, col)];
-    let cols = t.ncols();
-    for j in 0..cols {
-        t[(row, j)] /= p;
+/// Lemke's tableau, row by row in one buffer: a pivot sweeps whole rows, which this
+/// layout keeps contiguous (nalgebra's matrices are column-major: the same sweep strode
+/// across memory and took 40 % of a dense scene's search; BENCHMARKS.md, "Lemke's
+/// tableau row by row").
+struct Tableau {
+    cols: usize,
+    cells: Vec<f64>,
+}
+
+impl Tableau {
+    fn new(rows: usize, cols: usize) -> Tableau {
+        Tableau {
+            cols,
+            cells: vec![0.0; rows * cols],
+        }
     }
-    for i in 0..t.nrows() {
-        if i != row {
-            let f = t[(i, col)];
+
+    fn at(&self, row: usize, col: usize) -> f64 {
+        self.cells[row * self.cols + col]
+    }
+
+    fn row_mut(&mut self, row: usize) -> &mut [f64] {
+        &mut self.cells[row * self.cols..(row + 1) * self.cols]
+    }
+
+    /// Gauss-Jordan on (row, col): the pivot row divided by the pivot, then subtracted
+    /// from every other row in proportion to its entry in `col`.
+    fn pivot(&mut self, row: usize, col: usize) {
+        let cols = self.cols;
+        let (before, rest) = self.cells.split_at_mut(row * cols);
+        let (pivot_row, after) = rest.split_at_mut(cols);
+        let p = pivot_row[col];
+        for v in pivot_row.iter_mut() {
+            *v /= p;
+        }
+        for other in before
+            .chunks_exact_mut(cols)
+            .chain(after.chunks_exact_mut(cols))
+        {
+            let f = other[col];
             if f != 0.0 {
-                for j in 0..cols {
-                    t[(i, j)] -= f * t[(row, j)];
+                for (v, &r) in other.iter_mut().zip(pivot_row.iter()) {
+                    *v -= f * r;
                 }
             }
         }
