@@ -70,6 +70,7 @@ namespace pushplan::detail
         ob::Planner::setProblemDefinition(pdef);
         first_->setProblemDefinition(pdef);
         fallback_->setProblemDefinition(pdef);
+        start_distance_.reset();  // another start, maybe
     }
 
     bool fellBack(const ob::PlannerPtr &planner)
