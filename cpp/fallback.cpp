@@ -19,13 +19,14 @@ namespace pushplan::detail
         began_at_ = model_->propagationSteps();
     }
 
-    bool Fallback::goalObjectUnmoved() const
+    bool Fallback::handOverDue()
     {
+        if (kept_ || model_->propagationSteps() < began_at_ + patience_steps_)
+            return false;
         // The model keeps the least and the largest goal distance its search has met: both
         // the start's while no state has moved the goal object.
-        return model_->propagationSteps() >= began_at_ + patience_steps_ &&
-               model_->closestGoalDistance() >= *start_distance_ &&
-               model_->farthestGoalDistance() <= *start_distance_;
+        kept_ = model_->closestGoalDistance() < *start_distance_ || model_->farthestGoalDistance() > *start_distance_;
+        return !kept_;
     }
 
     ob::PlannerStatus Fallback::solve(const ob::PlannerTerminationCondition &ptc)
@@ -36,8 +37,8 @@ namespace pushplan::detail
         if (!fellBack())
         {
             const ob::PlannerStatus status =
-                search_->solve(ob::PlannerTerminationCondition([&] { return ptc() || goalObjectUnmoved(); }));
-            if (pdef_->hasExactSolution() || !goalObjectUnmoved())
+                search_->solve(ob::PlannerTerminationCondition([&] { return ptc() || handOverDue(); }));
+            if (pdef_->hasExactSolution() || !handOverDue())
                 return status;
             // The hand never got to the goal object: the first tree goes, the fallback
             // searches from the start.
@@ -56,6 +57,7 @@ namespace pushplan::detail
         fallback_->clear();
         search_ = first_;
         began_at_ = model_->propagationSteps();
+        kept_ = false;
     }
 
     void Fallback::setup()
@@ -75,13 +77,7 @@ namespace pushplan::detail
 
     bool fellBack(const ob::PlannerPtr &planner)
     {
-        const ob::Planner *p = planner.get();
-        while (const auto *wrapped = dynamic_cast<const WrappedSearch *>(p))
-        {
-            if (const auto *fallback = dynamic_cast<const Fallback *>(wrapped))
-                return fallback->fellBack();
-            p = wrapped->search().get();
-        }
-        return false;
+        const Fallback *fallback = wrapperOf<Fallback>(planner);
+        return fallback != nullptr && fallback->fellBack();
     }
 }  // namespace pushplan::detail

@@ -42,13 +42,15 @@ namespace pushplan::detail
         void setProblemDefinition(const ompl::base::ProblemDefinitionPtr &pdef) override;
 
         /// The first search (search() is the one running).
-        const ompl::base::PlannerPtr &first() const { return first_; }
+        const ompl::base::PlannerPtr &wrapped() const override { return first_; }
         /// Whether the fallback has taken over.
         bool fellBack() const { return search_ == fallback_; }
 
     private:
-        /// True once the patience is spent and no state has moved the goal object.
-        bool goalObjectUnmoved() const;
+        /// True once the patience is spent and no state has moved the goal object. Goal
+        /// distances met only ever spread, so the first look past the patience decides:
+        /// a search that has moved the goal object is kept, and not asked again.
+        bool handOverDue();
 
         ompl::base::PlannerPtr first_, fallback_;
         ModelHandlePtr model_;
@@ -57,6 +59,8 @@ namespace pushplan::detail
         std::uint64_t began_at_ = 0;
         /// The start state's goal distance (m or rad), once solve() has run.
         std::optional<double> start_distance_;
+        /// The first search has moved the goal object: it keeps the problem.
+        bool kept_ = false;
     };
 
     /// Whether a planner is or wraps a Fallback that has handed over.

@@ -18,7 +18,9 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
 #include <thread>
+#include <utility>
 
 namespace ob = ompl::base;
 namespace oc = ompl::control;
@@ -236,6 +238,16 @@ namespace pushplan
                 else if (options.progress)
                     detail::printProgress(p);
             };
+            // An event rather than a periodic report: the totals so far and what happened.
+            const auto tell_event = [&](std::string what) {
+                Progress p;
+                p.seconds = elapsed();
+                p.propagation_steps = portfolio.propagationSteps();
+                p.searches = search_count;
+                p.closest_goal_distance = portfolio.closestGoalDistance();
+                p.note = std::move(what);
+                tell(p);
+            };
             const std::function<bool()> report_due = [&] {
                 return (options.progress || options.on_progress) && elapsed() >= next_report;
             };
@@ -243,14 +255,8 @@ namespace pushplan
                 const double t = elapsed();
                 if (const std::uint64_t fallbacks = portfolio.fallbacks(); fallbacks > told_fallbacks)
                 {
-                    Progress note;
-                    note.seconds = t;
-                    note.propagation_steps = portfolio.propagationSteps();
-                    note.searches = search_count;
-                    note.closest_goal_distance = portfolio.closestGoalDistance();
-                    note.note = "the goal object has not moved in " + std::to_string(fallback_steps) +
-                                " propagation steps: PC RRT searches on";
-                    tell(note);
+                    tell_event("the goal object has not moved in " + std::to_string(fallback_steps) +
+                               " propagation steps: PC RRT searches on");
                     told_fallbacks = fallbacks;
                 }
                 Progress p;
@@ -310,19 +316,13 @@ namespace pushplan
                     break;
                 }
                 {
-                    Progress p;
-                    p.seconds = elapsed();
-                    p.propagation_steps = portfolio.propagationSteps();
-                    p.searches = search_count;
-                    p.closest_goal_distance = portfolio.closestGoalDistance();
                     char note[256];
                     std::snprintf(note, sizeof note,
                                   "a solution reaches the goal in %.0f %% of %u perturbed re-simulations "
                                   "(%zu of %zu controls kept shortcutting toward robustness): searching on",
                                   100.0 * plan.robustness, options.robust_trials, repaired.steps.size(),
                                   found.steps.size());
-                    p.note = note;
-                    tell(p);
+                    tell_event(note);
                 }
                 if (out_of_time())
                 {

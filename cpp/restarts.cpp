@@ -1,7 +1,5 @@
 #include "restarts.h"
 
-#include "fallback.h"
-
 #include <ompl/base/ProblemDefinition.h>
 
 #include <limits>
@@ -77,15 +75,7 @@ namespace pushplan::detail
 
     std::uint64_t restartsOf(const ob::PlannerPtr &planner)
     {
-        const ob::Planner *p = planner.get();
-        while (const auto *wrapped = dynamic_cast<const WrappedSearch *>(p))
-        {
-            if (const auto *restarting = dynamic_cast<const Restarting *>(wrapped))
-                return restarting->restarts();
-            // A fallback's restarts are its first search's, whichever runs now.
-            const auto *fallback = dynamic_cast<const Fallback *>(wrapped);
-            p = fallback ? fallback->first().get() : wrapped->search().get();
-        }
-        return 0;
+        const Restarting *restarting = wrapperOf<Restarting>(planner);
+        return restarting ? restarting->restarts() : 0;
     }
 }  // namespace pushplan::detail

@@ -22,11 +22,30 @@ namespace pushplan::detail
         void getPlannerData(ompl::base::PlannerData &data) const override;
         void checkValidity() override;
 
+        /// The search running now.
         const ompl::base::PlannerPtr &search() const { return search_; }
+        /// The search this planner was made around: the one running, but for a planner
+        /// that hands over to another (Fallback), whose first search this is.
+        virtual const ompl::base::PlannerPtr &wrapped() const { return search_; }
 
     protected:
         ompl::base::PlannerPtr search_;
     };
+
+    /// The first planner of type `Wrapper` in `planner`'s chain of wrappers (itself
+    /// included, each followed to the search it was made around), or null.
+    template <class Wrapper>
+    const Wrapper *wrapperOf(const ompl::base::PlannerPtr &planner)
+    {
+        const ompl::base::Planner *p = planner.get();
+        while (const auto *wrapped = dynamic_cast<const WrappedSearch *>(p))
+        {
+            if (const auto *found = dynamic_cast<const Wrapper *>(wrapped))
+                return found;
+            p = wrapped->wrapped().get();
+        }
+        return nullptr;
+    }
 
     /// The search under a time limit its model enforces: from the start of solve(), no
     /// propagation past `seconds` (an extension of k long controls ends on time, where

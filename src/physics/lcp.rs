@@ -4,9 +4,9 @@
 //! find z >= 0 with w = M z + q >= 0 and w . z = 0.
 //! ```
 //!
-//! Dense tableau of the non-basic variables, covering vector of ones. The answer is checked before it is returned,
-//! so a numerically doubtful pivot sequence is reported as "no solution", never as a
-//! wrong one.
+//! Dense tableau of the non-basic variables, covering vector of ones. The answer is
+//! checked before it is returned, so a numerically doubtful pivot sequence is reported
+//! as "no solution", never as a wrong one.
 
 use nalgebra::{DMatrix, DVector};
 
