@@ -8,6 +8,7 @@
 
 #![allow(non_snake_case)] // frame-named points: p_WT, the tool point in the world frame
 
+use crate::robot::RobotKind;
 use crate::scene::{Goal, Scene};
 use crate::state::State;
 use nalgebra::Vector2;
@@ -35,6 +36,42 @@ pub struct PushHeading {
     clearance: f64,
     /// The goal object and the disc its centre must reach, if the goal is one.
     goal: Option<GoalDisc>,
+    /// Where the hand can stand to push: over the table, or nearer the arm's base than
+    /// the object it pushes. None: anywhere (a free-flying hand).
+    reach: Option<StandingRoom>,
+}
+
+/// Where the hand can stand behind an object (world xy, m): over the table's extent, or
+/// on the arm's side of the object (beyond the table's far edges the arm runs out of
+/// reach; BENCHMARKS.md, "Where dense 17 and scene 34 are hard").
+#[derive(Clone, Copy, Debug)]
+struct StandingRoom {
+    /// The table's extent along x and y (m).
+    table_x: (f64, f64),
+    table_y: (f64, f64),
+    /// The arm's base.
+    p_WBase: Vector2<f64>,
+}
+
+impl StandingRoom {
+    /// Can the hand stand at `p_WS` to push the object at `p_WO`?
+    fn allows(&self, p_WS: Vector2<f64>, p_WO: Vector2<f64>) -> bool {
+        let over_table = |(lo, hi): (f64, f64), v: f64| v >= lo && v <= hi;
+        (over_table(self.table_x, p_WS.x) && over_table(self.table_y, p_WS.y))
+            || (p_WS - self.p_WBase).norm() <= (p_WO - self.p_WBase).norm()
+    }
+
+    /// `p` moved onto the table, `radius` inside its edges.
+    fn onto_table(&self, p: Vector2<f64>, radius: f64) -> Vector2<f64> {
+        let clamp = |v: f64, (lo, hi): (f64, f64)| {
+            if lo + radius <= hi - radius {
+                v.clamp(lo + radius, hi - radius)
+            } else {
+                0.5 * (lo + hi)
+            }
+        };
+        Vector2::new(clamp(p.x, self.table_x), clamp(p.y, self.table_y))
+    }
 }
 
 /// Where the goal object's centre must end: within `radius` of `center` (the disc less
@@ -73,13 +110,26 @@ impl PushHeading {
             radii: scene.objects.iter().map(|o| o.bounding_radius).collect(),
             clearance: scene.physics.object_clearance,
             goal,
+            reach: match scene.robot.kind {
+                RobotKind::Arm => Some(StandingRoom {
+                    table_x: scene.table.x,
+                    table_y: scene.table.y,
+                    p_WBase: scene.robot.link_poses(&scene.start.q)[0]
+                        .translation
+                        .vector
+                        .xy(),
+                }),
+                RobotKind::PlanarHand => None,
+            },
         }
     }
 
     /// The objects in the goal object's way, each with a place out of it: an object the
     /// goal object could touch anywhere in the goal disc goes radially out of the disc's
     /// reach; one the goal object would touch on the straight line to the goal centre goes
-    /// sideways off that line. Empty without an object goal.
+    /// sideways off that line, to the side it stands on unless the hand could not stand
+    /// behind it for that push (beyond the table's edge, farther from the arm's base than
+    /// the object): then across the line, onto the table. Empty without an object goal.
     pub fn blockers(&self, state: &State) -> Vec<PushTarget> {
         let mut blockers = Vec::new();
         self.for_each_blocker(state, |push, _| blockers.push(push));
@@ -136,7 +186,17 @@ impl PushHeading {
             if side.norm() < apart {
                 let normal = Vector2::new(-route.y, route.x).normalize();
                 let out = side.try_normalize(1e-9).unwrap_or(normal);
-                let target = p_WC + out * (apart + CLEAR_BY);
+                let mut target = p_WC + out * (apart + CLEAR_BY);
+                // To the side it stands on, unless the hand cannot stand behind it for
+                // that push: then across the way, staying on the table.
+                if let Some(room) = self.reach {
+                    let stand =
+                        |out: Vector2<f64>| p_WB - out * (self.radii[object] + self.tool_reach);
+                    if !room.allows(stand(out), p_WB) && room.allows(stand(-out), p_WB) {
+                        target =
+                            room.onto_table(p_WC - out * (apart + CLEAR_BY), self.radii[object]);
+                    }
+                }
                 f(PushTarget { object, target }, apart - side.norm());
             }
         }
@@ -200,6 +260,7 @@ mod tests {
             radii: vec![0.05],
             clearance: 0.01,
             goal: None,
+            reach: None,
         };
         let state = State::from_flat(&[0.0, object.x, object.y, 0.0], 1);
         h.heading(&state, tool, 0, Vector2::new(1.0, 0.0)).unwrap()
@@ -242,6 +303,7 @@ mod tests {
                 center: Vector2::new(1.0, 0.0),
                 radius: 0.1,
             }),
+            reach: None,
         };
         let state = State::from_flat(
             &[
@@ -267,5 +329,53 @@ mod tests {
         // half-width 0.11 less 0.05.
         let disc_depth = 0.21 - (0.05f64.powi(2) + 0.1f64.powi(2)).sqrt();
         assert!((h.blockage(&state) - (disc_depth + 0.06)).abs() < 1e-12);
+    }
+    #[test]
+    fn a_blocker_the_hand_cannot_get_behind_goes_across_the_way_onto_the_table() {
+        // A table over x 0.3..1.0 m, y -0.9..0.9 m, the arm's base at the origin. The goal
+        // object's way runs along x = 0.9, 0.1 m inside the far edge, from (0.9, 0.5) to
+        // the disc at (0.9, -0.3). Radii 0.05, clearance 0.01: apart 0.11; the hand
+        // stands 0.05 + 0.1 behind a blocker.
+        let h = PushHeading {
+            tool_reach: 0.1,
+            radii: vec![0.05; 3],
+            clearance: 0.01,
+            goal: Some(GoalDisc {
+                object: 0,
+                center: Vector2::new(0.9, -0.3),
+                radius: 0.1,
+            }),
+            reach: Some(StandingRoom {
+                table_x: (0.3, 1.0),
+                table_y: (-0.9, 0.9),
+                p_WBase: Vector2::zeros(),
+            }),
+        };
+        let state = State::from_flat(
+            &[
+                0.0, // one joint
+                0.9, 0.5, 0.0, // the goal object
+                // 2 cm inside the way: pushed further inside, the hand would stand at
+                // (1.03, 0.2), beyond the far edge and farther from the base than the
+                // blocker. It goes across, to x = 0.9 + 0.16, held 0.05 inside the edge.
+                0.88, 0.2, 0.0,
+                // 6 cm inside: the hand stands at (0.99, 0), over the table. Inside, to
+                // x = 0.9 - 0.16.
+                0.84, 0.0, 0.0,
+            ],
+            1,
+        );
+        let blockers = h.blockers(&state);
+        assert_eq!(blockers.len(), 2, "{blockers:?}");
+        assert_eq!(blockers[0].object, 1);
+        assert!(
+            (blockers[0].target - Vector2::new(0.95, 0.2)).norm() < 1e-12,
+            "{blockers:?}"
+        );
+        assert_eq!(blockers[1].object, 2);
+        assert!(
+            (blockers[1].target - Vector2::new(0.74, 0.0)).norm() < 1e-12,
+            "{blockers:?}"
+        );
     }
 }
