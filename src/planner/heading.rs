@@ -124,16 +124,76 @@ impl PushHeading {
         }
     }
 
-    /// The objects in the goal object's way, each with a place out of it: an object the
+    /// The objects in the goal object's way, each with a place out of it. An object the
     /// goal object could touch anywhere in the goal disc goes radially out of the disc's
-    /// reach; one the goal object would touch on the straight line to the goal centre goes
-    /// sideways off that line, to the side it stands on unless the hand could not stand
-    /// behind it for that push (beyond the table's edge, farther from the arm's base than
-    /// the object): then across the line, onto the table. Empty without an object goal.
+    /// reach, or sideways off the corridor below when radially out is in it
+    /// ([`Self::sideways_out_of_the_way`]). An object the goal object would touch on the
+    /// straight line to the goal centre (that corridor) goes sideways off the line, to the
+    /// side it stands on unless the hand could not stand behind it for that push (beyond
+    /// the table's edge, farther from the arm's base than the object): then across the
+    /// line, onto the table. Empty without an object goal.
     pub fn blockers(&self, state: &State) -> Vec<PushTarget> {
         let mut blockers = Vec::new();
         self.for_each_blocker(state, |push, _| blockers.push(push));
+        for push in &mut blockers {
+            if let Some(target) = self.sideways_out_of_the_way(state, push) {
+                push.target = target;
+            }
+        }
         blockers
+    }
+
+    /// For a blocker whose place out of the goal disc's reach lies in the goal object's
+    /// corridor (radially out of the disc is straight into the way when the blocker stands
+    /// between the disc and the goal object): the nearest place straight sideways off the
+    /// corridor and out of the disc's reach, in 1 cm steps up to 0.6 m, on the table, on
+    /// its own side first and where the hand can stand behind it for the push. None: keep
+    /// the place it has (also without an arm: a free-flying hand needs no such care).
+    fn sideways_out_of_the_way(&self, state: &State, push: &PushTarget) -> Option<Vector2<f64>> {
+        let goal = self.goal?;
+        let room = self.reach?;
+        let p_WO = state.objects[goal.object].translation();
+        let route = goal.center - p_WO;
+        let length2 = route.norm_squared();
+        if length2 < 1e-12 {
+            return None;
+        }
+        let r = self.radii[push.object];
+        let apart = self.radii[goal.object] + r + self.clearance;
+        let disc_reach = goal.radius + apart;
+        let corridor_distance = |p: Vector2<f64>| {
+            let t = ((p - p_WO).dot(&route) / length2).clamp(0.0, 1.0);
+            (p - (p_WO + route * t)).norm()
+        };
+        if corridor_distance(push.target) >= apart {
+            return None;
+        }
+        let p_WB = state.objects[push.object].translation();
+        let normal = Vector2::new(-route.y, route.x) / length2.sqrt();
+        let own = if (p_WB - p_WO).dot(&normal) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        for sign in [own, -own] {
+            let out = normal * sign;
+            if !room.allows(p_WB - out * (r + self.tool_reach), p_WB) {
+                continue;
+            }
+            for step in 1..=60 {
+                let p = p_WB + out * (0.01 * step as f64);
+                if (p - goal.center).norm() >= disc_reach + CLEAR_BY
+                    && corridor_distance(p) >= apart + CLEAR_BY
+                {
+                    let on_table = room.onto_table(p, r);
+                    if (on_table - p).norm() < 1e-12 {
+                        return Some(p);
+                    }
+                    break;
+                }
+            }
+        }
+        None
     }
 
     /// How far the objects in the goal object's way ([`Self::blockers`]) reach into it,
@@ -377,5 +437,39 @@ mod tests {
             (blockers[1].target - Vector2::new(0.74, 0.0)).norm() < 1e-12,
             "{blockers:?}"
         );
+    }
+    #[test]
+    fn a_disc_blocker_whose_radial_place_is_in_the_way_goes_sideways_off_it() {
+        // The goal object at (0, 1), the disc (less margin) of 0.1 m at the origin: the
+        // way runs down x = 0. Radii 0.05, clearance 0.01: apart 0.11, the disc's reach
+        // 0.21. A blocker at (0, 0.15) is in the disc's reach; radially out, (0, 0.26),
+        // is the middle of the way. Sideways (+x first: its own side is ambiguous and
+        // counts as +x), out of the disc's reach by CLEAR_BY: x >= sqrt(0.26^2 - 0.15^2)
+        // = 0.212, the first 1 cm step 0.22, also 0.22 off the way (>= 0.16).
+        let h = PushHeading {
+            tool_reach: 0.1,
+            radii: vec![0.05; 2],
+            clearance: 0.01,
+            goal: Some(GoalDisc {
+                object: 0,
+                center: Vector2::zeros(),
+                radius: 0.1,
+            }),
+            reach: Some(StandingRoom {
+                table_x: (-1.0, 1.0),
+                table_y: (-1.0, 2.0),
+                p_WBase: Vector2::new(-2.0, 0.0),
+            }),
+        };
+        let state = State::from_flat(&[0.0, 0.0, 1.0, 0.0, 0.0, 0.15, 0.0], 1);
+        let blockers = h.blockers(&state);
+        assert_eq!(blockers.len(), 1, "{blockers:?}");
+        assert!(
+            (blockers[0].target - Vector2::new(0.22, 0.15)).norm() < 1e-12,
+            "{blockers:?}"
+        );
+        // Without an arm (no standing room), the radial place stays.
+        let free = PushHeading { reach: None, ..h };
+        assert!((free.blockers(&state)[0].target - Vector2::new(0.0, 0.26)).norm() < 1e-12);
     }
 }
