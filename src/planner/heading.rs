@@ -135,6 +135,9 @@ impl PushHeading {
     pub fn blockers(&self, state: &State) -> Vec<PushTarget> {
         let mut blockers = Vec::new();
         self.for_each_blocker(state, |push, _| blockers.push(push));
+        // Only a disc blocker's radial place can lie in the corridor: a place off the
+        // line is a corridor's half-width and more off it, unless held at the table's
+        // edge, where no place sideways off the corridor is on the table either.
         for push in &mut blockers {
             if let Some(target) = self.sideways_out_of_the_way(state, push) {
                 push.target = target;
