@@ -24,6 +24,16 @@ pub fn wrap_angle(theta: f64) -> f64 {
     a
 }
 
+/// The point of the segment from `a` to `b` nearest `p` (all in one plane's frame).
+pub fn closest_on_segment(p: Vector2<f64>, a: Vector2<f64>, b: Vector2<f64>) -> Vector2<f64> {
+    let ab = b - a;
+    let length2 = ab.norm_squared();
+    if length2 < 1e-24 {
+        return a;
+    }
+    a + ab * ((p - a).dot(&ab) / length2).clamp(0.0, 1.0)
+}
+
 /// An object's configuration on the table: position of its origin (m) and yaw (rad), world frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pose2 {

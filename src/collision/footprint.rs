@@ -13,7 +13,7 @@
 //! Frames: footprints in their object frames (centred on the centre of friction), poses
 //! world-frame on the table; every point and normal returned is world-frame xy (m).
 
-use crate::math::Pose2;
+use crate::math::{closest_on_segment, Pose2};
 use crate::physics::Footprint;
 use nalgebra::Vector2;
 
@@ -205,15 +205,6 @@ fn point_to_polygon(polygon: &[Vector2<f64>], p: Vector2<f64>) -> PointToPolygon
         closest,
         normal,
     }
-}
-
-fn closest_on_segment(p: Vector2<f64>, a: Vector2<f64>, b: Vector2<f64>) -> Vector2<f64> {
-    let ab = b - a;
-    let length2 = ab.norm_squared();
-    if length2 < 1e-24 {
-        return a;
-    }
-    a + ab * ((p - a).dot(&ab) / length2).clamp(0.0, 1.0)
 }
 
 fn polygon_circle(

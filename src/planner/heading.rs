@@ -8,8 +8,9 @@
 
 #![allow(non_snake_case)] // frame-named points: p_WT, the tool point in the world frame
 
+use crate::math::closest_on_segment;
 use crate::robot::RobotKind;
-use crate::scene::{Goal, Scene};
+use crate::scene::{within_extent, Goal, Scene};
 use crate::state::State;
 use nalgebra::Vector2;
 
@@ -56,8 +57,7 @@ struct StandingRoom {
 impl StandingRoom {
     /// Can the hand stand at `p_WS` to push the object at `p_WO`?
     fn allows(&self, p_WS: Vector2<f64>, p_WO: Vector2<f64>) -> bool {
-        let over_table = |(lo, hi): (f64, f64), v: f64| v >= lo && v <= hi;
-        (over_table(self.table_x, p_WS.x) && over_table(self.table_y, p_WS.y))
+        within_extent(p_WS, self.table_x, self.table_y)
             || (p_WS - self.p_WBase).norm() <= (p_WO - self.p_WBase).norm()
     }
 
@@ -81,6 +81,32 @@ struct GoalDisc {
     object: usize,
     center: Vector2<f64>,
     radius: f64,
+}
+
+/// The goal object's way in a state: from its centre `p_WO` straight to the goal
+/// centre, `route` (world xy, m).
+struct Way {
+    goal: GoalDisc,
+    p_WO: Vector2<f64>,
+    route: Vector2<f64>,
+}
+
+impl Way {
+    /// How far `p` (world xy) is from the straight way (m).
+    fn corridor_distance(&self, p: Vector2<f64>) -> f64 {
+        (p - closest_on_segment(p, self.p_WO, self.goal.center)).norm()
+    }
+}
+
+/// Where a blocker stands in the goal object's way.
+enum InTheWay {
+    /// In the goal disc's reach, `from_center` off the disc's centre.
+    Disc { from_center: Vector2<f64> },
+    /// In the corridor of the straight way, `side` off its nearest point `p_WC`.
+    Corridor {
+        p_WC: Vector2<f64>,
+        side: Vector2<f64>,
+    },
 }
 
 /// A push worth trying: `object` toward `target` (world xy, m).
@@ -114,10 +140,7 @@ impl PushHeading {
                 RobotKind::Arm => Some(StandingRoom {
                     table_x: scene.table.x,
                     table_y: scene.table.y,
-                    p_WBase: scene.robot.link_poses(&scene.start.q)[0]
-                        .translation
-                        .vector
-                        .xy(),
+                    p_WBase: scene.robot.chain.base.translation.vector.xy(),
                 }),
                 RobotKind::PlanarHand => None,
             },
@@ -134,69 +157,18 @@ impl PushHeading {
     /// line, onto the table. Empty without an object goal.
     pub fn blockers(&self, state: &State) -> Vec<PushTarget> {
         let mut blockers = Vec::new();
-        self.for_each_blocker(state, |push, _| blockers.push(push));
-        // Only a disc blocker's radial place can lie in the corridor: a place off the
-        // line is a corridor's half-width and more off it, unless held at the table's
-        // edge, where no place sideways off the corridor is on the table either.
-        for push in &mut blockers {
-            if let Some(target) = self.sideways_out_of_the_way(state, push) {
-                push.target = target;
-            }
-        }
-        blockers
-    }
-
-    /// For a blocker whose place out of the goal disc's reach lies in the goal object's
-    /// corridor (radially out of the disc is straight into the way when the blocker stands
-    /// between the disc and the goal object): the nearest place straight sideways off the
-    /// corridor and out of the disc's reach, in 1 cm steps up to 0.6 m, on the table, on
-    /// its own side first and where the hand can stand behind it for the push. None: keep
-    /// the place it has (also without an arm: a free-flying hand needs no such care).
-    fn sideways_out_of_the_way(&self, state: &State, push: &PushTarget) -> Option<Vector2<f64>> {
-        let goal = self.goal?;
-        let room = self.reach?;
-        let p_WO = state.objects[goal.object].translation();
-        let route = goal.center - p_WO;
-        let length2 = route.norm_squared();
-        if length2 < 1e-12 {
-            return None;
-        }
-        let r = self.radii[push.object];
-        let apart = self.radii[goal.object] + r + self.clearance;
-        let disc_reach = goal.radius + apart;
-        let corridor_distance = |p: Vector2<f64>| {
-            let t = ((p - p_WO).dot(&route) / length2).clamp(0.0, 1.0);
-            (p - (p_WO + route * t)).norm()
-        };
-        if corridor_distance(push.target) >= apart {
-            return None;
-        }
-        let p_WB = state.objects[push.object].translation();
-        let normal = Vector2::new(-route.y, route.x) / length2.sqrt();
-        let own = if (p_WB - p_WO).dot(&normal) >= 0.0 {
-            1.0
-        } else {
-            -1.0
-        };
-        for sign in [own, -own] {
-            let out = normal * sign;
-            if !room.allows(p_WB - out * (r + self.tool_reach), p_WB) {
-                continue;
-            }
-            for step in 1..=60 {
-                let p = p_WB + out * (0.01 * step as f64);
-                if (p - goal.center).norm() >= disc_reach + CLEAR_BY
-                    && corridor_distance(p) >= apart + CLEAR_BY
-                {
-                    let on_table = room.onto_table(p, r);
-                    if (on_table - p).norm() < 1e-12 {
-                        return Some(p);
-                    }
-                    break;
+        self.for_each_blocker(state, |way, object, in_the_way, _| {
+            let target = match in_the_way {
+                InTheWay::Disc { from_center } => {
+                    self.out_of_the_disc(state, way, object, from_center)
                 }
-            }
-        }
-        None
+                InTheWay::Corridor { p_WC, side } => {
+                    self.off_the_line(state, way, object, p_WC, side)
+                }
+            };
+            blockers.push(PushTarget { object, target });
+        });
+        blockers
     }
 
     /// How far the objects in the goal object's way ([`Self::blockers`]) reach into it,
@@ -204,35 +176,40 @@ impl PushHeading {
     /// on the straight line to the goal centre. Zero when the way is clear.
     pub fn blockage(&self, state: &State) -> f64 {
         let mut sum = 0.0;
-        self.for_each_blocker(state, |_, depth| sum += depth);
+        self.for_each_blocker(state, |_, _, _, depth| sum += depth);
         sum
     }
 
-    /// Calls `f` with each blocker, its place out of the way and how deep it stands in
-    /// the way (m).
-    fn for_each_blocker(&self, state: &State, mut f: impl FnMut(PushTarget, f64)) {
+    /// Centre distance (m) at which the goal object and `object` never touch.
+    fn apart(&self, goal: &GoalDisc, object: usize) -> f64 {
+        self.radii[goal.object] + self.radii[object] + self.clearance
+    }
+
+    /// Calls `f` with the goal object's way, each blocker, where it stands in the way and
+    /// how deep (m). Only where the blockers are: their places out of the way are
+    /// [`Self::blockers`]' (the blockage, in every projected state, needs none).
+    fn for_each_blocker(&self, state: &State, mut f: impl FnMut(&Way, usize, InTheWay, f64)) {
         let Some(goal) = self.goal else {
             return;
         };
         let p_WO = state.objects[goal.object].translation();
-        let r_goal_object = self.radii[goal.object];
-        let route = goal.center - p_WO;
+        let way = Way {
+            goal,
+            p_WO,
+            route: goal.center - p_WO,
+        };
+        let route = way.route;
         for (object, pose) in state.objects.iter().enumerate() {
             if object == goal.object {
                 continue;
             }
             let p_WB = pose.translation();
-            // Centre distance at which the two never touch.
-            let apart = r_goal_object + self.radii[object] + self.clearance;
+            let apart = self.apart(&goal, object);
             let from_center = p_WB - goal.center;
             let disc_reach = goal.radius + apart;
             if from_center.norm() < disc_reach {
-                let out = from_center.try_normalize(1e-9).unwrap_or(Vector2::x());
-                let target = goal.center + out * (disc_reach + CLEAR_BY);
-                f(
-                    PushTarget { object, target },
-                    disc_reach - from_center.norm(),
-                );
+                let depth = disc_reach - from_center.norm();
+                f(&way, object, InTheWay::Disc { from_center }, depth);
                 continue;
             }
             // Along the route: the nearest point of the segment, ahead of the goal object.
@@ -247,22 +224,104 @@ impl PushHeading {
             let p_WC = p_WO + route * t;
             let side = p_WB - p_WC;
             if side.norm() < apart {
-                let normal = Vector2::new(-route.y, route.x).normalize();
-                let out = side.try_normalize(1e-9).unwrap_or(normal);
-                let mut target = p_WC + out * (apart + CLEAR_BY);
-                // To the side it stands on, unless the hand cannot stand behind it for
-                // that push: then across the way, staying on the table.
-                if let Some(room) = self.reach {
-                    let stand =
-                        |out: Vector2<f64>| p_WB - out * (self.radii[object] + self.tool_reach);
-                    if !room.allows(stand(out), p_WB) && room.allows(stand(-out), p_WB) {
-                        target =
-                            room.onto_table(p_WC - out * (apart + CLEAR_BY), self.radii[object]);
-                    }
-                }
-                f(PushTarget { object, target }, apart - side.norm());
+                f(
+                    &way,
+                    object,
+                    InTheWay::Corridor { p_WC, side },
+                    apart - side.norm(),
+                );
             }
         }
+    }
+
+    /// A place for a blocker in the goal disc's reach, `from_center` off its centre:
+    /// radially out of the reach, unless that is in the corridor.
+    fn out_of_the_disc(
+        &self,
+        state: &State,
+        way: &Way,
+        object: usize,
+        from_center: Vector2<f64>,
+    ) -> Vector2<f64> {
+        let goal = &way.goal;
+        let apart = self.apart(goal, object);
+        let out = from_center.try_normalize(1e-9).unwrap_or(Vector2::x());
+        let radial = goal.center + out * (goal.radius + apart + CLEAR_BY);
+        if way.corridor_distance(radial) >= apart {
+            return radial;
+        }
+        self.sideways_out_of_the_way(state, way, object)
+            .unwrap_or(radial)
+    }
+
+    /// A place for a blocker `side` off the straight line's nearest point `p_WC`: sideways
+    /// off the line, to the side it stands on unless the hand cannot stand behind it for
+    /// that push: then across the way, staying on the table.
+    fn off_the_line(
+        &self,
+        state: &State,
+        way: &Way,
+        object: usize,
+        p_WC: Vector2<f64>,
+        side: Vector2<f64>,
+    ) -> Vector2<f64> {
+        let apart = self.apart(&way.goal, object);
+        let normal = Vector2::new(-way.route.y, way.route.x).normalize();
+        let out = side.try_normalize(1e-9).unwrap_or(normal);
+        let target = p_WC + out * (apart + CLEAR_BY);
+        let Some(room) = self.reach else {
+            return target;
+        };
+        let p_WB = state.objects[object].translation();
+        let stand = |out: Vector2<f64>| p_WB - out * (self.radii[object] + self.tool_reach);
+        if !room.allows(stand(out), p_WB) && room.allows(stand(-out), p_WB) {
+            return room.onto_table(p_WC - out * (apart + CLEAR_BY), self.radii[object]);
+        }
+        target
+    }
+
+    /// For a disc blocker whose radial place is in the corridor (radially out of the disc
+    /// is straight into the way when the blocker stands between the disc and the goal
+    /// object): the nearest place straight sideways off the corridor and out of the disc's
+    /// reach, in 1 cm steps up to 0.6 m, on the table, on its own side first and where the
+    /// hand can stand behind it for the push. None: keep the radial place (also without an
+    /// arm: a free-flying hand needs no such care).
+    fn sideways_out_of_the_way(
+        &self,
+        state: &State,
+        way: &Way,
+        object: usize,
+    ) -> Option<Vector2<f64>> {
+        let room = self.reach?;
+        let goal = &way.goal;
+        let length2 = way.route.norm_squared();
+        if length2 < 1e-12 {
+            return None;
+        }
+        let r = self.radii[object];
+        let apart = self.apart(goal, object);
+        let disc_reach = goal.radius + apart;
+        let p_WB = state.objects[object].translation();
+        let normal = Vector2::new(-way.route.y, way.route.x) / length2.sqrt();
+        let own = if (p_WB - way.p_WO).dot(&normal) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let clear = |p: Vector2<f64>| {
+            (p - goal.center).norm() >= disc_reach + CLEAR_BY
+                && way.corridor_distance(p) >= apart + CLEAR_BY
+        };
+        [own, -own]
+            .into_iter()
+            .map(|sign| normal * sign)
+            .filter(|&out| room.allows(p_WB - out * (r + self.tool_reach), p_WB))
+            .filter_map(|out| {
+                (1..=60)
+                    .map(|step| p_WB + out * (0.01 * step as f64))
+                    .find(|&p| clear(p))
+            })
+            .find(|&p| (room.onto_table(p, r) - p).norm() < 1e-12)
     }
 
     /// The unit heading for the tool at `p_WT` (world xy) to push `object` toward

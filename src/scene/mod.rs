@@ -68,6 +68,11 @@ impl AllowedCollisions {
     }
 }
 
+/// Is the point `p` (m) within the extent `x` x `y` (m)?
+pub fn within_extent(p: Vector2<f64>, x: (f64, f64), y: (f64, f64)) -> bool {
+    p.x >= x.0 && p.x <= x.1 && p.y >= y.0 && p.y <= y.1
+}
+
 /// The support surface: a slab whose top is at `top`, spanning `x` x `y`.
 #[derive(Clone, Debug)]
 pub struct Table {
@@ -83,7 +88,7 @@ pub struct Table {
 impl Table {
     /// Is the world point (x, y) over the table?
     pub fn contains(&self, p: Vector2<f64>) -> bool {
-        p.x >= self.x.0 && p.x <= self.x.1 && p.y >= self.y.0 && p.y <= self.y.1
+        within_extent(p, self.x, self.y)
     }
 
     /// Does the table carry the whole `footprint` (object frame) at `pose`? An object
