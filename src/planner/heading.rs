@@ -96,6 +96,13 @@ impl Way {
     fn corridor_distance(&self, p: Vector2<f64>) -> f64 {
         (p - closest_on_segment(p, self.p_WO, self.goal.center)).norm()
     }
+
+    /// The way's unit normal (to its left), None when the goal object is at the goal
+    /// centre (a way of no length).
+    fn normal(&self) -> Option<Vector2<f64>> {
+        (self.route.norm_squared() >= 1e-12)
+            .then(|| Vector2::new(-self.route.y, self.route.x).normalize())
+    }
 }
 
 /// Where a blocker stands in the goal object's way.
@@ -178,6 +185,22 @@ impl PushHeading {
         let mut sum = 0.0;
         self.for_each_blocker(state, |_, _, _, depth| sum += depth);
         sum
+    }
+
+    /// Tool point to the centre of `object` (m) when the hand stands just behind it.
+    fn standoff(&self, object: usize) -> f64 {
+        self.radii[object] + self.tool_reach
+    }
+
+    /// Can the hand stand behind `object`, at `p_WB`, to push it along the unit `push`?
+    fn can_push_along(
+        &self,
+        room: &StandingRoom,
+        object: usize,
+        p_WB: Vector2<f64>,
+        push: Vector2<f64>,
+    ) -> bool {
+        room.allows(p_WB - push * self.standoff(object), p_WB)
     }
 
     /// Centre distance (m) at which the goal object and `object` never touch.
@@ -266,15 +289,19 @@ impl PushHeading {
         side: Vector2<f64>,
     ) -> Vector2<f64> {
         let apart = self.apart(&way.goal, object);
-        let normal = Vector2::new(-way.route.y, way.route.x).normalize();
-        let out = side.try_normalize(1e-9).unwrap_or(normal);
+        // A corridor blocker has a way of some length to stand in: the normal is there.
+        let out = side
+            .try_normalize(1e-9)
+            .or(way.normal())
+            .unwrap_or(Vector2::x());
         let target = p_WC + out * (apart + CLEAR_BY);
         let Some(room) = self.reach else {
             return target;
         };
         let p_WB = state.objects[object].translation();
-        let stand = |out: Vector2<f64>| p_WB - out * (self.radii[object] + self.tool_reach);
-        if !room.allows(stand(out), p_WB) && room.allows(stand(-out), p_WB) {
+        if !self.can_push_along(&room, object, p_WB, out)
+            && self.can_push_along(&room, object, p_WB, -out)
+        {
             return room.onto_table(p_WC - out * (apart + CLEAR_BY), self.radii[object]);
         }
         target
@@ -293,16 +320,12 @@ impl PushHeading {
         object: usize,
     ) -> Option<Vector2<f64>> {
         let room = self.reach?;
+        let normal = way.normal()?;
         let goal = &way.goal;
-        let length2 = way.route.norm_squared();
-        if length2 < 1e-12 {
-            return None;
-        }
         let r = self.radii[object];
         let apart = self.apart(goal, object);
         let disc_reach = goal.radius + apart;
         let p_WB = state.objects[object].translation();
-        let normal = Vector2::new(-way.route.y, way.route.x) / length2.sqrt();
         let own = if (p_WB - way.p_WO).dot(&normal) >= 0.0 {
             1.0
         } else {
@@ -315,7 +338,7 @@ impl PushHeading {
         [own, -own]
             .into_iter()
             .map(|sign| normal * sign)
-            .filter(|&out| room.allows(p_WB - out * (r + self.tool_reach), p_WB))
+            .filter(|&out| self.can_push_along(&room, object, p_WB, out))
             .filter_map(|out| {
                 (1..=60)
                     .map(|step| p_WB + out * (0.01 * step as f64))
@@ -333,8 +356,7 @@ impl PushHeading {
         object: usize,
         p_WG: Vector2<f64>,
     ) -> Option<Vector2<f64>> {
-        // Tool point to object centre when the hand stands just behind the object.
-        let standoff = self.radii[object] + self.tool_reach;
+        let standoff = self.standoff(object);
         let p_WO = state.objects[object].translation();
         // d: the way the object should go.
         let d = (p_WG - p_WO).try_normalize(1e-9)?;
@@ -376,6 +398,27 @@ impl PushHeading {
 mod tests {
     use super::*;
 
+    /// Objects of radius 0.05 m, the first the goal object, its disc (less margin) of
+    /// 0.1 m at `center`; clearance 0.01 m: apart 0.11 m.
+    fn goal_in_disc(
+        tool_reach: f64,
+        objects: usize,
+        center: Vector2<f64>,
+        reach: Option<StandingRoom>,
+    ) -> PushHeading {
+        PushHeading {
+            tool_reach,
+            radii: vec![0.05; objects],
+            clearance: 0.01,
+            goal: Some(GoalDisc {
+                object: 0,
+                center,
+                radius: 0.1,
+            }),
+            reach,
+        }
+    }
+
     fn heading_at(object: Vector2<f64>, tool: Vector2<f64>) -> Vector2<f64> {
         let h = PushHeading {
             tool_reach: 0.05,
@@ -416,17 +459,7 @@ mod tests {
     fn blockers_are_the_objects_in_the_goal_disc_or_on_the_route_and_go_out_of_reach() {
         // The goal object at the origin, the goal disc (less margin) of 0.1 m at (1, 0);
         // all radii 0.05, clearance 0.01: apart = 0.11.
-        let h = PushHeading {
-            tool_reach: 0.15,
-            radii: vec![0.05; 4],
-            clearance: 0.01,
-            goal: Some(GoalDisc {
-                object: 0,
-                center: Vector2::new(1.0, 0.0),
-                radius: 0.1,
-            }),
-            reach: None,
-        };
+        let h = goal_in_disc(0.15, 4, Vector2::new(1.0, 0.0), None);
         let state = State::from_flat(
             &[
                 0.0, // one joint
@@ -458,21 +491,12 @@ mod tests {
         // object's way runs along x = 0.9, 0.1 m inside the far edge, from (0.9, 0.5) to
         // the disc at (0.9, -0.3). Radii 0.05, clearance 0.01: apart 0.11; the hand
         // stands 0.05 + 0.1 behind a blocker.
-        let h = PushHeading {
-            tool_reach: 0.1,
-            radii: vec![0.05; 3],
-            clearance: 0.01,
-            goal: Some(GoalDisc {
-                object: 0,
-                center: Vector2::new(0.9, -0.3),
-                radius: 0.1,
-            }),
-            reach: Some(StandingRoom {
-                table_x: (0.3, 1.0),
-                table_y: (-0.9, 0.9),
-                p_WBase: Vector2::zeros(),
-            }),
+        let room = StandingRoom {
+            table_x: (0.3, 1.0),
+            table_y: (-0.9, 0.9),
+            p_WBase: Vector2::zeros(),
         };
+        let h = goal_in_disc(0.1, 3, Vector2::new(0.9, -0.3), Some(room));
         let state = State::from_flat(
             &[
                 0.0, // one joint
@@ -508,21 +532,12 @@ mod tests {
         // is the middle of the way. Sideways (+x first: its own side is ambiguous and
         // counts as +x), out of the disc's reach by CLEAR_BY: x >= sqrt(0.26^2 - 0.15^2)
         // = 0.212, the first 1 cm step 0.22, also 0.22 off the way (>= 0.16).
-        let h = PushHeading {
-            tool_reach: 0.1,
-            radii: vec![0.05; 2],
-            clearance: 0.01,
-            goal: Some(GoalDisc {
-                object: 0,
-                center: Vector2::zeros(),
-                radius: 0.1,
-            }),
-            reach: Some(StandingRoom {
-                table_x: (-1.0, 1.0),
-                table_y: (-1.0, 2.0),
-                p_WBase: Vector2::new(-2.0, 0.0),
-            }),
+        let room = StandingRoom {
+            table_x: (-1.0, 1.0),
+            table_y: (-1.0, 2.0),
+            p_WBase: Vector2::new(-2.0, 0.0),
         };
+        let h = goal_in_disc(0.1, 2, Vector2::zeros(), Some(room));
         let state = State::from_flat(&[0.0, 0.0, 1.0, 0.0, 0.0, 0.15, 0.0], 1);
         let blockers = h.blockers(&state);
         assert_eq!(blockers.len(), 1, "{blockers:?}");
