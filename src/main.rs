@@ -85,7 +85,7 @@ enum Command {
         threads: Option<u32>,
         /// A search that finds no solution within this many propagation steps starts over
         /// with a new tree, later attempts with Luby multiples (1, 1, 2, 1, 1, 2, 4, ...);
-        /// 0: never. Default: the planner's (push_kpiece: 800000, about 4 s; the others
+        /// 0: never. Default: the planner's (push_kpiece: 400000, about 2 s; the others
         /// never).
         #[arg(long, value_name = "STEPS")]
         restart: Option<u64>,

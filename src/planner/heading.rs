@@ -14,33 +14,16 @@ use crate::scene::{within_extent, Goal, Scene};
 use crate::state::State;
 use nalgebra::Vector2;
 
-/// Within this angle (rad) of the stand's side of the object, seen from its centre
-/// (straight behind it, away from the goal, for a push; beside it for a drag), the tool
-/// pushes instead of walking round.
-const STAND_HALF_ANGLE: f64 = std::f64::consts::FRAC_PI_6;
+/// Within this angle (rad) of straight behind the object, seen from its centre away from
+/// the goal, the tool pushes instead of walking round.
+const BEHIND_HALF_ANGLE: f64 = std::f64::consts::FRAC_PI_6;
 
 /// How much farther than the standoff (m) the tool still counts as at the object when
-/// at its stand (beyond it, it first closes in).
+/// behind it (beyond it, it first closes in).
 const PUSH_RANGE: f64 = 0.1;
 
 /// How much room (m) a blocker is given beyond touching the goal object's way.
 const CLEAR_BY: f64 = 0.05;
-
-/// How hard a drag presses into the object, against moving along its way (1: a push's
-/// halfway).
-const DRAG_PRESS: f64 = 0.5;
-
-/// Where the hand stands to move an object along its way.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Stand {
-    /// Behind it, pushing it ahead.
-    Behind,
-    /// Beside it (the unit side, from the object), dragging it along: where the hand
-    /// cannot stand behind (out of reach, or inside another object), the contact's
-    /// friction carries the object along the hand's way (scene 22's goal box with bowl_1
-    /// behind it; BENCHMARKS.md, "Dragging from beside").
-    Beside(Vector2<f64>),
-}
 
 /// The geometry push headings need, fixed per scene.
 #[derive(Clone, Debug)]
@@ -365,9 +348,7 @@ impl PushHeading {
     }
 
     /// The unit heading for the tool at `p_WT` (world xy) to push `object` toward
-    /// `p_WG` (world xy), or `None` when the object is already there: to the stand behind
-    /// it, then along the way; or, where the hand cannot stand behind it, to a stand
-    /// beside it, then along the way pressing in a little (a drag, [`Stand::Beside`]).
+    /// `p_WG` (world xy), or `None` when the object is already there.
     pub fn heading(
         &self,
         state: &State,
@@ -379,85 +360,37 @@ impl PushHeading {
         let p_WO = state.objects[object].translation();
         // d: the way the object should go.
         let d = (p_WG - p_WO).try_normalize(1e-9)?;
-        let stand = self.stand(state, object, d);
-        Self::heading_from(p_WT, p_WO, standoff, d, stand)
-    }
-
-    /// Where the hand stands to move `object` along the unit `d`: behind it, unless that
-    /// point is out of the standing room or inside another object; then beside it, on the
-    /// side nearer the arm's base that it can stand on. Behind (as before) when neither
-    /// side will do, or without an arm.
-    fn stand(&self, state: &State, object: usize, d: Vector2<f64>) -> Stand {
-        let Some(room) = self.reach else {
-            return Stand::Behind;
-        };
-        let p_WO = state.objects[object].translation();
-        let standoff = self.standoff(object);
-        // In the standing room, and the tool point in no other object's footprint circle.
-        let can_stand = |side: Vector2<f64>| {
-            let p_WS = p_WO + side * standoff;
-            self.can_push_along(&room, object, p_WO, -side)
-                && state.objects.iter().enumerate().all(|(other, pose)| {
-                    other == object || (pose.translation() - p_WS).norm() >= self.radii[other]
-                })
-        };
-        if can_stand(-d) {
-            return Stand::Behind;
-        }
-        let left = Vector2::new(-d.y, d.x);
-        let toward_base = (room.p_WBase - p_WO).dot(&left) >= 0.0;
-        let sides = if toward_base {
-            [left, -left]
-        } else {
-            [-left, left]
-        };
-        sides
-            .into_iter()
-            .find(|&side| can_stand(side))
-            .map_or(Stand::Behind, Stand::Beside)
-    }
-
-    /// The heading for the tool at `p_WT` to move the object at `p_WO` (world xy, m) along
-    /// the unit `d`, from `stand`, a standoff (m) from the object's centre.
-    fn heading_from(
-        p_WT: Vector2<f64>,
-        p_WO: Vector2<f64>,
-        standoff: f64,
-        d: Vector2<f64>,
-        stand: Stand,
-    ) -> Option<Vector2<f64>> {
-        // The stand's side of the object (unit, from its centre), and how hard to press in.
-        let (side, press) = match stand {
-            Stand::Behind => (-d, 1.0),
-            Stand::Beside(side) => (side, DRAG_PRESS),
-        };
         let from_object = p_WT - p_WO;
         let distance = from_object.norm();
-        let cos_side = if distance > 1e-9 {
-            from_object.dot(&side) / distance
+        let behind = -d;
+        let cos_behind = if distance > 1e-9 {
+            from_object.dot(&behind) / distance
         } else {
             1.0
         };
-        let at_side = cos_side >= STAND_HALF_ANGLE.cos();
-        if at_side && distance <= standoff + PUSH_RANGE {
+        let is_behind = cos_behind >= BEHIND_HALF_ANGLE.cos();
+        if is_behind && distance <= standoff + PUSH_RANGE {
             // Push: halfway between through the object's centre (no turning) and toward
-            // the target (corrects a tool that stands off the line). A drag presses in
-            // less: mostly along the way, the contact's friction carrying the object.
-            return (-from_object.normalize() * press + d)
+            // the target (corrects a tool that stands off the line).
+            return (-from_object.normalize() + d)
                 .try_normalize(1e-9)
                 .or(Some(d));
         }
-        if !at_side && distance < standoff + PUSH_RANGE {
+        if !is_behind && distance < standoff + PUSH_RANGE {
             // Walk round, on the shorter side, keeping the standoff: the tangent turning
-            // toward the stand's side, pulled outward while nearer than the standoff.
+            // toward `behind`, pulled outward while nearer than the standoff.
             let outward = from_object / distance.max(1e-9);
             let left = Vector2::new(-outward.y, outward.x);
-            let tangent = if left.dot(&side) >= 0.0 { left } else { -left };
+            let tangent = if left.dot(&behind) >= 0.0 {
+                left
+            } else {
+                -left
+            };
             let push_out = ((standoff - distance) / standoff).max(0.0);
             return (tangent + outward * push_out).try_normalize(1e-9);
         }
-        // Away from the object: straight to the stand.
-        (p_WO + side * standoff - p_WT).try_normalize(1e-9)
+        // Away from the object: straight to the point behind it.
+        (p_WO + behind * standoff - p_WT).try_normalize(1e-9)
     }
 }
 
@@ -483,15 +416,6 @@ mod tests {
                 radius: 0.1,
             }),
             reach,
-        }
-    }
-
-    /// A table over x 0.3..1.0 m, y -0.9..0.9 m, the arm's base at `p_WBase`.
-    fn far_edge_room(p_WBase: Vector2<f64>) -> StandingRoom {
-        StandingRoom {
-            table_x: (0.3, 1.0),
-            table_y: (-0.9, 0.9),
-            p_WBase,
         }
     }
 
@@ -567,7 +491,11 @@ mod tests {
         // object's way runs along x = 0.9, 0.1 m inside the far edge, from (0.9, 0.5) to
         // the disc at (0.9, -0.3). Radii 0.05, clearance 0.01: apart 0.11; the hand
         // stands 0.05 + 0.1 behind a blocker.
-        let room = far_edge_room(Vector2::zeros());
+        let room = StandingRoom {
+            table_x: (0.3, 1.0),
+            table_y: (-0.9, 0.9),
+            p_WBase: Vector2::zeros(),
+        };
         let h = goal_in_disc(0.1, 3, Vector2::new(0.9, -0.3), Some(room));
         let state = State::from_flat(
             &[
@@ -596,58 +524,6 @@ mod tests {
             "{blockers:?}"
         );
     }
-    #[test]
-    fn where_the_hand_cannot_stand_behind_it_drags_the_object_from_beside() {
-        // The arm's base at the origin, a table over x 0.3..1.0 m, y -0.9..0.9 m. The goal
-        // object at (0.8, 0.3) goes toward the disc at (0.8, -0.3): its way is -y, and the
-        // hand would stand a standoff of 0.05 + 0.1 behind it, at (0.8, 0.45). Radii 0.05.
-        let room = far_edge_room(Vector2::zeros());
-        let h = goal_in_disc(0.1, 2, Vector2::new(0.8, -0.3), Some(room));
-        let p_WO = Vector2::new(0.8, 0.3);
-        let target = Vector2::new(0.8, -0.3);
-        let state_with = |other: Vector2<f64>| {
-            State::from_flat(&[0.0, p_WO.x, p_WO.y, 0.0, other.x, other.y, 0.0], 1)
-        };
-        // The other object far off: the hand stands behind and pushes straight along -y.
-        let clear = state_with(Vector2::new(0.4, -0.6));
-        assert_eq!(h.stand(&clear, 0, Vector2::new(0.0, -1.0)), Stand::Behind);
-        let at_stand = Vector2::new(0.8, 0.45);
-        let push = h.heading(&clear, at_stand, 0, target).unwrap();
-        assert!((push - Vector2::new(0.0, -1.0)).norm() < 1e-12, "{push}");
-
-        // The other object's footprint (radius 0.05) covers the point behind, 3 cm off it:
-        // the hand stands beside the goal object instead, on the side of the arm's base
-        // (-x), at (0.65, 0.3).
-        let blocked = state_with(Vector2::new(0.8, 0.48));
-        let side = Vector2::new(-1.0, 0.0);
-        assert_eq!(
-            h.stand(&blocked, 0, Vector2::new(0.0, -1.0)),
-            Stand::Beside(side)
-        );
-        // Far off, it heads for that stand.
-        let far = Vector2::new(0.4, 0.3);
-        let approach = h.heading(&blocked, far, 0, target).unwrap();
-        assert!(
-            (approach - Vector2::new(1.0, 0.0)).norm() < 1e-12,
-            "{approach}"
-        );
-        // At the stand it moves along the way, pressing in by DRAG_PRESS: the heading is
-        // (0, -1) + 0.5 (1, 0), normalised.
-        let at_side = p_WO + side * 0.15;
-        let drag = h.heading(&blocked, at_side, 0, target).unwrap();
-        let expected = Vector2::new(DRAG_PRESS, -1.0).normalize();
-        assert!((drag - expected).norm() < 1e-12, "{drag}");
-
-        // With the arm's base on the other side (+x), the side nearer it is +x: the stand
-        // (0.95, 0.3) is over the table.
-        let room_far = far_edge_room(Vector2::new(2.0, 0.3));
-        let h_far = goal_in_disc(0.1, 2, Vector2::new(0.8, -0.3), Some(room_far));
-        assert_eq!(
-            h_far.stand(&blocked, 0, Vector2::new(0.0, -1.0)),
-            Stand::Beside(Vector2::new(1.0, 0.0))
-        );
-    }
-
     #[test]
     fn a_disc_blocker_whose_radial_place_is_in_the_way_goes_sideways_off_it() {
         // The goal object at (0, 1), the disc (less margin) of 0.1 m at the origin: the

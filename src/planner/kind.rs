@@ -5,10 +5,9 @@
 use std::fmt;
 use std::str::FromStr;
 
-/// Push KPIECE's first restart budget: about 4 s of its search on the benchmark scenes
-/// (BENCHMARKS.md, "Restarts"; doubled once its pushes could drag objects: "Dragging
-/// from beside").
-const PUSH_KPIECE_RESTART_STEPS: u64 = 800_000;
+/// Push KPIECE's first restart budget: about 2 s of its search on the benchmark scenes
+/// (BENCHMARKS.md, "Restarts").
+const PUSH_KPIECE_RESTART_STEPS: u64 = 400_000;
 
 /// Push KPIECE's patience before it falls back to PC RRT: about 3 s of its search in
 /// dense clutter (BENCHMARKS.md, "Push KPIECE falls back to PC RRT").
