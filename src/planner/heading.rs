@@ -292,19 +292,19 @@ impl PushHeading {
         // A corridor blocker has a way of some length to stand in: the normal is there.
         let out = side
             .try_normalize(1e-9)
-            .or(way.normal())
+            .or_else(|| way.normal())
             .unwrap_or(Vector2::x());
-        let target = p_WC + out * (apart + CLEAR_BY);
+        let off = out * (apart + CLEAR_BY);
         let Some(room) = self.reach else {
-            return target;
+            return p_WC + off;
         };
         let p_WB = state.objects[object].translation();
         if !self.can_push_along(&room, object, p_WB, out)
             && self.can_push_along(&room, object, p_WB, -out)
         {
-            return room.onto_table(p_WC - out * (apart + CLEAR_BY), self.radii[object]);
+            return room.onto_table(p_WC - off, self.radii[object]);
         }
-        target
+        p_WC + off
     }
 
     /// For a disc blocker whose radial place is in the corridor (radially out of the disc
