@@ -404,3 +404,52 @@ for name, settings in c.execute("select name, settings from plannerConfigs order
         assert!(line.ends_with("goal_bias = 0.25"), "{line}");
     }
 }
+
+#[test]
+fn ab_script_counts_each_binarys_solved_runs_and_their_time_ratio() {
+    // B: a stand-in that never solves (the first line of `plan`'s report of such a run).
+    let scratch = common::Scratch::new("ab");
+    let never = scratch.join("never-solves");
+    std::fs::write(
+        &never,
+        "#!/bin/sh\necho 'not solved (approximate path written) in 2.000 s'\n",
+    )
+    .unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&never, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let run = Command::new("benches/ab.sh")
+        .arg(env!("CARGO_BIN_EXE_pushplan"))
+        .arg(&never)
+        .args(["2", "1", "3", "scenes/benchmark/scene_00.yaml"])
+        .output()
+        .unwrap();
+    let table = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{table}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    // Each pair: A, pushplan, solves scene 00 within the limit; B counts as the limit.
+    // (Pair rows have four cells, the summary's rows five.)
+    let pairs: Vec<(f64, f64)> = table
+        .lines()
+        .map(|l| l.split('|').map(str::trim).collect::<Vec<_>>())
+        .filter(|cells| cells.len() == 6 && cells[1] == "scene_00")
+        .map(|cells| (cells[3].parse().unwrap(), cells[4].parse().unwrap()))
+        .collect();
+    assert_eq!(pairs.len(), 3, "{table}");
+    assert!(pairs.iter().all(|&(a, b)| a < 2.0 && b == 2.0), "{table}");
+    // The summary, recomputed from the pairs as printed (rounded to the millisecond).
+    let ratio = (pairs.iter().map(|&(a, b)| (b / a).ln()).sum::<f64>() / 3.0).exp();
+    let all = table
+        .lines()
+        .find(|l| l.starts_with("| all |"))
+        .unwrap_or_else(|| panic!("no summary in\n{table}"));
+    let cells: Vec<&str> = all.split('|').map(str::trim).collect();
+    assert_eq!(&cells[2..5], ["3", "3", "0"], "{all}");
+    let printed: f64 = cells[5].parse().unwrap();
+    assert!(
+        (printed - ratio).abs() <= 0.01 * ratio + 0.005,
+        "{printed} against {ratio}: {table}"
+    );
+}

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Two builds of pushplan side by side (BENCHMARKS.md: the "Tried" sections of issue 11):
+# every scene and seed is planned by both binaries at once, each on one thread of its own
+# core, so that both meet the same machine load. Prints each pair's times to solve, then
+# per scene the runs each solved within the time limit, and the geometric mean of B's
+# time over A's (a run not solved counts as the time limit). Plans are decided by
+# propagation steps, not by the clock: a run solved well within the limit gives the same
+# plan alone or beside another.
+#
+#   benches/ab.sh A_BINARY B_BINARY SECONDS FIRST_SEED LAST_SEED SCENE... [-- PLAN_ARGS...]
+#
+# PLAN_ARGS go to both (e.g. `--planner kpiece`, `--restart 0`); AB_A_ARGS and AB_B_ARGS
+# (words) to one of them only, e.g. AB_B_ARGS="--restart 800000".
+set -u
+[ $# -ge 6 ] || { sed -n '2,13p' "$0" >&2; exit 2; }
+a=$1 b=$2 time=$3 first=$4 last=$5
+shift 5
+scenes=()
+while [ $# -gt 0 ] && [ "$1" != "--" ]; do scenes+=("$1"); shift; done
+[ $# -gt 0 ] && shift
+plan_args=("$@")
+read -r -a a_args <<< "${AB_A_ARGS:-}"
+read -r -a b_args <<< "${AB_B_ARGS:-}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+solve_time() {  # binary, scene, seed, out, extra args...
+  local bin=$1 scene=$2 seed=$3 out=$4 line
+  shift 4
+  line=$("$bin" plan "$scene" --seed "$seed" --threads 1 --time "$time" --shortcut 0 --quiet \
+    --out "$out" "${plan_args[@]}" "$@" 2>&1 | head -1)
+  case "$line" in
+    "solved in "*) awk '{print $3}' <<< "$line" ;;
+    *) echo "$time" ;;
+  esac
+}
+echo "| scene | seed | A (s) | B (s) |"
+echo "|---|---|---|---|"
+for scene in "${scenes[@]}"; do
+  name=$(basename "$scene" .yaml)
+  for seed in $(seq "$first" "$last"); do
+    solve_time "$a" "$scene" "$seed" "$tmp/a.json" "${a_args[@]}" > "$tmp/a" &
+    solve_time "$b" "$scene" "$seed" "$tmp/b.json" "${b_args[@]}" > "$tmp/b"
+    wait
+    echo "$name $seed $(cat "$tmp/a") $(cat "$tmp/b")" | tee -a "$tmp/pairs" |
+      awk '{ printf "| %s | %s | %.3f | %.3f |\n", $1, $2, $3, $4 }'
+  done
+done
+echo
+echo "| scene | runs | A solved | B solved | B / A, geometric mean |"
+echo "|---|---|---|---|---|"
+awk -v limit="$time" '
+  { if (!($1 in runs)) order[++n] = $1
+    runs[$1]++; sa[$1] += ($3 < limit); sb[$1] += ($4 < limit); lr[$1] += log($4 / $3)
+    all++; ta += ($3 < limit); tb += ($4 < limit); tl += log($4 / $3) }
+  END {
+    for (i = 1; i <= n; i++) { s = order[i]
+      printf "| %s | %d | %d | %d | %.2f |\n", s, runs[s], sa[s], sb[s], exp(lr[s] / runs[s]) }
+    printf "| all | %d | %d | %d | %.2f |\n", all, ta, tb, exp(tl / all) }' "$tmp/pairs"
