@@ -23,23 +23,14 @@ read -r -a a_args <<< "${AB_A_ARGS:-}"
 read -r -a b_args <<< "${AB_B_ARGS:-}"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-solve_time() {  # binary, scene, seed, out, extra args...
-  local bin=$1 scene=$2 seed=$3 out=$4 line
-  shift 4
-  line=$("$bin" plan "$scene" --seed "$seed" --threads 1 --time "$time" --shortcut 0 --quiet \
-    --out "$out" "${plan_args[@]}" "$@" 2>&1 | head -1)
-  case "$line" in
-    "solved in "*) awk '{print $3}' <<< "$line" ;;
-    *) echo "$time" ;;
-  esac
-}
+source "$(dirname "$0")/solve_time.sh"
 echo "| scene | seed | A (s) | B (s) |"
 echo "|---|---|---|---|"
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .yaml)
   for seed in $(seq "$first" "$last"); do
-    solve_time "$a" "$scene" "$seed" "$tmp/a.json" "${a_args[@]}" > "$tmp/a" &
-    solve_time "$b" "$scene" "$seed" "$tmp/b.json" "${b_args[@]}" > "$tmp/b"
+    solve_time "$a" "$time" "$scene" "$seed" "$tmp/a.json" --threads 1 "${plan_args[@]}" "${a_args[@]}" > "$tmp/a" &
+    solve_time "$b" "$time" "$scene" "$seed" "$tmp/b.json" --threads 1 "${plan_args[@]}" "${b_args[@]}" > "$tmp/b"
     wait
     echo "$name $seed $(cat "$tmp/a") $(cat "$tmp/b")" | tee -a "$tmp/pairs" |
       awk '{ printf "| %s | %s | %.3f | %.3f |\n", $1, $2, $3, $4 }'

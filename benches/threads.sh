@@ -17,20 +17,16 @@ scenes=("$@")
 [ ${#scenes[@]} -eq 0 ] && scenes=(scenes/benchmark/*.yaml)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-solve_time() {  # threads, scene, seed
-  local line
-  line=$("$bin" plan "$2" --planner "${PLANNER:-push_kpiece}" --threads "$1" --seed "$3" --time "$time" --shortcut 0 --quiet --out "$tmp/plan.json" | head -1)
-  case "$line" in
-    "solved in "*) awk '{print $3}' <<< "$line" ;;
-    *) echo "$time" ;;
-  esac
+source "$(dirname "$0")/solve_time.sh"
+solve_threads() {  # threads, scene, seed
+  solve_time "$bin" "$time" "$2" "$3" "$tmp/plan.json" --planner "${PLANNER:-push_kpiece}" --threads "$1"
 }
 echo "| scene | seed | 1 thread (s) | $threads threads (s) | speedup |"
 echo "|---|---|---|---|---|"
 for scene in "${scenes[@]}"; do
   for seed in $(seq 1 "$seeds"); do
-    one=$(solve_time 1 "$scene" "$seed")
-    many=$(solve_time "$threads" "$scene" "$seed")
+    one=$(solve_threads 1 "$scene" "$seed")
+    many=$(solve_threads "$threads" "$scene" "$seed")
     echo "$(basename "$scene" .yaml) $seed $one $many" >> "$tmp/pairs"
     awk -v s="$(basename "$scene" .yaml)" -v seed="$seed" -v a="$one" -v b="$many" \
       'BEGIN { printf "| %s | %s | %.3f | %.3f | %.2f |\n", s, seed, a, b, a / b }'
