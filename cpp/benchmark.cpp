@@ -6,6 +6,7 @@
 
 #include "darrt.h"
 #include "fallback.h"
+#include "parallel_kpiece.h"
 #include "problem.h"
 #include "restarts.h"
 #include "wrapped_search.h"
@@ -51,19 +52,35 @@ namespace pushplan::bridge
         const std::uint_fast32_t seed = detail::subSeed(options.seed, 100 + options.run);
         ompl::RNG::setSeed(seed);
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
-        rust::Box<Model> loaded = [&] {
+        const auto load = [&] {
             try
             {
-                return Model::load(scene_path);
+                return std::make_shared<detail::ModelHandle>(Model::load(scene_path));
             }
             catch (const rust::Error &e)
             {
                 throw Error(e.what());
             }
-        }();
-        auto model = std::make_shared<detail::ModelHandle>(std::move(loaded));
+        };
+        const detail::ModelHandlePtr model = load();
         const SceneInfo &info = model->info();
         const detail::Problem problem = detail::makeProblem(model, seed, info.planner.k);
+        // As `plan --threads`: the planners that share one search propagate on lanes of
+        // their own models (detail::ParallelKPIECE); the others run on one thread.
+        const unsigned threads = options.threads;
+        if (threads < 1 || threads > 256)
+            throw Error("threads: 1 to 256, got " + std::to_string(threads));
+        if (threads > 1 && !planner_shares_one_search(options.planner))
+            throw Error("threads: " + std::string(planner_name(options.planner)) +
+                        " runs one search per thread, which a benchmark's run does not; only push_kpiece "
+                        "and kpiece run on several threads there");
+        std::vector<detail::ModelHandlePtr> models{model};
+        std::vector<detail::Lane> lanes;
+        for (unsigned l = 0; threads > 1 && l < detail::lanesFor(threads); ++l)
+        {
+            models.push_back(load());
+            lanes.push_back(detail::makeLane(models.back(), seed, l, info.planner.k));
+        }
         // Static RRT shares the problem: the model treats the clutter as obstacles.
         model->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
 
@@ -74,15 +91,16 @@ namespace pushplan::bridge
         // (not PDST's).
         ob::PlannerPtr planner =
             detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps,
-                                options.fallback_steps);
+                                options.fallback_steps, std::move(lanes), threads);
         if (planner_cut_at_time_limit(options.planner))
-            planner = std::make_shared<detail::TimeLimitedSearch>(std::move(planner), model, options.time_limit);
+            planner = std::make_shared<detail::TimeLimitedSearch>(std::move(planner), models, options.time_limit);
         benchmark.addPlanner(planner);
 
         std::uint64_t steps_before = 0;
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &) { steps_before = model->propagationSteps(); });
         benchmark.setPostRunEvent([&](const ob::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &props) {
             props["run INTEGER"] = std::to_string(options.run);
+            props["threads INTEGER"] = std::to_string(threads);
             props["restarts INTEGER"] = std::to_string(detail::restartsOf(planner));
             props["fell back INTEGER"] = std::to_string(detail::fellBack(planner) ? 1 : 0);
             // Only the planners that propagate controls through the model have a rate.
@@ -91,7 +109,7 @@ namespace pushplan::bridge
             if (propagated > 0)
             {
                 props["propagation steps per second REAL"] = std::to_string(propagated / std::max(time, 1e-9));
-                recordSearch(bridge::search_stats(model->model()), props);
+                recordSearch(detail::summedSearchStats(models), props);
             }
             const auto &pdef = problem.setup->getProblemDefinition();
             if (!pdef->hasExactSolution())

@@ -183,4 +183,12 @@ namespace pushplan::detail
         return bridge::finish(*model_, slice(found.controls), slice(found.steps), slice(found.states), solved,
                               settings);
     }
+
+    bridge::SearchStats summedSearchStats(const std::vector<ModelHandlePtr> &models)
+    {
+        bridge::SearchStats sum = bridge::search_stats(models.at(0)->model());
+        for (std::size_t i = 1; i < models.size(); ++i)
+            sum = bridge::add_search_stats(sum, bridge::search_stats(models[i]->model()));
+        return sum;
+    }
 }  // namespace pushplan::detail

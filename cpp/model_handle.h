@@ -119,6 +119,9 @@ namespace pushplan::detail
 
     using ModelHandlePtr = std::shared_ptr<ModelHandle>;
 
+    /// The search statistics of `models` (a search's, with its lanes'), summed.
+    bridge::SearchStats summedSearchStats(const std::vector<ModelHandlePtr> &models);
+
     inline rust::Slice<const double> slice(const std::vector<double> &v)
     {
         return rust::Slice<const double>(v.data(), v.size());

@@ -48,9 +48,7 @@ namespace pushplan
         /// The searches' statistics, summed by the model (reasons in name order).
         SearchStats searchStats(const std::vector<ModelHandlePtr> &models)
         {
-            bridge::SearchStats sum = bridge::search_stats(models[0]->model());
-            for (std::size_t i = 1; i < models.size(); ++i)
-                sum = bridge::add_search_stats(sum, bridge::search_stats(models[i]->model()));
+            const bridge::SearchStats sum = summedSearchStats(models);
             SearchStats total{sum.propagations, sum.steps, sum.moved_goal_object, sum.moved_clutter, {}};
             for (std::size_t i = 0; i < sum.stop_reasons.size(); ++i)
                 total.stopped.emplace_back(std::string(sum.stop_reasons[i]), sum.stop_counts[i]);

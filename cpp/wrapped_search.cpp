@@ -47,8 +47,8 @@ namespace pushplan::detail
         search_->checkValidity();
     }
 
-    TimeLimitedSearch::TimeLimitedSearch(ob::PlannerPtr search, ModelHandlePtr model, double seconds)
-      : WrappedSearch(std::move(search)), model_(std::move(model)), seconds_(seconds)
+    TimeLimitedSearch::TimeLimitedSearch(ob::PlannerPtr search, std::vector<ModelHandlePtr> models, double seconds)
+      : WrappedSearch(std::move(search)), models_(std::move(models)), seconds_(seconds)
     {
     }
 
@@ -56,11 +56,16 @@ namespace pushplan::detail
     {
         struct Lift
         {
-            ModelHandle &model;
-            ~Lift() { model.model().set_time_limit(std::numeric_limits<double>::infinity()); }
+            const std::vector<ModelHandlePtr> &models;
+            ~Lift()
+            {
+                for (const ModelHandlePtr &m : models)
+                    m->model().set_time_limit(std::numeric_limits<double>::infinity());
+            }
         };
-        model_->model().set_time_limit(seconds_);
-        const Lift lift{*model_};
+        for (const ModelHandlePtr &m : models_)
+            m->model().set_time_limit(seconds_);
+        const Lift lift{models_};
         return search_->solve(ptc);
     }
 

@@ -47,7 +47,8 @@ namespace pushplan::detail
         return nullptr;
     }
 
-    /// The search under a time limit its model enforces: from the start of solve(), no
+    /// The search under a time limit its models enforce (its own, and its lanes' where its
+    /// propagations run on several): from the start of solve(), no
     /// propagation past `seconds` (an extension of k long controls ends on time, where
     /// OMPL checks its termination condition only between extensions); lifted when
     /// solve() returns: after the search, OMPL's Benchmark re-propagates the path it
@@ -56,12 +57,12 @@ namespace pushplan::detail
     class TimeLimitedSearch : public WrappedSearch
     {
     public:
-        TimeLimitedSearch(ompl::base::PlannerPtr search, ModelHandlePtr model, double seconds);
+        TimeLimitedSearch(ompl::base::PlannerPtr search, std::vector<ModelHandlePtr> models, double seconds);
 
         ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
 
     private:
-        ModelHandlePtr model_;
+        std::vector<ModelHandlePtr> models_;
         double seconds_;
     };
 

@@ -173,9 +173,13 @@ enum Command {
         /// Output folder (logs and results.db).
         #[arg(long, required = true)]
         out: Option<PathBuf>,
-        /// Runs at once (default: the number of cores).
+        /// Runs at once (default: the number of cores over --threads).
         #[arg(long)]
         jobs: Option<usize>,
+        /// Threads of each run of push_kpiece and kpiece, whose threads share one search
+        /// (as `plan --threads`); the other planners run on one thread.
+        #[arg(long, default_value_t = 1)]
+        threads: u32,
         /// Shortcutting budget measured after each solved run (s of work).
         #[arg(long, default_value_t = 3.0)]
         shortcut: f64,
@@ -221,6 +225,8 @@ enum Command {
         restart: Option<u64>,
         #[arg(long)]
         fallback: Option<u64>,
+        #[arg(long, default_value_t = 1)]
+        threads: u32,
         #[arg(long)]
         log: PathBuf,
     },
@@ -491,6 +497,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             shard,
             restart,
             fallback,
+            threads,
             resume,
         } => {
             let grid = Grid {
@@ -502,6 +509,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 seed,
                 restart,
                 fallback,
+                threads,
             };
             let out = out.expect("clap requires --out without a subcommand");
             bench(&grid, shard, &out, jobs, resume)
@@ -517,6 +525,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             seed,
             restart,
             fallback,
+            threads,
             log,
         } => {
             let options = BenchOptions {
@@ -525,6 +534,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 time_limit: time,
                 seed,
                 shortcut,
+                threads,
                 restart_steps: restart.unwrap_or(planner.restart_steps()),
                 // The grid's patience is push_kpiece's: the others never fall back.
                 fallback_steps: match planner.fallback_steps() {

@@ -34,6 +34,7 @@ fn shards_partition_the_grid() {
         seed: 1,
         restart: None,
         fallback: None,
+        threads: 1,
     };
     let all: Vec<_> = grid.cells().collect();
     assert_eq!(all.len(), 30);
@@ -350,6 +351,104 @@ fn bench_rejects_unknown_planners_and_bad_scenes() {
         .unwrap();
     assert_eq!(run.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&run.stderr).contains("scenes/none.yaml"));
+}
+
+/// `bench --threads 2`: the KPIECE planners' runs search on two threads (one search whose
+/// propagations run on lanes, as `plan --threads 2`), the others on one; each run records
+/// its threads, and its search statistics count every lane's propagation steps. A planner that
+/// runs one search per thread is refused several threads in a run of its own.
+#[test]
+fn bench_runs_the_kpiece_planners_on_threads() {
+    let scratch = common::Scratch::new("bench-threads");
+    let out = scratch.path().to_path_buf();
+    let run = pushplan(
+        &[
+            "bench",
+            "scenes/benchmark/scene_10.yaml",
+            "--planners",
+            "push_kpiece,kpiece,pcrrt",
+            "--runs",
+            "1",
+            "--time",
+            "5",
+            "--shortcut",
+            "0",
+            "--threads",
+            "2",
+            "--out",
+        ],
+        &[&out],
+    );
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    // Two threads a run, two cores or fewer: one run at a time unless told.
+    let expected_jobs = (std::thread::available_parallelism().map_or(1, |n| n.get()) / 2).max(1);
+    assert!(
+        stderr.contains(&format!("{expected_jobs} at a time")),
+        "{stderr}"
+    );
+    let query = r#"
+import sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+# The steps the search statistics count (every model's) against those the rate counts
+# (the search's model, credited with its lanes' steps as their iterations join the tree).
+for name, threads, counted, credited, solved in c.execute("""select p.name, r.threads, r.propagation_steps,
+        r.propagation_steps_per_second * r.time, r.status = 6
+        from runs r join plannerConfigs p on r.plannerid = p.id order by p.name"""):
+    print(name, threads, int(counted >= 0.99 * credited > 0), solved)
+"#;
+    let lines = common::query_database(query, &out.join("results.db"));
+    assert_eq!(
+        lines,
+        [
+            "control_KPIECE1 2 1 1",
+            "control_PCRRT 1 1 1",
+            "control_PushKPIECE 2 1 1"
+        ],
+        "threads, every lane's steps counted, solved"
+    );
+
+    let log = out.join("refused.log");
+    let refused = Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .args([
+            "bench-scene",
+            "scenes/benchmark/scene_10.yaml",
+            "--planner",
+            "pcrrt",
+            "--run",
+            "0",
+            "--time",
+            "1",
+            "--shortcut",
+            "0",
+            "--seed",
+            "1",
+            "--threads",
+            "2",
+            "--log",
+        ])
+        .arg(&log)
+        .output()
+        .unwrap();
+    let messages = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{messages}");
+    assert!(
+        messages.contains("threads") && messages.contains("only push_kpiece and kpiece"),
+        "{messages}"
+    );
+    assert!(!log.exists());
+    let zero = pushplan(
+        &[
+            "bench",
+            "scenes/benchmark/scene_10.yaml",
+            "--threads",
+            "0",
+            "--out",
+        ],
+        &[&out.join("zero")],
+    );
+    assert_eq!(zero.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&zero.stderr).contains("--threads must be 1 to 256"));
 }
 
 /// The scene's `planner.goal_bias` reaches every planner, not only the RRTs: OMPL's

@@ -33,6 +33,15 @@ pub struct Grid {
     /// before the fallback: its own.
     #[serde(default)]
     pub fallback: Option<u64>,
+    /// Threads of each run of the planners whose threads share one search
+    /// ([`PlannerKind::shares_one_search`]: push_kpiece, kpiece), as `plan --threads`; the
+    /// others run on one. Absent in grids from before: one.
+    #[serde(default = "one_thread")]
+    pub threads: u32,
+}
+
+fn one_thread() -> u32 {
+    1
 }
 
 /// One run of one planner on one scene (indices into the grid's lists).
@@ -97,6 +106,16 @@ impl Grid {
             .filter(|(i, _)| i % shard.count == shard.index - 1)
             .map(|(_, c)| c)
             .collect()
+    }
+
+    /// The threads of each run of `planner`: the grid's where its threads share one
+    /// search, else one.
+    pub fn threads_of(&self, planner: PlannerKind) -> u32 {
+        if planner.shares_one_search() {
+            self.threads
+        } else {
+            1
+        }
     }
 
     /// The log of a scene's merged runs in the output folder.

@@ -29,7 +29,7 @@ pub fn run_shard(
         let found = Manifest::read(out)?;
         if found != manifest {
             return Err(format!(
-                "{} holds another benchmark or shard (scenes, planners, runs, time, shortcut, seed, restart, fallback or shard differ): --resume goes on with the same one",
+                "{} holds another benchmark or shard (scenes, planners, runs, time, shortcut, seed, restart, fallback, threads or shard differ): --resume goes on with the same one",
                 out.display()
             ));
         }
@@ -133,6 +133,10 @@ fn spawn_cell(exe: &Path, grid: &Grid, cell: Cell, out: &Path) -> Result<Child, 
                 .into_iter()
                 .flat_map(|steps| ["--fallback".to_string(), steps.to_string()]),
         )
+        .args([
+            "--threads",
+            &grid.threads_of(grid.planners[cell.planner]).to_string(),
+        ])
         .arg("--log")
         .arg(partial_log(&log))
         .stdout(Stdio::null())

@@ -31,7 +31,12 @@ pub fn bench(
     for scene in &grid.scenes {
         Scene::load(scene).map_err(|e| e.to_string())?; // bad scenes fail before anything runs
     }
-    let jobs = jobs.unwrap_or_else(|| super::cores() as usize).max(1);
+    if !(1..=256).contains(&grid.threads) {
+        return Err(format!("--threads must be 1 to 256, got {}", grid.threads));
+    }
+    let jobs = jobs
+        .unwrap_or_else(|| (super::cores() / grid.threads) as usize)
+        .max(1);
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     let failed = run_shard(&exe, grid, shard, out, jobs, resume)?;
     if shard != Shard::ALL {

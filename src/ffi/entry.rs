@@ -82,6 +82,9 @@ pub mod bridge {
         pub restart_steps: u64,
         /// Push KPIECE's patience before it falls back to PC RRT (steps); 0: never.
         pub fallback_steps: u64,
+        /// Threads of the run: one search whose propagations run on them (the planners
+        /// that share one search), else 1.
+        pub threads: u32,
         pub log: String,
     }
 

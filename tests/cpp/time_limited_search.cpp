@@ -66,7 +66,7 @@ int main()
     const pd::Problem problem = pd::makeProblem(model, 3, k);
     const double limit = 0.5;
     const auto planner = std::make_shared<pd::TimeLimitedSearch>(
-        pd::makePlanner(pushplan::PlannerKind::Pdst, problem, 3, 0.05, false, 0, 0), model, limit);
+        pd::makePlanner(pushplan::PlannerKind::Pdst, problem, 3, 0.05, false, 0, 0), std::vector{model}, limit);
     problem.setup->setPlanner(planner);
     problem.setup->setup();
     expect(planner->getName() == "PDST" && &pd::innerPlanner(planner) == planner->search().get() &&
