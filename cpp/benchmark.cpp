@@ -7,6 +7,7 @@
 #include "darrt.h"
 #include "fallback.h"
 #include "parallel_kpiece.h"
+#include "planner_source.h"
 #include "problem.h"
 #include "restarts.h"
 #include "wrapped_search.h"
@@ -53,23 +54,14 @@ namespace pushplan::bridge
         ompl::RNG::setSeed(seed);
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
         const auto load = [&] {
-            try
-            {
-                return std::make_shared<detail::ModelHandle>(Model::load(scene_path));
-            }
-            catch (const rust::Error &e)
-            {
-                throw Error(e.what());
-            }
+            return detail::asPushplanError([&] { return std::make_shared<detail::ModelHandle>(Model::load(scene_path)); });
         };
         const detail::ModelHandlePtr model = load();
         const SceneInfo &info = model->info();
         const detail::Problem problem = detail::makeProblem(model, seed, info.planner.k);
         // As `plan --threads`: the planners that share one search propagate on lanes of
         // their own models (detail::ParallelKPIECE); the others run on one thread.
-        const unsigned threads = options.threads;
-        if (threads < 1 || threads > 256)
-            throw Error("threads: 1 to 256, got " + std::to_string(threads));
+        const unsigned threads = detail::checked("threads", options.threads, options.threads >= 1 && options.threads <= 256);
         if (threads > 1 && !planner_shares_one_search(options.planner))
             throw Error("threads: " + std::string(planner_name(options.planner)) +
                         " runs one search per thread, which a benchmark's run does not; only push_kpiece "
