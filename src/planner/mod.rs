@@ -10,6 +10,7 @@ mod model;
 mod nearest;
 mod particles;
 mod problem;
+mod recent_tools;
 mod stats;
 
 pub use finish::{

@@ -6,6 +6,7 @@
 use super::finish::{FinishSettings, FinishedPath};
 use super::heading::{PushHeading, PushTarget};
 use super::particles::ParticleWorlds;
+use super::recent_tools::RecentTools;
 use super::{NearestTree, PlannerKind, Problem, SearchCounter, SearchStats};
 use crate::darrt;
 use crate::distance::DistanceMetric;
@@ -37,6 +38,9 @@ pub struct Model {
     /// The last state `propagate` produced and whether it was valid: OMPL asks
     /// `isValid` of exactly that state next, and the propagation already knows.
     last_result: Option<(Vec<f64>, bool)>,
+    /// The tool point at the last valid propagation results: the projection's first
+    /// coordinates without forward kinematics.
+    recent_tools: RecentTools,
     steps_taken: u64,
     /// The smallest goal distance asked for so far (progress reports: how close the
     /// search has come).
@@ -69,7 +73,14 @@ fn guarded<T>(what: &str, f: impl FnOnce() -> Result<T, String>) -> Result<T, St
 impl Model {
     /// The model of `scene`, in the pushing problem (see [`Model::set_static_clutter`]).
     pub fn new(scene: Scene) -> Model {
+        // One motion's states: OMPL propagates a control step by step, then projects each.
+        let motion_states = (scene.planner.max_duration / scene.planner.step)
+            .ceil()
+            .clamp(1.0, 1000.0) as usize
+            + 1;
+        let state_len = State::flat_len(scene.robot.dof(), scene.objects.len());
         Model {
+            recent_tools: RecentTools::new(motion_states, state_len),
             metric: DistanceMetric::from_scene(&scene),
             push_heading: PushHeading::new(&scene),
             search: SearchCounter::new(&scene),
@@ -233,6 +244,16 @@ impl Model {
                 }
                 stopped.is_ok()
             };
+            if valid {
+                let propagator = if self.static_mode {
+                    &self.static_view.propagator
+                } else {
+                    &self.propagator
+                };
+                if let Some(tool) = propagator.tool_xy() {
+                    self.recent_tools.push(result, tool);
+                }
+            }
             // Kept in the same buffer: OMPL propagates one step at a time.
             match &mut self.last_result {
                 Some((last, last_valid)) => {
@@ -376,9 +397,16 @@ impl Model {
     /// projection goes on from them.
     pub fn projection(&self, state: &[f64]) -> Result<Vec<f64>, String> {
         guarded("projection", || {
+            let tool = self.recent_tools.get(state);
             let state = self.state(state)?;
-            let robot = &self.scene().robot;
-            let tool = robot.tool_pose(&robot.link_poses(&state.q)).translation;
+            let tool = tool.unwrap_or_else(|| {
+                let robot = &self.scene().robot;
+                robot
+                    .tool_pose(&robot.link_poses(&state.q))
+                    .translation
+                    .vector
+                    .xy()
+            });
             let goal = match self.scene().goal.object() {
                 Some(object) => state.objects[object].translation(),
                 None => nalgebra::Vector2::zeros(),

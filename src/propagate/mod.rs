@@ -124,6 +124,20 @@ impl Propagator {
         Arc::clone(&self.scene)
     }
 
+    /// The tool point's world xy (m) at the state the buffers describe: where the last
+    /// propagation ended (its last valid state). None before any propagation.
+    pub fn tool_xy(&self) -> Option<nalgebra::Vector2<f64>> {
+        self.prepared.as_ref()?;
+        Some(
+            self.scene
+                .robot
+                .tool_pose(&self.poses)
+                .translation
+                .vector
+                .xy(),
+        )
+    }
+
     /// The state the last failed step tried to reach (invalid; for callers that must
     /// report a result state anyway, like OMPL's propagator).
     pub fn attempted_state(&self) -> State {
