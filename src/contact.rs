@@ -28,15 +28,32 @@ pub struct ArmBounds {
     pub links: Vec<(usize, Aabb)>,
     /// Box around the whole arm.
     pub all: Option<Aabb>,
+    /// Per link, its box if the link never moves (a base column: no planning joint
+    /// between it and the root), kept from the first computation on.
+    still: Option<Vec<Option<Aabb>>>,
 }
 
 impl ArmBounds {
+    /// The boxes at link poses `poses` (world frame), for `scene`'s robot: one `ArmBounds`
+    /// serves one robot.
     pub fn compute(scene: &Scene, poses: &[Isometry3<f64>], out: &mut ArmBounds) {
+        let chain = &scene.robot.chain;
+        let link_box = |link: usize| {
+            union_aabb(&chain.links[link].geometry, &poses[link])
+                .expect("solid links have geometry")
+        };
+        let still = out.still.get_or_insert_with(|| {
+            (0..chain.links.len())
+                .map(|link| {
+                    let solid = !chain.links[link].geometry.is_empty();
+                    (solid && !chain.moves_with_configuration(link)).then(|| link_box(link))
+                })
+                .collect()
+        });
         out.links.clear();
         out.all = None;
         for link in scene.robot.solid_links() {
-            let aabb = union_aabb(&scene.robot.chain.links[link].geometry, &poses[link])
-                .expect("solid links have geometry");
+            let aabb = still[link].unwrap_or_else(|| link_box(link));
             out.all = Some(out.all.map_or(aabb, |a: Aabb| a.merged(&aabb)));
             out.links.push((link, aabb));
         }

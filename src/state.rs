@@ -64,7 +64,14 @@ impl State {
 
 /// Object poses from `[x, y, yaw]` triples.
 fn poses_from_flat(flat: &[f64]) -> Vec<Pose2> {
-    flat.chunks_exact(3)
-        .map(|c| Pose2::new(c[0], c[1], c[2]))
-        .collect()
+    let mut poses = Vec::with_capacity(flat.len() / 3);
+    poses_from_flat_into(flat, &mut poses);
+    poses
+}
+
+/// Object poses from `[x, y, yaw]` triples, into `out` (its old contents dropped): for
+/// callers that reuse one buffer.
+pub fn poses_from_flat_into(flat: &[f64], out: &mut Vec<Pose2>) {
+    out.clear();
+    out.extend(flat.chunks_exact(3).map(|c| Pose2::new(c[0], c[1], c[2])));
 }

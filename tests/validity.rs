@@ -397,3 +397,36 @@ fn allowed_collisions_name_what_there_is() {
         "{message}"
     );
 }
+
+#[test]
+fn arm_bounds_kept_between_configurations_are_the_bounds_computed_afresh() {
+    // One `ArmBounds` keeps the boxes of links that never move (the WAM's base column)
+    // from its first computation; at every other configuration its boxes must still be
+    // those a fresh computation gives, and every link's box must hold the link's shapes.
+    use parry3d_f64::bounding_volume::BoundingVolume;
+    use pushplan::contact::ArmBounds;
+    let scene = Scene::load(Path::new("scenes/benchmark/scene_22.yaml")).unwrap();
+    let mut kept = ArmBounds::default();
+    let mut moved_links = 0;
+    let mut q = scene.start.q.clone();
+    let first = scene.robot.link_poses(&q);
+    for k in 0..5 {
+        for (i, v) in q.iter_mut().enumerate() {
+            *v += 0.1 * (k as f64 + 1.0) * if i % 2 == 0 { 1.0 } else { -1.0 };
+        }
+        let poses = scene.robot.link_poses(&q);
+        ArmBounds::compute(&scene, &poses, &mut kept);
+        let mut fresh = ArmBounds::default();
+        ArmBounds::compute(&scene, &poses, &mut fresh);
+        assert_eq!(kept.links, fresh.links);
+        assert_eq!(kept.all, fresh.all);
+        for (link, aabb) in &kept.links {
+            for g in &scene.robot.chain.links[*link].geometry {
+                let shape = g.shape.compute_aabb(&g.world_pose(&poses[*link]));
+                assert!(aabb.contains(&shape), "link {link}");
+            }
+            moved_links += usize::from(poses[*link] != first[*link]);
+        }
+    }
+    assert!(moved_links > 0, "the configurations move the arm");
+}

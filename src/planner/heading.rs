@@ -8,7 +8,7 @@
 
 #![allow(non_snake_case)] // frame-named points: p_WT, the tool point in the world frame
 
-use crate::math::closest_on_segment;
+use crate::math::{closest_on_segment, Pose2};
 use crate::robot::RobotKind;
 use crate::scene::{within_extent, Goal, Scene};
 use crate::state::State;
@@ -164,7 +164,7 @@ impl PushHeading {
     /// line, onto the table. Empty without an object goal.
     pub fn blockers(&self, state: &State) -> Vec<PushTarget> {
         let mut blockers = Vec::new();
-        self.for_each_blocker(state, |way, object, in_the_way, _| {
+        self.for_each_blocker(&state.objects, |way, object, in_the_way, _| {
             let target = match in_the_way {
                 InTheWay::Disc { from_center } => {
                     self.out_of_the_disc(state, way, object, from_center)
@@ -181,9 +181,9 @@ impl PushHeading {
     /// How far the objects in the goal object's way ([`Self::blockers`]) reach into it,
     /// summed (m): each into the disc's reach, or into the corridor the goal object sweeps
     /// on the straight line to the goal centre. Zero when the way is clear.
-    pub fn blockage(&self, state: &State) -> f64 {
+    pub fn blockage(&self, objects: &[Pose2]) -> f64 {
         let mut sum = 0.0;
-        self.for_each_blocker(state, |_, _, _, depth| sum += depth);
+        self.for_each_blocker(objects, |_, _, _, depth| sum += depth);
         sum
     }
 
@@ -211,18 +211,18 @@ impl PushHeading {
     /// Calls `f` with the goal object's way, each blocker, where it stands in the way and
     /// how deep (m). Only where the blockers are: their places out of the way are
     /// [`Self::blockers`]' (the blockage, in every projected state, needs none).
-    fn for_each_blocker(&self, state: &State, mut f: impl FnMut(&Way, usize, InTheWay, f64)) {
+    fn for_each_blocker(&self, objects: &[Pose2], mut f: impl FnMut(&Way, usize, InTheWay, f64)) {
         let Some(goal) = self.goal else {
             return;
         };
-        let p_WO = state.objects[goal.object].translation();
+        let p_WO = objects[goal.object].translation();
         let way = Way {
             goal,
             p_WO,
             route: goal.center - p_WO,
         };
         let route = way.route;
-        for (object, pose) in state.objects.iter().enumerate() {
+        for (object, pose) in objects.iter().enumerate() {
             if object == goal.object {
                 continue;
             }
@@ -483,7 +483,7 @@ mod tests {
         // Depths: the disc's reach 0.21 less 0.05^2 + 0.1^2 under the root; the corridor's
         // half-width 0.11 less 0.05.
         let disc_depth = 0.21 - (0.05f64.powi(2) + 0.1f64.powi(2)).sqrt();
-        assert!((h.blockage(&state) - (disc_depth + 0.06)).abs() < 1e-12);
+        assert!((h.blockage(&state.objects) - (disc_depth + 0.06)).abs() < 1e-12);
     }
     #[test]
     fn a_blocker_the_hand_cannot_get_behind_goes_across_the_way_onto_the_table() {

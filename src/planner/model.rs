@@ -16,11 +16,12 @@ use crate::propagate::Propagator;
 use crate::robot::EeAction;
 use crate::robustness::Noise;
 use crate::scene::Scene;
-use crate::state::State;
+use crate::state::{poses_from_flat_into, State};
 use crate::static_clutter::StaticClutter;
 use crate::trajectory::Trajectory;
 use crate::validity::check_state;
 use nalgebra::DVector;
+use std::cell::RefCell;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::{Duration, Instant};
 
@@ -41,6 +42,8 @@ pub struct Model {
     /// The tool point at the last valid propagation results: the projection's first
     /// coordinates without forward kinematics.
     recent_tools: RecentTools,
+    /// The projection's buffer for a state's object poses.
+    projected_objects: RefCell<Vec<Pose2>>,
     steps_taken: u64,
     /// The smallest goal distance asked for so far (progress reports: how close the
     /// search has come).
@@ -81,6 +84,7 @@ impl Model {
         let state_len = State::flat_len(scene.robot.dof(), scene.objects.len());
         Model {
             recent_tools: RecentTools::new(motion_states, state_len),
+            projected_objects: RefCell::new(Vec::new()),
             metric: DistanceMetric::from_scene(&scene),
             push_heading: PushHeading::new(&scene),
             search: SearchCounter::new(&scene),
@@ -136,6 +140,11 @@ impl Model {
 
     /// The state of a flat array, its length checked.
     fn state(&self, flat: &[f64]) -> Result<State, String> {
+        self.check_state_len(flat)?;
+        Ok(State::from_flat(flat, self.scene().robot.dof()))
+    }
+
+    fn check_state_len(&self, flat: &[f64]) -> Result<(), String> {
         if flat.len() != self.state_len() {
             return Err(format!(
                 "a state has {} values, this scene needs {}",
@@ -143,7 +152,7 @@ impl Model {
                 self.state_len()
             ));
         }
-        Ok(State::from_flat(flat, self.scene().robot.dof()))
+        Ok(())
     }
 
     /// States one after another in a flat array.
@@ -397,21 +406,25 @@ impl Model {
     /// projection goes on from them.
     pub fn projection(&self, state: &[f64]) -> Result<Vec<f64>, String> {
         guarded("projection", || {
-            let tool = self.recent_tools.get(state);
-            let state = self.state(state)?;
-            let tool = tool.unwrap_or_else(|| {
-                let robot = &self.scene().robot;
+            self.check_state_len(state)?;
+            let robot = &self.scene().robot;
+            let (q, object_poses) = state.split_at(robot.dof());
+            let tool = self.recent_tools.get(state).unwrap_or_else(|| {
+                let q = DVector::from_column_slice(q);
                 robot
-                    .tool_pose(&robot.link_poses(&state.q))
+                    .tool_pose(&robot.link_poses(&q))
                     .translation
                     .vector
                     .xy()
             });
+            // Called for every state of every motion: the poses go to a kept buffer.
+            let mut objects = self.projected_objects.borrow_mut();
+            poses_from_flat_into(object_poses, &mut objects);
             let goal = match self.scene().goal.object() {
-                Some(object) => state.objects[object].translation(),
+                Some(object) => objects[object].translation(),
                 None => nalgebra::Vector2::zeros(),
             };
-            let blockage = self.push_heading.blockage(&state);
+            let blockage = self.push_heading.blockage(&objects);
             Ok(vec![tool.x, tool.y, goal.x, goal.y, blockage])
         })
     }

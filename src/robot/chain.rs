@@ -90,6 +90,19 @@ impl KinematicChain {
             .expect("a dof link has a joint")
     }
 
+    /// Whether `link`'s pose depends on the configuration: some joint of the planning
+    /// chain lies between it and the root (a held joint does not move it).
+    pub fn moves_with_configuration(&self, link: usize) -> bool {
+        let mut current = link;
+        while let Some(joint) = &self.links[current].joint {
+            if joint.dof.is_some() {
+                return true;
+            }
+            current = joint.parent;
+        }
+        false
+    }
+
     /// Position limits of the configuration, per index.
     pub fn limits(&self) -> Vec<(f64, f64)> {
         (0..self.dof())
