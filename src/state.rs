@@ -4,12 +4,31 @@
 use crate::math::Pose2;
 use nalgebra::DVector;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct State {
     /// Joint values (rad or m), in the robot's configuration order.
     pub q: DVector<f64>,
     /// Object poses, in the scene's object order (world frame).
     pub objects: Vec<Pose2>,
+}
+
+impl Clone for State {
+    fn clone(&self) -> Self {
+        State {
+            q: self.q.clone(),
+            objects: self.objects.clone(),
+        }
+    }
+
+    /// Into the buffers `self` has when the sizes match (propagation keeps states).
+    fn clone_from(&mut self, source: &Self) {
+        if self.q.len() == source.q.len() {
+            self.q.copy_from(&source.q);
+        } else {
+            self.q = source.q.clone();
+        }
+        self.objects.clone_from(&source.objects);
+    }
 }
 
 /// The flat layout in which states cross to OMPL and back:
@@ -74,4 +93,24 @@ fn poses_from_flat(flat: &[f64]) -> Vec<Pose2> {
 pub fn poses_from_flat_into(flat: &[f64], out: &mut Vec<Pose2>) {
     out.clear();
     out.extend(flat.chunks_exact(3).map(|c| Pose2::new(c[0], c[1], c[2])));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clone_from_gives_the_source_whatever_the_buffers_held() {
+        let source = State::from_flat(&[0.1, -0.2, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0], 2);
+        // Same sizes (copied into the buffers), fewer joints and more objects, nothing.
+        for flat in [
+            &[9.0, 9.0, 9.0, 9.0, 9.0, 9.0, 9.0, 9.0][..],
+            &[9.0, 9.0, 9.0, 9.0, 9.0, 9.0, 9.0, 9.0, 9.0, 9.0][..],
+            &[][..],
+        ] {
+            let mut kept = State::from_flat(flat, flat.len().min(1));
+            kept.clone_from(&source);
+            assert_eq!(kept, source);
+        }
+    }
 }

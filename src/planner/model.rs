@@ -205,9 +205,10 @@ impl Model {
             // Count the propagation, then write the state reached: the valid part's end,
             // or the invalid state the last step tried to reach. Past the deadline: the
             // start, invalid, nothing counted.
-            let (valid, taken) = if self.deadline.is_some_and(|d| started >= d) {
+            // `reached`: the state the propagation ended in, valid or not.
+            let (valid, taken, reached) = if self.deadline.is_some_and(|d| started >= d) {
                 result.copy_from_slice(state);
-                (false, None)
+                (false, None, None)
             } else if self.static_mode {
                 let view = &mut self.static_view;
                 let run = view
@@ -222,7 +223,7 @@ impl Model {
                         .expand(&view.propagator.attempted_state())
                         .write_flat(result),
                 }
-                (stopped.is_none(), Some(run.steps))
+                (stopped.is_none(), Some(run.steps), Some(end))
             } else {
                 let run = self.propagator.propagate_steps(&start, &action, steps);
                 let stopped = run.stopped_by.as_ref();
@@ -231,7 +232,7 @@ impl Model {
                     None => run.state.write_flat(result),
                     Some(_) => self.propagator.attempted_state().write_flat(result),
                 }
-                (stopped.is_none(), Some(run.steps))
+                (stopped.is_none(), Some(run.steps), Some(run.state))
             };
             if let Some(taken) = taken {
                 self.steps_taken += taken as u64 + u64::from(!valid);
@@ -239,13 +240,16 @@ impl Model {
             // The perturbed worlds follow the same controls from the same joints.
             result_particles.copy_from_slice(particles);
             let valid = valid && {
-                let nominal = State::from_flat(result, start.q.len());
+                // Valid: `result` holds `reached`.
+                let nominal = reached
+                    .as_ref()
+                    .expect("a propagation that ran ended somewhere");
                 let stopped = self.particles.propagate(
                     &start.q,
                     particles,
                     &action,
                     steps,
-                    &nominal,
+                    nominal,
                     result_particles,
                 );
                 if let Err(why) = &stopped {

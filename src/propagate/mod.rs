@@ -174,7 +174,11 @@ impl Propagator {
                     }
                 }
             }
-            self.prepared = Some(state.clone());
+            // Into the kept buffer: OMPL propagates one step per call.
+            match &mut self.prepared {
+                Some(prepared) => prepared.clone_from(&state),
+                None => self.prepared = Some(state.clone()),
+            }
         }
         let steps = contacts.len();
         Propagation {
