@@ -28,6 +28,8 @@ pub struct ArmBounds {
     pub links: Vec<(usize, Aabb)>,
     /// Box around the whole arm.
     pub all: Option<Aabb>,
+    /// Per link, the box of `links` (None for a link without geometry).
+    by_link: Vec<Option<Aabb>>,
     /// Per link, its box if the link never moves (a base column: no planning joint
     /// between it and the root), kept from the first computation on.
     still: Option<Vec<Option<Aabb>>>,
@@ -52,11 +54,19 @@ impl ArmBounds {
         });
         out.links.clear();
         out.all = None;
+        out.by_link.clear();
+        out.by_link.resize(chain.links.len(), None);
         for link in scene.robot.solid_links() {
             let aabb = still[link].unwrap_or_else(|| link_box(link));
             out.all = Some(out.all.map_or(aabb, |a: Aabb| a.merged(&aabb)));
             out.links.push((link, aabb));
+            out.by_link[link] = Some(aabb);
         }
+    }
+
+    /// The box of `link`, if it has geometry.
+    pub fn of(&self, link: usize) -> Option<&Aabb> {
+        self.by_link.get(link)?.as_ref()
     }
 }
 

@@ -240,10 +240,9 @@ pub fn check_robot(
         });
     }
     let link_name = |l: usize| chain.links[l].name.clone();
-    let bound_of = |l: usize| bounds.links.iter().find(|(i, _)| *i == l).map(|(_, b)| b);
     use parry3d_f64::bounding_volume::BoundingVolume;
     for &(a, b) in &robot.self_collision_pairs {
-        let (Some(ba), Some(bb)) = (bound_of(a), bound_of(b)) else {
+        let (Some(ba), Some(bb)) = (bounds.of(a), bounds.of(b)) else {
             continue;
         };
         if ba.intersects(bb) && links_intersect(scene, poses, a, b) {

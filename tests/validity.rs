@@ -420,6 +420,10 @@ fn arm_bounds_kept_between_configurations_are_the_bounds_computed_afresh() {
         ArmBounds::compute(&scene, &poses, &mut fresh);
         assert_eq!(kept.links, fresh.links);
         assert_eq!(kept.all, fresh.all);
+        for link in 0..scene.robot.chain.links.len() {
+            let listed = kept.links.iter().find(|(l, _)| *l == link).map(|(_, b)| b);
+            assert_eq!(kept.of(link), listed, "link {link}");
+        }
         for (link, aabb) in &kept.links {
             for g in &scene.robot.chain.links[*link].geometry {
                 let shape = g.shape.compute_aabb(&g.world_pose(&poses[*link]));
