@@ -28,11 +28,17 @@ pub struct ArmBounds {
     pub links: Vec<(usize, Aabb)>,
     /// Box around the whole arm.
     pub all: Option<Aabb>,
-    /// Per link, the box of `links` (None for a link without geometry).
-    by_link: Vec<Option<Aabb>>,
-    /// Per link, its box if the link never moves (a base column: no planning joint
-    /// between it and the root), kept from the first computation on.
-    still: Option<Vec<Option<Aabb>>>,
+    /// Per link of the robot, fixed from the first computation on (empty before it).
+    layout: Vec<LinkSlot>,
+}
+
+/// Where a link's box stands in [`ArmBounds::links`] (None: no geometry), and the box
+/// itself if the link never moves (a base column: no planning joint between it and the
+/// root).
+#[derive(Clone, Copy, Debug, Default)]
+struct LinkSlot {
+    index: Option<usize>,
+    still: Option<Aabb>,
 }
 
 impl ArmBounds {
@@ -44,29 +50,28 @@ impl ArmBounds {
             union_aabb(&chain.links[link].geometry, &poses[link])
                 .expect("solid links have geometry")
         };
-        let still = out.still.get_or_insert_with(|| {
-            (0..chain.links.len())
-                .map(|link| {
-                    let solid = !chain.links[link].geometry.is_empty();
-                    (solid && !chain.moves_with_configuration(link)).then(|| link_box(link))
-                })
-                .collect()
-        });
+        if out.layout.is_empty() {
+            out.layout = vec![LinkSlot::default(); chain.links.len()];
+            for (index, link) in scene.robot.solid_links().enumerate() {
+                out.layout[link] = LinkSlot {
+                    index: Some(index),
+                    still: (!chain.moves_with_configuration(link)).then(|| link_box(link)),
+                };
+            }
+        }
         out.links.clear();
         out.all = None;
-        out.by_link.clear();
-        out.by_link.resize(chain.links.len(), None);
         for link in scene.robot.solid_links() {
-            let aabb = still[link].unwrap_or_else(|| link_box(link));
+            let aabb = out.layout[link].still.unwrap_or_else(|| link_box(link));
             out.all = Some(out.all.map_or(aabb, |a: Aabb| a.merged(&aabb)));
             out.links.push((link, aabb));
-            out.by_link[link] = Some(aabb);
         }
     }
 
     /// The box of `link`, if it has geometry.
     pub fn of(&self, link: usize) -> Option<&Aabb> {
-        self.by_link.get(link)?.as_ref()
+        let index = self.layout.get(link)?.index?;
+        self.links.get(index).map(|(_, aabb)| aabb)
     }
 }
 
