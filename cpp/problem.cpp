@@ -52,6 +52,11 @@ namespace pushplan::detail
         return 5;
     }
 
+    std::vector<double> PushProjection::pushKpieceCellSizes()
+    {
+        return {0.05, 0.05, 0.025, 0.025, 0.05};
+    }
+
     void PushProjection::defaultCellSizes()
     {
         // 5 cm in every coordinate; for the blockage, 5 cm was better on the 35 scenes
@@ -203,8 +208,13 @@ namespace pushplan::detail
             case PlannerKind::PushKpiece:
             {
                 usePushControls(si, seed, problem.model);
+                si->getStateSpace()->getDefaultProjection()->setCellSizes(PushProjection::pushKpieceCellSizes());
                 for (const Lane &lane : lanes)
+                {
                     usePushControls(lane.si, lane.seed, lane.model);
+                    lane.si->getStateSpace()->getDefaultProjection()->setCellSizes(
+                        PushProjection::pushKpieceCellSizes());
+                }
                 ob::PlannerPtr push_kpiece =
                     kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes), threads);
                 push_kpiece->setName("PushKPIECE");

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace pushplan::detail
 {
@@ -53,10 +54,16 @@ namespace pushplan::detail
 
     /// Projection for OMPL's projection-based planners (KPIECE1, Push KPIECE, EST, PDST):
     /// the end-effector's xy, the goal object's xy and the blockage of the goal object's
-    /// way (m; ModelHandle::project), cells of 5 cm.
+    /// way (m; ModelHandle::project), cells of 5 cm (Push KPIECE's: pushKpieceCellSizes).
     class PushProjection : public ompl::base::ProjectionEvaluator
     {
     public:
+        /// Push KPIECE's cells: the goal object's xy in cells of 2.5 cm, the rest 5 cm.
+        /// A move of the goal object by half the default cell is a new cell, which
+        /// KPIECE's exploration of new cells goes on from (BENCHMARKS.md, "Finer cells
+        /// for the goal object").
+        static std::vector<double> pushKpieceCellSizes();
+
         PushProjection(const ompl::base::StateSpace *space, ModelHandlePtr model);
         unsigned int getDimension() const override;
         void defaultCellSizes() override;
