@@ -92,7 +92,7 @@ fn push_then_grasp_solves_the_default_scene() {
         scene_path,
         "--grasp",
         "--seed",
-        "5",
+        "1",
         "--threads",
         "1",
         "--shortcut",
