@@ -135,13 +135,15 @@ namespace pushplan::detail
         return si;
     }
 
-    /// Push KPIECE's controls: most along push headings, each sampler with its own stream.
-    static void usePushControls(const oc::SpaceInformationPtr &si, std::uint64_t seed, const ModelHandlePtr &model)
+    /// Push KPIECE's controls (most along push headings, each sampler with its own stream)
+    /// and its grid's cells, on the search's space information or a lane's.
+    static void usePushKpiece(const oc::SpaceInformationPtr &si, std::uint64_t seed, const ModelHandlePtr &model)
     {
         auto count = std::make_shared<std::uint64_t>(0);
         si->getControlSpace()->setControlSamplerAllocator([seed, count, model](const oc::ControlSpace *c) {
             return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), model, PushMix{});
         });
+        si->getStateSpace()->getDefaultProjection()->setCellSizes(PushProjection::pushKpieceCellSizes());
     }
 
     Lane makeLane(ModelHandlePtr model, std::uint64_t search_seed, std::size_t index, unsigned k)
@@ -207,14 +209,9 @@ namespace pushplan::detail
                 return kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes), threads);
             case PlannerKind::PushKpiece:
             {
-                usePushControls(si, seed, problem.model);
-                si->getStateSpace()->getDefaultProjection()->setCellSizes(PushProjection::pushKpieceCellSizes());
+                usePushKpiece(si, seed, problem.model);
                 for (const Lane &lane : lanes)
-                {
-                    usePushControls(lane.si, lane.seed, lane.model);
-                    lane.si->getStateSpace()->getDefaultProjection()->setCellSizes(
-                        PushProjection::pushKpieceCellSizes());
-                }
+                    usePushKpiece(lane.si, lane.seed, lane.model);
                 ob::PlannerPtr push_kpiece =
                     kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes), threads);
                 push_kpiece->setName("PushKPIECE");
