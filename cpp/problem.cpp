@@ -52,9 +52,10 @@ namespace pushplan::detail
         return 5;
     }
 
-    std::vector<double> PushProjection::pushKpieceCellSizes()
+    std::vector<double> PushProjection::pushKpieceCellSizes(std::uint64_t attempt)
     {
-        return {0.05, 0.05, 0.025, 0.025, 0.05};
+        const double goal_object = attempt <= 1 ? 0.025 : 0.0125;
+        return {0.05, 0.05, goal_object, goal_object, 0.05};
     }
 
     void PushProjection::defaultCellSizes()
@@ -143,7 +144,24 @@ namespace pushplan::detail
         si->getControlSpace()->setControlSamplerAllocator([seed, count, model](const oc::ControlSpace *c) {
             return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), model, PushMix{});
         });
-        si->getStateSpace()->getDefaultProjection()->setCellSizes(PushProjection::pushKpieceCellSizes());
+        si->getStateSpace()->getDefaultProjection()->setCellSizes(PushProjection::pushKpieceCellSizes(1));
+    }
+
+    /// What each attempt of a restarted search of `kind` starts with (Restarting's
+    /// `before_attempt`): for Push KPIECE, the attempt's grid cells, on the search's
+    /// projection and each lane's (lanes project the states they reach); else nothing.
+    static Restarting::BeforeAttempt beforeAttempt(PlannerKind kind, const oc::SpaceInformationPtr &si,
+                                                   const std::vector<Lane> &lanes)
+    {
+        if (kind != PlannerKind::PushKpiece)
+            return {};
+        std::vector<ob::ProjectionEvaluatorPtr> grids{si->getStateSpace()->getDefaultProjection()};
+        for (const Lane &lane : lanes)
+            grids.push_back(lane.si->getStateSpace()->getDefaultProjection());
+        return [grids](std::uint64_t attempt) {
+            for (const ob::ProjectionEvaluatorPtr &grid : grids)
+                grid->setCellSizes(PushProjection::pushKpieceCellSizes(attempt));
+        };
     }
 
     Lane makeLane(ModelHandlePtr model, std::uint64_t search_seed, std::size_t index, unsigned k)
@@ -235,10 +253,13 @@ namespace pushplan::detail
             throw Error(plannerName(kind) + " runs one search per thread, not one search on several");
         if (fallback_steps > 0 && kind != PlannerKind::PushKpiece)
             throw Error("fallback_steps: only push_kpiece falls back (to pcrrt), not " + plannerName(kind));
+        Restarting::BeforeAttempt before_attempt =
+            beforeAttempt(kind, problem.setup->getSpaceInformation(), lanes);
         ob::PlannerPtr search =
             makeSearch(kind, problem, seed, goal_bias, intermediate_states, std::move(lanes), threads);
         if (restart_steps > 0)
-            search = std::make_shared<Restarting>(std::move(search), problem.model, restart_steps);
+            search = std::make_shared<Restarting>(std::move(search), problem.model, restart_steps,
+                                                  std::move(before_attempt));
         if (fallback_steps == 0)
             return search;
         // PC RRT on the same problem, with its own uniform controls, never restarted; on

@@ -25,10 +25,12 @@ namespace pushplan::detail
         }
     }
 
-    Restarting::Restarting(ob::PlannerPtr search, ModelHandlePtr model, std::uint64_t base_steps)
+    Restarting::Restarting(ob::PlannerPtr search, ModelHandlePtr model, std::uint64_t base_steps,
+                           BeforeAttempt before_attempt)
       : WrappedSearch(std::move(search))
       , model_(std::move(model))
       , base_steps_(base_steps)
+      , before_attempt_(std::move(before_attempt))
     {
         if (base_steps_ == 0)
             throw std::invalid_argument("Restarting: the base budget must be at least one step");
@@ -56,6 +58,8 @@ namespace pushplan::detail
                 const std::uint64_t budget = base_steps_ > never / factor ? never : base_steps_ * factor;
                 const std::uint64_t now = model.propagationSteps();
                 attempt_end_ = budget > never - now ? never : now + budget;
+                if (before_attempt_)
+                    before_attempt_(attempt_);
             }
             const std::uint64_t end = *attempt_end_;
             const ob::PlannerStatus status =

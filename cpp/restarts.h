@@ -12,6 +12,7 @@
 #include "wrapped_search.h"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 
 namespace pushplan::detail
@@ -26,7 +27,14 @@ namespace pushplan::detail
     class Restarting : public WrappedSearch
     {
     public:
-        Restarting(ompl::base::PlannerPtr search, ModelHandlePtr model, std::uint64_t base_steps);
+        /// Called with an attempt's index (from 1) before the attempt starts, on an empty
+        /// tree: what changes from one attempt to the next besides the tree (Push KPIECE's
+        /// grid cells).
+        using BeforeAttempt = std::function<void(std::uint64_t attempt)>;
+
+        /// `before_attempt` may be empty (every attempt as the first).
+        Restarting(ompl::base::PlannerPtr search, ModelHandlePtr model, std::uint64_t base_steps,
+                   BeforeAttempt before_attempt = {});
 
         ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
         /// Clears the search and starts the budgets over.
@@ -39,6 +47,7 @@ namespace pushplan::detail
     private:
         ModelHandlePtr model_;
         std::uint64_t base_steps_;
+        BeforeAttempt before_attempt_;
         /// The current attempt's index in the Luby sequence.
         std::uint64_t attempt_ = 1;
         /// The model's step count at which the current attempt ends (unset: not started).

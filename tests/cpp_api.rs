@@ -266,6 +266,11 @@ fn push_kpiece_falls_back_to_pc_rrt_only_without_progress() {
 }
 
 #[test]
+fn restarts_announce_each_attempt_and_push_kpiece_refines_its_grid_after_the_first() {
+    run_internal_checks("tests/cpp/restarts.cpp", "restarts", 5);
+}
+
+#[test]
 fn helper_threads_start_on_another_core_then_use_any() {
     run_internal_checks("tests/cpp/helper_thread.cpp", "helper-thread", 4);
 }
