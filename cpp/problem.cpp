@@ -136,20 +136,19 @@ namespace pushplan::detail
         return si;
     }
 
-    /// Push KPIECE's controls (most along push headings, each sampler with its own stream)
-    /// and its grid's cells, on the search's space information or a lane's.
-    static void usePushKpiece(const oc::SpaceInformationPtr &si, std::uint64_t seed, const ModelHandlePtr &model)
+    /// Push KPIECE's controls: most along push headings, each sampler with its own stream.
+    static void usePushControls(const oc::SpaceInformationPtr &si, std::uint64_t seed, const ModelHandlePtr &model)
     {
         auto count = std::make_shared<std::uint64_t>(0);
         si->getControlSpace()->setControlSamplerAllocator([seed, count, model](const oc::ControlSpace *c) {
             return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), model, PushMix{});
         });
-        si->getStateSpace()->getDefaultProjection()->setCellSizes(PushProjection::pushKpieceCellSizes(1));
     }
 
-    /// What each attempt of a restarted search of `kind` starts with (Restarting's
-    /// `before_attempt`): for Push KPIECE, the attempt's grid cells, on the search's
-    /// projection and each lane's (lanes project the states they reach); else nothing.
+    /// What each attempt of a search of `kind` starts with (Restarting's `before_attempt`;
+    /// makePlanner sets up the first, restarted or not): for Push KPIECE, the attempt's
+    /// grid cells, on the search's projection and each lane's (lanes project the states
+    /// they reach); else nothing.
     static Restarting::BeforeAttempt beforeAttempt(PlannerKind kind, const oc::SpaceInformationPtr &si,
                                                    const std::vector<Lane> &lanes)
     {
@@ -227,9 +226,9 @@ namespace pushplan::detail
                 return kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes), threads);
             case PlannerKind::PushKpiece:
             {
-                usePushKpiece(si, seed, problem.model);
+                usePushControls(si, seed, problem.model);
                 for (const Lane &lane : lanes)
-                    usePushKpiece(lane.si, lane.seed, lane.model);
+                    usePushControls(lane.si, lane.seed, lane.model);
                 ob::PlannerPtr push_kpiece =
                     kpiece(si, planner_seed, problem.model, goal_bias, std::move(lanes), threads);
                 push_kpiece->setName("PushKPIECE");
@@ -255,6 +254,8 @@ namespace pushplan::detail
             throw Error("fallback_steps: only push_kpiece falls back (to pcrrt), not " + plannerName(kind));
         Restarting::BeforeAttempt before_attempt =
             beforeAttempt(kind, problem.setup->getSpaceInformation(), lanes);
+        if (before_attempt)
+            before_attempt(1);
         ob::PlannerPtr search =
             makeSearch(kind, problem, seed, goal_bias, intermediate_states, std::move(lanes), threads);
         if (restart_steps > 0)
