@@ -11,8 +11,10 @@ namespace pushplan::detail
 
     bool PushValidityChecker::isValid(const ompl::base::State *state) const
     {
-        // isValid does not check bounds by itself (ompl.md). The model's rules imply them
-        // (joint limits, object centres on the table); the explicit check is cheap.
-        return si_->satisfiesBounds(state) && model_->isValid(state);
+        // isValid does not check bounds by itself (ompl.md); the model does: its rules imply
+        // them (joint limits, footprints on the table) and it checks every yaw is within
+        // [-pi, pi]. OMPL's satisfiesBounds through the compound space was 4 % of a dense
+        // search's time (BENCHMARKS.md).
+        return model_->isValid(state);
     }
 }  // namespace pushplan::detail

@@ -103,16 +103,10 @@ impl DistanceMetric {
     /// the sum (joints, each object's pose) takes its own smallest value over the box.
     /// Nearest-neighbour search skips a box whose bound already exceeds the best distance.
     pub fn lower_bound_flat(&self, a: &[f64], lo: &[f64], hi: &[f64]) -> f64 {
-        // Finite numbers (the tree checks them): plain comparisons, no NaN handling.
-        let gap = |x: f64, lo: f64, hi: f64| {
-            if x < lo {
-                lo - x
-            } else if x > hi {
-                x - hi
-            } else {
-                0.0
-            }
-        };
+        // Finite numbers (the tree checks them), `lo <= hi`: at most one of the two
+        // differences is positive, so the larger of them and 0 is the gap, with no branch
+        // to mispredict (a query's boxes fall either side at random).
+        let gap = |x: f64, lo: f64, hi: f64| (lo - x).max(x - hi).max(0.0);
         let dof = a.len() - 3 * self.object_weights.len();
         let robot = (0..dof)
             .map(|j| gap(a[j], lo[j], hi[j]).powi(2))
@@ -164,6 +158,15 @@ impl DistanceMetric {
 fn arc_gap(theta: f64, lo: f64, hi: f64) -> f64 {
     if (lo..=hi).contains(&theta) {
         return 0.0;
+    }
+    if [theta, lo, hi].iter().all(|a| (-PI..=PI).contains(a)) {
+        // Within one turn (the tree's yaws and its queries): up to the arc's start, or
+        // round the other way back to its end; no wrapping needed.
+        return if theta < lo {
+            (lo - theta).min(theta - hi + 2.0 * PI)
+        } else {
+            (theta - hi).min(lo - theta + 2.0 * PI)
+        };
     }
     let span = hi - lo;
     let mut from_lo = wrap_angle(theta - lo - PI) + PI; // in (0, 2 pi]

@@ -22,6 +22,7 @@ use crate::trajectory::Trajectory;
 use crate::validity::check_state;
 use nalgebra::DVector;
 use std::cell::RefCell;
+use std::f64::consts::PI;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::{Duration, Instant};
 
@@ -302,6 +303,11 @@ impl Model {
             }
             self.check_particles(particles)?;
             let state = self.state(state)?;
+            // OMPL's bounds, which its checker leaves to the model: the joint limits and the
+            // table are rules below; a yaw outside [-pi, pi] is outside SO2's.
+            if state.objects.iter().any(|p| !(-PI..=PI).contains(&p.theta)) {
+                return Ok(false);
+            }
             if !self.particles.all_valid(&state.q, particles) {
                 return Ok(false);
             }

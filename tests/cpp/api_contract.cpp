@@ -9,13 +9,15 @@
 //   whose paths are not controls, a bad scene, the model failing inside solve() and
 //   makeSetup(), an integer cast to PlannerKind, a moved-from planner;
 // - the public OMPL layer (pushplan/ompl.h): the state space passes OMPL's own sanity
-//   checks, and StateAccess reads what it wrote.
+//   checks, StateAccess reads what it wrote, and no state outside OMPL's bounds is valid.
 // Prints one line per check; exits non-zero at the first failure.
 #include <pushplan/ompl.h>
 #include <pushplan/pushplan.h>
 
 #include <ompl/base/goals/GoalSampleableRegion.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include <ompl/util/Console.h>
 
@@ -267,6 +269,50 @@ int main()
     expect(throwsError([] { pushplan::StateAccess(std::make_shared<ompl::base::RealVectorStateSpace>(3)); },
                        "not pushplan's state space"),
            "StateAccess refuses another state space");
+    {
+        // The validity checker leaves OMPL's bounds to the model: a start state is valid,
+        // and a state OMPL's own satisfiesBounds refuses (a joint past its limit, an object
+        // past the table's edge, a yaw past +-pi) is never valid.
+        const ompl::base::SpaceInformationPtr &si = setup->getSpaceInformation();
+        const auto *compound = space->as<ompl::base::CompoundStateSpace>();
+        const auto joint_bounds = compound->as<ompl::base::RealVectorStateSpace>(0)->getBounds();
+        const auto table = compound->as<ompl::base::SE2StateSpace>(1)->getBounds();
+        ompl::base::State *start = space->allocState();
+        space->copyState(start, setup->getProblemDefinition()->getStartState(0));
+        expect(si->satisfiesBounds(start) && si->isValid(start), "the start state is within bounds and valid");
+        ompl::base::State *outside = space->allocState();
+        ompl::RNG rng(7);
+        int refused = 0;
+        const int trials = 300;
+        for (int i = 0; i < trials; ++i)
+        {
+            space->copyState(outside, start);
+            const double past = rng.uniformReal(1e-6, 1.0);
+            const int which = rng.uniformInt(0, 3);
+            if (which == 0)
+            {
+                Eigen::VectorXd q = states.joints(outside);
+                const int j = rng.uniformInt(0, 6);
+                q[j] = rng.uniformBool() ? joint_bounds.high[j] + past : joint_bounds.low[j] - past;
+                states.setJoints(outside, q);
+            }
+            else
+            {
+                const std::size_t object = rng.uniformInt(0, states.objectCount() - 1);
+                Eigen::Vector3d pose = states.objectPose(outside, object);
+                const int axis = which - 1;  // x, y or yaw
+                const double high = axis == 2 ? M_PI : table.high[axis];
+                const double low = axis == 2 ? -M_PI : table.low[axis];
+                pose[axis] = rng.uniformBool() ? high + past : low - past;
+                states.setObjectPose(outside, object, pose);
+            }
+            refused += (!si->satisfiesBounds(outside) && !si->isValid(outside)) ? 1 : 0;
+        }
+        space->freeState(outside);
+        space->freeState(start);
+        expect(refused == trials, "no state outside OMPL's bounds is valid: " + std::to_string(refused) + " of " +
+                                      std::to_string(trials) + " refused by both");
+    }
     {
         // A grasp goal (goal: {grasp: ...}) is a GoalSampleableRegion sampling the grasp
         // regions through inverse kinematics: most samples lie inside the goal region.
