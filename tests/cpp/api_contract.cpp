@@ -292,7 +292,7 @@ int main()
             if (which == 0)
             {
                 Eigen::VectorXd q = states.joints(outside);
-                const int j = rng.uniformInt(0, 6);
+                const int j = rng.uniformInt(0, static_cast<int>(states.dof()) - 1);
                 q[j] = rng.uniformBool() ? joint_bounds.high[j] + past : joint_bounds.low[j] - past;
                 states.setJoints(outside, q);
             }
