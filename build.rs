@@ -265,14 +265,14 @@ fn fcl_header_exists() -> bool {
 /// so the library itself does not depend on FCL.
 fn build_fcl_oracle(deps: &Dependencies) {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let mut build = cxx_build::bridge("tests/fcl_oracle.rs");
+    let mut build = cxx_build::bridge("tests/integration/fcl_oracle.rs");
     for flag in pkg_config("fcl", "--cflags-only-I") {
         if let Some(dir) = flag.strip_prefix("-I") {
             build.include(dir);
         }
     }
     build
-        .file("tests/fcl_oracle.cpp")
+        .file("tests/integration/fcl_oracle.cpp")
         .include(&deps.eigen_include)
         .std("c++17")
         .flag_if_supported("-Wno-unused-parameter")
@@ -285,9 +285,9 @@ fn build_fcl_oracle(deps: &Dependencies) {
     println!("cargo:rustc-link-arg-tests=-lfcl");
     println!("cargo:rustc-link-arg-tests=-lccd");
     for file in [
-        "tests/fcl_oracle.rs",
-        "tests/fcl_oracle.cpp",
-        "tests/fcl_oracle.h",
+        "tests/integration/fcl_oracle.rs",
+        "tests/integration/fcl_oracle.cpp",
+        "tests/integration/fcl_oracle.h",
     ] {
         println!("cargo:rerun-if-changed={file}");
     }

@@ -10,7 +10,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use pushplan::{EeAction, Propagator, Scene, State};
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../model/tests/model/common.rs"]
 mod common;
 
 const STEPS: usize = 50;

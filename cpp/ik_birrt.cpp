@@ -21,7 +21,7 @@ namespace pushplan::detail
       : ob::GoalSampleableRegion(space.si()), space_(space), model_(std::move(model)), from_(from),
         object_(object), seed_(seed), scratch_(from)
     {
-        // Inside a region within the model's tolerance (reach::GRASP_TOLERANCE).
+        // Inside a region within the model's tolerance (robot::wgr::GRASP_TOLERANCE).
         setThreshold(1e-3);
     }
 

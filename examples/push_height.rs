@@ -11,8 +11,8 @@
 //! TRAVEL_M: how far the pusher moves, at 0.1 m/s (default 0.03 m).
 
 use nalgebra::DVector;
-use pushplan::execute::world::World;
-use pushplan::path::{simulate, PathControl};
+use pushplan::planning::execute::world::World;
+use pushplan::planning::path::{simulate, PathControl};
 use pushplan::{EeAction, Pose2, Propagator, Scene};
 use std::path::Path;
 

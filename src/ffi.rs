@@ -12,8 +12,9 @@ pub use entry::{
     SolveOptions, SolveOutput,
 };
 
+use crate::planner::Model;
 use crate::planner::NearestTree;
-use crate::planner::{Model, PlannerKind};
+use crate::planning::PlannerKind;
 use convert::{
     add_search_stats, darrt_check, darrt_pick_place, finish, nearest_tree,
     planner_cut_at_time_limit, planner_fallback_steps, planner_kind, planner_name,
@@ -32,12 +33,18 @@ unsafe impl cxx::ExternType for PlannerKind {
     type Kind = cxx::kind::Trivial;
 }
 
-unsafe impl cxx::ExternType for crate::path::PathMetrics {
+unsafe impl cxx::ExternType for crate::planning::path::PathMetrics {
     type Id = cxx::type_id!("pushplan::PathMetrics");
     type Kind = cxx::kind::Trivial;
 }
 
-unsafe impl cxx::ExternType for crate::scene::PlannerParams {
+/// The scene's planner parameters as the bridge carries them: the model's type, whose
+/// layout C++ shares (a wrapper because the model crate does not know cxx).
+#[repr(transparent)]
+#[derive(Clone, Copy, Debug)]
+pub struct PlannerParams(pub crate::scene::PlannerParams);
+
+unsafe impl cxx::ExternType for PlannerParams {
     type Id = cxx::type_id!("pushplan::detail::PlannerParams");
     type Kind = cxx::kind::Trivial;
 }
@@ -258,11 +265,11 @@ pub mod bridge {
     unsafe extern "C++" {
         include!("pushplan/pushplan.h");
         #[namespace = "pushplan"]
-        type PlannerKind = crate::planner::PlannerKind;
+        type PlannerKind = crate::planning::PlannerKind;
         #[namespace = "pushplan"]
-        type PathMetrics = crate::path::PathMetrics;
+        type PathMetrics = crate::planning::path::PathMetrics;
         include!("pushplan/cpp/bridge_types.h");
         #[namespace = "pushplan::detail"]
-        type PlannerParams = crate::scene::PlannerParams;
+        type PlannerParams = crate::ffi::PlannerParams;
     }
 }

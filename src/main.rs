@@ -7,7 +7,7 @@ use pushplan::cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
     plan, plots, robot, BenchOptions, PickPlaceOptions, PlanOptions, RobotQuery,
 };
-use pushplan::planner::PlannerKind;
+use pushplan::planning::PlannerKind;
 use pushplan::scene::builtin;
 use pushplan::scene::generate::Design;
 use std::path::PathBuf;

@@ -2,7 +2,7 @@
 //! of it a shard runs. Each cell runs in a process of its own, seeded from the grid's seed
 //! and its run index only, so a cell is the same run whichever shard or machine runs it.
 
-use crate::planner::PlannerKind;
+use crate::planning::PlannerKind;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

@@ -5,7 +5,7 @@
 //! the papers' names; an anytime planner (SST, whose time is the whole budget) is marked.
 
 use super::BenchmarkLog;
-use crate::planner::PlannerKind;
+use crate::planning::PlannerKind;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};

@@ -1,9 +1,9 @@
 //! `pushplan check`: re-simulate a plan file, optionally under parameter noise.
 
 use crate::input::MAX_PLAN_BYTES;
-use crate::plan::PlanFile;
-use crate::planner::Problem;
-use crate::robustness::Noise;
+use crate::planning::plan_file::PlanFile;
+use crate::planning::robustness::Noise;
+use crate::planning::Problem;
 use std::path::Path;
 use std::process::ExitCode;
 

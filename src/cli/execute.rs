@@ -1,7 +1,7 @@
 //! `pushplan execute`: play a plan in the 3D engine and report what happened.
 
-use crate::execute::{ExecuteSettings, ExecutionReport};
-use crate::plan::PlanFile;
+use crate::planning::execute::{ExecuteSettings, ExecutionReport};
+use crate::planning::plan_file::PlanFile;
 use crate::Scene;
 use std::path::Path;
 use std::process::ExitCode;
@@ -31,7 +31,7 @@ pub fn execute(
         record: render.is_some(),
         ..ExecuteSettings::default()
     };
-    let report = crate::execute::execute(&scene, &plan, &settings)?;
+    let report = crate::planning::execute::execute(&scene, &plan, &settings)?;
     print_execution(path, &scene, &report);
     if let Some(dir) = render {
         let page = crate::render::render_execution(&plan, path, &report.trials[0].frames, dir)?;
@@ -69,15 +69,15 @@ fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {
             .collect();
         let divergence = match &t.first_divergence {
             None => "none".to_string(),
-            Some(crate::execute::Divergence::Tipped { object, time }) => {
+            Some(crate::planning::execute::Divergence::Tipped { object, time }) => {
                 format!("{object} tips at {time:.2} s")
             }
-            Some(crate::execute::Divergence::ObjectContact {
+            Some(crate::planning::execute::Divergence::ObjectContact {
                 object_a,
                 object_b,
                 time,
             }) => format!("{object_a} touches {object_b} at {time:.2} s"),
-            Some(crate::execute::Divergence::Drift {
+            Some(crate::planning::execute::Divergence::Drift {
                 object,
                 time,
                 error,

@@ -1,6 +1,6 @@
 //! The small commands: `render`, `scenes generate`, `install`.
 
-use crate::plan::PlanFile;
+use crate::planning::plan_file::PlanFile;
 use std::path::Path;
 use std::process::ExitCode;
 

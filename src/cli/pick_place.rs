@@ -1,9 +1,9 @@
 //! `pushplan pick-place`: move one object to a placement with the arm's hand through the
 //! manipulation graph and its two-level Fuzzy PRM, check the path, write it.
 
-use crate::manipulation::graph::INITIAL_PROBABILITY;
-use crate::manipulation::{EdgeKind, ManipulationGraph, Motion, PickAndPlace, Settings};
 use crate::math::Pose2;
+use crate::planning::manipulation::graph::INITIAL_PROBABILITY;
+use crate::planning::manipulation::{EdgeKind, ManipulationGraph, Motion, PickAndPlace, Settings};
 use crate::scene::{Goal, Scene};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
 use serde::{Deserialize, Serialize};
@@ -78,7 +78,7 @@ pub fn pick_place(
     out: &Path,
 ) -> Result<ExitCode, String> {
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
-    let object = crate::reach::graspable_object(&scene, &run.object)?;
+    let object = crate::planning::reach::graspable_object(&scene, &run.object)?;
     let start = scene.start.objects[object];
     let goal = match (&run.to, &scene.goal) {
         (Some(v), _) => match v.as_slice() {
@@ -136,7 +136,7 @@ pub fn pick_place(
         .map_err(|why| format!("internal error: the path found does not check: {why}"))?;
     let file = PickPlaceFile {
         format: PICK_PLACE_FORMAT.into(),
-        scene: crate::plan::PlanFile::scene_reference(scene_path, out),
+        scene: crate::planning::plan_file::PlanFile::scene_reference(scene_path, out),
         object: run.object.clone(),
         placements: problem
             .placements
@@ -212,7 +212,7 @@ pub fn check_pick_place(path: &Path) -> Result<ExitCode, String> {
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let scene_path = path.parent().unwrap_or(Path::new(".")).join(&file.scene);
     let scene = Scene::load(&scene_path).map_err(|e| e.to_string())?;
-    let object = crate::reach::graspable_object(&scene, &file.object)?;
+    let object = crate::planning::reach::graspable_object(&scene, &file.object)?;
     let placement = |i: usize| file.placements.get(i).copied();
     let problem = PickAndPlace {
         object,
@@ -259,7 +259,7 @@ pub fn check_pick_place(path: &Path) -> Result<ExitCode, String> {
                 &format!("waypoints must be {dof} finite joint values"),
             ));
         }
-        segments.push(crate::manipulation::Segment {
+        segments.push(crate::planning::manipulation::Segment {
             motion,
             waypoints: s
                 .waypoints

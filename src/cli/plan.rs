@@ -2,10 +2,10 @@
 
 use super::progress;
 use crate::ffi::{solve, ReachOptions, SolveOptions};
-use crate::path::PathControl;
-use crate::plan::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
-use crate::planner::{FinishSettings, PlannerKind, Problem, RobustRequirement};
-use crate::shortcut::ShortcutProgress;
+use crate::planning::path::PathControl;
+use crate::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
+use crate::planning::shortcut::ShortcutProgress;
+use crate::planning::{FinishSettings, PlannerKind, Problem, RobustRequirement};
 use crate::state::State;
 use crate::Scene;
 use std::path::Path;
@@ -187,7 +187,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
         // Reaching a grasp only: no controls, the reach from the start.
-        crate::reach::graspable_object(&scene, object)?;
+        crate::planning::reach::graspable_object(&scene, object)?;
         let dof = scene.robot.dof();
         let found = reach(scene_path, object, None, run, options.time_limit, seed, dof)?;
         let solved = found.is_some();
@@ -199,7 +199,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     }
     if run.grasp_after {
         if let crate::scene::Goal::ObjectInDisc { object, .. } = scene.goal {
-            crate::reach::graspable_object(&scene, &scene.objects[object].name)?;
+            crate::planning::reach::graspable_object(&scene, &scene.objects[object].name)?;
         } else {
             return Err("--grasp needs an object goal (the object to grasp after pushing)".into());
         }
@@ -239,7 +239,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             trials: run.robust,
             rate: run.robust_rate,
         }),
-        deadline: crate::planner::deadline(started, options.time_limit),
+        deadline: crate::planning::deadline(started, options.time_limit),
         progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
     };
     let path = problem.finish(&found, &found_states, solution.exact, &finish_settings);
@@ -334,7 +334,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
                 ),
                 crate::scene::Goal::Grasp { object, .. } => format!(
                     "the tool ends {:.3} (m and rad together, the lecture's d(q, WGR)) from the nearest grasp region of '{}'",
-                    left + crate::reach::GRASP_TOLERANCE,
+                    left + crate::robot::wgr::GRASP_TOLERANCE,
                     problem.scene().objects[*object].name
                 ),
                 crate::scene::Goal::Configuration { .. } => format!(

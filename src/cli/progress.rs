@@ -3,7 +3,7 @@
 //! report through plain function pointers, so the line is one per process, here.
 
 use crate::ffi::SearchProgress;
-use crate::shortcut::ShortcutProgress;
+use crate::planning::shortcut::ShortcutProgress;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::sync::Mutex;

@@ -4,10 +4,11 @@
 use super::bridge::{
     self, FinishedPath as FlatFinishedPath, PrimitiveCheck, SceneInfo, Trajectory,
 };
-use crate::darrt::PrimitivePath;
-use crate::path::{PathControl, PathMetrics};
-use crate::planner::{FinishSettings, FinishedPath, RobustRequirement};
-use crate::planner::{Model, NearestTree, PlannerKind, SearchStats};
+use crate::planner::{Model, NearestTree, SearchStats};
+use crate::planning::darrt::PrimitivePath;
+use crate::planning::path::{PathControl, PathMetrics};
+use crate::planning::PlannerKind;
+use crate::planning::{FinishSettings, FinishedPath, RobustRequirement};
 use crate::scene::{Goal, Scene};
 
 pub(super) fn scene_info(model: &Model) -> SceneInfo {
@@ -218,7 +219,7 @@ impl From<&Scene> for bridge::SceneInfo {
                 scene.table.y.0,
                 scene.table.y.1,
             ],
-            planner: scene.planner,
+            planner: crate::ffi::PlannerParams(scene.planner),
             goal_object,
             goal_center: center,
             goal_radius: radius,
@@ -246,7 +247,7 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 trials: s.robust_trials,
                 rate: s.robust_rate,
             }),
-            deadline: crate::planner::deadline(std::time::Instant::now(), s.time_left),
+            deadline: crate::planning::deadline(std::time::Instant::now(), s.time_left),
             progress: None,
         })
     }
@@ -286,8 +287,8 @@ impl From<FinishedPath> for bridge::FinishedPath {
     }
 }
 
-impl From<crate::trajectory::Trajectory> for bridge::Trajectory {
-    fn from(t: crate::trajectory::Trajectory) -> Self {
+impl From<crate::planning::trajectory::Trajectory> for bridge::Trajectory {
+    fn from(t: crate::planning::trajectory::Trajectory) -> Self {
         bridge::Trajectory {
             rate: t.rate,
             times: t.times,

@@ -109,7 +109,7 @@ pub mod bridge {
     unsafe extern "C++" {
         include!("pushplan/pushplan.h");
         #[namespace = "pushplan"]
-        type PlannerKind = crate::planner::PlannerKind;
+        type PlannerKind = crate::planning::PlannerKind;
         include!("pushplan/src/ffi.rs.h");
         type SearchStats = crate::ffi::bridge::SearchStats;
         include!("pushplan/cpp/solve.h");

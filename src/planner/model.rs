@@ -3,22 +3,22 @@
 //! the arrays' lengths and turns a panic into an error message, because its caller is
 //! C++ (nothing may unwind across the bridge).
 
-use super::finish::{FinishSettings, FinishedPath};
 use super::heading::{PushHeading, PushTarget};
 use super::particles::ParticleWorlds;
 use super::recent_tools::RecentTools;
-use super::{NearestTree, PlannerKind, Problem, SearchCounter, SearchStats};
-use crate::darrt;
+use super::{NearestTree, SearchCounter, SearchStats};
 use crate::distance::DistanceMetric;
 use crate::math::Pose2;
-use crate::path::PathControl;
+use crate::planning::darrt;
+use crate::planning::path::PathControl;
+use crate::planning::robustness::Noise;
+use crate::planning::static_clutter::StaticClutter;
+use crate::planning::trajectory::Trajectory;
+use crate::planning::{FinishSettings, FinishedPath, PlannerKind, Problem};
 use crate::propagate::Propagator;
 use crate::robot::EeAction;
-use crate::robustness::Noise;
 use crate::scene::Scene;
 use crate::state::{poses_from_flat_into, State};
-use crate::static_clutter::StaticClutter;
-use crate::trajectory::Trajectory;
 use crate::validity::check_state;
 use nalgebra::DVector;
 use std::cell::RefCell;
@@ -483,7 +483,7 @@ impl Model {
     /// From `seconds` from now on, every propagation is refused (invalid, no step taken):
     /// the search's time limit. Infinite: no limit.
     pub fn set_time_limit(&mut self, seconds: f64) {
-        self.deadline = super::deadline(Instant::now(), seconds);
+        self.deadline = crate::planning::deadline(Instant::now(), seconds);
     }
 
     /// Switches to (or from) the Static RRT baseline: clutter objects become static
@@ -512,7 +512,7 @@ impl Model {
     }
 
     /// Fraction of `trials` perturbed re-simulations of a plan that reach the goal
-    /// ([`crate::robustness`], default noise, drawn from `seed`).
+    /// ([`crate::planning::robustness`], default noise, drawn from `seed`).
     pub fn robustness(
         &self,
         controls: &[f64],
@@ -529,7 +529,7 @@ impl Model {
         })
     }
 
-    /// Finishes a found path ([`super::finish`]): `controls` and `steps` as found,
+    /// Finishes a found path ([`crate::planning::finish`]): `controls` and `steps` as found,
     /// `states` the planner's states at the control boundaries.
     pub fn finish(
         &mut self,
@@ -562,7 +562,7 @@ impl Model {
             if from.objects != to.objects {
                 return Err("a transit moves no object: the object poses differ".into());
             }
-            Ok(darrt::check_transit(self.scene(), &from, &to.q).is_ok())
+            Ok(crate::planning::transit::check_transit(self.scene(), &from, &to.q).is_ok())
         })
     }
 
@@ -680,7 +680,7 @@ impl Model {
 
     /// Reaching a grasp: the index of the object named `name`, which must have grasps.
     pub fn graspable_object(&self, name: &str) -> Result<usize, String> {
-        crate::reach::graspable_object(self.scene(), name)
+        crate::planning::reach::graspable_object(self.scene(), name)
     }
 
     /// One try at a configuration in a grasp region of `object` at its pose in `state`,
@@ -697,12 +697,12 @@ impl Model {
         guarded("grasp_sample", || {
             let state = self.state(state)?;
             let sampling = if arm_only {
-                crate::reach::GraspSampling::ArmOnly
+                crate::planning::reach::GraspSampling::ArmOnly
             } else {
-                crate::reach::GraspSampling::AmongObjects
+                crate::planning::reach::GraspSampling::AmongObjects
             };
             Ok(
-                crate::reach::sample_grasp(self.scene(), &state, object, seed, sampling)?
+                crate::planning::reach::sample_grasp(self.scene(), &state, object, seed, sampling)?
                     .map_or_else(Vec::new, |q| q.as_slice().to_vec()),
             )
         })
@@ -711,12 +711,12 @@ impl Model {
     /// The distance from `state`'s configuration to the nearest grasp region of `object`.
     pub fn grasp_distance(&self, state: &[f64], object: usize) -> Result<f64, String> {
         guarded("grasp_distance", || {
-            crate::reach::grasp_distance(self.scene(), &self.state(state)?, object)
+            crate::planning::reach::grasp_distance(self.scene(), &self.state(state)?, object)
         })
     }
 
     /// Checks a reach of `object` from `from` (waypoints flat, one configuration after
-    /// another): an empty string if it is valid, else why not ([`crate::reach::check_reach`]).
+    /// another): an empty string if it is valid, else why not ([`crate::planning::reach::check_reach`]).
     pub fn check_reach(
         &self,
         from: &[f64],
@@ -737,7 +737,7 @@ impl Model {
                 .map(DVector::from_column_slice)
                 .collect();
             Ok(
-                crate::reach::check_reach(self.scene(), &from, object, &waypoints)
+                crate::planning::reach::check_reach(self.scene(), &from, object, &waypoints)
                     .err()
                     .unwrap_or_default(),
             )

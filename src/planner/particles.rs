@@ -13,9 +13,9 @@
 //! joints with that world's object poses. Flat layout, world after world:
 //! `[x, y, yaw]` of every object (m, m, rad; world frame).
 
+use crate::planning::robustness::{Noise, PerturbedWorld};
 use crate::random::SplitMix64;
 use crate::robot::EeAction;
-use crate::robustness::{Noise, PerturbedWorld};
 use crate::scene::{Goal, Scene};
 use crate::state::State;
 use crate::validity::Invalid;

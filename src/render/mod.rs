@@ -10,12 +10,12 @@ mod html;
 pub mod outline;
 mod svg;
 
-use crate::plan::PlanFile;
-use crate::planner::Problem;
+use crate::planning::plan_file::PlanFile;
+use crate::planning::trajectory::paced;
+use crate::planning::Problem;
 use crate::scene::file::PhysicsModel;
 use crate::scene::{Goal, Scene};
 use crate::state::State;
-use crate::trajectory::paced;
 use nalgebra::Vector2;
 use outline::{footprint_outline, shape_outline};
 use std::path::{Path, PathBuf};
@@ -62,7 +62,7 @@ impl Film {
         if waypoints.is_empty() {
             return;
         }
-        let states = crate::reach::reach_states(&end, &waypoints);
+        let states = crate::planning::reach::reach_states(&end, &waypoints);
         self.contacts
             .extend(std::iter::repeat_n(Vec::new(), states.len() - 1));
         self.states.extend(states.into_iter().skip(1));
@@ -126,7 +126,7 @@ impl Film {
         executed: &[Vec<[f64; 3]>],
     ) -> Result<Film, String> {
         let scene = plan.load_scene(plan_path)?;
-        let predicted = crate::execute::predicted_poses(&scene, plan)?;
+        let predicted = crate::planning::execute::predicted_poses(&scene, plan)?;
         let trajectory = &plan.trajectory;
         if executed.len() != predicted.len() {
             return Err(format!(

@@ -1,0 +1,302 @@
+//! Scenes: the robot, the table, static obstacles, movable objects, the goal and the
+//! planner parameters, loaded from YAML ([`file`]) and validated ([`load`]).
+//!
+//! World frame: z up, the table top horizontal at `table.top`.
+
+pub mod builtin;
+mod clearances;
+pub mod file;
+pub mod generate;
+mod load;
+
+pub use clearances::Clearances;
+pub use load::{MAX_CONTROL_STEPS, MAX_FRICTION, MAX_K, MAX_MASS, MAX_OBJECTS, MAX_STEP, MIN_STEP};
+
+use crate::collision::Geometry;
+use crate::math::Pose2;
+use crate::physics::{Footprint, LimitSurface, LoadedSupport, SupportBalance};
+pub use crate::robot::wgr::Grasp;
+use crate::robot::wgr::{distance_to_grasps, GRASP_TOLERANCE};
+use crate::robot::Robot;
+use crate::state::State;
+use nalgebra::{DVector, Isometry3, Vector2};
+use std::path::PathBuf;
+
+pub use file::{
+    PhysicsSpec as PhysicsParams, PlannerSpec as PlannerParams, TrajectorySpec as TrajectoryParams,
+};
+
+/// Default `goal.margin` (m): how far inside the goal disc's edge the goal object's
+/// centre must end. Open-loop execution drifts by centimetres (BENCHMARKS.md, execution).
+pub const DEFAULT_GOAL_MARGIN: f64 = 0.03;
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub name: String,
+    /// The file the scene came from (or a label for scenes built from text).
+    pub source: PathBuf,
+    pub robot: Robot,
+    pub table: Table,
+    pub obstacles: Vec<Obstacle>,
+    pub objects: Vec<MovableObject>,
+    pub goal: Goal,
+    pub planner: PlannerParams,
+    pub physics: PhysicsParams,
+    pub trajectory: TrajectoryParams,
+    /// The start state (robot start projected onto its pushing plane).
+    pub start: State,
+    /// The distance each object keeps from the others and the obstacles (from `start`).
+    pub clearances: Clearances,
+    /// Link–table and link–obstacle pairs that may touch (allowed link–link pairs are
+    /// left out of the robot's self-collision pairs).
+    pub allowed: AllowedCollisions,
+}
+
+/// The scene's `allowed_collisions` between the robot and the static world.
+#[derive(Clone, Debug, Default)]
+pub struct AllowedCollisions {
+    /// Links (indices into the chain's links) that may touch the table.
+    pub table: Vec<usize>,
+    /// (link, obstacle) index pairs that may touch.
+    pub obstacles: Vec<(usize, usize)>,
+}
+
+impl AllowedCollisions {
+    pub fn link_table(&self, link: usize) -> bool {
+        self.table.contains(&link)
+    }
+
+    pub fn link_obstacle(&self, link: usize, obstacle: usize) -> bool {
+        self.obstacles.contains(&(link, obstacle))
+    }
+}
+
+/// Is the point `p` (m) within the extent `x` x `y` (m)?
+pub fn within_extent(p: Vector2<f64>, x: (f64, f64), y: (f64, f64)) -> bool {
+    p.x >= x.0 && p.x <= x.1 && p.y >= y.0 && p.y <= y.1
+}
+
+/// The support surface: a slab whose top is at `top`, spanning `x` x `y`.
+#[derive(Clone, Debug)]
+pub struct Table {
+    /// World height of the top surface (m).
+    pub top: f64,
+    /// Extent along x and y (m).
+    pub x: (f64, f64),
+    pub y: (f64, f64),
+    /// The slab, in world coordinates (its body pose is the identity).
+    pub geometry: Geometry,
+}
+
+impl Table {
+    /// Is the world point (x, y) over the table?
+    pub fn contains(&self, p: Vector2<f64>) -> bool {
+        within_extent(p, self.x, self.y)
+    }
+
+    /// Does the table carry the whole `footprint` (object frame) at `pose`? An object
+    /// whose centre is on the table but whose footprint hangs over the edge rests on a
+    /// support polygon the planar model does not know, and tips off at the slightest
+    /// push: the model keeps every footprint wholly on the table.
+    pub fn holds(&self, footprint: &Footprint, pose: &Pose2) -> bool {
+        match footprint {
+            Footprint::Circle { radius } => {
+                let c = pose.translation();
+                c.x - radius >= self.x.0
+                    && c.x + radius <= self.x.1
+                    && c.y - radius >= self.y.0
+                    && c.y + radius <= self.y.1
+            }
+            Footprint::Polygon { vertices } => vertices
+                .iter()
+                .all(|v| self.contains(pose.translation() + pose.rotation() * v)),
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Obstacle {
+    pub name: String,
+    /// World pose of the obstacle's frame.
+    pub pose: Isometry3<f64>,
+    pub geometry: Geometry,
+}
+
+/// A rigid prism resting on the table.
+#[derive(Clone, Debug)]
+pub struct MovableObject {
+    pub name: String,
+    /// Footprint in the object frame, centred on the centre of friction (m).
+    pub footprint: Footprint,
+    /// Height of the prism (m).
+    pub height: f64,
+    /// The solid in the object frame (the frame sits on the table top).
+    pub geometry: Geometry,
+    /// Radius of the footprint's bounding circle about the origin (m).
+    pub bounding_radius: f64,
+    /// Mass (kg).
+    pub mass: f64,
+    /// Support friction and contact friction coefficients.
+    pub mu_g: f64,
+    pub mu_c: f64,
+    pub limit_surface: LimitSurface,
+    /// How `c` changes as a push at height loads the support toward an edge.
+    pub support: LoadedSupport,
+    /// Ways to grasp it (Workspace Goal Regions), in the object frame.
+    pub grasps: Vec<Grasp>,
+}
+
+impl MovableObject {
+    /// The object frame's world pose for a planar pose (its base on the table top).
+    pub fn isometry(&self, pose: &Pose2, table_top: f64) -> Isometry3<f64> {
+        pose.to_isometry(table_top)
+    }
+
+    /// The limit surface (object frame) under the support pressure `balance` gives: the
+    /// centre of friction (the pressure-weighted centroid) moves with the centre of
+    /// pressure, `c` with the pressure's spread (`physics.pressure_shift`).
+    pub fn loaded_surface(&self, balance: &SupportBalance) -> LimitSurface {
+        let shift = balance.p_OP - self.footprint.centroid();
+        LimitSurface {
+            centre: self.limit_surface.centre + shift,
+            c: self.limit_surface.c * self.support.c_ratio(shift),
+            ..self.limit_surface
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Goal {
+    /// The goal object's centre inside a disc on the table, at least `margin` inside its
+    /// edge (so that small execution errors still end inside the disc).
+    ObjectInDisc {
+        object: usize,
+        center: Vector2<f64>,
+        /// Radius of the disc (m).
+        radius: f64,
+        /// How far inside the edge the centre must be (m), in [0, radius).
+        margin: f64,
+    },
+    /// The robot within `tolerance` (Euclidean, joint space) of a configuration.
+    Configuration { q: DVector<f64>, tolerance: f64 },
+    /// The tool inside one of an object's grasp regions (its `grasps`, where the object is
+    /// in the state), within [`GRASP_TOLERANCE`] of the lecture's distance;
+    /// clutter may be pushed aside on the way, and the object itself if `object_may_move`.
+    Grasp {
+        object: usize,
+        grasps: Vec<Grasp>,
+        object_may_move: bool,
+        /// Table top (m, world z): where the object frames stand.
+        table_top: f64,
+        /// The robot whose tool the regions hold (the scene's).
+        robot: SharedRobot,
+    },
+}
+
+/// The scene's robot shared with a goal measured at its tool; two are equal when they are
+/// the same robot.
+#[derive(Clone, Debug)]
+pub struct SharedRobot(pub std::sync::Arc<crate::robot::Robot>);
+
+impl PartialEq for SharedRobot {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl Goal {
+    /// Does the state satisfy the goal?
+    pub fn is_satisfied(&self, state: &State) -> bool {
+        self.distance(state) <= 0.0
+    }
+
+    /// How far the state is from the goal region (m for object goals, rad for
+    /// configuration goals); zero or negative inside. For an object goal the region is
+    /// the disc shrunk by the margin.
+    pub fn distance(&self, state: &State) -> f64 {
+        match self {
+            Goal::ObjectInDisc {
+                object,
+                center,
+                radius,
+                margin,
+            } => (state.objects[*object].translation() - center).norm() - (radius - margin),
+            Goal::Configuration { q, tolerance } => (&state.q - q).norm() - tolerance,
+            Goal::Grasp {
+                object,
+                grasps,
+                table_top,
+                robot,
+                ..
+            } => {
+                distance_to_grasps(
+                    &robot.0,
+                    *table_top,
+                    grasps,
+                    &state.objects[*object],
+                    &state.q,
+                ) - GRASP_TOLERANCE
+            }
+        }
+    }
+
+    /// The object that must stay where it starts: a grasp goal's, unless it may move.
+    pub fn pinned_object(&self) -> Option<usize> {
+        match self {
+            Goal::Grasp {
+                object,
+                object_may_move: false,
+                ..
+            } => Some(*object),
+            _ => None,
+        }
+    }
+
+    /// The object the goal is about (the goal object, or the one to grasp).
+    pub fn object(&self) -> Option<usize> {
+        match self {
+            Goal::ObjectInDisc { object, .. } | Goal::Grasp { object, .. } => Some(*object),
+            Goal::Configuration { .. } => None,
+        }
+    }
+}
+
+impl Goal {
+    /// How far the state is from the task's own region (m or rad): for an object goal the
+    /// whole disc, without the planning margin; zero or negative inside.
+    pub fn task_distance(&self, state: &State) -> f64 {
+        match self {
+            Goal::ObjectInDisc { margin, .. } => self.distance(state) - margin,
+            Goal::Configuration { .. } | Goal::Grasp { .. } => self.distance(state),
+        }
+    }
+}
+
+impl Scene {
+    /// The scene of the Static RRT baseline: every movable object except the goal object
+    /// becomes a static obstacle where it starts.
+    pub fn with_static_clutter(&self) -> Scene {
+        let keep = self.goal.object();
+        let mut scene = self.clone();
+        scene.name = format!("{} (static clutter)", self.name);
+        scene.objects.clear();
+        scene.start.objects.clear();
+        for (i, (object, pose)) in self.objects.iter().zip(&self.start.objects).enumerate() {
+            if Some(i) == keep {
+                scene.objects.push(object.clone());
+                scene.start.objects.push(*pose);
+            } else {
+                scene.obstacles.push(Obstacle {
+                    name: object.name.clone(),
+                    pose: pose.to_isometry(self.table.top),
+                    geometry: object.geometry.clone(),
+                });
+            }
+        }
+        if let Goal::ObjectInDisc { object, .. } | Goal::Grasp { object, .. } = &mut scene.goal {
+            *object = 0;
+        }
+        scene.clearances = Clearances::at_start(&scene);
+        scene
+    }
+}

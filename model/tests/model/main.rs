@@ -1,0 +1,18 @@
+//! The model's tests, in one binary: they need no OMPL and no C++ compiler
+//! (`cargo test -p pushplan-model`). Paths are relative to the repository root: `scenes`
+//! and `robots` beside this crate's manifest link to the root's folders.
+
+mod common;
+
+mod distance;
+mod footprint;
+mod generate;
+mod kinematics;
+mod physics;
+mod pushing;
+mod scene_errors;
+mod scenes;
+mod tipping;
+mod urdf;
+mod validity;
+mod wgr;

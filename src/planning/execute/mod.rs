@@ -1,0 +1,320 @@
+//! Open-loop execution of a plan in an independent 3D rigid-body engine (rapier): the
+//! arm follows the plan's joint trajectory exactly, the objects are free 3D bodies that
+//! can slide, turn and tip. This checks the planar quasistatic model from outside: the
+//! engine knows nothing of limit surfaces, complementarity or tipping rules.
+//!
+//! Each trial perturbs the scene as [`Noise::world`] says, plays the
+//! trajectory at `speed` times its planned pace, lets the objects settle, and compares
+//! with the plan's predicted object poses.
+
+mod fresh_contacts;
+pub mod world;
+
+use crate::math::Pose2;
+use crate::planning::plan_file::PlanFile;
+use crate::planning::robustness::Noise;
+use crate::random::SplitMix64;
+use crate::scene::Scene;
+use nalgebra::DVector;
+use serde::Serialize;
+use world::{SolverSettings, World, STEP};
+
+/// How to execute.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExecuteSettings {
+    /// Trials; the first is unperturbed (the nominal run), the others perturbed.
+    pub trials: usize,
+    /// Execution pace relative to the plan's trajectory (0.25: four times slower).
+    pub speed: f64,
+    /// Seed of the perturbations.
+    pub seed: u64,
+    pub noise: Noise,
+    /// Keep each trial's object poses at the trajectory's rate (for pictures).
+    pub record: bool,
+    /// The engine's solver effort.
+    pub solver: SolverSettings,
+}
+
+impl Default for ExecuteSettings {
+    fn default() -> Self {
+        ExecuteSettings {
+            trials: 10,
+            speed: 1.0,
+            seed: 1,
+            noise: Noise::world(),
+            record: false,
+            solver: SolverSettings::default(),
+        }
+    }
+}
+
+/// Tilt beyond which an object counts as tipped (rad; about 8.6 degrees).
+pub const TIPPED_TILT: f64 = 0.15;
+/// Distance from the predicted position that counts as drift (m).
+pub const DRIFT: f64 = 0.02;
+/// How far below the table top an object's base must end to have fallen off it (m).
+pub const FALLEN_DROP: f64 = 0.05;
+
+/// Time the objects get to come to rest after the trajectory ends (s).
+pub const SETTLE: f64 = 1.0;
+
+/// The first way a trial parted from the plan.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Divergence {
+    /// An object tilted beyond [`TIPPED_TILT`].
+    Tipped { object: String, time: f64 },
+    /// Two objects touched (the planar model keeps them apart).
+    ObjectContact {
+        object_a: String,
+        object_b: String,
+        time: f64,
+    },
+    /// An object's centre left its predicted position by more than [`DRIFT`].
+    Drift {
+        object: String,
+        time: f64,
+        error: f64,
+    },
+}
+
+/// One execution.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ExecutionTrial {
+    /// The goal object ended upright (it may have rocked on the way) with its centre
+    /// inside the goal disc.
+    pub reached: bool,
+    /// Distance of the goal object's final centre from the disc's edge (m; negative inside).
+    pub goal_distance: f64,
+    /// Objects that tilted beyond [`TIPPED_TILT`] at some time (tipped over, or rocked
+    /// on an edge and fell back) and ended on the table.
+    pub tipped: Vec<String>,
+    /// Objects pushed off the table: their base ended more than [`FALLEN_DROP`] below
+    /// its top (their tilt on the way down is the fall, not counted in `tipped`).
+    pub fell_off: Vec<String>,
+    /// Two objects touched at some time.
+    pub objects_touched: bool,
+    /// Each object's final position error against the plan's prediction (m), scene order.
+    pub final_errors: Vec<f64>,
+    /// Each object's final tilt from upright (rad), scene order.
+    pub final_tilts: Vec<f64>,
+    pub first_divergence: Option<Divergence>,
+    /// Object poses `[x, y, yaw]` at the trajectory's sample times (when recorded).
+    #[serde(skip)]
+    pub frames: Vec<Vec<[f64; 3]>>,
+}
+
+/// What the trials found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ExecutionReport {
+    pub trials: Vec<ExecutionTrial>,
+    pub speed: f64,
+    /// Fraction of trials that reached the goal.
+    pub success_rate: f64,
+    /// Trials in which some object tipped.
+    pub tipped_trials: usize,
+    /// Trials in which some object was pushed off the table.
+    pub fell_off_trials: usize,
+    /// Trials in which two objects touched.
+    pub object_contact_trials: usize,
+}
+
+/// Executes `plan` in its scene (`scene`: the full scene, every object movable).
+pub fn execute(
+    scene: &Scene,
+    plan: &PlanFile,
+    settings: &ExecuteSettings,
+) -> Result<ExecutionReport, String> {
+    let predicted = predicted_poses(scene, plan)?;
+    let mut rng = SplitMix64::new(settings.seed);
+    let mut trials = Vec::with_capacity(settings.trials);
+    for trial in 0..settings.trials {
+        let perturbed = if trial == 0 {
+            scene.clone()
+        } else {
+            settings
+                .noise
+                .perturb(scene, &mut rng)
+                .map_err(|e| format!("no valid perturbed start: {e}"))?
+        };
+        trials.push(run(&perturbed, scene, plan, &predicted, settings));
+    }
+    let n = trials.len().max(1) as f64;
+    Ok(ExecutionReport {
+        success_rate: trials.iter().filter(|t| t.reached).count() as f64 / n,
+        tipped_trials: trials.iter().filter(|t| !t.tipped.is_empty()).count(),
+        fell_off_trials: trials.iter().filter(|t| !t.fell_off.is_empty()).count(),
+        object_contact_trials: trials.iter().filter(|t| t.objects_touched).count(),
+        speed: settings.speed,
+        trials,
+    })
+}
+
+/// The plan's predicted object poses at each trajectory sample, in `scene`'s object
+/// order (objects the plan does not move, such as Static RRT's clutter, stay at their
+/// start).
+pub fn predicted_poses(scene: &Scene, plan: &PlanFile) -> Result<Vec<Vec<Pose2>>, String> {
+    let trajectory = &plan.trajectory;
+    if trajectory.q.is_empty() || trajectory.q.len() != trajectory.objects.len() {
+        return Err("the plan has no executable trajectory".into());
+    }
+    let dof = scene.robot.dof();
+    if let Some(bad) = trajectory.q.iter().position(|q| q.len() != dof) {
+        return Err(format!(
+            "trajectory.q[{bad}] has {} values, the robot {dof} joints",
+            trajectory.q[bad].len()
+        ));
+    }
+    let index: Vec<Option<usize>> = scene
+        .objects
+        .iter()
+        .map(|o| plan.objects.iter().position(|n| *n == o.name))
+        .collect();
+    Ok(trajectory
+        .objects
+        .iter()
+        .map(|sample| {
+            index
+                .iter()
+                .zip(&scene.start.objects)
+                .map(|(k, start)| match k.and_then(|k| sample.get(k)) {
+                    Some(p) => Pose2::new(p[0], p[1], p[2]),
+                    None => *start,
+                })
+                .collect()
+        })
+        .collect())
+}
+
+/// One trial in `world_scene` (perturbed), judged against `scene`'s goal and the plan.
+fn run(
+    world_scene: &Scene,
+    scene: &Scene,
+    plan: &PlanFile,
+    predicted: &[Vec<Pose2>],
+    settings: &ExecuteSettings,
+) -> ExecutionTrial {
+    let robot = &world_scene.robot;
+    let trajectory = &plan.trajectory;
+    let q_at = |k: usize| DVector::from_column_slice(&trajectory.q[k]);
+    let mut poses = Vec::new();
+    robot.chain.forward_kinematics(&q_at(0), &mut poses);
+    let mut world = World::with_solver(
+        world_scene,
+        &world_scene.start.objects,
+        &poses,
+        &settings.solver,
+    );
+    let objects = scene.objects.len();
+    let names = |i: usize| scene.objects[i].name.clone();
+
+    let samples = trajectory.times.len();
+    let plan_end = *trajectory.times.last().expect("non-empty trajectory");
+    let end = plan_end / settings.speed;
+    let total_steps = ((end + SETTLE) / STEP).ceil() as usize;
+    let mut tipped = vec![false; objects];
+    let mut objects_touched = false;
+    let mut first_divergence = None;
+    let mut frames = Vec::new();
+    let mut next_sample = 0;
+    let mut segment = 0;
+    for n in 1..=total_steps {
+        let t = n as f64 * STEP;
+        // Plan time of the arm at the end of this step: the trajectory, linearly
+        // interpolated, then held at its end.
+        let tau = (t * settings.speed).min(plan_end);
+        while segment + 2 < samples && trajectory.times[segment + 1] <= tau {
+            segment += 1;
+        }
+        let q = if samples == 1 {
+            q_at(0)
+        } else {
+            let (t0, t1) = (trajectory.times[segment], trajectory.times[segment + 1]);
+            let s = ((tau - t0) / (t1 - t0)).clamp(0.0, 1.0);
+            q_at(segment) * (1.0 - s) + q_at(segment + 1) * s
+        };
+        robot.chain.forward_kinematics(&q, &mut poses);
+        world.move_arm(&poses);
+        world.step();
+
+        for (i, flag) in tipped.iter_mut().enumerate() {
+            if !*flag && world.object_tilt(i) > TIPPED_TILT {
+                *flag = true;
+                first_divergence.get_or_insert(Divergence::Tipped {
+                    object: names(i),
+                    time: t,
+                });
+            }
+        }
+        if let Some((a, b)) = world.touching_objects() {
+            objects_touched = true;
+            first_divergence.get_or_insert(Divergence::ObjectContact {
+                object_a: names(a),
+                object_b: names(b),
+                time: t,
+            });
+        }
+        // At the trajectory's sample times: drift against the prediction.
+        while next_sample < samples
+            && trajectory.times[next_sample] <= tau + 1e-12
+            && t <= end + STEP
+        {
+            let expected = &predicted[next_sample];
+            if settings.record {
+                frames.push(
+                    (0..objects)
+                        .map(|i| {
+                            let p = world.object_pose2(i);
+                            [p.x, p.y, p.theta]
+                        })
+                        .collect(),
+                );
+            }
+            if first_divergence.is_none() {
+                for (i, e) in expected.iter().enumerate() {
+                    let error = (world.object_pose2(i).translation() - e.translation()).norm();
+                    if error > DRIFT {
+                        first_divergence = Some(Divergence::Drift {
+                            object: names(i),
+                            time: t,
+                            error,
+                        });
+                        break;
+                    }
+                }
+            }
+            next_sample += 1;
+        }
+    }
+
+    let last = predicted.last().expect("non-empty trajectory");
+    let final_poses: Vec<Pose2> = (0..objects).map(|i| world.object_pose2(i)).collect();
+    let final_errors = final_poses
+        .iter()
+        .zip(last)
+        .map(|(a, b)| (a.translation() - b.translation()).norm())
+        .collect();
+    let mut end_state = scene.start.clone();
+    end_state.q = q_at(samples - 1);
+    end_state.objects.clone_from(&final_poses);
+    let goal_distance = scene.goal.task_distance(&end_state);
+    let upright = scene
+        .goal
+        .object()
+        .is_none_or(|object| world.object_tilt(object) < TIPPED_TILT);
+    let fell_off: Vec<bool> = (0..objects).map(|i| world.object_fell_off(i)).collect();
+    ExecutionTrial {
+        reached: goal_distance <= 0.0 && upright,
+        goal_distance,
+        tipped: (0..objects)
+            .filter(|&i| tipped[i] && !fell_off[i])
+            .map(names)
+            .collect(),
+        fell_off: (0..objects).filter(|&i| fell_off[i]).map(names).collect(),
+        objects_touched,
+        final_errors,
+        final_tilts: (0..objects).map(|i| world.object_tilt(i)).collect(),
+        first_divergence,
+        frames,
+    }
+}

@@ -1,0 +1,175 @@
+//! Finishing a found path, one way for the CLI, the C++ API and `bench`: re-simulate it
+//! (it must reproduce the planner's states and, if solved, reach the goal), shortcut it
+//! (Sec. IV) and, in robust planning, shortcut toward the most robust path.
+
+use crate::planning::path::{simulate, PathControl, PathMetrics, SimulatedPath};
+use crate::planning::robustness::{robustness, Noise, PerturbedWorld};
+use crate::planning::shortcut::{
+    shortcut_by, Criterion, ShortcutOutcome, ShortcutProgress, ShortcutSettings,
+};
+use crate::propagate::Propagator;
+use crate::random::SplitMix64;
+use crate::scene::Scene;
+use crate::state::State;
+use std::time::Instant;
+
+/// How a found path is finished.
+#[derive(Clone, Copy, Debug)]
+pub struct FinishSettings {
+    /// Shortcutting budget in seconds of work (0: none).
+    pub shortcut: f64,
+    /// Seeds shortcutting and the robustness trials.
+    pub seed: u64,
+    /// The robustness a solution must keep, if any.
+    pub robust: Option<RobustRequirement>,
+    /// When shortcutting must stop, budget left or not (the plan's time limit).
+    pub deadline: Option<Instant>,
+    /// Told how far shortcutting is (a progress line).
+    pub progress: Option<fn(&ShortcutProgress)>,
+}
+
+/// Keep a path only if at least `rate` of `trials` perturbed re-simulations
+/// ([`crate::planning::robustness`], default noise) reach the goal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RobustRequirement {
+    pub trials: usize,
+    pub rate: f64,
+}
+
+impl RobustRequirement {
+    /// The fraction of perturbed re-simulations of `controls` that reach the goal.
+    pub fn success_rate(&self, scene: &Scene, controls: &[PathControl], seed: u64) -> f64 {
+        robustness(scene, controls, &Noise::default(), self.trials, seed).success_rate
+    }
+
+    /// As many perturbed worlds as trials to shortcut toward robustness in, drawn apart
+    /// from [`Self::success_rate`]'s: the requirement is checked in worlds the path was
+    /// not fitted to.
+    pub fn shortcut_worlds(&self, scene: &Scene, seed: u64) -> Vec<PerturbedWorld> {
+        let mut rng = SplitMix64::new(seed ^ 0x0B57_AC1E_5EED);
+        (0..self.trials)
+            .filter_map(|_| PerturbedWorld::draw(&Noise::default(), scene, &mut rng).ok())
+            .collect()
+    }
+}
+
+/// What shortcutting did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ShortcutReport {
+    pub attempts: usize,
+    pub accepted: usize,
+    /// The shortcut path was dropped because it was less robust than required.
+    pub dropped_as_less_robust: bool,
+    /// Shortcutting stopped at the deadline with budget left.
+    pub stopped_at_deadline: bool,
+}
+
+/// A finished path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FinishedPath {
+    pub controls: Vec<PathControl>,
+    /// The finished path simulated from the start (no step states).
+    pub simulation: SimulatedPath,
+    /// The metrics of the path as found (the same as after if nothing was shortened).
+    pub before: PathMetrics,
+    pub shortcut: ShortcutReport,
+    /// The finished path's success rate under noise, in robust planning.
+    pub robustness: Option<f64>,
+}
+
+/// Finishes `found` in `scene` (the scene the planner searched). `found_states` are the
+/// planner's states at the control boundaries, start first; re-simulation must reproduce
+/// them bit for bit. Only solved paths are shortened and measured for robustness.
+pub fn finish(
+    scene: &Scene,
+    found: &[PathControl],
+    found_states: &[State],
+    solved: bool,
+    settings: &FinishSettings,
+) -> Result<FinishedPath, String> {
+    if !(settings.shortcut.is_finite() && settings.shortcut >= 0.0) {
+        return Err(format!(
+            "the shortcut budget must be zero or positive, got {}",
+            settings.shortcut
+        ));
+    }
+    let mut propagator = Propagator::new(scene.clone());
+    let path = simulate(&mut propagator, &scene.start, found, false);
+    let reproduced = path.valid() && path.states.as_slice() == found_states;
+    if !reproduced || (solved && !scene.goal.is_satisfied(path.final_state())) {
+        return Err(format!(
+            "internal error: re-simulating the plan does not reproduce it{}",
+            path.stopped_by
+                .as_ref()
+                .map(|(i, why)| format!(" (control {i}: {why})"))
+                .unwrap_or_default()
+        ));
+    }
+    let mut finished = FinishedPath {
+        controls: found.to_vec(),
+        before: path.metrics,
+        simulation: path,
+        shortcut: ShortcutReport::default(),
+        robustness: None,
+    };
+    if !solved {
+        return Ok(finished);
+    }
+    if settings.shortcut > 0.0 {
+        let budget = ShortcutSettings {
+            deadline: settings.deadline,
+            progress: settings.progress,
+            ..ShortcutSettings::from_seconds(settings.shortcut, settings.seed)
+        };
+        // Robust planning shortens first (fewer pushes: less to go wrong), then shortcuts
+        // toward the most robust path, half the budget each.
+        let stages = match settings.robust {
+            None => vec![Criterion::Shorter],
+            Some(r) => vec![
+                Criterion::Shorter,
+                Criterion::MoreRobust(r.shortcut_worlds(scene, settings.seed)),
+            ],
+        };
+        let stage_budget = ShortcutSettings {
+            budget_steps: budget.budget_steps / stages.len() as u64,
+            ..budget
+        };
+        let mut outcome = ShortcutOutcome::unchanged(found, finished.before);
+        for mut criterion in stages {
+            // A propagator of its own: the outcome does not depend on what ran before.
+            let stage = shortcut_by(
+                &mut Propagator::new(scene.clone()),
+                &scene.start,
+                &outcome.controls,
+                &stage_budget,
+                &mut criterion,
+            );
+            outcome = outcome.then(stage);
+        }
+        finished.shortcut.attempts = outcome.attempts;
+        finished.shortcut.accepted = outcome.accepted;
+        finished.shortcut.stopped_at_deadline = outcome.stopped_at_deadline;
+        if outcome.accepted > 0 {
+            // Kept if robust enough, or at least as robust as the path as found.
+            let rates = settings.robust.map(|r| {
+                let rate = |controls| r.success_rate(scene, controls, settings.seed);
+                (rate(&outcome.controls), rate(found).min(r.rate))
+            });
+            if rates.is_none_or(|(shortcut, bar)| shortcut >= bar) {
+                finished.simulation =
+                    simulate(&mut propagator, &scene.start, &outcome.controls, false);
+                finished.controls = outcome.controls;
+                finished.robustness = rates.map(|(shortcut, _)| shortcut);
+            } else {
+                finished.shortcut.dropped_as_less_robust = true;
+            }
+        }
+    }
+    // The rate of the finished controls, unless the shortcut's check already measured it.
+    if finished.robustness.is_none() {
+        finished.robustness = settings
+            .robust
+            .map(|r| r.success_rate(scene, &finished.controls, settings.seed));
+    }
+    Ok(finished)
+}

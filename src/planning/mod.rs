@@ -1,0 +1,35 @@
+//! Planning on the model: what a planner searches for and what is done with what it finds.
+//!
+//! - the problem ([`Problem`]: the scene, and Static RRT's pinned clutter) and the planner
+//!   kinds ([`PlannerKind`]);
+//! - paths of controls ([`path`]), their re-simulation, shortcutting ([`shortcut`]),
+//!   robustness to parameter noise ([`robustness`]), executable trajectories
+//!   ([`trajectory`]) and the one way a found path is finished ([`finish`]);
+//! - plan files ([`plan_file`]);
+//! - DARRT's primitives ([`darrt`]), straight joint-space lines ([`transit`]), reaching a
+//!   grasp ([`reach`]) and the manipulation graph ([`manipulation`]);
+//! - Static RRT's clutter as obstacles ([`static_clutter`]) and execution in an independent
+//!   3D engine ([`execute`]).
+//!
+//! Nothing here knows OMPL or the bridge: the searches themselves are C++ (`cpp/`).
+
+pub mod darrt;
+mod deadline;
+pub mod execute;
+mod finish;
+mod kind;
+pub mod manipulation;
+pub mod path;
+pub mod plan_file;
+mod problem;
+pub mod reach;
+pub mod robustness;
+pub mod shortcut;
+pub mod static_clutter;
+pub mod trajectory;
+pub mod transit;
+
+pub use deadline::deadline;
+pub use finish::{finish, FinishSettings, FinishedPath, RobustRequirement, ShortcutReport};
+pub use kind::PlannerKind;
+pub use problem::Problem;

@@ -1,0 +1,338 @@
+//! Path shortcutting (Sec. IV, Fig. 3 of the whole-arm paper).
+//!
+//! Repeatedly pick two states of the path, connect only their robot configurations by a
+//! new constrained action (the end effector moves in a straight line along the plane
+//! between the two end-effector poses; the null-space sample pulls the joints towards
+//! the second configuration), propagate it through the physics, re-propagate every
+//! remaining control from the new state, and keep the result when every state is valid,
+//! the goal is still reached and the manipulator path is shorter (joint space).
+//!
+//! Toward robustness ([`Criterion::MoreRobust`]) half the attempts are nudges instead: one
+//! control held for a different number of steps. A push held a little longer or stopped
+//! a little earlier moves where the objects end up (deeper into the goal disc, further
+//! from a neighbour), which no shortcut between the path's own states can do.
+//!
+//! The budget is counted in propagation steps, not wall-clock time, so shortcutting is
+//! deterministic under its seed; [`STEPS_PER_SECOND`] converts the user's seconds.
+
+use crate::math::wrap_angle;
+use crate::planning::path::{simulate, PathControl, PathMetrics, SimulatedPath};
+use crate::planning::robustness::{reaches, PerturbedWorld};
+use crate::propagate::Propagator;
+use crate::random::SplitMix64;
+use crate::robot::EeAction;
+use crate::scene::Goal;
+use crate::state::State;
+use nalgebra::DVector;
+use std::time::Instant;
+
+/// Propagation steps one second of shortcutting buys (about what this machine does:
+/// see BENCHMARKS.md).
+pub const STEPS_PER_SECOND: f64 = 200_000.0;
+
+#[derive(Clone, Copy, Debug)]
+pub struct ShortcutSettings {
+    /// Work budget in propagation steps.
+    pub budget_steps: u64,
+    pub seed: u64,
+    /// Wall-clock time at which shortcutting stops even if budget is left (the plan's
+    /// time limit). Only then does the outcome depend on the machine's speed.
+    pub deadline: Option<Instant>,
+    /// Told how far shortcutting is before every attempt (a progress line); it cannot
+    /// change the outcome.
+    pub progress: Option<fn(&ShortcutProgress)>,
+}
+
+impl ShortcutSettings {
+    /// A budget of about `seconds` of work.
+    pub fn from_seconds(seconds: f64, seed: u64) -> Self {
+        Self {
+            budget_steps: (seconds.max(0.0) * STEPS_PER_SECOND) as u64,
+            seed,
+            deadline: None,
+            progress: None,
+        }
+    }
+}
+
+/// How far shortcutting is.
+#[derive(Clone, Copy, Debug)]
+pub struct ShortcutProgress {
+    /// Work done and the budget (propagation steps).
+    pub work: u64,
+    pub budget: u64,
+    pub attempts: usize,
+    pub accepted: usize,
+    /// The current path's manipulator path (joint space) and duration (s).
+    pub joint_length: f64,
+    pub duration: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShortcutOutcome {
+    pub controls: Vec<PathControl>,
+    pub before: PathMetrics,
+    pub after: PathMetrics,
+    pub attempts: usize,
+    pub accepted: usize,
+    /// Shortcutting stopped at the deadline, with budget left.
+    pub stopped_at_deadline: bool,
+}
+
+impl ShortcutOutcome {
+    /// Nothing shortcut yet: `controls` with their metrics.
+    pub fn unchanged(controls: &[PathControl], metrics: PathMetrics) -> Self {
+        Self {
+            controls: controls.to_vec(),
+            before: metrics,
+            after: metrics,
+            attempts: 0,
+            accepted: 0,
+            stopped_at_deadline: false,
+        }
+    }
+
+    /// This outcome followed by `next`, which shortcut this one's path further.
+    pub fn then(self, next: ShortcutOutcome) -> Self {
+        Self {
+            before: self.before,
+            attempts: self.attempts + next.attempts,
+            accepted: self.accepted + next.accepted,
+            stopped_at_deadline: self.stopped_at_deadline || next.stopped_at_deadline,
+            ..next
+        }
+    }
+}
+
+/// What a shortcut must improve to be kept.
+pub enum Criterion {
+    /// The manipulator path in joint space (the paper's Sec. IV).
+    Shorter,
+    /// Reaching the goal in more of these perturbed worlds; in as many, a shorter path.
+    /// Robust planning shortcuts toward the most robust path with it, and nudges.
+    MoreRobust(Vec<PerturbedWorld>),
+}
+
+/// Shortcuts a valid path from `start` that reaches the scene's goal, keeping shortcuts
+/// that make the manipulator path shorter.
+pub fn shortcut(
+    propagator: &mut Propagator,
+    start: &State,
+    controls: &[PathControl],
+    settings: &ShortcutSettings,
+) -> ShortcutOutcome {
+    shortcut_by(
+        propagator,
+        start,
+        controls,
+        settings,
+        &mut Criterion::Shorter,
+    )
+}
+
+/// Shortcuts a valid path from `start` that reaches the scene's goal, keeping shortcuts
+/// that improve it by `criterion`. Every kept path is valid and reaches the goal.
+pub fn shortcut_by(
+    propagator: &mut Propagator,
+    start: &State,
+    controls: &[PathControl],
+    settings: &ShortcutSettings,
+    criterion: &mut Criterion,
+) -> ShortcutOutcome {
+    let scene = propagator.shared_scene();
+    let mut current = controls.to_vec();
+    let mut path = simulate(propagator, start, &current, false);
+    let before = path.metrics;
+    let mut outcome = ShortcutOutcome::unchanged(&[], before);
+    if !path.valid() || !scene.goal.is_satisfied(path.final_state()) {
+        outcome.controls = current;
+        return outcome;
+    }
+    let mut rng = SplitMix64::new(settings.seed ^ 0x5EED_5407_C0DE);
+    let mut work = path.steps() as u64;
+    let mut worlds = match criterion {
+        Criterion::Shorter => None,
+        Criterion::MoreRobust(worlds) => Some(WorldRuns::new(worlds)),
+    };
+    if let Some(worlds) = &mut worlds {
+        work += worlds.run(&scene.goal, &current);
+    }
+    // Shortcuts need two controls to replace; nudges one.
+    let least = if worlds.is_some() { 1 } else { 2 };
+    while work < settings.budget_steps && current.len() >= least {
+        if settings.deadline.is_some_and(|d| Instant::now() >= d) {
+            outcome.stopped_at_deadline = true;
+            break;
+        }
+        if let Some(progress) = settings.progress {
+            progress(&ShortcutProgress {
+                work,
+                budget: settings.budget_steps,
+                attempts: outcome.attempts,
+                accepted: outcome.accepted,
+                joint_length: path.metrics.joint_length,
+                duration: path.metrics.duration,
+            });
+        }
+        outcome.attempts += 1;
+        // The candidate differs from the current path from control i on.
+        let (i, candidate) = if worlds.is_some() && (current.len() < 2 || rng.below(2) == 0) {
+            nudge(&current, &mut rng)
+        } else {
+            // Two states i < j at least two controls apart; controls i..j are replaced.
+            let n = current.len();
+            let i = rng.below(n - 1);
+            let j = i + 2 + rng.below(n - i - 1);
+            let Some(connect) = connecting_control(propagator, &path, i, j) else {
+                continue;
+            };
+            let mut candidate = current[..i].to_vec();
+            candidate.push(connect);
+            candidate.extend_from_slice(&current[j..]);
+            (i, candidate)
+        };
+        let tail = simulate(propagator, &path.states[i], &candidate[i..], false);
+        work += tail.steps() as u64 + 1;
+        if !tail.valid() || !scene.goal.is_satisfied(tail.final_state()) {
+            continue;
+        }
+        let shorter =
+            path.joint_length_at[i] + tail.metrics.joint_length < path.metrics.joint_length - 1e-9;
+        let better = match &mut worlds {
+            None => shorter,
+            Some(worlds) => {
+                // As robust and shorter, or more robust.
+                let needed = worlds.reached + usize::from(!shorter);
+                let (reaches, spent) = worlds.candidate_reaches(&scene.goal, &candidate, i, needed);
+                work += spent;
+                reaches
+            }
+        };
+        if better {
+            current = candidate;
+            path = simulate(propagator, start, &current, false);
+            work += path.steps() as u64;
+            if let Some(worlds) = &mut worlds {
+                work += worlds.run(&scene.goal, &current);
+            }
+            outcome.accepted += 1;
+        }
+    }
+    outcome.after = path.metrics;
+    outcome.controls = current;
+    outcome
+}
+
+/// The current path re-simulated in each perturbed world ([`Criterion::MoreRobust`]).
+struct WorldRuns<'a> {
+    worlds: &'a mut [PerturbedWorld],
+    runs: Vec<SimulatedPath>,
+    /// How many of the runs reach the goal.
+    reached: usize,
+}
+
+impl<'a> WorldRuns<'a> {
+    fn new(worlds: &'a mut [PerturbedWorld]) -> Self {
+        Self {
+            worlds,
+            runs: vec![],
+            reached: 0,
+        }
+    }
+
+    /// Re-simulates `controls`, the new current path, in every world; returns the
+    /// propagation steps spent.
+    fn run(&mut self, goal: &Goal, controls: &[PathControl]) -> u64 {
+        self.runs = self.worlds.iter_mut().map(|w| w.run(controls)).collect();
+        self.reached = self.runs.iter().filter(|r| reaches(goal, r)).count();
+        self.runs.iter().map(|r| r.steps() as u64).sum()
+    }
+
+    /// Whether `candidate`, which differs from the current path from control `i` on,
+    /// reaches the goal in at least `needed` worlds, and the propagation steps spent
+    /// finding out. Only the differing part is re-simulated, and only until the answer
+    /// is known.
+    fn candidate_reaches(
+        &mut self,
+        goal: &Goal,
+        candidate: &[PathControl],
+        i: usize,
+        needed: usize,
+    ) -> (bool, u64) {
+        let n = self.worlds.len();
+        if needed > n {
+            return (false, 0);
+        }
+        let (mut reached, mut failed, mut work) = (0, 0, 0);
+        for (world, run) in self.worlds.iter_mut().zip(&self.runs) {
+            // A world whose run stopped before control i fails the same way.
+            let reaches_i = run.stopped_by.as_ref().is_none_or(|(k, _)| *k >= i);
+            let tail = reaches_i.then(|| world.simulate(&run.states[i], &candidate[i..]));
+            work += tail.as_ref().map_or(0, |t| t.steps() as u64);
+            if tail.is_some_and(|t| reaches(goal, &t)) {
+                reached += 1;
+            } else {
+                failed += 1;
+            }
+            if reached >= needed || n - failed < needed {
+                break;
+            }
+        }
+        (reached >= needed, work)
+    }
+}
+
+/// `controls` with one of them, `i`, held for a different number of steps: up to half as
+/// many more or fewer, at least one step.
+fn nudge(controls: &[PathControl], rng: &mut SplitMix64) -> (usize, Vec<PathControl>) {
+    let i = rng.below(controls.len());
+    let steps = controls[i].steps;
+    let change = 1 + rng.below(steps.div_ceil(2));
+    let mut nudged = controls.to_vec();
+    nudged[i].steps = if rng.below(2) == 0 || change >= steps {
+        steps + change
+    } else {
+        steps - change
+    };
+    (i, nudged)
+}
+
+/// The action that moves the end effector in a straight line (and turns it) from its pose
+/// in state `i` to its pose in state `j` at the scene's speed bounds, pulling the joints
+/// towards state `j`'s configuration through the null space.
+fn connecting_control(
+    propagator: &Propagator,
+    path: &SimulatedPath,
+    i: usize,
+    j: usize,
+) -> Option<PathControl> {
+    let scene = propagator.scene();
+    let robot = &scene.robot;
+    let (a, b) = (&path.states[i], &path.states[j]);
+    let (ta, tb) = (
+        robot.tool_pose(&robot.link_poses(&a.q)),
+        robot.tool_pose(&robot.link_poses(&b.q)),
+    );
+    let yaw = |t: &nalgebra::Isometry3<f64>| {
+        (t.rotation * robot.plane.orientation.inverse())
+            .euler_angles()
+            .2
+    };
+    let (dx, dy) = (
+        tb.translation.x - ta.translation.x,
+        tb.translation.y - ta.translation.y,
+    );
+    let dyaw = wrap_angle(yaw(&tb) - yaw(&ta));
+    let p = &scene.planner;
+    let time = (dx.abs().max(dy.abs()) / p.max_ee_speed).max(dyaw.abs() / p.max_ee_turn_rate);
+    let steps = ((time / p.step).ceil() as usize).max(1);
+    let duration = steps as f64 * p.step;
+    let pull: DVector<f64> = (&b.q - &a.q) / duration;
+    pull.iter().all(|v| v.is_finite()).then(|| PathControl {
+        action: EeAction {
+            velocity: [dx / duration, dy / duration, dyaw / duration],
+            nullspace: pull,
+        },
+        steps,
+    })
+}

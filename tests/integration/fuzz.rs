@@ -1,0 +1,267 @@
+//! Seeded mutation fuzzing of everything pushplan reads: scene YAML, URDF and plan files.
+//! Each case mutates a shipped file (characters changed, spans deleted or repeated,
+//! numbers replaced by extreme values, the text cut short) and feeds it in. Nothing may
+//! panic; every error names the file. A smaller sample goes through the command line,
+//! where only the exit codes 0 (done), 1 (failed or not solved) and 2 (bad input) may
+//! come back. The same seeds give the same cases, so a failure reproduces.
+
+use crate::common;
+
+use pushplan::planning::plan_file::PlanFile;
+use pushplan::random::SplitMix64;
+use pushplan::robot::urdf::load_urdf;
+use pushplan::{EeAction, Propagator, Scene};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
+use std::process::Command;
+
+/// Values a number may be replaced by.
+const EXTREMES: [&str; 16] = [
+    ".nan",
+    "NaN",
+    ".inf",
+    "-.inf",
+    "-1",
+    "0",
+    "-0.0",
+    "1e308",
+    "-1e308",
+    "1e-320",
+    "99999999999999999999",
+    "null",
+    "''",
+    "[]",
+    "{}",
+    "1e6",
+];
+
+/// `text` with one to three random mutations.
+fn mutate(text: &str, rng: &mut SplitMix64) -> String {
+    let mut bytes = text.as_bytes().to_vec();
+    for _ in 0..1 + rng.below(3) {
+        let n = bytes.len().max(1);
+        let at = rng.below(n).min(bytes.len());
+        match rng.below(6) {
+            // A character changed to one that matters to the formats.
+            0 => {
+                const SYNTAX: &[u8] = b"[]{}:,-'\"#&*!|>\n 0.e9x<";
+                let c = SYNTAX[rng.below(SYNTAX.len())];
+                if at < bytes.len() {
+                    bytes[at] = c;
+                }
+            }
+            1 => {
+                let end = (at + 1 + rng.below(40)).min(bytes.len());
+                bytes.drain(at..end);
+            }
+            2 => {
+                let end = (at + 1 + rng.below(80)).min(bytes.len());
+                let span = bytes[at..end].to_vec();
+                bytes.splice(at..at, span);
+            }
+            3 => bytes.truncate(at),
+            // A number replaced by an extreme value.
+            _ => {
+                let digits: Vec<usize> = (0..bytes.len())
+                    .filter(|&i| bytes[i].is_ascii_digit())
+                    .collect();
+                if digits.is_empty() {
+                    continue;
+                }
+                let mut start = digits[rng.below(digits.len())];
+                while start > 0
+                    && (bytes[start - 1].is_ascii_digit() || b".-e".contains(&bytes[start - 1]))
+                {
+                    start -= 1;
+                }
+                let mut end = start;
+                while end < bytes.len()
+                    && (bytes[end].is_ascii_digit() || b".-e".contains(&bytes[end]))
+                {
+                    end += 1;
+                }
+                let value = EXTREMES[rng.below(EXTREMES.len())].as_bytes().to_vec();
+                bytes.splice(start..end, value);
+            }
+        }
+    }
+    String::from_utf8_lossy(&bytes).into_owned()
+}
+
+/// Changes one leaf of a JSON document: a number to an extreme one, a string emptied,
+/// an array's last element removed or repeated.
+fn mutate_value(value: &mut serde_json::Value, rng: &mut SplitMix64) {
+    use serde_json::Value;
+    const NUMBERS: [f64; 8] = [-1.0, 0.0, 1e308, -1e308, 1e-320, 123_456_789.0, 0.5, 3.0];
+    match value {
+        Value::Object(map) if !map.is_empty() => {
+            let key = map.keys().nth(rng.below(map.len())).unwrap().clone();
+            mutate_value(map.get_mut(&key).unwrap(), rng);
+        }
+        Value::Array(items) if !items.is_empty() && rng.below(4) > 0 => {
+            let i = rng.below(items.len());
+            mutate_value(&mut items[i], rng);
+        }
+        Value::Array(items) => {
+            if let Some(last) = items.pop() {
+                if rng.below(2) == 0 {
+                    items.push(last.clone());
+                    items.push(last);
+                }
+            }
+        }
+        Value::String(text) => text.clear(),
+        Value::Bool(b) => *b = !*b,
+        _ => *value = Value::from(NUMBERS[rng.below(NUMBERS.len())]),
+    }
+}
+
+/// Runs `f`; fails the test with `what` if it panics.
+fn no_panic<T>(what: &str, f: impl FnOnce() -> T) -> T {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(value) => value,
+        Err(_) => panic!("panicked on {what}"),
+    }
+}
+
+#[test]
+fn mutated_scenes_load_or_fail_naming_the_file_and_never_panic() {
+    let source = Path::new("scenes/fuzzed.yaml");
+    let bases = [
+        "scenes/herb_fig1_clutter.yaml",
+        "scenes/planar_hand_single_object.yaml",
+        "scenes/dense/scene_00.yaml",
+    ];
+    let mut loaded = 0;
+    for (b, base) in bases.iter().enumerate() {
+        let text = std::fs::read_to_string(base).unwrap();
+        let mut rng = SplitMix64::new(1000 + b as u64);
+        for case in 0..150 {
+            let mutated = mutate(&text, &mut rng);
+            let what = format!("{base}, case {case}:\n{mutated}");
+            match no_panic(&what, || Scene::from_yaml(&mutated, source)) {
+                Err(e) => assert!(
+                    e.to_string().starts_with("scenes/fuzzed.yaml: ")
+                        || e.to_string().contains(".urdf"),
+                    "{what}\nthe error names the file: {e}"
+                ),
+                Ok(scene) => {
+                    loaded += 1;
+                    // What loads also pushes: a short propagation from the start.
+                    no_panic(&what, || {
+                        Propagator::new(scene.clone()).propagate(
+                            &scene.start,
+                            &EeAction::planar(0.1, 0.05, 0.2),
+                            0.5,
+                        )
+                    });
+                }
+            }
+        }
+    }
+    // Some mutations leave a valid scene (a changed comment, a nudged number).
+    assert!(loaded > 10, "only {loaded} mutated scenes loaded");
+}
+
+#[test]
+fn mutated_urdfs_load_or_fail_naming_the_file_and_never_panic() {
+    let scratch = common::Scratch::new("fuzz-urdf");
+    let text = std::fs::read_to_string("robots/wam7.urdf").unwrap();
+    let path = scratch.join("fuzzed.urdf");
+    let mut rng = SplitMix64::new(2000);
+    for case in 0..200 {
+        let mutated = mutate(&text, &mut rng);
+        std::fs::write(&path, &mutated).unwrap();
+        let what = format!("case {case}:\n{mutated}");
+        match no_panic(&what, || {
+            load_urdf(&path, "hand", nalgebra::Isometry3::identity())
+        }) {
+            Err(e) => assert!(
+                e.to_string().contains("fuzzed.urdf"),
+                "{what}\nthe error names the file: {e}"
+            ),
+            Ok(chain) => {
+                let mut poses = Vec::new();
+                no_panic(&what, || {
+                    chain.forward_kinematics(&nalgebra::DVector::zeros(chain.dof()), &mut poses)
+                });
+            }
+        }
+    }
+}
+
+#[test]
+fn mutated_plan_files_are_read_and_checked_without_panics() {
+    let scratch = common::Scratch::new("fuzz-plans");
+    let base = scratch.join("base.json");
+    common::plan_solved("scenes/herb_single_object.yaml", &base, &[]);
+    let text = std::fs::read_to_string(&base).unwrap();
+    let path = scratch.join("fuzzed.json");
+    let mut rng = SplitMix64::new(3000);
+    let mut read = 0;
+    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for case in 0..150 {
+        // Half the cases break the JSON; half change a value and stay JSON.
+        let mutated = if case % 2 == 0 {
+            mutate(&text, &mut rng)
+        } else {
+            let mut v = value.clone();
+            mutate_value(&mut v, &mut rng);
+            serde_json::to_string(&v).unwrap()
+        };
+        std::fs::write(&path, &mutated).unwrap();
+        let what = format!("case {case}");
+        match no_panic(&what, || PlanFile::read(&path)) {
+            Err(e) => assert!(e.contains("fuzzed.json"), "{what}: {e}"),
+            Ok(plan) => {
+                read += 1;
+                if let Err(e) = no_panic(&what, || plan.check(&path)) {
+                    assert!(
+                        e.contains("fuzzed.json") || e.contains(".yaml"),
+                        "{what}: {e}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(read > 10, "only {read} mutated plans were read");
+}
+
+#[test]
+fn the_command_line_answers_mutated_input_with_exit_codes_0_1_or_2() {
+    let scratch = common::Scratch::new("fuzz-cli");
+    let text = std::fs::read_to_string("scenes/herb_single_object.yaml")
+        .unwrap()
+        .replace(
+            "../robots/",
+            &format!("{}/robots/", env!("CARGO_MANIFEST_DIR")),
+        );
+    let scene = scratch.join("fuzzed.yaml");
+    let plan = scratch.join("plan.json");
+    let mut rng = SplitMix64::new(4000);
+    for case in 0..24 {
+        let mutated = mutate(&text, &mut rng);
+        std::fs::write(&scene, &mutated).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_pushplan"))
+            .args([
+                "plan",
+                scene.to_str().unwrap(),
+                "--time",
+                "0.3",
+                "--shortcut",
+                "0",
+            ])
+            .args(["--threads", "1", "--quiet", "--out", plan.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let code = out.status.code();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            matches!(code, Some(0..=2)),
+            "case {case}: exit {code:?}: {stderr}\n{mutated}"
+        );
+        if code == Some(2) {
+            assert!(stderr.contains("fuzzed.yaml"), "case {case}: {stderr}");
+        }
+    }
+}

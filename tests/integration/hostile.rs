@@ -1,0 +1,263 @@
+//! Hostile and clumsy input to the command line, each case from a reproducer that once
+//! panicked, crashed, hung or passed a tampered plan: plan files with absurd step
+//! counts or the wrong number of values, tampered plans, a plan naming another file as
+//! its scene, object names that are markup. Exit codes: 0 done, 1 failed or not solved,
+//! 2 bad input, never a panic (101) or a signal.
+
+use crate::common;
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+fn pushplan(args: &[&str]) -> (i32, String, String) {
+    common::pushplan_in(Path::new("."), args)
+}
+
+/// Plans the single-object scene into `dir/base.json` (solved, 2 s, no shortcutting).
+fn base_plan(dir: &Path) -> (PathBuf, Value) {
+    let path = dir.join("base.json");
+    common::plan_solved("scenes/herb_single_object.yaml", &path, &[]);
+    let plan = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    (path, plan)
+}
+
+/// A change made to a plan file's JSON.
+type Edit = Box<dyn Fn(&mut Value)>;
+
+/// Writes `plan` with `edit` applied as `dir/name`.
+fn tampered(dir: &Path, plan: &Value, name: &str, edit: impl Fn(&mut Value)) -> PathBuf {
+    let mut plan = plan.clone();
+    edit(&mut plan);
+    let path = dir.join(name);
+    std::fs::write(&path, serde_json::to_string(&plan).unwrap()).unwrap();
+    path
+}
+
+#[test]
+fn malformed_plan_files_are_bad_input_for_check_render_and_execute() {
+    let scratch = common::Scratch::new("hostile-malformed-plans");
+    let (_, plan) = base_plan(scratch.path());
+    let cases: [(&str, &str, Edit); 5] = [
+        // Steps beyond any plan: a capacity overflow, a 2.4 TB allocation, a minute.
+        (
+            "huge_steps.json",
+            "controls[0].steps",
+            Box::new(|p| p["controls"][0]["steps"] = Value::from(u64::MAX / 2 + 1)),
+        ),
+        (
+            "many_steps.json",
+            "controls[0].steps",
+            Box::new(|p| p["controls"][0]["steps"] = Value::from(10_000_000u64)),
+        ),
+        // One null-space value too many: render panicked in nalgebra.
+        (
+            "nullspace.json",
+            "controls[0].nullspace",
+            Box::new(|p| {
+                p["controls"][0]["nullspace"]
+                    .as_array_mut()
+                    .unwrap()
+                    .push(Value::from(0.1))
+            }),
+        ),
+        (
+            "short_state.json",
+            "controls[0].state",
+            Box::new(|p| {
+                p["controls"][0]["state"]["q"].as_array_mut().unwrap().pop();
+            }),
+        ),
+        (
+            "joints.json",
+            "joints",
+            Box::new(|p| p["joints"].as_array_mut().unwrap().reverse()),
+        ),
+    ];
+    for (name, field, edit) in cases {
+        let path = tampered(scratch.path(), &plan, name, edit);
+        let path = path.to_str().unwrap();
+        let out_dir = scratch.join("pictures");
+        for args in [
+            vec!["check", path],
+            vec!["render", path, "--out", out_dir.to_str().unwrap()],
+            vec!["execute", path, "--trials", "1"],
+        ] {
+            let (code, stdout, stderr) = pushplan(&args);
+            assert_eq!(code, 2, "{args:?}: {stdout}{stderr}");
+            assert!(
+                stderr.contains(name) && stderr.contains(field),
+                "{args:?}: the message names the file and the field: {stderr}"
+            );
+        }
+    }
+}
+
+#[test]
+fn check_compares_everything_a_plan_file_claims_with_the_re_simulation() {
+    let scratch = common::Scratch::new("hostile-tampered-plans");
+    let (path, plan) = base_plan(scratch.path());
+    let (code, stdout, _) = pushplan(&["check", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "the untouched plan checks: {stdout}");
+    let pushed = plan["controls"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|c| !c["contacts"].as_array().unwrap().is_empty())
+        .expect("the plan pushes the box");
+    let cases: [(&str, String, Edit); 7] = [
+        // The reproducer: a joint trajectory sample and `solved` changed; "plan OK".
+        (
+            "trajectory.json",
+            "trajectory.q[10][0]".into(),
+            Box::new(|p| p["trajectory"]["q"][10] = Value::from(vec![9.0; 7])),
+        ),
+        (
+            "solved.json",
+            "solved".into(),
+            Box::new(|p| p["solved"] = Value::from(false)),
+        ),
+        (
+            "force.json",
+            format!("controls[{pushed}].contacts[0].force"),
+            Box::new(move |p| p["controls"][pushed]["contacts"][0]["force"] = Value::from(1.0)),
+        ),
+        (
+            "link.json",
+            format!("controls[{pushed}].contacts[0].link"),
+            Box::new(move |p| {
+                p["controls"][pushed]["contacts"][0]["link"] = Value::from("wam_base")
+            }),
+        ),
+        (
+            "duration.json",
+            "metrics.after_shortcut.duration".into(),
+            Box::new(|p| p["metrics"]["after_shortcut"]["duration"] = Value::from(1.0)),
+        ),
+        (
+            "step.json",
+            "step".into(),
+            Box::new(|p| p["step"] = Value::from(0.02)),
+        ),
+        // The start differs from the scene's: check said so, then "plan OK".
+        (
+            "start.json",
+            "start".into(),
+            Box::new(|p| p["start"]["objects"][0][0] = Value::from(0.7)),
+        ),
+    ];
+    // execute plays only the trajectory the controls give (a file of millions of
+    // samples would run for hours).
+    let longer = tampered(scratch.path(), &plan, "longer.json", |p| {
+        for field in ["times", "q", "objects"] {
+            let samples = p["trajectory"][field].as_array().unwrap().clone();
+            p["trajectory"][field]
+                .as_array_mut()
+                .unwrap()
+                .extend(samples);
+        }
+    });
+    let (code, _, stderr) = pushplan(&["execute", longer.to_str().unwrap(), "--trials", "1"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("longer.json: trajectory: not the one"),
+        "{stderr}"
+    );
+    for (name, field, edit) in cases {
+        let path = tampered(scratch.path(), &plan, name, edit);
+        let (code, stdout, stderr) = pushplan(&["check", path.to_str().unwrap()]);
+        assert_eq!(code, 1, "{name}: {stdout}{stderr}");
+        assert!(
+            stdout.contains(&format!("  {field}: ")) && stdout.ends_with("plan FAILED\n"),
+            "{name}: names {field}: {stdout}"
+        );
+    }
+}
+
+#[test]
+fn a_plan_reads_its_scene_relative_to_itself_and_no_other_file() {
+    let scratch = common::Scratch::new("hostile-scene-path");
+    let folder = scratch.join("plans");
+    std::fs::create_dir(&folder).unwrap();
+    let (path, plan) = base_plan(&folder);
+    // Stored relative to the plan's folder, so it checks from any folder.
+    let scene = plan["scene"].as_str().unwrap();
+    assert!(scene.ends_with("scenes/herb_single_object.yaml") && !scene.starts_with('/'));
+    let (code, stdout, stderr) =
+        common::pushplan_in(scratch.path(), &["check", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "checked from another folder: {stdout}{stderr}");
+    // A plan naming another file as its scene: refused, and the file is not printed.
+    let passwd = tampered(&folder, &plan, "passwd.json", |p| {
+        p["scene"] = Value::from("/etc/passwd")
+    });
+    let (code, stdout, stderr) = pushplan(&["check", passwd.to_str().unwrap()]);
+    assert_eq!(code, 2, "{stdout}{stderr}");
+    assert!(
+        stderr.contains("scene: '/etc/passwd' is not a scene file") && !stderr.contains("root:"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn endless_and_special_files_are_refused_not_read() {
+    for command in ["plan", "check", "render"] {
+        let (code, stdout, stderr) = pushplan(&[command, "/dev/zero"]);
+        assert_eq!(code, 2, "{command}: {stdout}{stderr}");
+        assert!(
+            stderr.contains("/dev/zero") && stderr.contains("not a regular file"),
+            "{command}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn object_names_cannot_script_the_animation() {
+    let scratch = common::Scratch::new("hostile-names");
+    let name = "</script><script>document.body.id='pwned'</script>";
+    let scene = std::fs::read_to_string("scenes/herb_single_object.yaml")
+        .unwrap()
+        .replace("green_box", &format!("\"{name}\""))
+        .replace(
+            "../robots/",
+            &format!("{}/robots/", env!("CARGO_MANIFEST_DIR")),
+        );
+    let scene_path = scratch.join("markup.yaml");
+    std::fs::write(&scene_path, scene).unwrap();
+    let out = scratch.join("plan.json");
+    let pictures = scratch.join("pictures");
+    common::plan_solved(
+        scene_path.to_str().unwrap(),
+        &out,
+        &["--render", pictures.to_str().unwrap()],
+    );
+    let page = std::fs::read_to_string(pictures.join("animation.html")).unwrap();
+    assert_eq!(
+        page.matches("</script>").count(),
+        1,
+        "only the page's own script block closes"
+    );
+    assert!(!page.contains("<script>document"), "{page}");
+    for svg in ["snapshots.svg", "timeline.svg"] {
+        if let Ok(text) = std::fs::read_to_string(pictures.join(svg)) {
+            assert!(!text.contains("<script"), "{svg}");
+        }
+    }
+}
+
+#[test]
+fn a_panic_exits_with_3_and_bad_input_with_2() {
+    use pushplan::cli::exit_code;
+    use std::process::ExitCode;
+    assert_eq!(exit_code(|| panic!("a bug")), ExitCode::from(3));
+    assert_eq!(exit_code(|| Err("bad input".into())), ExitCode::from(2));
+    assert_eq!(exit_code(|| Ok(ExitCode::from(1))), ExitCode::from(1));
+    assert_eq!(exit_code(|| Ok(ExitCode::SUCCESS)), ExitCode::SUCCESS);
+}
+
+#[test]
+fn k_beyond_its_limit_is_refused_on_the_command_line() {
+    // --k 100000 --time 2 took 25 s.
+    let (code, stdout, stderr) =
+        pushplan(&["plan", "scenes/herb_single_object.yaml", "--k", "100000"]);
+    assert_eq!(code, 2, "{stdout}{stderr}");
+    assert!(stderr.contains("--k must be in [1, 10000]"), "{stderr}");
+}

@@ -1,0 +1,167 @@
+//! The layers hold: every `crate::` path in `src/` names a module of its own layer or of a
+//! layer below it. The model is a crate of its own (`model/`), so the compiler keeps it
+//! below everything here; this test keeps the order above it:
+//!
+//! model < planning < planner (the search's side) < bridge (`ffi`) < render, benchmark,
+//! install < cli.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// The modules each part of `src/` may name through `crate::`, beside the model's and its
+/// own: the layers below it. `ffi` above the applications is the bridge until it is
+/// narrowed to the types OMPL's concepts need (issue 56, point 2), which the CLI calls
+/// through for now.
+const LAYERS: &[(&str, &[&str])] = &[
+    ("planning", &[]),
+    ("planner", &["planning"]),
+    ("ffi", &["planning", "planner"]),
+    ("render", &["planning"]),
+    ("benchmark", &["planning"]),
+    ("install", &[]),
+    (
+        "cli",
+        &[
+            "planning",
+            "planner",
+            "ffi",
+            "render",
+            "benchmark",
+            "install",
+        ],
+    ),
+];
+
+/// The model's modules, which the root crate re-exports under the same names.
+const MODEL: &[&str] = &[
+    "collision",
+    "contact",
+    "distance",
+    "error",
+    "input",
+    "math",
+    "physics",
+    "propagate",
+    "random",
+    "robot",
+    "scene",
+    "semi_dynamic",
+    "state",
+    "validity",
+];
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            files.extend(rust_files(&path));
+        } else if path.extension().is_some_and(|x| x == "rs") {
+            files.push(path);
+        }
+    }
+    files
+}
+
+/// The first segment of every `crate::` path in `text`.
+fn crate_modules(text: &str) -> BTreeSet<String> {
+    text.match_indices("crate::")
+        .filter(|(at, _)| {
+            // `crate::` itself, not the end of another name (`pushplan_crate::`).
+            !text[..*at].ends_with(|c: char| c.is_alphanumeric() || c == '_')
+        })
+        .map(|(at, m)| {
+            text[at + m.len()..]
+                .chars()
+                .take_while(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || *c == '_')
+                .collect()
+        })
+        .filter(|name: &String| !name.is_empty())
+        .collect()
+}
+
+/// The layer a file of `src/` belongs to: its top-level module.
+fn layer_of(file: &Path) -> String {
+    let relative = file.strip_prefix(root().join("src")).unwrap();
+    let first = relative.components().next().unwrap().as_os_str();
+    Path::new(first)
+        .file_stem()
+        .unwrap()
+        .to_string_lossy()
+        .into_owned()
+}
+
+#[test]
+fn no_module_imports_a_layer_above_its_own() {
+    let mut upward = Vec::new();
+    let mut checked = 0;
+    for file in rust_files(&root().join("src")) {
+        let layer = layer_of(&file);
+        let Some((_, below)) = LAYERS.iter().find(|(name, _)| *name == layer) else {
+            continue; // lib.rs, main.rs: they assemble the layers
+        };
+        checked += 1;
+        let text = std::fs::read_to_string(&file).unwrap();
+        for module in crate_modules(&text) {
+            let allowed = module == layer
+                || MODEL.contains(&module.as_str())
+                || below.contains(&module.as_str());
+            if !allowed {
+                upward.push(format!(
+                    "{}: crate::{module} ({layer} may name {below:?} and the model)",
+                    file.strip_prefix(root()).unwrap().display()
+                ));
+            }
+        }
+    }
+    assert!(checked > 50, "only {checked} files checked");
+    assert!(upward.is_empty(), "upward imports:\n{}", upward.join("\n"));
+}
+
+#[test]
+fn every_part_of_src_has_a_layer() {
+    let mut parts: BTreeSet<String> = rust_files(&root().join("src"))
+        .iter()
+        .map(|f| layer_of(f))
+        .collect();
+    parts.remove("lib");
+    parts.remove("main");
+    let layered: BTreeSet<String> = LAYERS.iter().map(|(n, _)| n.to_string()).collect();
+    assert_eq!(
+        parts, layered,
+        "a new top-level module needs a place in LAYERS"
+    );
+}
+
+#[test]
+fn the_model_crate_depends_on_neither_cxx_nor_the_planner() {
+    // What the model's code may name, the compiler holds through this list.
+    let manifest = std::fs::read_to_string(root().join("model/Cargo.toml")).unwrap();
+    let dependencies: Vec<&str> = manifest
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.starts_with('#') && !l.starts_with('[') && l.contains('='))
+        .map(|l| l.split('=').next().unwrap().trim())
+        .collect();
+    assert!(dependencies.contains(&"nalgebra"), "{dependencies:?}");
+    for forbidden in ["cxx", "cxx-build", "pushplan"] {
+        assert!(
+            !dependencies.contains(&forbidden),
+            "model/Cargo.toml depends on {forbidden}"
+        );
+    }
+}
+
+#[test]
+fn the_scan_finds_what_it_looks_for() {
+    let found =
+        crate_modules("use crate::planning::path;\nlet x = crate::ffi::solve(); my_crate::no");
+    assert_eq!(
+        found,
+        ["ffi", "planning"].iter().map(|s| s.to_string()).collect()
+    );
+}

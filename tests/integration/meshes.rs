@@ -1,0 +1,283 @@
+//! Collision meshes in STL, OBJ and COLLADA; hull simplification; the shipped mesh robot.
+
+use crate::common;
+
+use nalgebra::{Isometry3, Point3, Vector3};
+use parry3d_f64::bounding_volume::BoundingVolume;
+use pushplan::collision::Primitive;
+use pushplan::robot::mesh::{load_convex_mesh, simplify_hull, HULL_TOLERANCE, MAX_HULL_VERTICES};
+use pushplan::robot::urdf::load_urdf;
+use std::path::Path;
+
+/// The 8 corners and 12 triangles of an axis-aligned box with half extents `h`.
+fn box_mesh(h: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
+    let corners = (0..8)
+        .map(|i| {
+            [
+                if i & 1 == 0 { -h[0] } else { h[0] },
+                if i & 2 == 0 { -h[1] } else { h[1] },
+                if i & 4 == 0 { -h[2] } else { h[2] },
+            ]
+        })
+        .collect();
+    let faces = vec![
+        [0, 2, 3],
+        [0, 3, 1],
+        [4, 5, 7],
+        [4, 7, 6],
+        [0, 1, 5],
+        [0, 5, 4],
+        [2, 6, 7],
+        [2, 7, 3],
+        [0, 4, 6],
+        [0, 6, 2],
+        [1, 3, 7],
+        [1, 7, 5],
+    ];
+    (corners, faces)
+}
+
+fn obj_text((vertices, faces): &(Vec<[f64; 3]>, Vec<[usize; 3]>)) -> String {
+    let mut text = String::from("# a box\nmtllib missing.mtl\no box\n");
+    for v in vertices {
+        text += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    for f in faces {
+        text += &format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+    }
+    text
+}
+
+/// COLLADA with the given unit (metres per unit) and up axis; the vertices are written as
+/// given (already in the file's frame and unit).
+fn dae_text((vertices, faces): &(Vec<[f64; 3]>, Vec<[usize; 3]>), meter: f64, up: &str) -> String {
+    let positions: Vec<String> = vertices
+        .iter()
+        .map(|v| format!("{} {} {}", v[0], v[1], v[2]))
+        .collect();
+    let indices: Vec<String> = faces
+        .iter()
+        .map(|f| format!("{} {} {}", f[0], f[1], f[2]))
+        .collect();
+    format!(
+        r##"<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+ <asset><unit meter="{meter}"/>{up}</asset>
+ <library_geometries><geometry id="g"><mesh>
+  <source id="p"><float_array id="pa" count="{count}">{positions}</float_array>
+   <technique_common><accessor source="#pa" count="{n}" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <triangles count="{triangles}"><input semantic="VERTEX" source="#v" offset="0"/><p>{indices}</p></triangles>
+ </mesh></geometry></library_geometries>
+ <library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node></visual_scene></library_visual_scenes>
+ <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"##,
+        count = 3 * vertices.len(),
+        n = vertices.len(),
+        positions = positions.join(" "),
+        triangles = faces.len(),
+        indices = indices.join(" "),
+    )
+}
+
+/// The axis-aligned bounds (min, max) of a loaded mesh's hull.
+fn bounds(path: &Path, scale: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let Primitive::ConvexHull { points } = load_convex_mesh(path, scale).unwrap() else {
+        panic!("a mesh loads as a convex hull");
+    };
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+fn assert_bounds(found: ([f64; 3], [f64; 3]), half: [f64; 3], what: &str) {
+    for k in 0..3 {
+        assert!(
+            (found.0[k] + half[k]).abs() < 1e-6 && (found.1[k] - half[k]).abs() < 1e-6,
+            "{what}: bounds {found:?}, expected ±{half:?}"
+        );
+    }
+}
+
+/// A box of half extents (0.05, 0.1, 0.2) m written as OBJ in metres and as COLLADA in
+/// millimetres with each up axis: every file loads as the same box in the URDF's z-up
+/// frame (COLLADA's Y_UP turns (x, y, z) to (x, -z, y), X_UP to (-y, -z, x)).
+#[test]
+fn obj_and_collada_meshes_load_in_metres_with_z_up() {
+    let scratch = common::Scratch::new("test-mesh-formats");
+    let half = [0.05, 0.1, 0.2];
+
+    let obj = scratch.join("box.obj");
+    std::fs::write(&obj, obj_text(&box_mesh(half))).unwrap();
+    assert_bounds(bounds(&obj, [1.0; 3]), half, "OBJ");
+    assert_bounds(bounds(&obj, [2.0, 1.0, 0.5]), [0.1, 0.1, 0.1], "OBJ scaled");
+
+    // In the file's frame, in mm: Z_UP keeps the axes; Y_UP's file y is our z, and our y
+    // is its -z; X_UP's file x is our z, our x its -y, our y its -z.
+    let mm = |h: [f64; 3]| h.map(|v| v * 1000.0);
+    for (up, file_half) in [
+        ("<up_axis>Z_UP</up_axis>", [half[0], half[1], half[2]]),
+        ("<up_axis>Y_UP</up_axis>", [half[0], half[2], half[1]]),
+        ("", [half[0], half[2], half[1]]),
+        ("<up_axis>X_UP</up_axis>", [half[2], half[0], half[1]]),
+    ] {
+        let dae = scratch.join("box.dae");
+        std::fs::write(&dae, dae_text(&box_mesh(mm(file_half)), 0.001, up)).unwrap();
+        assert_bounds(bounds(&dae, [1.0; 3]), half, &format!("COLLADA {up:?}"));
+    }
+
+    let ply = scratch.join("box.ply");
+    std::fs::write(&ply, "ply\n").unwrap();
+    let message = load_convex_mesh(&ply, [1.0; 3]).unwrap_err().to_string();
+    assert!(
+        message.contains("box.ply") && message.contains("OBJ") && message.contains("COLLADA"),
+        "{message}"
+    );
+    let broken = scratch.join("broken.dae");
+    std::fs::write(&broken, "<COLLADA><library_geometries>").unwrap();
+    let message = load_convex_mesh(&broken, [1.0; 3]).unwrap_err().to_string();
+    assert!(message.contains("broken.dae"), "{message}");
+}
+
+/// A UV sphere of radius 0.06 m with 64 × 32 facets (1 986 vertices).
+fn fine_sphere() -> Vec<Point3<f64>> {
+    let mut points = vec![Point3::new(0.0, 0.0, 0.06), Point3::new(0.0, 0.0, -0.06)];
+    for ring in 1..32 {
+        let polar = std::f64::consts::PI * ring as f64 / 32.0;
+        for s in 0..64 {
+            let a = 2.0 * std::f64::consts::PI * s as f64 / 64.0;
+            points.push(Point3::new(
+                0.06 * polar.sin() * a.cos(),
+                0.06 * polar.sin() * a.sin(),
+                0.06 * polar.cos(),
+            ));
+        }
+    }
+    points
+}
+
+/// The support function h(d) = max over points of p · d.
+fn support(points: &[Point3<f64>], d: &Vector3<f64>) -> f64 {
+    points
+        .iter()
+        .map(|p| p.coords.dot(d))
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The Hausdorff distance of two nested convex sets is the largest difference of their
+/// support functions over unit directions: sampled densely, it checks the simplifier's
+/// own measure (point-to-hull distances) by another method.
+#[test]
+fn simplified_hulls_keep_few_vertices_within_their_measured_error() {
+    let sphere = fine_sphere();
+    let simplified = simplify_hull(&sphere, HULL_TOLERANCE, MAX_HULL_VERTICES).unwrap();
+    assert!(simplified.points.len() <= MAX_HULL_VERTICES);
+    assert!(
+        simplified.exact_vertices > 1900,
+        "{}",
+        simplified.exact_vertices
+    );
+    assert!(simplified
+        .points
+        .iter()
+        .all(|p| sphere.iter().any(|q| (p - q).norm() < 1e-12)));
+
+    // Fibonacci directions over the sphere.
+    let n = 20_000;
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let mut largest_gap = 0.0_f64;
+    for i in 0..n {
+        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+        let r = (1.0 - z * z).sqrt();
+        let d = Vector3::new(
+            r * (golden * i as f64).cos(),
+            r * (golden * i as f64).sin(),
+            z,
+        );
+        let gap = support(&sphere, &d) - support(&simplified.points, &d);
+        assert!(
+            gap > -1e-12,
+            "the simplified hull lies inside the exact one"
+        );
+        largest_gap = largest_gap.max(gap);
+    }
+    assert!(
+        largest_gap <= simplified.error + 1e-9 && largest_gap >= 0.9 * simplified.error,
+        "support functions differ by up to {largest_gap} m; the simplifier measured {} m",
+        simplified.error
+    );
+    // A sphere needs many vertices: 64 of them leave a few millimetres on a 6 cm ball.
+    assert!(simplified.error < 0.004, "{}", simplified.error);
+
+    // A box with points on its faces simplifies to its 8 corners, exactly.
+    let mut cube: Vec<Point3<f64>> = box_mesh([0.1, 0.2, 0.3])
+        .0
+        .iter()
+        .map(|v| Point3::from(*v))
+        .collect();
+    cube.extend((0..50).map(|i| Point3::new(0.1, -0.2 + 0.008 * i as f64, 0.01 * (i % 7) as f64)));
+    let box_hull = simplify_hull(&cube, HULL_TOLERANCE, MAX_HULL_VERTICES).unwrap();
+    assert_eq!(box_hull.points.len(), 8);
+    assert!(box_hull.error < 1e-12, "{}", box_hull.error);
+}
+
+/// `robots/wam7_mesh.urdf` (examples/mesh_robot.rs: OBJ in metres, COLLADA in mm with y
+/// up) is the WAM of `robots/wam7.urdf` tessellated: each link's bounds, in any pose,
+/// match the primitive link's (parry's own shapes) within the tessellation's sagitta and
+/// the hull tolerance.
+#[test]
+fn the_shipped_mesh_robot_matches_the_primitive_one() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("robots");
+    let primitive = load_urdf(&root.join("wam7.urdf"), "hand", Isometry3::identity()).unwrap();
+    let mesh = load_urdf(&root.join("wam7_mesh.urdf"), "hand", Isometry3::identity()).unwrap();
+    assert_eq!(primitive.links.len(), mesh.links.len());
+    let pose = Isometry3::new(Vector3::new(0.3, -0.2, 0.5), Vector3::new(0.4, -0.7, 1.1));
+    for (p, m) in primitive.links.iter().zip(&mesh.links) {
+        assert_eq!(p.geometry.len(), m.geometry.len(), "{}", p.name);
+        for (gp, gm) in p.geometry.iter().zip(&m.geometry) {
+            // parry's exact boxes (a hull's own `aabb` may be a turned, larger box).
+            let exact =
+                |g: &pushplan::collision::Geometry| g.shape.compute_aabb(&g.world_pose(&pose));
+            let (a, b) = (exact(gp), exact(gm));
+            assert!(
+                gm.aabb(&pose).contains(&b),
+                "the broad phase's box holds the hull"
+            );
+            let gap = (a.mins - b.mins)
+                .abs()
+                .max()
+                .max((a.maxs - b.maxs).abs().max());
+            // A 32-segment circle's chord sits r (1 - cos(pi/32)) = 0.3 mm inside at
+            // r = 6 cm; the hull may leave a few mm more (see the sphere above).
+            assert!(gap < 0.005, "link {}: bounds differ by {gap} m", p.name);
+        }
+    }
+}
+
+/// The mesh robot plans the one-object scene, and the plan checks.
+#[test]
+fn a_mesh_robot_plans() {
+    let scratch = common::Scratch::new("test-mesh-robot");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scene = std::fs::read_to_string(root.join("scenes/herb_single_object.yaml"))
+        .unwrap()
+        .replace(
+            "urdf: ../robots/wam7.urdf",
+            &format!("urdf: {}", root.join("robots/wam7_mesh.urdf").display()),
+        );
+    assert!(scene.contains("wam7_mesh.urdf"));
+    let scene_path = scratch.join("mesh_robot.yaml");
+    std::fs::write(&scene_path, scene).unwrap();
+    let plan = scratch.join("plan.json");
+    common::plan_solved(scene_path.to_str().unwrap(), &plan, &[]);
+    let (code, stdout, stderr) =
+        common::pushplan_in(scratch.path(), &["check", plan.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+}

@@ -1,0 +1,110 @@
+//! Robustness in the planner's own terms (perturbed re-simulations) and open-loop
+//! execution in the 3D engine, on a plan of the planar hand scene.
+
+use pushplan::planning::execute::{execute, ExecuteSettings};
+use pushplan::planning::path::PathControl;
+use pushplan::planning::plan_file::PlanFile;
+use pushplan::planning::robustness::{robustness, Noise};
+use pushplan::{EeAction, Scene};
+
+const SCENE: &str = "tests/data/hand_push_straight.yaml";
+
+/// The hand (front face at x 0.42) pushes the box (back face at 0.55) straight along +x
+/// at 0.2 m/s for 1.9 s, so the box ends at x 0.85, the goal disc's centre; then it
+/// backs off.
+fn controls() -> Vec<PathControl> {
+    vec![
+        PathControl {
+            action: EeAction::planar(0.2, 0.0, 0.0),
+            steps: 190,
+        },
+        PathControl {
+            action: EeAction::planar(-0.2, 0.0, 0.0),
+            steps: 20,
+        },
+    ]
+}
+
+#[test]
+fn without_noise_every_trial_is_the_plan_and_more_noise_reaches_the_goal_less_often() {
+    let scene = Scene::load(SCENE).unwrap();
+    let none = Noise {
+        position: 0.0,
+        yaw: 0.0,
+        mass: 0.0,
+        mu_g: 0.0,
+        mu_c: 0.0,
+        c: 0.0,
+        friction_centre: 0.0,
+    };
+    let exact = robustness(&scene, &controls(), &none, 5, 1);
+    assert_eq!(exact.success_rate, 1.0, "{:?}", exact.trials[0]);
+    assert_eq!(exact.max_deviation, 0.0);
+    let default = robustness(&scene, &controls(), &Noise::default(), 20, 1);
+    assert!(default.success_rate >= 0.9, "{}", default.success_rate);
+    assert!(default.max_deviation > 0.0 && default.max_deviation < 0.05);
+    // Start poses off by up to 10 cm: the box often ends outside the disc.
+    let wild = Noise {
+        position: 0.1,
+        ..Noise::default()
+    };
+    let report = robustness(&scene, &controls(), &wild, 20, 1);
+    assert!(
+        report.success_rate < default.success_rate,
+        "{}",
+        report.success_rate
+    );
+    // The same seed draws the same trials.
+    assert_eq!(report, robustness(&scene, &controls(), &wild, 20, 1));
+}
+
+#[test]
+fn the_plan_executed_in_3d_reaches_the_goal_and_matches_the_prediction() {
+    let scene = Scene::load(SCENE).unwrap();
+    let settings = pushplan::planning::plan_file::PlanSettings {
+        planner: pushplan::planning::PlannerKind::PcRrt,
+        seed: 1,
+        k: 3,
+        goal_bias: 0.05,
+        time_limit: 1.0,
+        shortcut: 0.0,
+        threads: 1,
+        restart_steps: 0,
+        fallback_steps: 0,
+    };
+    let plan = PlanFile::build(SCENE, scene.clone(), &settings, &controls(), None).unwrap();
+    assert!(plan.solved);
+    let report = execute(&scene, &plan, &ExecuteSettings::default()).unwrap();
+    assert_eq!(report.trials.len(), 10);
+    assert_eq!(report.success_rate, 1.0, "{:?}", report.trials);
+    assert_eq!(report.tipped_trials, 0);
+    // The nominal trial ends within 1 cm of the model's prediction.
+    assert!(
+        report.trials[0].final_errors[0] < 0.01,
+        "{:?}",
+        report.trials[0]
+    );
+}
+
+#[test]
+fn an_unknown_pressure_distribution_makes_a_point_push_fragile_and_leaves_a_flat_push_robust() {
+    // The model's noise shifts the centre of friction (the support pressure is not known
+    // to be uniform); the world's does not. A flat face pushing the box straight holds
+    // it whatever the pressure; a small round pusher through the centroid turns it one
+    // way or the other.
+    let base = std::fs::read_to_string(SCENE).unwrap();
+    let point = base.replace(
+        "shape: {type: box, size: [0.04, 0.12, 0.08]}",
+        "shape: {type: cylinder, radius: 0.02, height: 0.08}",
+    );
+    let rates = |yaml: &str| {
+        let scene = Scene::from_yaml(yaml, std::path::Path::new(SCENE)).unwrap();
+        let world = robustness(&scene, &controls(), &Noise::world(), 40, 3).success_rate;
+        let model = robustness(&scene, &controls(), &Noise::default(), 40, 3).success_rate;
+        (world, model)
+    };
+    assert_eq!(rates(&base), (1.0, 1.0), "the flat push");
+    let (world, model) = rates(&point);
+    assert_eq!(world, 1.0, "the point push in the world's noise");
+    assert!(model < 0.8, "the point push in the model's noise: {model}");
+}
