@@ -49,12 +49,21 @@ fn main() {
         }
     };
 
-    // Every C++ source in cpp/, in a stable order.
-    let mut sources: Vec<PathBuf> = std::fs::read_dir("cpp")
-        .expect("cpp/ exists")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "cpp"))
-        .collect();
+    // Every C++ source under cpp/ (problem/, planners/*/, search/, api/), in a stable order.
+    let mut sources = Vec::new();
+    let mut folders = vec![PathBuf::from("cpp")];
+    while let Some(dir) = folders.pop() {
+        for path in std::fs::read_dir(&dir)
+            .expect("cpp/ is readable")
+            .filter_map(|e| e.ok().map(|e| e.path()))
+        {
+            if path.is_dir() {
+                folders.push(path);
+            } else if path.extension().is_some_and(|x| x == "cpp") {
+                sources.push(path);
+            }
+        }
+    }
     sources.sort();
     let mut build = cxx_build::bridges(["src/ffi.rs", "src/ffi/entry.rs"]);
     build.files(&sources);
@@ -70,7 +79,6 @@ fn main() {
         println!("cargo:rustc-link-search=native={}", deps.ompl_lib.display());
     }
     println!("cargo:rustc-link-lib=ompl");
-    build_fcl_oracle(&deps);
     for dir in ["cpp", "include"] {
         println!("cargo:rerun-if-changed={dir}");
     }
@@ -112,9 +120,6 @@ fn find_dependencies() -> Result<Dependencies, Vec<&'static str>> {
     }
     if ompl_include.is_some() && ompl_lib.is_none() {
         missing.push("the OMPL library");
-    }
-    if !fcl_header_exists() {
-        missing.push("FCL headers (for the tests)");
     }
     match (ompl_include, eigen_include, ompl_lib) {
         (Some(ompl_include), Some(eigen_include), Some(ompl_lib)) if missing.is_empty() => {
@@ -248,49 +253,6 @@ fn pkg_config(package: &str, flag: &str) -> Vec<String> {
                 .collect()
         })
         .unwrap_or_default()
-}
-
-fn fcl_header_exists() -> bool {
-    pkg_config("fcl", "--cflags-only-I")
-        .iter()
-        .filter_map(|flag| flag.strip_prefix("-I").map(PathBuf::from))
-        .chain([
-            PathBuf::from("/usr/include"),
-            PathBuf::from("/usr/local/include"),
-        ])
-        .any(|dir| dir.join("fcl/fcl.h").exists())
-}
-
-/// FCL, the independent oracle of the collision tests: linked into test binaries only,
-/// so the library itself does not depend on FCL.
-fn build_fcl_oracle(deps: &Dependencies) {
-    let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let mut build = cxx_build::bridge("tests/integration/fcl_oracle.rs");
-    for flag in pkg_config("fcl", "--cflags-only-I") {
-        if let Some(dir) = flag.strip_prefix("-I") {
-            build.include(dir);
-        }
-    }
-    build
-        .file("tests/integration/fcl_oracle.cpp")
-        .include(&deps.eigen_include)
-        .std("c++17")
-        .flag_if_supported("-Wno-unused-parameter")
-        .cargo_metadata(false)
-        .compile("pushplan-fcl-oracle");
-    println!(
-        "cargo:rustc-link-arg-tests={}",
-        out.join("libpushplan-fcl-oracle.a").display()
-    );
-    println!("cargo:rustc-link-arg-tests=-lfcl");
-    println!("cargo:rustc-link-arg-tests=-lccd");
-    for file in [
-        "tests/integration/fcl_oracle.rs",
-        "tests/integration/fcl_oracle.cpp",
-        "tests/integration/fcl_oracle.h",
-    ] {
-        println!("cargo:rerun-if-changed={file}");
-    }
 }
 
 /// `target/<profile>/pushplan.pc`, pointing at this checkout's headers and the library

@@ -3,7 +3,7 @@
 # of each planner on every scene of the paper's set (1-7 objects) and of the dense set
 # (8-20 objects), SECONDS each, then, per scene class and planner, the share of
 # propagations stopped by each rule, and the share that moved the goal object or other
-# objects. The counts are run properties of the benchmark log (cpp/benchmark.cpp).
+# objects. The counts are run properties of the benchmark log (cpp/api/benchmark.cpp).
 #
 #   benches/stops.sh [SECONDS] [PLANNERS] [PUSHPLAN_BINARY]
 set -eu

@@ -26,7 +26,7 @@ use convert::{
 // twin, a trivial type. `PlannerKind`: the values of `enum class PlannerKind :
 // std::uint8_t` (tests/cpp/api_contract.cpp sends every kind through the bridge and
 // back); `PathMetrics` (include/pushplan/pushplan.h) and `PlannerParams`
-// (cpp/bridge_types.h): the same fields in the same order, checked there by
+// (cpp/problem/bridge_types.h): the same fields in the same order, checked there by
 // static_assert on their offsets.
 unsafe impl cxx::ExternType for PlannerKind {
     type Id = cxx::type_id!("pushplan::PlannerKind");
@@ -268,7 +268,7 @@ pub mod bridge {
         type PlannerKind = crate::planning::PlannerKind;
         #[namespace = "pushplan"]
         type PathMetrics = crate::planning::path::PathMetrics;
-        include!("pushplan/cpp/bridge_types.h");
+        include!("pushplan/cpp/problem/bridge_types.h");
         #[namespace = "pushplan::detail"]
         type PlannerParams = crate::ffi::PlannerParams;
     }

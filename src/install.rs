@@ -10,7 +10,10 @@
 //! ```
 //!
 //! The headers are compiled into the binary (an installed copy does not need the
-//! checkout); the library is the `libpushplan.a` cargo built next to the binary.
+//! checkout); the library is the `libpushplan.a` cargo built next to the binary, installed
+//! without its debug sections (binutils' `strip --strip-debug`, where it is on the PATH):
+//! Rust's standard library ships with debug info, which would otherwise be most of the
+//! archive and of every program linked against it.
 
 use std::path::{Path, PathBuf};
 
@@ -53,6 +56,7 @@ pub fn install(prefix: &Path, binary: &Path) -> Result<Vec<PathBuf>, String> {
     };
     put("bin/pushplan", Contents::Copy(binary))?;
     put("lib/libpushplan.a", Contents::Copy(&library))?;
+    strip_debug_sections(&prefix.join("lib/libpushplan.a"))?;
     for (path, text) in HEADERS {
         put(&format!("include/{path}"), Contents::Text(text.to_string()))?;
     }
@@ -66,6 +70,26 @@ pub fn install(prefix: &Path, binary: &Path) -> Result<Vec<PathBuf>, String> {
         Contents::Text(fill(CMAKE_VERSION)),
     )?;
     Ok(written)
+}
+
+/// Removes the debug sections of the installed `archive` in place. Without `strip` on the
+/// PATH the archive stays as built (larger, and as usable); a `strip` that fails is an
+/// error naming the file.
+fn strip_debug_sections(archive: &Path) -> Result<(), String> {
+    match std::process::Command::new("strip")
+        .arg("--strip-debug")
+        .arg(archive)
+        .output()
+    {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(format!("{}: strip: {e}", archive.display())),
+        Ok(out) if out.status.success() => Ok(()),
+        Ok(out) => Err(format!(
+            "{}: strip --strip-debug failed: {}",
+            archive.display(),
+            String::from_utf8_lossy(&out.stderr).trim()
+        )),
+    }
 }
 
 enum Contents<'a> {

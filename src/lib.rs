@@ -8,10 +8,13 @@
 //!
 //! Units are SI throughout (m, rad, s, kg, N); the world frame has z up.
 
+#![warn(missing_docs)]
+
 pub mod benchmark;
-pub mod cli;
+// The cxx bridge is reshaped into narrow types, one per OMPL concept, by issue 56's point 2;
+// its declarations get their docs there.
+#[allow(missing_docs)]
 pub mod ffi;
-pub mod install;
 pub mod planner;
 pub mod planning;
 pub mod render;

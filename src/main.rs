@@ -1,12 +1,15 @@
 //! The `pushplan` command line: its syntax (clap) and the dispatch to
-//! [`pushplan::cli`].
+//! [`cli`].
+
+mod cli;
+mod install;
 
 use clap::{Parser, Subcommand};
-use pushplan::benchmark::grid::{Grid, Shard};
-use pushplan::cli::{
+use cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
     plan, plots, robot, BenchOptions, PickPlaceOptions, PlanOptions, RobotQuery,
 };
+use pushplan::benchmark::grid::{Grid, Shard};
 use pushplan::planning::PlannerKind;
 use pushplan::scene::builtin;
 use pushplan::scene::generate::Design;
@@ -355,7 +358,7 @@ fn main() -> ExitCode {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
     let cli = Cli::parse();
-    pushplan::cli::exit_code(move || run(cli.command))
+    cli::exit_code(move || run(cli.command))
 }
 
 /// The scene given, or the built-in default scene written out (with its robot) to the
@@ -394,14 +397,14 @@ fn run(command: Command) -> Result<ExitCode, String> {
         } => {
             let scene = scene_or_default(scene)?;
             let options = PlanOptions {
-                grasp_goal: goal.map(|g| pushplan::cli::grasp_goal(&g)).transpose()?,
+                grasp_goal: goal.map(|g| cli::grasp_goal(&g)).transpose()?,
                 grasp_after: grasp,
                 sample_probability,
                 robust,
                 robust_rate,
                 robust_shortcut,
                 particles,
-                threads: threads.unwrap_or_else(pushplan::cli::cores),
+                threads: threads.unwrap_or_else(cli::cores),
                 restart,
                 fallback,
                 time,

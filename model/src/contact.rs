@@ -16,7 +16,9 @@ use std::ops::Range;
 /// One contact point between a link and an object, world frame.
 #[derive(Clone, Copy, Debug)]
 pub struct ArmContact {
+    /// Index of the link in the robot's chain.
     pub link: usize,
+    /// Index of the object in the scene.
     pub object: usize,
     /// `point_a` on the object, `point_b` on the link, normal out of the object.
     pub point: ContactPoint,
@@ -25,6 +27,7 @@ pub struct ArmContact {
 /// Bounding boxes of the robot's solid links at one configuration (the broad phase).
 #[derive(Clone, Debug, Default)]
 pub struct ArmBounds {
+    /// Each solid link's index and world bounding box.
     pub links: Vec<(usize, Aabb)>,
     /// Box around the whole arm.
     pub all: Option<Aabb>,
@@ -234,6 +237,7 @@ pub fn planar_contacts(
 pub struct ObjectPairContact {
     /// The object the normal points out of, and the one it points into.
     pub from: usize,
+    /// The object the normal points into.
     pub into: usize,
     /// Midpoint of the two surface points (m).
     pub point: Vector2<f64>,
@@ -284,8 +288,11 @@ pub fn object_pair_contacts(
 /// One object's planar contacts, with the link and the 3D elevation of each.
 #[derive(Clone, Debug, Default)]
 pub struct ObjectContacts {
+    /// The contacts as the planar pushing problem takes them (object frame).
     pub planar: Vec<PlanarContact>,
+    /// The link of each contact.
     pub links: Vec<usize>,
+    /// Where each contact lies in 3D (its height on the object).
     pub elevations: Vec<ContactElevation>,
     /// Links passing over the object's top (vertical normals): the link, a contact
     /// whose normal is the way the link moves, and its height.

@@ -10,6 +10,10 @@ use crate::scene::{Goal, Scene};
 use crate::state::State;
 use std::f64::consts::PI;
 
+/// The distance the planners measure between states (the paper's weighted metric): the
+/// joint-space distance times `robot_weight` plus, per object, its planar distance (yaw
+/// counted as `rotation_length` m per rad) times `object_weight`, the goal object's times
+/// `goal_object_weight`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DistanceMetric {
     /// Weight of the joint-space distance (1/rad).
@@ -74,6 +78,8 @@ impl DistanceMetric {
         (a.x - b.x).powi(2) + (a.y - b.y).powi(2) + dtheta * dtheta
     }
 
+    /// The distance from `a` to `b` (a weighted sum of rad and m); symmetric, zero for
+    /// equal states.
     pub fn distance(&self, a: &State, b: &State) -> f64 {
         self.combine((&a.q - &b.q).norm(), |i| {
             self.squared_object_distance(&a.objects[i], &b.objects[i])
@@ -154,7 +160,8 @@ impl DistanceMetric {
 }
 
 /// The angle (rad) from `theta` to the nearest angle of the arc swept counterclockwise
-/// from `lo` to `hi` (raw angles, `lo <= hi`; a span of a turn or more is the whole circle).
+/// from `lo` to `hi` (raw angles, `lo <= hi`; a span of a turn or more is the whole
+/// circle).
 fn arc_gap(theta: f64, lo: f64, hi: f64) -> f64 {
     if (lo..=hi).contains(&theta) {
         return 0.0;

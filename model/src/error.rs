@@ -8,25 +8,52 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Clone, PartialEq)]
 pub enum Error {
     /// The file could not be read.
-    Io { file: PathBuf, message: String },
-    /// The file is not well-formed (syntax, unknown key, wrong type).
-    Parse {
+    Io {
+        /// The file.
         file: PathBuf,
-        field: String,
+        /// Why it could not be read.
         message: String,
     },
-    /// A value is well-formed but not acceptable (negative mass, NaN, goal off the table ...).
-    Invalid {
+    /// The file is not well-formed (syntax, unknown key, wrong type).
+    Parse {
+        /// The file.
         file: PathBuf,
+        /// The field, a dotted path (`objects[2].mu_c`); empty for the whole file.
         field: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A value is well-formed but not acceptable (negative mass, NaN, goal off the table
+    /// ...).
+    Invalid {
+        /// The file.
+        file: PathBuf,
+        /// The field, a dotted path (`objects[2].mu_c`).
+        field: String,
+        /// What is wrong with its value.
         message: String,
     },
     /// The robot description (URDF) is unusable.
-    Urdf { file: PathBuf, message: String },
+    Urdf {
+        /// The URDF file.
+        file: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
     /// A collision mesh is missing or unusable.
-    Mesh { file: PathBuf, message: String },
+    Mesh {
+        /// The mesh file.
+        file: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
     /// The scene's start state violates a validity rule.
-    InvalidStart { file: PathBuf, reason: String },
+    InvalidStart {
+        /// The scene file.
+        file: PathBuf,
+        /// The rule broken.
+        reason: String,
+    },
 }
 
 impl Error {
@@ -38,6 +65,7 @@ impl Error {
         }
     }
 
+    /// A value of `field` in `file` is not acceptable: `message` says why.
     pub fn invalid(file: &Path, field: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Invalid {
             file: file.to_path_buf(),
@@ -96,4 +124,5 @@ impl fmt::Display for Error {
 
 impl std::error::Error for Error {}
 
+/// A result whose error is a model-loading [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;

@@ -15,6 +15,8 @@
 //!
 //! Units are SI throughout (m, rad, s, kg, N); the world frame has z up.
 
+#![warn(missing_docs)]
+
 pub mod collision;
 pub mod contact;
 pub mod distance;

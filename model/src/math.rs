@@ -34,19 +34,25 @@ pub fn closest_on_segment(p: Vector2<f64>, a: Vector2<f64>, b: Vector2<f64>) -> 
     a + ab * ((p - a).dot(&ab) / length2).clamp(0.0, 1.0)
 }
 
-/// An object's configuration on the table: position of its origin (m) and yaw (rad), world frame.
+/// An object's configuration on the table: position of its origin (m) and yaw (rad), world
+/// frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pose2 {
+    /// x of the origin (m).
     pub x: f64,
+    /// y of the origin (m).
     pub y: f64,
+    /// Yaw about the world's z (rad).
     pub theta: f64,
 }
 
 impl Pose2 {
+    /// The pose at (`x`, `y`) (m) with yaw `theta` (rad).
     pub const fn new(x: f64, y: f64, theta: f64) -> Self {
         Self { x, y, theta }
     }
 
+    /// The position of the origin (m).
     pub fn translation(&self) -> Vector2<f64> {
         Vector2::new(self.x, self.y)
     }
@@ -147,18 +153,23 @@ impl Pose2 {
 /// in the object frame (m/s, rad/s).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Twist2 {
+    /// Velocity of the origin along the object's x (m/s).
     pub vx: f64,
+    /// Velocity of the origin along the object's y (m/s).
     pub vy: f64,
+    /// Angular velocity about z (rad/s).
     pub omega: f64,
 }
 
 impl Twist2 {
+    /// At rest.
     pub const ZERO: Twist2 = Twist2 {
         vx: 0.0,
         vy: 0.0,
         omega: 0.0,
     };
 
+    /// Is every component exactly zero?
     pub fn is_zero(&self) -> bool {
         self.vx == 0.0 && self.vy == 0.0 && self.omega == 0.0
     }

@@ -1,14 +1,17 @@
 //! A small deterministic random generator (SplitMix64): what the model draws depends on
 //! its seed only, on every platform.
 
+/// The SplitMix64 generator (Steele, Lea and Flood): 64 bits of state, a full period.
 #[derive(Clone, Debug)]
 pub struct SplitMix64(u64);
 
 impl SplitMix64 {
+    /// A generator whose draws depend on `seed` only.
     pub fn new(seed: u64) -> Self {
         Self(seed)
     }
 
+    /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;

@@ -4,6 +4,8 @@
 use crate::math::Pose2;
 use nalgebra::DVector;
 
+/// A state `x = (q, o^1, ..., o^M)`: the robot's joints and every movable object's planar
+/// pose.
 #[derive(Debug, PartialEq)]
 pub struct State {
     /// Joint values (rad or m), in the robot's configuration order.
@@ -40,6 +42,7 @@ impl State {
         dof + 3 * objects
     }
 
+    /// The state in the flat layout (`flat_len` values).
     pub fn to_flat(&self) -> Vec<f64> {
         let mut out = vec![0.0; Self::flat_len(self.q.len(), self.objects.len())];
         self.write_flat(&mut out);

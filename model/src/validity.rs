@@ -22,74 +22,114 @@ use std::fmt;
 /// Why a state is invalid. Names are the scene's link, object and obstacle names.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Invalid {
+    /// A joint is outside its limits.
     JointLimit {
+        /// The joint's name.
         joint: String,
+        /// Its value (rad or m).
         value: f64,
     },
+    /// The step could not be projected onto the pushing plane.
     Projection(ProjectionFailure),
+    /// Two links collide.
     SelfCollision {
+        /// One link.
         link_a: String,
+        /// The other.
         link_b: String,
     },
+    /// A link collides with the table.
     ArmHitsTable {
+        /// The link.
         link: String,
     },
+    /// A link collides with an obstacle.
     ArmHitsObstacle {
+        /// The link.
         link: String,
+        /// The obstacle.
         obstacle: String,
     },
+    /// A link sinks into an object deeper than the overlap tolerance.
     ArmPenetratesObject {
+        /// The link.
         link: String,
+        /// The object.
         object: String,
+        /// How deep (m).
         depth: f64,
     },
+    /// A link presses down on an object's top (the planar model cannot push from above).
     PressesOnTop {
+        /// The link.
         link: String,
+        /// The object.
         object: String,
     },
+    /// Two objects overlap.
     ObjectsOverlap {
+        /// One object.
         object_a: String,
+        /// The other.
         object_b: String,
     },
     /// A moving object came closer to another object or an obstacle than the clearance
     /// (`physics.object_clearance`, or the pair's distance at the start when smaller).
     TooClose {
+        /// The moving object.
         object: String,
+        /// The object or obstacle it came close to.
         other: String,
+        /// Their distance (m).
         distance: f64,
     },
+    /// An object collides with an obstacle.
     ObjectHitsObstacle {
+        /// The object.
         object: String,
+        /// The obstacle.
         obstacle: String,
     },
+    /// An object's footprint is not wholly on the table.
     ObjectOffTable {
+        /// The object.
         object: String,
     },
+    /// An object is squeezed between pushers: no motion satisfies every contact.
     Jammed {
+        /// The object.
         object: String,
     },
     /// The pushers' forces would tip the object over (its support pressure would leave
     /// the footprint); `link` pushes with the largest tipping moment.
     Tips {
+        /// The object.
         object: String,
+        /// The link.
         link: String,
     },
     /// A link closes in on an object closer than `physics.arm_clearance` (m) at a height
     /// where a push that slides the object would tip it.
     ClosesInAtTippingHeight {
+        /// The link.
         link: String,
+        /// The object.
         object: String,
+        /// Their distance (m).
         distance: f64,
     },
     /// Semi-dynamic model: an object still moves `physics.t_max` after the step, at
     /// `speed` (m/s).
     Unsettled {
+        /// The fastest object.
         object: String,
+        /// Its speed (m/s).
         speed: f64,
     },
     /// A grasp goal whose object must stay where it starts (`goal.object_may_move: false`):
     /// a push moved it.
     MovesObjectToGrasp {
+        /// The object.
         object: String,
     },
 }

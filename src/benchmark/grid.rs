@@ -15,7 +15,9 @@ pub const MANIFEST: &str = "grid.json";
 pub struct Grid {
     /// Scene files, as given.
     pub scenes: Vec<PathBuf>,
+    /// Planners, in the order their runs are made.
     pub planners: Vec<PlannerKind>,
+    /// Runs of each planner on each scene.
     pub runs: u32,
     /// Time limit per run (s).
     pub time: f64,
@@ -47,8 +49,11 @@ fn one_thread() -> u32 {
 /// One run of one planner on one scene (indices into the grid's lists).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Cell {
+    /// Index into the grid's scenes.
     pub scene: usize,
+    /// Index into the grid's planners.
     pub planner: usize,
+    /// The run's index (from 0): with the grid's seed, it seeds the run.
     pub run: u32,
 }
 
@@ -56,7 +61,9 @@ pub struct Cell {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Shard {
+    /// Which shard (from 1).
     pub index: usize,
+    /// How many shards the grid is cut into.
     pub count: usize,
 }
 
@@ -147,17 +154,21 @@ impl Grid {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Manifest {
+    /// The whole grid.
     pub grid: Grid,
+    /// The shard this folder holds.
     pub shard: Shard,
 }
 
 impl Manifest {
+    /// Writes the manifest into `dir`; an error names the file.
     pub fn write(&self, dir: &Path) -> Result<(), String> {
         let path = dir.join(MANIFEST);
         let text = serde_json::to_string_pretty(self).expect("a manifest serialises") + "\n";
         std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
     }
 
+    /// Reads the manifest of `dir`; an error names the file.
     pub fn read(dir: &Path) -> Result<Manifest, String> {
         let path = dir.join(MANIFEST);
         let text = std::fs::read_to_string(&path).map_err(|e| {

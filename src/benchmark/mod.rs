@@ -36,11 +36,13 @@ impl PlannerRuns {
 /// One log: one experiment (scene) and its planners.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BenchmarkLog {
+    /// The experiment's name (the scene's).
     pub experiment: String,
     /// The experiment's `objects` parameter (pushplan writes it).
     pub objects: Option<usize>,
     /// The time limit per run (s).
     pub time_limit: f64,
+    /// Every planner's runs.
     pub planners: Vec<PlannerRuns>,
 }
 

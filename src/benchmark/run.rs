@@ -167,7 +167,9 @@ fn partial_log(log: &Path) -> PathBuf {
 /// What merging found.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Merged {
+    /// The database `ompl_benchmark_statistics` wrote (`results.db`).
     pub database: PathBuf,
+    /// The merged OMPL log of each scene.
     pub scene_logs: Vec<PathBuf>,
     /// Cells with no log (their process failed), as `scene planner run`.
     pub missing: Vec<String>,

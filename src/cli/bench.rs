@@ -2,10 +2,10 @@
 //! a cell per process (a shard of it, if asked), merged into a Planner Arena database, and
 //! the paper's plots drawn from the logs.
 
-use crate::benchmark::grid::{Grid, Shard};
-use crate::benchmark::run::{merge, run_shard};
-pub use crate::ffi::BenchOptions;
-use crate::Scene;
+use pushplan::benchmark::grid::{Grid, Shard};
+use pushplan::benchmark::run::{merge, run_shard};
+pub use pushplan::ffi::BenchOptions;
+use pushplan::Scene;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -60,7 +60,7 @@ pub fn bench(
 /// run of one planner on one scene with OMPL's benchmark tooling, its log written to
 /// `options.log`.
 pub fn bench_scene(scene: &Path, options: &BenchOptions) -> Result<ExitCode, String> {
-    crate::ffi::benchmark_scene(scene, options).map(|_| ExitCode::SUCCESS)
+    pushplan::ffi::benchmark_scene(scene, options).map(|_| ExitCode::SUCCESS)
 }
 
 /// `bench merge`: the shards in `dirs` into `out` (logs, database, plots).
@@ -100,9 +100,9 @@ pub fn plots(dir: &Path) -> Result<ExitCode, String> {
     }
     let logs = logs
         .iter()
-        .map(|p| crate::benchmark::read_log(p))
+        .map(|p| pushplan::benchmark::read_log(p))
         .collect::<Result<Vec<_>, _>>()?;
-    for file in crate::benchmark::plots::write_plots(&logs, &dir.join("plots"))? {
+    for file in pushplan::benchmark::plots::write_plots(&logs, &dir.join("plots"))? {
         println!("wrote {}", file.display());
     }
     Ok(ExitCode::SUCCESS)

@@ -1,9 +1,9 @@
 //! `pushplan check`: re-simulate a plan file, optionally under parameter noise.
 
-use crate::input::MAX_PLAN_BYTES;
-use crate::planning::plan_file::PlanFile;
-use crate::planning::robustness::Noise;
-use crate::planning::Problem;
+use pushplan::input::MAX_PLAN_BYTES;
+use pushplan::planning::plan_file::PlanFile;
+use pushplan::planning::robustness::Noise;
+use pushplan::planning::Problem;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -15,7 +15,7 @@ fn is_pick_place_file(path: &Path) -> bool {
     struct Format {
         format: Option<String>,
     }
-    crate::input::read_text(path, MAX_PLAN_BYTES)
+    pushplan::input::read_text(path, MAX_PLAN_BYTES)
         .ok()
         .and_then(|text| serde_json::from_str::<Format>(&text).ok())
         .and_then(|f| f.format)

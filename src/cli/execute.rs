@@ -1,8 +1,8 @@
 //! `pushplan execute`: play a plan in the 3D engine and report what happened.
 
-use crate::planning::execute::{ExecuteSettings, ExecutionReport};
-use crate::planning::plan_file::PlanFile;
-use crate::Scene;
+use pushplan::planning::execute::{ExecuteSettings, ExecutionReport};
+use pushplan::planning::plan_file::PlanFile;
+use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -31,10 +31,10 @@ pub fn execute(
         record: render.is_some(),
         ..ExecuteSettings::default()
     };
-    let report = crate::planning::execute::execute(&scene, &plan, &settings)?;
+    let report = pushplan::planning::execute::execute(&scene, &plan, &settings)?;
     print_execution(path, &scene, &report);
     if let Some(dir) = render {
-        let page = crate::render::render_execution(&plan, path, &report.trials[0].frames, dir)?;
+        let page = pushplan::render::render_execution(&plan, path, &report.trials[0].frames, dir)?;
         println!("animation written to {}", page.display());
     }
     if let Some(json) = json {
@@ -69,15 +69,15 @@ fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {
             .collect();
         let divergence = match &t.first_divergence {
             None => "none".to_string(),
-            Some(crate::planning::execute::Divergence::Tipped { object, time }) => {
+            Some(pushplan::planning::execute::Divergence::Tipped { object, time }) => {
                 format!("{object} tips at {time:.2} s")
             }
-            Some(crate::planning::execute::Divergence::ObjectContact {
+            Some(pushplan::planning::execute::Divergence::ObjectContact {
                 object_a,
                 object_b,
                 time,
             }) => format!("{object_a} touches {object_b} at {time:.2} s"),
-            Some(crate::planning::execute::Divergence::Drift {
+            Some(pushplan::planning::execute::Divergence::Drift {
                 object,
                 time,
                 error,

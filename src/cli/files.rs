@@ -1,12 +1,12 @@
 //! The small commands: `render`, `scenes generate`, `install`.
 
-use crate::planning::plan_file::PlanFile;
+use pushplan::planning::plan_file::PlanFile;
 use std::path::Path;
 use std::process::ExitCode;
 
 pub fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, String> {
     let plan = PlanFile::read(plan_path)?;
-    let files = crate::render::render(&plan, plan_path, dir, times)?;
+    let files = pushplan::render::render(&plan, plan_path, dir, times)?;
     for file in [&files.snapshots, &files.timeline, &files.animation] {
         println!("wrote {}", file.display());
     }
@@ -14,7 +14,7 @@ pub fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, Str
 }
 
 pub fn generate_scenes(
-    design: crate::scene::generate::Design,
+    design: pushplan::scene::generate::Design,
     count: usize,
     objects: &str,
     seed: u64,
@@ -24,7 +24,7 @@ pub fn generate_scenes(
         .split_once("..")
         .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)))
         .ok_or_else(|| format!("--objects must look like 1..7, got '{objects}'"))?;
-    let files = crate::scene::generate::generate(design, count, range, seed, out)?;
+    let files = pushplan::scene::generate::generate(design, count, range, seed, out)?;
     println!("wrote {} scenes to {}", files.len(), out.display());
     Ok(ExitCode::SUCCESS)
 }

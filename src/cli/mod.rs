@@ -43,3 +43,17 @@ pub fn exit_code(
         Err(_) => std::process::ExitCode::from(3),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::exit_code;
+    use std::process::ExitCode;
+
+    #[test]
+    fn a_panic_exits_with_3_and_bad_input_with_2() {
+        assert_eq!(exit_code(|| panic!("a bug")), ExitCode::from(3));
+        assert_eq!(exit_code(|| Err("bad input".into())), ExitCode::from(2));
+        assert_eq!(exit_code(|| Ok(ExitCode::from(1))), ExitCode::from(1));
+        assert_eq!(exit_code(|| Ok(ExitCode::SUCCESS)), ExitCode::SUCCESS);
+    }
+}

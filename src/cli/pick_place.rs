@@ -1,11 +1,13 @@
 //! `pushplan pick-place`: move one object to a placement with the arm's hand through the
 //! manipulation graph and its two-level Fuzzy PRM, check the path, write it.
 
-use crate::math::Pose2;
-use crate::planning::manipulation::graph::INITIAL_PROBABILITY;
-use crate::planning::manipulation::{EdgeKind, ManipulationGraph, Motion, PickAndPlace, Settings};
-use crate::scene::{Goal, Scene};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
+use pushplan::math::Pose2;
+use pushplan::planning::manipulation::graph::INITIAL_PROBABILITY;
+use pushplan::planning::manipulation::{
+    EdgeKind, ManipulationGraph, Motion, PickAndPlace, Settings,
+};
+use pushplan::scene::{Goal, Scene};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::process::ExitCode;
@@ -78,7 +80,7 @@ pub fn pick_place(
     out: &Path,
 ) -> Result<ExitCode, String> {
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
-    let object = crate::planning::reach::graspable_object(&scene, &run.object)?;
+    let object = pushplan::planning::reach::graspable_object(&scene, &run.object)?;
     let start = scene.start.objects[object];
     let goal = match (&run.to, &scene.goal) {
         (Some(v), _) => match v.as_slice() {
@@ -136,7 +138,7 @@ pub fn pick_place(
         .map_err(|why| format!("internal error: the path found does not check: {why}"))?;
     let file = PickPlaceFile {
         format: PICK_PLACE_FORMAT.into(),
-        scene: crate::planning::plan_file::PlanFile::scene_reference(scene_path, out),
+        scene: pushplan::planning::plan_file::PlanFile::scene_reference(scene_path, out),
         object: run.object.clone(),
         placements: problem
             .placements
@@ -187,7 +189,7 @@ pub fn pick_place(
     if let Some(dir) = &run.render {
         // Frames one Transit step (0.02 rad) apart, drawn 0.02 s apart.
         let (states, control_starts) = problem.states(&segments);
-        let film = crate::render::Film {
+        let film = pushplan::render::Film {
             contacts: vec![Vec::new(); states.len() - 1],
             states,
             control_starts,
@@ -195,7 +197,7 @@ pub fn pick_place(
             scene: problem.scene.clone(),
             executed: Vec::new(),
         };
-        let files = crate::render::write_pictures(&film, dir, &[])?;
+        let files = pushplan::render::write_pictures(&film, dir, &[])?;
         for path in [files.snapshots, files.timeline, files.animation] {
             println!("wrote {}", path.display());
         }
@@ -206,13 +208,13 @@ pub fn pick_place(
 /// `pushplan check` of a pick-and-place file: its path checked again in its scene, as
 /// `pick-place` checked it before writing it.
 pub fn check_pick_place(path: &Path) -> Result<ExitCode, String> {
-    let text = crate::input::read_text(path, crate::input::MAX_PLAN_BYTES)
+    let text = pushplan::input::read_text(path, pushplan::input::MAX_PLAN_BYTES)
         .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
     let file: PickPlaceFile =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let scene_path = path.parent().unwrap_or(Path::new(".")).join(&file.scene);
     let scene = Scene::load(&scene_path).map_err(|e| e.to_string())?;
-    let object = crate::planning::reach::graspable_object(&scene, &file.object)?;
+    let object = pushplan::planning::reach::graspable_object(&scene, &file.object)?;
     let placement = |i: usize| file.placements.get(i).copied();
     let problem = PickAndPlace {
         object,
@@ -259,7 +261,7 @@ pub fn check_pick_place(path: &Path) -> Result<ExitCode, String> {
                 &format!("waypoints must be {dof} finite joint values"),
             ));
         }
-        segments.push(crate::planning::manipulation::Segment {
+        segments.push(pushplan::planning::manipulation::Segment {
             motion,
             waypoints: s
                 .waypoints

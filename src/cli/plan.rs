@@ -1,13 +1,13 @@
 //! `pushplan plan`: search a scene with OMPL, finish the path, write the plan file.
 
 use super::progress;
-use crate::ffi::{solve, ReachOptions, SolveOptions};
-use crate::planning::path::PathControl;
-use crate::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
-use crate::planning::shortcut::ShortcutProgress;
-use crate::planning::{FinishSettings, PlannerKind, Problem, RobustRequirement};
-use crate::state::State;
-use crate::Scene;
+use pushplan::ffi::{solve, ReachOptions, SolveOptions};
+use pushplan::planning::path::PathControl;
+use pushplan::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
+use pushplan::planning::shortcut::ShortcutProgress;
+use pushplan::planning::{FinishSettings, PlannerKind, Problem, RobustRequirement};
+use pushplan::state::State;
+use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -73,7 +73,7 @@ fn reach(
         seed,
         sample_probability: run.sample_probability,
     };
-    let found = crate::ffi::reach(scene_path, object, from, &options)?;
+    let found = pushplan::ffi::reach(scene_path, object, from, &options)?;
     if !run.quiet {
         eprintln!(
             "reaching a grasp of '{object}' with IK-BiRRT: {} in {:.2} s, {} IK solutions, trees of {} states",
@@ -139,10 +139,10 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             options.time_limit
         ));
     }
-    if options.k == 0 || options.k > crate::scene::MAX_K {
+    if options.k == 0 || options.k > pushplan::scene::MAX_K {
         return Err(format!(
             "--k must be in [1, {}], got {}",
-            crate::scene::MAX_K,
+            pushplan::scene::MAX_K,
             options.k
         ));
     }
@@ -187,7 +187,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
         // Reaching a grasp only: no controls, the reach from the start.
-        crate::planning::reach::graspable_object(&scene, object)?;
+        pushplan::planning::reach::graspable_object(&scene, object)?;
         let dof = scene.robot.dof();
         let found = reach(scene_path, object, None, run, options.time_limit, seed, dof)?;
         let solved = found.is_some();
@@ -198,8 +198,8 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         return write_plan(&file, out, solved);
     }
     if run.grasp_after {
-        if let crate::scene::Goal::ObjectInDisc { object, .. } = scene.goal {
-            crate::planning::reach::graspable_object(&scene, &scene.objects[object].name)?;
+        if let pushplan::scene::Goal::ObjectInDisc { object, .. } = scene.goal {
+            pushplan::planning::reach::graspable_object(&scene, &scene.objects[object].name)?;
         } else {
             return Err("--grasp needs an object goal (the object to grasp after pushing)".into());
         }
@@ -221,9 +221,9 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     }
     if !quiet {
         progress::start(match scene.goal {
-            crate::scene::Goal::ObjectInDisc { .. } => "m",
-            crate::scene::Goal::Configuration { .. } => "rad",
-            crate::scene::Goal::Grasp { .. } => "(m and rad)",
+            pushplan::scene::Goal::ObjectInDisc { .. } => "m",
+            pushplan::scene::Goal::Configuration { .. } => "rad",
+            pushplan::scene::Goal::Grasp { .. } => "(m and rad)",
         });
     }
     let solution =
@@ -239,7 +239,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             trials: run.robust,
             rate: run.robust_rate,
         }),
-        deadline: crate::planning::deadline(started, options.time_limit),
+        deadline: pushplan::planning::deadline(started, options.time_limit),
         progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
     };
     let path = problem.finish(&found, &found_states, solution.exact, &finish_settings);
@@ -323,21 +323,21 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         println!(
             "closest: {}",
             match goal {
-                crate::scene::Goal::ObjectInDisc { .. } if left <= 0.0 && run.particles > 0 => format!(
+                pushplan::scene::Goal::ObjectInDisc { .. } if left <= 0.0 && run.particles > 0 => format!(
                     "the goal object ends {:.0} mm inside the goal region, but not in every perturbed world the search carried",
                     -1e3 * left
                 ),
-                crate::scene::Goal::ObjectInDisc { margin, .. } => format!(
+                pushplan::scene::Goal::ObjectInDisc { margin, .. } => format!(
                     "the goal object ends {:.0} mm from the goal region (the goal disc less its {:.0} mm margin)",
                     1e3 * left,
                     1e3 * margin
                 ),
-                crate::scene::Goal::Grasp { object, .. } => format!(
+                pushplan::scene::Goal::Grasp { object, .. } => format!(
                     "the tool ends {:.3} (m and rad together, the lecture's d(q, WGR)) from the nearest grasp region of '{}'",
-                    left + crate::robot::wgr::GRASP_TOLERANCE,
+                    left + pushplan::robot::wgr::GRASP_TOLERANCE,
                     problem.scene().objects[*object].name
                 ),
-                crate::scene::Goal::Configuration { .. } => format!(
+                pushplan::scene::Goal::Configuration { .. } => format!(
                     "the arm ends {left:.3} rad (joint-space distance) beyond the goal configuration's tolerance"
                 ),
             }
@@ -345,7 +345,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     }
     println!(
         "search: {}",
-        crate::planner::SearchStats::from(&solution.search).report()
+        pushplan::planner::SearchStats::from(&solution.search).report()
     );
     if let Some(r) = &file.robustness {
         println!(
@@ -384,7 +384,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
     // The joint-space length sums |dq| over the joints: radians only if every joint
     // turns (the planar hand's slide in metres and turn in radians).
     let revolute = (0..dof).all(|i| {
-        problem.scene().robot.chain.dof_joint(i).kind == crate::robot::JointKind::Revolute
+        problem.scene().robot.chain.dof_joint(i).kind == pushplan::robot::JointKind::Revolute
     });
     let manipulator = if revolute {
         format!(

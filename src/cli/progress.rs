@@ -2,9 +2,9 @@
 //! line a second when stderr is a file or a pipe. The search (in C++) and shortcutting
 //! report through plain function pointers, so the line is one per process, here.
 
-use crate::ffi::SearchProgress;
-use crate::planning::shortcut::ShortcutProgress;
 use indicatif::{ProgressBar, ProgressStyle};
+use pushplan::ffi::SearchProgress;
+use pushplan::planning::shortcut::ShortcutProgress;
 use std::io::IsTerminal;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};

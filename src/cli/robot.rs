@@ -2,11 +2,11 @@
 //! its joints and limits, the tool pose of a configuration (forward kinematics) and
 //! configurations that put the tool on a point of the pushing plane (inverse kinematics).
 
-use crate::random::SplitMix64;
-use crate::robot::{IkSettings, Robot};
-use crate::scene::Scene;
-use crate::state::State;
 use nalgebra::{DVector, Isometry3};
+use pushplan::random::SplitMix64;
+use pushplan::robot::{IkSettings, Robot};
+use pushplan::scene::Scene;
+use pushplan::state::State;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -119,7 +119,7 @@ pub fn robot(scene_path: &Path, query: &RobotQuery) -> Result<ExitCode, String> 
 
 fn unit(robot: &Robot, dof: usize) -> &'static str {
     match robot.chain.dof_joint(dof).kind {
-        crate::robot::JointKind::Prismatic => "m",
+        pushplan::robot::JointKind::Prismatic => "m",
         _ => "rad",
     }
 }
@@ -145,7 +145,7 @@ fn report_configuration(scene: &Scene, q: &DVector<f64>) {
     );
     let (height, tilt) = robot.plane.error(&tool);
     println!("  off the pushing plane by {height:.4} m (height) and {tilt:.4} rad (tilt)");
-    match crate::validity::check_state(scene, &state_with(scene, q)) {
+    match pushplan::validity::check_state(scene, &state_with(scene, q)) {
         Ok(()) => println!("  valid"),
         Err(reason) => println!("  invalid: {reason}"),
     }
@@ -173,7 +173,7 @@ fn reach_target(scene: &Scene, reach: &[f64]) -> Result<Isometry3<f64>, String> 
     Ok(scene
         .robot
         .plane
-        .tool_pose_at(&crate::math::Pose2::new(reach[0], reach[1], yaw)))
+        .tool_pose_at(&pushplan::math::Pose2::new(reach[0], reach[1], yaw)))
 }
 
 /// Distinct configurations reaching `target`, from `first` and then random seeds within
@@ -183,7 +183,7 @@ fn reach_configurations(
     target: &Isometry3<f64>,
     first: &DVector<f64>,
     query: &RobotQuery,
-) -> Vec<(DVector<f64>, Result<(), crate::Invalid>)> {
+) -> Vec<(DVector<f64>, Result<(), pushplan::Invalid>)> {
     let robot = &scene.robot;
     let limits = robot.chain.limits();
     let mut rng = SplitMix64::new(query.seed);
@@ -215,7 +215,7 @@ fn reach_configurations(
     let mut solutions: Vec<_> = found
         .into_iter()
         .map(|q| {
-            let validity = crate::validity::check_state(scene, &state_with(scene, &q));
+            let validity = pushplan::validity::check_state(scene, &state_with(scene, &q));
             (q, validity)
         })
         .collect();

@@ -1,5 +1,5 @@
 //! The bridge's second half: the C++ entry points Rust calls (the CLI's search and the
-//! benchmark of a scene), declarations only. `cpp/solve.h` and `cpp/benchmark.h` declare
+//! benchmark of a scene), declarations only. `cpp/api/solve.h` and `cpp/api/benchmark.h` declare
 //! them on the C++ side.
 
 #[cxx::bridge(namespace = "pushplan::bridge")]
@@ -112,7 +112,7 @@ pub mod bridge {
         type PlannerKind = crate::planning::PlannerKind;
         include!("pushplan/src/ffi.rs.h");
         type SearchStats = crate::ffi::bridge::SearchStats;
-        include!("pushplan/cpp/solve.h");
+        include!("pushplan/cpp/api/solve.h");
         /// Searches the scene file with OMPL (the CLI's entry point), telling `progress`
         /// how far it is when `options.progress` is set.
         fn solve(
@@ -130,7 +130,7 @@ pub mod bridge {
             from_objects: &[f64],
             options: &ReachOptions,
         ) -> Result<ReachOutput>;
-        include!("pushplan/cpp/benchmark.h");
+        include!("pushplan/cpp/api/benchmark.h");
         /// Runs one benchmark run with ompl::tools::Benchmark and writes its log.
         fn benchmark_scene(scene_path: &str, options: &BenchOptions) -> Result<()>;
     }

@@ -119,11 +119,14 @@ enum InTheWay {
 /// A push worth trying: `object` toward `target` (world xy, m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PushTarget {
+    /// The object to push.
     pub object: usize,
+    /// Where to (world xy, m).
     pub target: Vector2<f64>,
 }
 
 impl PushHeading {
+    /// The push headings of `scene` (its goal object and disc, its table and obstacles).
     pub fn new(scene: &Scene) -> PushHeading {
         let goal = match &scene.goal {
             Goal::ObjectInDisc {

@@ -320,6 +320,7 @@ impl Model {
         })
     }
 
+    /// The model's metric between two flat states ([`crate::DistanceMetric`]).
     pub fn distance(&self, a: &[f64], b: &[f64]) -> Result<f64, String> {
         guarded("distance", || {
             let n = self.state_len();
@@ -493,10 +494,12 @@ impl Model {
         self.last_result = None;
     }
 
+    /// Is the clutter pinned (Static RRT's mode)?
     pub fn static_clutter(&self) -> bool {
         self.static_mode
     }
 
+    /// Propagation steps taken so far.
     pub fn propagation_steps(&self) -> u64 {
         self.steps_taken
     }

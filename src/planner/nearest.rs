@@ -101,10 +101,12 @@ impl NearestTree {
         self.live
     }
 
+    /// Does the tree hold no state?
     pub fn is_empty(&self) -> bool {
         self.live == 0
     }
 
+    /// Removes every state.
     pub fn clear(&mut self) {
         self.removed.clear();
         self.live = 0;

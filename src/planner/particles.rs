@@ -65,10 +65,12 @@ impl ParticleWorlds {
         })
     }
 
+    /// The number of perturbed worlds.
     pub fn len(&self) -> usize {
         self.worlds.len()
     }
 
+    /// Are there no perturbed worlds?
     pub fn is_empty(&self) -> bool {
         self.worlds.is_empty()
     }

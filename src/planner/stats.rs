@@ -11,10 +11,13 @@ use std::collections::BTreeMap;
 /// first invalid step; a *propagation* is one such run of steps from a tree state.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SearchStats {
+    /// Propagations made.
     pub propagations: u64,
+    /// Propagation steps taken.
     pub steps: u64,
     /// Propagations in which some step moved the goal object / any other object.
     pub moved_goal_object: u64,
+    /// Propagations in which some step moved an object other than the goal object.
     pub moved_clutter: u64,
     /// Propagations stopped by an invalid step, by [`Invalid::kind`].
     pub stopped: BTreeMap<String, u64>,
@@ -67,6 +70,7 @@ pub struct SearchCounter {
 }
 
 impl SearchCounter {
+    /// A counter for searches of `scene` (its goal object).
     pub fn new(scene: &Scene) -> Self {
         let goal_object = scene.goal.object();
         Self {
@@ -77,6 +81,7 @@ impl SearchCounter {
         }
     }
 
+    /// The counts so far.
     pub fn stats(&self) -> &SearchStats {
         &self.stats
     }

@@ -32,7 +32,9 @@ pub struct FinishSettings {
 /// ([`crate::planning::robustness`], default noise) reach the goal.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RobustRequirement {
+    /// Perturbed re-simulations.
     pub trials: usize,
+    /// Fraction of them that must reach the goal.
     pub rate: f64,
 }
 
@@ -56,7 +58,9 @@ impl RobustRequirement {
 /// What shortcutting did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ShortcutReport {
+    /// Shortcuts tried.
     pub attempts: usize,
+    /// Shortcuts kept.
     pub accepted: usize,
     /// The shortcut path was dropped because it was less robust than required.
     pub dropped_as_less_robust: bool,
@@ -67,11 +71,13 @@ pub struct ShortcutReport {
 /// A finished path.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FinishedPath {
+    /// The finished path's controls.
     pub controls: Vec<PathControl>,
     /// The finished path simulated from the start (no step states).
     pub simulation: SimulatedPath,
     /// The metrics of the path as found (the same as after if nothing was shortened).
     pub before: PathMetrics,
+    /// What shortcutting did.
     pub shortcut: ShortcutReport,
     /// The finished path's success rate under noise, in robust planning.
     pub robustness: Option<f64>,

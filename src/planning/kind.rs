@@ -18,12 +18,19 @@ const PUSH_KPIECE_FALLBACK_STEPS: u64 = 1_000_000;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[repr(u8)]
 pub enum PlannerKind {
+    /// The whole-arm paper's physics-constrained RRT (PC RRT).
     PcRrt = 0,
+    /// PC RRT with every object but the goal object a static obstacle (the paper's baseline).
     StaticRrt = 1,
+    /// DARRT with the Transit and Push primitives (the paper's baseline).
     Darrt = 2,
+    /// OMPL's KPIECE1 with uniform controls.
     Kpiece = 3,
+    /// OMPL's EST.
     Est = 4,
+    /// OMPL's PDST.
     Pdst = 5,
+    /// OMPL's SST (asymptotically near-optimal: it uses the whole time limit).
     Sst = 6,
     /// DARRT with the PickPlace primitive beside Push (the paper's suggestion, Sec. V-A).
     DarrtPickPlace = 7,
@@ -121,7 +128,7 @@ impl PlannerKind {
     }
 
     /// Propagation steps the first attempt of a search may take before it starts over
-    /// (`Restarting` in `cpp/restarts.h`; later attempts get Luby multiples of it), or 0:
+    /// (`Restarting` in `cpp/search/restarts.h`; later attempts get Luby multiples of it), or 0:
     /// never. Push KPIECE restarts; the paper's planners and OMPL's run as published.
     pub fn restart_steps(self) -> u64 {
         match self {
@@ -131,7 +138,7 @@ impl PlannerKind {
     }
 
     /// Propagation steps after which a search none of whose states has moved the goal
-    /// object hands over to PC RRT (`Fallback` in `cpp/fallback.h`), or 0:
+    /// object hands over to PC RRT (`Fallback` in `cpp/search/fallback.h`), or 0:
     /// never. Only Push KPIECE falls back: its guided pushes need the hand at the goal
     /// object first, and where the arm cannot get there they build nothing.
     pub fn fallback_steps(self) -> u64 {
@@ -142,8 +149,8 @@ impl PlannerKind {
     }
 
     /// Whether the threads of a plan share one search, its propagations running in
-    /// parallel (`ParallelKPIECE`, `cpp/parallel_kpiece.h`), rather than each running a
-    /// search of its own (`Portfolio`, `cpp/portfolio.h`).
+    /// parallel (`ParallelKPIECE`, `cpp/search/parallel_kpiece.h`), rather than each running a
+    /// search of its own (`Portfolio`, `cpp/search/portfolio.h`).
     pub fn shares_one_search(self) -> bool {
         matches!(self, PlannerKind::Kpiece | PlannerKind::PushKpiece)
     }

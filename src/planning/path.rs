@@ -9,7 +9,9 @@ use crate::validity::Invalid;
 /// One control of a path: an action held for a number of propagation steps.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PathControl {
+    /// The action: tool velocity and null-space sample.
     pub action: EeAction,
+    /// Propagation steps it is held for.
     pub steps: usize,
 }
 
@@ -81,10 +83,12 @@ pub struct SimulatedPath {
     pub contacts: Vec<Vec<Vec<Contact>>>,
     /// Why a control stopped early, if one did (the path is then invalid).
     pub stopped_by: Option<(usize, Invalid)>,
+    /// Its manipulator path, object displacement and duration.
     pub metrics: PathMetrics,
 }
 
 impl SimulatedPath {
+    /// Was every step valid?
     pub fn valid(&self) -> bool {
         self.stopped_by.is_none()
     }
@@ -94,6 +98,7 @@ impl SimulatedPath {
         self.contacts.iter().map(Vec::len).sum()
     }
 
+    /// The state after the last step.
     pub fn final_state(&self) -> &State {
         self.states.last().expect("a path has a start state")
     }

@@ -14,6 +14,7 @@ use crate::state::State;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
+/// The `format` of plan files this version writes and reads.
 pub const FORMAT: &str = "pushplan-plan/1";
 
 /// Most propagation steps a plan file may hold over all its controls (at the default
@@ -25,10 +26,15 @@ pub const MAX_PLAN_STEPS: usize = 200_000;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanSettings {
+    /// The planner that searched.
     pub planner: PlannerKind,
+    /// The seed of every random choice.
     pub seed: u64,
+    /// Control samples per extension (Alg. 1's k).
     pub k: u32,
+    /// Probability of sampling the goal region.
     pub goal_bias: f64,
+    /// The time limit of the whole command (s).
     pub time_limit: f64,
     /// Shortcutting budget (s of work; 0 = none).
     pub shortcut: f64,
@@ -57,7 +63,9 @@ pub struct PlanFile {
     pub format: String,
     /// The scene file, as given to the planner.
     pub scene: String,
+    /// The scene's name.
     pub scene_name: String,
+    /// How the plan was made.
     #[serde(flatten)]
     pub settings: PlanSettings,
     /// Propagation step (s).
@@ -77,9 +85,13 @@ pub struct PlanFile {
     pub solved: bool,
     /// The path before and after shortcutting.
     pub metrics: Metrics,
+    /// The robot's joint names, in the configuration's order.
     pub joints: Vec<String>,
+    /// The objects' names, in the state's order.
     pub objects: Vec<String>,
+    /// The start state.
     pub start: StateRecord,
+    /// The controls, each with the state it reaches.
     pub controls: Vec<ControlRecord>,
     /// The executable trajectory: joint values within the URDF's velocity limits and the
     /// predicted object poses, at `TRAJECTORY_RATE` Hz.
@@ -132,18 +144,24 @@ pub struct Margins {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RobustnessRecord {
+    /// Perturbed re-simulations of the check.
     pub trials: usize,
+    /// Fraction of them required to reach the goal.
     pub required_rate: f64,
+    /// Fraction that did.
     pub success_rate: f64,
     /// Perturbed worlds the search carried along its states (absent in older files: 0).
     #[serde(default)]
     pub particles: u32,
 }
 
+/// The path's metrics as found and as written.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Metrics {
+    /// As the search found it.
     pub before_shortcut: PathMetrics,
+    /// After shortcutting (the plan's).
     pub after_shortcut: PathMetrics,
 }
 
@@ -151,10 +169,13 @@ pub struct Metrics {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StateRecord {
+    /// Joint values (rad or m).
     pub q: Vec<f64>,
+    /// Object poses `[x, y, yaw]` (m, m, rad; world frame).
     pub objects: Vec<[f64; 3]>,
 }
 
+/// One control of the plan.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ControlRecord {
@@ -164,6 +185,7 @@ pub struct ControlRecord {
     pub nullspace: Vec<f64>,
     /// Propagation steps; duration = steps * step.
     pub steps: usize,
+    /// Its duration (s).
     pub duration: f64,
     /// The state reached at the end of the control.
     pub state: StateRecord,
@@ -177,13 +199,16 @@ pub struct ControlRecord {
 pub struct Contact {
     /// Step within the control.
     pub step: usize,
+    /// The pushing link's name.
     pub link: String,
+    /// The pushed object's name.
     pub object: String,
     /// Normal force (N).
     pub force: f64,
 }
 
 impl StateRecord {
+    /// The record of `state`.
     pub fn from_state(state: &State) -> Self {
         StateRecord {
             q: state.q.as_slice().to_vec(),
@@ -191,6 +216,7 @@ impl StateRecord {
         }
     }
 
+    /// The state in the flat layout ([`crate::State::to_flat`]).
     pub fn flat(&self) -> Vec<f64> {
         let mut out = self.q.clone();
         out.extend(self.objects.iter().flatten());
@@ -205,6 +231,7 @@ pub struct CheckReport {
     pub all_valid: bool,
     /// The re-simulated states equal the plan's, bit for bit.
     pub states_match: bool,
+    /// The last state satisfies the goal.
     pub goal_reached: bool,
     /// Everything else the file records about the path agrees with the re-simulation.
     pub record_matches: bool,
@@ -213,6 +240,7 @@ pub struct CheckReport {
 }
 
 impl CheckReport {
+    /// Did every check pass?
     pub fn passed(&self) -> bool {
         self.all_valid && self.states_match && self.goal_reached && self.record_matches
     }
@@ -376,6 +404,7 @@ impl PlanFile {
         Ok(scene)
     }
 
+    /// The plan file's text (pretty JSON, one trailing newline).
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("plan files serialise") + "\n"
     }

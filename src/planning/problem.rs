@@ -14,6 +14,9 @@ use crate::scene::Scene;
 use crate::state::State;
 use std::sync::Arc;
 
+/// The problem a planner kind searches in a scene: the scene, with every object in its
+/// states; for Static RRT the clutter is pinned where it starts. Simulating, finishing,
+/// robustness and trajectories of its plans go through it.
 pub struct Problem {
     scene: Arc<Scene>,
     /// Static RRT's physics, where the clutter is pinned.
@@ -21,6 +24,7 @@ pub struct Problem {
 }
 
 impl Problem {
+    /// The problem `planner` searches in `scene`.
     pub fn new(scene: Scene, planner: PlannerKind) -> Problem {
         Problem {
             pinned: planner.pins_clutter().then(|| StaticClutter::new(&scene)),

@@ -1,6 +1,6 @@
 //! Reaching a grasp (issue 15): the arm moves through its joint space, every object a
 //! static obstacle where it is, to a configuration inside one of an object's Workspace
-//! Goal Regions (its scene `grasps`). IK-BiRRT (`cpp/ik_birrt.cpp`) searches; this module
+//! Goal Regions (its scene `grasps`). IK-BiRRT (`cpp/planners/ik_birrt/ik_birrt.cpp`) searches; this module
 //! is the model's side of it: sampling the regions' configurations by inverse kinematics,
 //! the distance to them, and the check of a reach that plan files and the C++ API return.
 

@@ -27,8 +27,11 @@ pub struct Noise {
     pub yaw: f64,
     /// Relative spread of mass, `mu_g`, `mu_c` and the characteristic length `c`.
     pub mass: f64,
+    /// Relative spread of `mu_g`.
     pub mu_g: f64,
+    /// Relative spread of `mu_c`.
     pub mu_c: f64,
+    /// Relative spread of the characteristic length `c`.
     pub c: f64,
     /// Largest shift of each object's centre of friction from its footprint's centroid,
     /// per axis (m): the support pressure is not known to be uniform.
@@ -127,6 +130,7 @@ pub struct Trial {
 /// What N perturbed re-simulations found.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RobustnessReport {
+    /// Every trial.
     pub trials: Vec<Trial>,
     /// Fraction of trials that reached the goal.
     pub success_rate: f64,
@@ -136,7 +140,9 @@ pub struct RobustnessReport {
     /// distance (m) of its centre from the planned one, and the standard deviations of
     /// x, y (m) and yaw (rad).
     pub max_deviation: f64,
+    /// Mean distance of the goal object's final centre from the planned one (m).
     pub mean_deviation: f64,
+    /// Standard deviations of its x, y (m) and yaw (rad).
     pub std_xy_yaw: [f64; 3],
 }
 

@@ -30,10 +30,12 @@ use std::time::Instant;
 /// see BENCHMARKS.md).
 pub const STEPS_PER_SECOND: f64 = 200_000.0;
 
+/// How shortcutting runs: its budget in steps of work (so that it is deterministic), its seed, and a deadline.
 #[derive(Clone, Copy, Debug)]
 pub struct ShortcutSettings {
     /// Work budget in propagation steps.
     pub budget_steps: u64,
+    /// Seeds the choice of shortcuts.
     pub seed: u64,
     /// Wall-clock time at which shortcutting stops even if budget is left (the plan's
     /// time limit). Only then does the outcome depend on the machine's speed.
@@ -60,20 +62,30 @@ impl ShortcutSettings {
 pub struct ShortcutProgress {
     /// Work done and the budget (propagation steps).
     pub work: u64,
+    /// The whole budget (propagation steps).
     pub budget: u64,
+    /// Shortcuts tried.
     pub attempts: usize,
+    /// Shortcuts kept.
     pub accepted: usize,
     /// The current path's manipulator path (joint space) and duration (s).
     pub joint_length: f64,
+    /// The current path's duration (s).
     pub duration: f64,
 }
 
+/// What shortcutting made of a path.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShortcutOutcome {
+    /// The shortened path.
     pub controls: Vec<PathControl>,
+    /// The metrics before.
     pub before: PathMetrics,
+    /// The metrics after.
     pub after: PathMetrics,
+    /// Shortcuts tried.
     pub attempts: usize,
+    /// Shortcuts kept.
     pub accepted: usize,
     /// Shortcutting stopped at the deadline, with budget left.
     pub stopped_at_deadline: bool,

@@ -7,6 +7,8 @@ use crate::propagate::Propagator;
 use crate::scene::Scene;
 use crate::state::State;
 
+/// Static RRT's physics inside the full problem: the goal object is propagated in the scene
+/// whose clutter is static obstacles, and every other object stays at its start pose.
 pub struct StaticClutter {
     /// Propagates in the scene whose clutter is static obstacles.
     pub propagator: Propagator,
@@ -17,6 +19,7 @@ pub struct StaticClutter {
 }
 
 impl StaticClutter {
+    /// Static RRT's physics for `scene`.
     pub fn new(scene: &Scene) -> Self {
         Self {
             propagator: Propagator::new(scene.with_static_clutter()),

@@ -22,6 +22,7 @@ use std::path::{Path, PathBuf};
 
 /// A plan, simulated step by step, ready to draw.
 pub struct Film {
+    /// The scene.
     pub scene: Scene,
     /// Every step's state, from the start.
     pub states: Vec<State>,
@@ -29,6 +30,7 @@ pub struct Film {
     pub contacts: Vec<Vec<(usize, usize)>>,
     /// Step indices where each control starts, and the last step.
     pub control_starts: Vec<usize>,
+    /// The propagation step (s).
     pub dt: f64,
     /// Object poses an execution reached at each state (empty: none drawn).
     pub executed: Vec<Vec<crate::math::Pose2>>,
@@ -36,6 +38,7 @@ pub struct Film {
 
 /// One drawn moment.
 pub struct Frame {
+    /// Seconds from the start.
     pub time: f64,
     /// Outline and "in contact" flag of each solid link.
     pub links: Vec<(Vec<Vector2<f64>>, bool)>,
@@ -162,6 +165,7 @@ impl Film {
         })
     }
 
+    /// The plan's duration (s).
     pub fn duration(&self) -> f64 {
         (self.states.len() - 1) as f64 * self.dt
     }
@@ -259,8 +263,11 @@ pub fn render_execution(
 
 /// Files written by [`render`].
 pub struct Rendered {
+    /// `snapshots.svg`.
     pub snapshots: PathBuf,
+    /// `timeline.svg`.
     pub timeline: PathBuf,
+    /// `animation.html`.
     pub animation: PathBuf,
 }
 

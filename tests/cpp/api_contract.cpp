@@ -1,4 +1,4 @@
-// The C++ API's contract beyond planning (run by tests/cpp_api.rs):
+// The C++ API's contract beyond planning (run by tests/integration/cpp_api.rs):
 // - every planner kind has the CLI's name, and a name gives the kind back;
 // - progress reaches Options::on_progress; a semi-dynamic scene plans; a robust plan is
 //   as robust as the default rate asks;

@@ -1,10 +1,10 @@
-// How failures leave the C++ API (run by tests/cpp_api.rs, built with the library's
+// How failures leave the C++ API (run by tests/integration/cpp_api.rs, built with the library's
 // internal headers): detail::asPushplanError, which wraps Planner::solve() and
 // makeSetup(), turns OMPL's own exception and the model's rust::Error into
 // pushplan::Error with their messages, and lets a pushplan::Error through unchanged.
 // No planning input reaches an OMPL exception today (options and scenes are checked
 // first), so each kind is raised here by the library that owns it.
-#include "pushplan/cpp/planner_source.h"
+#include "pushplan/cpp/api/planner_source.h"
 
 #include <ompl/base/spaces/RealVectorBounds.h>
 #include <ompl/util/Exception.h>

@@ -1,5 +1,5 @@
 // The C++ test programs' one check: prints "ok: WHAT" or "FAILED: WHAT" and counts the
-// failures; tests/cpp_api.rs counts the "ok" lines.
+// failures; tests/integration/cpp_api.rs counts the "ok" lines.
 #pragma once
 
 #include <iostream>

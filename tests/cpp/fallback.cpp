@@ -1,11 +1,11 @@
-// Fallback (run by tests/cpp_api.rs, built with the library's internal headers): Push
+// Fallback (run by tests/integration/cpp_api.rs, built with the library's internal headers): Push
 // KPIECE hands over to PC RRT exactly when its patience is spent and no state has moved
 // the goal object, and changes nothing otherwise. The oracle for "moved" is the first
 // search's own tree, run alone for the patience: the goal object's pose in each vertex
 // (OMPL's planner data) against its pose at the start; the Fallback reads goal distances.
-#include "pushplan/cpp/fallback.h"
-#include "pushplan/cpp/problem.h"
-#include "pushplan/cpp/restarts.h"
+#include "pushplan/cpp/search/fallback.h"
+#include "pushplan/cpp/problem/problem.h"
+#include "pushplan/cpp/search/restarts.h"
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/util/Console.h>

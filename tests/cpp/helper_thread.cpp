@@ -1,9 +1,9 @@
-// HelperThread (run by tests/cpp_api.rs, built with the library's internal headers): the
+// HelperThread (run by tests/integration/cpp_api.rs, built with the library's internal headers): the
 // body runs on a thread of its own, first on another core than the starting thread's when
 // the process may use two, then free to use every core the starting thread may; what the
 // body throws reaches join(). The oracle is the kernel's own account: sched_getcpu() and
 // the thread's affinity mask as the body sees them.
-#include "pushplan/cpp/helper_thread.h"
+#include "pushplan/cpp/search/helper_thread.h"
 
 #include "expect.h"
 

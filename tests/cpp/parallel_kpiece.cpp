@@ -1,10 +1,10 @@
-// ParallelKPIECE against OMPL's KPIECE1 (run by tests/cpp_api.rs, built with the
+// ParallelKPIECE against OMPL's KPIECE1 (run by tests/integration/cpp_api.rs, built with the
 // library's internal headers). With one propagation lane it must be KPIECE1 exactly:
 // the same random numbers drawn in the same order, the same tree and the same path,
 // bit for bit; OMPL's own implementation is the oracle. Each search runs until a budget
 // of propagation steps, so the comparison does not depend on timing.
-#include "pushplan/cpp/parallel_kpiece.h"
-#include "pushplan/cpp/problem.h"
+#include "pushplan/cpp/search/parallel_kpiece.h"
+#include "pushplan/cpp/problem/problem.h"
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/util/Console.h>

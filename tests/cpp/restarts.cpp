@@ -1,4 +1,4 @@
-// Restarting (run by tests/cpp_api.rs, built with the library's internal headers): each
+// Restarting (run by tests/integration/cpp_api.rs, built with the library's internal headers): each
 // attempt is announced once, in order, before it runs, and again from the first after
 // clear(); Push KPIECE's grid has the goal object's cells of 2.5 cm in its first attempt
 // and of 1.25 cm after, on the search's projection and on every lane's, so that a
@@ -7,8 +7,8 @@
 // attempts is Luby's sequence written out (attempts of 3 000 x 1, 1, 2, 1, 1, 2 steps
 // start at 0, 3 000, 6 000, 12 000, 15 000 and 18 000), for the cells the numbers
 // written out.
-#include "pushplan/cpp/problem.h"
-#include "pushplan/cpp/restarts.h"
+#include "pushplan/cpp/problem/problem.h"
+#include "pushplan/cpp/search/restarts.h"
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/PlannerTerminationCondition.h>

@@ -3,7 +3,7 @@
 // budget of propagation steps, so that what it finds does not depend on timing.
 #pragma once
 
-#include "pushplan/cpp/problem.h"
+#include "pushplan/cpp/problem/problem.h"
 
 #include <ompl/base/PlannerTerminationCondition.h>
 

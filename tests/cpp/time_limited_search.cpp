@@ -1,12 +1,12 @@
-// TimeLimitedSearch (run by tests/cpp_api.rs, built with the library's internal headers):
+// TimeLimitedSearch (run by tests/integration/cpp_api.rs, built with the library's internal headers):
 // the model's time limit holds while the search runs and is lifted when it returns, so
 // what OMPL's tooling propagates again afterwards is right. The oracle is the planner
 // data's own edges: each one's control, held for its duration from its source, must
 // reach its target. PDST builds its edges by propagating every motion again (a motion
 // split across cells is found step by step), which the limit used to refuse.
-#include "pushplan/cpp/problem.h"
-#include "pushplan/cpp/restarts.h"
-#include "pushplan/cpp/wrapped_search.h"
+#include "pushplan/cpp/problem/problem.h"
+#include "pushplan/cpp/search/restarts.h"
+#include "pushplan/cpp/search/wrapped_search.h"
 
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/control/PlannerData.h>

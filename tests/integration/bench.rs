@@ -529,11 +529,20 @@ fn ab_script_counts_each_binarys_solved_runs_and_their_time_ratio() {
         String::from_utf8_lossy(&run.stderr)
     );
     // Each pair: A, pushplan, solves scene 00 within the limit; B counts as the limit.
-    // (Pair rows have four cells, the summary's rows five.)
-    let pairs: Vec<(f64, f64)> = table
+    // (Pair rows end with whether the plan files are the same; B writes none.)
+    let rows: Vec<Vec<&str>> = table
         .lines()
         .map(|l| l.split('|').map(str::trim).collect::<Vec<_>>())
-        .filter(|cells| cells.len() == 6 && cells[1] == "scene_00")
+        .filter(|cells| cells.len() == 7 && cells[1] == "scene_00")
+        .filter(|cells| ["same", "differ", "none"].contains(&cells[5]))
+        .collect();
+    assert!(rows.iter().all(|cells| cells[5] == "differ"), "{table}");
+    assert!(
+        table.contains("plan files: 0 same, 3 differ, 0 written by neither"),
+        "{table}"
+    );
+    let pairs: Vec<(f64, f64)> = rows
+        .iter()
         .map(|cells| (cells[3].parse().unwrap(), cells[4].parse().unwrap()))
         .collect();
     assert_eq!(pairs.len(), 3, "{table}");
@@ -550,5 +559,27 @@ fn ab_script_counts_each_binarys_solved_runs_and_their_time_ratio() {
     assert!(
         (printed - ratio).abs() <= 0.01 * ratio + 0.005,
         "{printed} against {ratio}: {table}"
+    );
+}
+
+#[test]
+fn ab_script_finds_the_same_plan_files_from_the_same_binary() {
+    let pushplan = env!("CARGO_BIN_EXE_pushplan");
+    let run = Command::new("benches/ab.sh")
+        .args([
+            pushplan,
+            pushplan,
+            "10",
+            "1",
+            "2",
+            "scenes/benchmark/scene_00.yaml",
+        ])
+        .output()
+        .unwrap();
+    let table = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{table}");
+    assert!(
+        table.contains("plan files: 2 same, 0 differ, 0 written by neither"),
+        "{table}"
     );
 }

@@ -336,28 +336,33 @@ fn a_fragile_solution_is_shortcut_toward_robustness_before_the_search_goes_on() 
     let scratch = common::Scratch::new(
         "cli-a_fragile_solution_is_shortcut_toward_robustness_before_the_search_goes_on",
     );
+    // Runs `plan` until its first solution's fate is known: kept (the command ends) or
+    // dropped (its report line; the search that goes on after it is not waited for).
     let plan = |seed: &str, robust_shortcut: &str, time: &str| {
+        use std::io::{BufRead, BufReader};
         let out = scratch.join(&format!("seed{seed}{robust_shortcut}.json"));
         // PC RRT: these seeds give it fragile first solutions (the mechanism under test
         // is the planner's, whichever search found the solution).
-        let (code, stdout, stderr) = pushplan(&[
-            "plan",
-            "scenes/benchmark/scene_05.yaml",
-            "--planner",
-            "pcrrt",
-            "--seed",
-            seed,
-            "--threads",
-            "1",
-            "--robust",
-            "20",
-            robust_shortcut,
-            "--time",
-            time,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        (code, format!("{stdout}{stderr}"))
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
+            .args(["plan", "scenes/benchmark/scene_05.yaml", "--planner", "pcrrt"])
+            .args(["--seed", seed, "--threads", "1", "--robust", "20", robust_shortcut])
+            .args(["--time", time, "--out", out.to_str().unwrap()])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut output = String::new();
+        for line in BufReader::new(child.stderr.take().unwrap()).lines() {
+            let line = line.unwrap();
+            output += &line;
+            output.push('\n');
+            if line.contains("a solution reaches the goal in ") {
+                let _ = child.kill();
+                break;
+            }
+        }
+        let code = child.wait().unwrap().code().unwrap_or(-1);
+        (code, output)
     };
     // The robustness of the first solution, if it was not kept.
     let first_dropped = |output: &str| -> Option<u32> {

@@ -14,30 +14,7 @@ use pushplan::collision::{Geometry, Primitive};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-#[cxx::bridge(namespace = "pushplan::oracle")]
-mod fcl {
-    struct FclShape {
-        /// box, cylinder, sphere, capsule or prism
-        kind: String,
-        /// box: x y z sizes; cylinder, capsule: radius, length; sphere: radius; prism: height
-        dims: Vec<f64>,
-        /// prism footprint, x y pairs
-        vertices: Vec<f64>,
-        /// x y z qw qx qy qz
-        pose: Vec<f64>,
-    }
-
-    struct FclResult {
-        collide: bool,
-        distance: f64,
-        depth: f64,
-    }
-
-    unsafe extern "C++" {
-        include!("pushplan/tests/integration/fcl_oracle.h");
-        fn fcl_query(a: &FclShape, b: &FclShape) -> FclResult;
-    }
-}
+use pushplan_fcl_oracle::fcl;
 
 /// One shape in both descriptions.
 struct Case {

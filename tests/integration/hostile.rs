@@ -244,16 +244,6 @@ fn object_names_cannot_script_the_animation() {
 }
 
 #[test]
-fn a_panic_exits_with_3_and_bad_input_with_2() {
-    use pushplan::cli::exit_code;
-    use std::process::ExitCode;
-    assert_eq!(exit_code(|| panic!("a bug")), ExitCode::from(3));
-    assert_eq!(exit_code(|| Err("bad input".into())), ExitCode::from(2));
-    assert_eq!(exit_code(|| Ok(ExitCode::from(1))), ExitCode::from(1));
-    assert_eq!(exit_code(|| Ok(ExitCode::SUCCESS)), ExitCode::SUCCESS);
-}
-
-#[test]
 fn k_beyond_its_limit_is_refused_on_the_command_line() {
     // --k 100000 --time 2 took 25 s.
     let (code, stdout, stderr) =

@@ -54,6 +54,17 @@ fn an_installed_pushplan_builds_with_cmake_and_with_pkg_config() {
             .output(),
     );
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("installed"));
+    // The installed archive is stripped of its debug sections: smaller than the built one.
+    let built = binary
+        .with_file_name("libpushplan.a")
+        .metadata()
+        .unwrap()
+        .len();
+    let installed = staged.join("lib/libpushplan.a").metadata().unwrap().len();
+    assert!(
+        installed < built,
+        "installed {installed} bytes, built {built}: not stripped"
+    );
     let prefix = work.join("prefix");
     std::fs::rename(&staged, &prefix).unwrap();
     for file in [
@@ -95,6 +106,9 @@ fn an_installed_pushplan_builds_with_cmake_and_with_pkg_config() {
             .output(),
     );
     plans(&cmake_build.join("plan_scene"));
+    // A C++ program that links pushplan stays small (the library carries no debug info).
+    let size = cmake_build.join("plan_scene").metadata().unwrap().len();
+    assert!(size < 30 << 20, "plan_scene is {size} bytes");
     // The public OMPL layer with OMPL's planners: SST, KPIECE1 with a projection of the
     // application's own, and an ompl::tools::Benchmark of its own.
     // SST stops at its first solution: the time is only a bound, and with OMPL's seed set

@@ -17,23 +17,31 @@ const MIN_HULL_VOLUME: f64 = 1e-12;
 pub enum Primitive {
     /// Box with full side lengths along x, y, z.
     Box {
+        /// Full side lengths along x, y, z (m).
         size: Vector3<f64>,
     },
     /// Cylinder along z, `length` is the full height.
     Cylinder {
+        /// Radius (m).
         radius: f64,
+        /// Full height along z (m).
         length: f64,
     },
+    /// Ball centred on the frame's origin.
     Sphere {
+        /// Radius (m).
         radius: f64,
     },
     /// Capsule along z; `length` is the length of the inner segment (URDF convention).
     Capsule {
+        /// Radius of the cylinder and of the end caps (m).
         radius: f64,
+        /// Length of the inner segment along z (m).
         length: f64,
     },
     /// Convex hull of the points (e.g. a mesh's vertices).
     ConvexHull {
+        /// The points, in the shape's frame (m).
         points: Vec<Point3<f64>>,
     },
 }
@@ -46,7 +54,9 @@ const EXACT_AABB_MAX_VERTICES: usize = 16;
 /// A shape attached to a body: `local` places the shape in the body frame.
 #[derive(Clone)]
 pub struct Geometry {
+    /// `X_BS`: the shape's frame in the body frame.
     pub local: Isometry3<f64>,
+    /// The shape, in its own frame (parry).
     pub shape: SharedShape,
     /// For a hull of many vertices: its bounding box in the shape's frame.
     local_aabb: Option<Aabb>,

@@ -36,6 +36,7 @@ pub enum Pusher {
 pub struct ClusterContact {
     /// The pushed object (index in the cluster).
     pub body: usize,
+    /// What pushes: the hand (a link) or another object of the cluster.
     pub pusher: Pusher,
     /// Contact point (m).
     pub point: Vector2<f64>,

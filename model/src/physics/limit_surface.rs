@@ -13,11 +13,14 @@ pub const GRAVITY: f64 = 9.81;
 /// The footprint of a prism on the table, in the object frame (m).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Footprint {
+    /// A disc centred on the object frame's origin.
     Circle {
+        /// Radius (m).
         radius: f64,
     },
     /// Convex polygon, counter-clockwise.
     Polygon {
+        /// The vertices (m), object frame.
         vertices: Vec<Vector2<f64>>,
     },
 }
@@ -56,7 +59,8 @@ impl Footprint {
         }
     }
 
-    /// Characteristic length `c = (1/A) ∫ |r| dA` (m) about the origin, for uniform pressure.
+    /// Characteristic length `c = (1/A) ∫ |r| dA` (m) about the origin, for uniform
+    /// pressure.
     ///
     /// For a polygon, each edge contributes the triangle it spans with the origin: with
     /// `d` the edge line's distance from the origin and `s` the position along it,
@@ -133,6 +137,7 @@ pub struct SupportGrid {
 const GRID_CELLS: usize = 16;
 
 impl SupportGrid {
+    /// The grid of cells over `footprint` that carries its support pressure.
     pub fn new(footprint: &Footprint) -> Self {
         let (lo, hi) = match footprint {
             Footprint::Circle { radius } => (Vector2::repeat(-radius), Vector2::repeat(*radius)),
@@ -223,15 +228,19 @@ impl SupportGrid {
 /// pressure centre's shift, for the propagator: a lookup instead of an integral per step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LoadedSupport {
-    /// Per shift direction (evenly spaced from +x counter-clockwise; one for a disc), how far the centre of pressure can move (m): the farthest grid point.
+    /// Per shift direction (evenly spaced from +x counter-clockwise; one for a disc), how
+    /// far the centre of pressure can move (m): the farthest grid point.
     reach: Vec<f64>,
-    /// Per direction, the `c` ratio at `k / SHIFT_SAMPLES` of the reach, k = 0..=SHIFT_SAMPLES.
+    /// Per direction, the `c` ratio at `k / SHIFT_SAMPLES` of the reach, k =
+    /// 0..=SHIFT_SAMPLES.
     ratios: Vec<[f64; SHIFT_SAMPLES + 1]>,
 }
 
 const SHIFT_SAMPLES: usize = 16;
 
 impl LoadedSupport {
+    /// The characteristic-length ratios of `footprint` for every shift of the pressure's
+    /// centre.
     pub fn new(footprint: &Footprint) -> Self {
         let grid = SupportGrid::new(footprint);
         let directions = match footprint {

@@ -36,7 +36,9 @@ use std::sync::Arc;
 /// A link pushing an object during one step, with the force it applies.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Contact {
+    /// Index of the link in the robot's chain.
     pub link: usize,
+    /// Index of the object in the scene.
     pub object: usize,
     /// Total normal force of the link's contacts on the object (N).
     pub force: f64,
@@ -111,10 +113,12 @@ impl Propagator {
         }
     }
 
+    /// The propagation step `dt` (s).
     pub fn step_size(&self) -> f64 {
         self.dt
     }
 
+    /// The scene the propagator steps.
     pub fn scene(&self) -> &Scene {
         &self.scene
     }

@@ -8,16 +8,23 @@
 use super::super::collision::Geometry;
 use nalgebra::{DMatrix, DVector, Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 
+/// How a joint moves its child link.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JointKind {
+    /// Turns about its axis (rad).
     Revolute,
+    /// Slides along its axis (m).
     Prismatic,
+    /// Does not move.
     Fixed,
 }
 
+/// A joint: how a link hangs from its parent.
 #[derive(Clone, Debug)]
 pub struct Joint {
+    /// The URDF's joint name.
     pub name: String,
+    /// How it moves.
     pub kind: JointKind,
     /// Index of the parent link.
     pub parent: usize,
@@ -27,6 +34,7 @@ pub struct Joint {
     pub axis: Unit<Vector3<f64>>,
     /// Position limits (rad or m).
     pub lower: f64,
+    /// Upper position limit (rad or m); `lower` is the lower one.
     pub upper: f64,
     /// Velocity limit (rad/s or m/s).
     pub max_velocity: f64,
@@ -54,8 +62,10 @@ impl Joint {
     }
 }
 
+/// A rigid link of the robot.
 #[derive(Clone, Debug)]
 pub struct Link {
+    /// The URDF's link name.
     pub name: String,
     /// The joint whose child this link is (`None` for the root).
     pub joint: Option<Joint>,
@@ -66,6 +76,7 @@ pub struct Link {
 /// Links in topological order (every parent before its children; link 0 is the root).
 #[derive(Clone, Debug)]
 pub struct KinematicChain {
+    /// Every link, parents first.
     pub links: Vec<Link>,
     /// World pose of the root link.
     pub base: Isometry3<f64>,
@@ -74,10 +85,12 @@ pub struct KinematicChain {
 }
 
 impl KinematicChain {
+    /// The number of joints the planner moves (the configuration's length).
     pub fn dof(&self) -> usize {
         self.dof_links.len()
     }
 
+    /// The index of the link named `name`, if there is one.
     pub fn link_index(&self, name: &str) -> Option<usize> {
         self.links.iter().position(|l| l.name == name)
     }

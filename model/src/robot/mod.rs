@@ -20,6 +20,7 @@ pub use projection::{EeAction, ProjectionFailure, ProjectionSettings, PushingPla
 
 use nalgebra::{DVector, Isometry3};
 
+/// What kind of robot pushes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RobotKind {
     /// A serial arm from URDF.
@@ -28,9 +29,12 @@ pub enum RobotKind {
     PlanarHand,
 }
 
+/// The robot that pushes: its links and joints, its tool and the plane the tool is held on.
 #[derive(Clone, Debug)]
 pub struct Robot {
+    /// An arm from URDF, or the planar hand.
     pub kind: RobotKind,
+    /// Links and joints, parents first.
     pub chain: KinematicChain,
     /// The end-effector link.
     pub ee_link: usize,
@@ -45,6 +49,7 @@ pub struct Robot {
 }
 
 impl Robot {
+    /// A robot whose self-collision pairs are every pair of links that are not adjacent.
     pub fn new(
         kind: RobotKind,
         chain: KinematicChain,
@@ -65,6 +70,7 @@ impl Robot {
         }
     }
 
+    /// The number of joints the planner moves.
     pub fn dof(&self) -> usize {
         self.chain.dof()
     }

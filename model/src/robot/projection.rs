@@ -30,6 +30,8 @@ pub struct PushingPlane {
 }
 
 impl PushingPlane {
+    /// The plane at `height` (m above the table top) with the tool's world orientation at
+    /// yaw 0.
     pub fn new(height: f64, orientation: UnitQuaternion<f64>) -> Self {
         let up_in_tool = orientation.inverse() * Vector3::z();
         Self {
@@ -39,7 +41,8 @@ impl PushingPlane {
         }
     }
 
-    /// Height error (m, signed: plane minus tool) and tilt error (rad, >= 0) of a tool pose.
+    /// Height error (m, signed: plane minus tool) and tilt error (rad, >= 0) of a tool
+    /// pose.
     pub fn error(&self, tool: &Isometry3<f64>) -> (f64, f64) {
         let up = tool.rotation * self.up_in_tool;
         (
@@ -92,6 +95,8 @@ pub struct EeAction {
 }
 
 impl EeAction {
+    /// A planar action: tool velocity (`vx`, `vy`, m/s, world frame) and turn rate
+    /// `omega_z` (rad/s), no null-space motion.
     pub fn planar(vx: f64, vy: f64, omega_z: f64) -> Self {
         Self {
             velocity: [vx, vy, omega_z],
@@ -144,9 +149,19 @@ impl Default for ProjectionSettings {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ProjectionFailure {
     /// A joint would move more than the step allows (a singularity).
-    JointStepTooLarge { joint: usize, step: f64 },
+    JointStepTooLarge {
+        /// The joint (configuration index).
+        joint: usize,
+        /// How far it would move (rad or m).
+        step: f64,
+    },
     /// The tool could not be brought back to its plane.
-    OffPlane { height_error: f64, tilt_error: f64 },
+    OffPlane {
+        /// Distance of the tool point from the plane (m).
+        height_error: f64,
+        /// Tilt of the tool from the plane's orientation (rad).
+        tilt_error: f64,
+    },
     /// The configuration or the action is not finite (NaN or infinite).
     NotFinite,
 }

@@ -10,22 +10,32 @@ fn name<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<String, D::
         .ok_or_else(|| serde::de::Error::custom("a name is needed, not null"))
 }
 
+/// A scene file as written (YAML): every field as read, before validation
+/// ([`crate::scene::Scene`] is the validated form).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
     /// Human-readable scene name (defaults to the file stem).
     pub name: Option<String>,
+    /// The robot and its start.
     pub robot: RobotSpec,
+    /// The table.
     pub table: TableSpec,
+    /// Static obstacles.
     #[serde(default)]
     pub obstacles: Vec<ObstacleSpec>,
+    /// Movable objects (the goal object among them).
     #[serde(default)]
     pub objects: Vec<ObjectSpec>,
+    /// What the plan must achieve.
     pub goal: GoalSpec,
+    /// Planner parameters (every one has a default).
     #[serde(default)]
     pub planner: PlannerSpec,
+    /// Physics parameters (every one has a default).
     #[serde(default)]
     pub physics: PhysicsSpec,
+    /// How the plan is timed into a trajectory.
     #[serde(default)]
     pub trajectory: TrajectorySpec,
     /// Pairs allowed to touch: a robot link with `table`, an obstacle or another link
@@ -34,6 +44,7 @@ pub struct SceneFile {
     pub allowed_collisions: Vec<[String; 2]>,
 }
 
+/// The robot: an arm from URDF or the planar hand (`type`).
 #[derive(Debug, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum RobotSpec {
@@ -51,6 +62,7 @@ pub enum RobotSpec {
         /// The tool point and frame in the end-effector link (default: the link frame).
         #[serde(default)]
         tool: PoseSpec,
+        /// The plane the tool is held on.
         pushing_plane: PlaneSpec,
     },
     /// The free-flying planar pusher.
@@ -64,15 +76,19 @@ pub enum RobotSpec {
     },
 }
 
+/// A pose: translation (m) and roll, pitch, yaw (rad), applied as `Rz(yaw) Ry(pitch) Rx(roll)`.
 #[derive(Debug, Deserialize, Default, Clone, Copy)]
 #[serde(deny_unknown_fields)]
 pub struct PoseSpec {
+    /// Translation (m).
     #[serde(default)]
     pub xyz: [f64; 3],
+    /// Roll, pitch, yaw (rad).
     #[serde(default)]
     pub rpy: [f64; 3],
 }
 
+/// The pushing plane: the tool's height and tilt.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneSpec {
@@ -82,6 +98,7 @@ pub struct PlaneSpec {
     pub orientation_rpy: [f64; 3],
 }
 
+/// The table: its top's height and extent.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TableSpec {
@@ -89,6 +106,7 @@ pub struct TableSpec {
     pub height: f64,
     /// Extent of the support surface along world x and y: [min, max] (m).
     pub x: [f64; 2],
+    /// Extent along world y: [min, max] (m).
     pub y: [f64; 2],
     /// Thickness of the table top slab (m).
     #[serde(default = "default_table_thickness")]
@@ -103,21 +121,30 @@ fn default_table_thickness() -> f64 {
 #[derive(Debug, Deserialize, Clone)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ShapeSpec {
+    /// A box centred on its frame.
     Box {
+        /// Full side lengths x, y, z (m).
         size: [f64; 3],
     },
+    /// An upright cylinder.
     Cylinder {
+        /// Radius (m).
         radius: f64,
+        /// Height (m).
         height: f64,
     },
     /// A convex polygon (x, y vertices in the body frame) extruded to `height`.
     Polygon {
+        /// The vertices, counter-clockwise (m).
         vertices: Vec<[f64; 2]>,
+        /// Height of the extrusion (m).
         height: f64,
     },
     /// An STL mesh (file relative to the scene file), used as its convex hull.
     Mesh {
+        /// The mesh file, relative to the scene file.
         file: PathBuf,
+        /// Scale along x, y, z (default 1).
         #[serde(default = "unit_scale")]
         scale: [f64; 3],
     },
@@ -127,19 +154,24 @@ fn unit_scale() -> [f64; 3] {
     [1.0; 3]
 }
 
+/// A static obstacle.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObstacleSpec {
+    /// Its name (unique among obstacles).
     #[serde(deserialize_with = "name")]
     pub name: String,
+    /// Its solid.
     pub shape: ShapeSpec,
     /// World pose of the shape's frame.
     pub pose: PoseSpec,
 }
 
+/// A movable object.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
+    /// Its name (unique among objects).
     #[serde(deserialize_with = "name")]
     pub name: String,
     /// box, cylinder or polygon; it rests on the table.
@@ -164,8 +196,10 @@ pub struct ObjectSpec {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum PhysicsModel {
+    /// Quasistatic planar pushing (the whole-arm paper).
     #[default]
     Quasistatic,
+    /// A rigid-body engine run until the objects rest (the workshop paper).
     SemiDynamic,
 }
 
@@ -175,10 +209,13 @@ pub enum PhysicsModel {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GraspSpec {
+    /// The grasp frame `w` in the object frame.
     #[serde(default)]
     pub frame: PoseSpec,
+    /// The end effector's pose in `w` (`T_e^w`).
     #[serde(default)]
     pub end_effector: PoseSpec,
+    /// How far the grasp may move within `w`.
     #[serde(default)]
     pub bounds: BoundsSpec,
 }
@@ -187,20 +224,27 @@ pub struct GraspSpec {
 #[derive(Debug, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct BoundsSpec {
+    /// Displacement along x (m).
     #[serde(default)]
     pub x: [f64; 2],
+    /// Displacement along y (m).
     #[serde(default)]
     pub y: [f64; 2],
+    /// Displacement along z (m).
     #[serde(default)]
     pub z: [f64; 2],
+    /// Roll (rad).
     #[serde(default)]
     pub roll: [f64; 2],
+    /// Pitch (rad).
     #[serde(default)]
     pub pitch: [f64; 2],
+    /// Yaw (rad).
     #[serde(default)]
     pub yaw: [f64; 2],
 }
 
+/// The support pressure over an object's footprint.
 #[derive(Debug, Deserialize, Default)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum PressureSpec {
@@ -208,7 +252,10 @@ pub enum PressureSpec {
     #[default]
     Uniform,
     /// A given characteristic length c (m).
-    CharacteristicLength { c: f64 },
+    CharacteristicLength {
+        /// The characteristic length (m).
+        c: f64,
+    },
 }
 
 /// Either `object` + `center` + `radius`, or `configuration` (+ `tolerance`).
@@ -236,7 +283,8 @@ pub struct GoalSpec {
 }
 
 /// Planner parameters; every field has a default (see [`PlannerSpec::default`]). C++'s
-/// `pushplan::detail::PlannerParams` (`cpp/bridge_types.h`) is the same type: the bridge
+/// `pushplan::detail::PlannerParams` (`cpp/problem/bridge_types.h`) is the same type: the
+/// bridge
 /// passes it as is.
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq)]
 #[serde(default, deny_unknown_fields)]
@@ -257,6 +305,7 @@ pub struct PlannerSpec {
     pub step: f64,
     /// Shortest and longest control duration (s).
     pub min_duration: f64,
+    /// Longest control duration (s).
     pub max_duration: f64,
     /// Bound on |vx|, |vy| of the end effector (m/s).
     pub max_ee_speed: f64,
@@ -266,7 +315,9 @@ pub struct PlannerSpec {
     pub max_nullspace_speed: f64,
     /// Distance weights: robot configuration, each object, the goal object.
     pub robot_weight: f64,
+    /// Distance weight of each object other than the goal object.
     pub object_weight: f64,
+    /// Distance weight of the goal object.
     pub goal_object_weight: f64,
     /// Length (m) that one radian of object yaw counts as in the distance.
     pub rotation_length: f64,
@@ -310,6 +361,7 @@ pub struct PhysicsSpec {
     pub max_joint_step: f64,
     /// Tolerated distance of the tool from its plane (m) and tilt (rad).
     pub plane_tolerance: f64,
+    /// Tolerated tilt of the tool from its plane's orientation (rad).
     pub tilt_tolerance: f64,
     /// Reserve against tipping, a fraction in [0, 1): the support's centre of pressure
     /// must stay inside the footprint shrunk by this fraction about its centroid. The

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 
 /// Where the goal disc is, in every scene (m): in reach of HERB's other arm.
 pub const GOAL_CENTER: [f64; 2] = [0.85, -0.3];
+/// The goal disc's radius (m), in every scene.
 pub const GOAL_RADIUS: f64 = 0.1;
 /// The region objects are placed in (x, y ranges, m): in the arm's reach on the table.
 const REGION: ([f64; 2], [f64; 2]) = ([0.45, 0.95], [-0.45, 0.5]);
@@ -77,7 +78,11 @@ fn grasps_of_side((b, h): (f64, f64)) -> String {
 /// Which scene set to generate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Design {
+    /// The whole-arm paper's design (Sec. V-A): 1 to 12 objects, whole layouts drawn and
+    /// kept when valid.
     Paper,
+    /// Dense clutter: objects placed one by one (scattered, over the goal disc, or as a
+    /// wall across the way), objects pushing objects.
     Dense,
 }
 

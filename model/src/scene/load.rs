@@ -112,6 +112,7 @@ pub const MAX_K: u32 = 10_000;
 /// Shortest and longest propagation step (s): shorter steps make paths of millions of
 /// steps, longer ones let a link pass through an object within one step.
 pub const MIN_STEP: f64 = 1e-4;
+/// Longest propagation step (s).
 pub const MAX_STEP: f64 = 0.1;
 /// Most propagation steps in one control (`planner.max_duration / planner.step`).
 pub const MAX_CONTROL_STEPS: usize = 10_000;

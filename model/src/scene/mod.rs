@@ -30,18 +30,30 @@ pub use file::{
 /// centre must end. Open-loop execution drifts by centimetres (BENCHMARKS.md, execution).
 pub const DEFAULT_GOAL_MARGIN: f64 = 0.03;
 
+/// A validated scene: the robot, the table, obstacles, movable objects, the goal, the
+/// parameters and the start state, ready to plan in. Loaded from a file ([`Scene::load`])
+/// or YAML text ([`Scene::from_yaml`]); every field checked, the start state valid.
 #[derive(Clone, Debug)]
 pub struct Scene {
+    /// The scene's name (`name:`, else the file stem).
     pub name: String,
     /// The file the scene came from (or a label for scenes built from text).
     pub source: PathBuf,
+    /// The robot that pushes.
     pub robot: Robot,
+    /// The support surface.
     pub table: Table,
+    /// Static obstacles.
     pub obstacles: Vec<Obstacle>,
+    /// Movable objects, in the state's object order.
     pub objects: Vec<MovableObject>,
+    /// What the plan must achieve.
     pub goal: Goal,
+    /// Planner parameters.
     pub planner: PlannerParams,
+    /// Physics parameters.
     pub physics: PhysicsParams,
+    /// How plans are timed into trajectories.
     pub trajectory: TrajectoryParams,
     /// The start state (robot start projected onto its pushing plane).
     pub start: State,
@@ -62,10 +74,12 @@ pub struct AllowedCollisions {
 }
 
 impl AllowedCollisions {
+    /// May `link` touch the table?
     pub fn link_table(&self, link: usize) -> bool {
         self.table.contains(&link)
     }
 
+    /// May `link` touch `obstacle`?
     pub fn link_obstacle(&self, link: usize, obstacle: usize) -> bool {
         self.obstacles.contains(&(link, obstacle))
     }
@@ -83,6 +97,7 @@ pub struct Table {
     pub top: f64,
     /// Extent along x and y (m).
     pub x: (f64, f64),
+    /// Extent along y (m).
     pub y: (f64, f64),
     /// The slab, in world coordinates (its body pose is the identity).
     pub geometry: Geometry,
@@ -114,17 +129,21 @@ impl Table {
     }
 }
 
+/// A static obstacle.
 #[derive(Clone, Debug)]
 pub struct Obstacle {
+    /// Its name.
     pub name: String,
     /// World pose of the obstacle's frame.
     pub pose: Isometry3<f64>,
+    /// Its solid, in the obstacle's frame.
     pub geometry: Geometry,
 }
 
 /// A rigid prism resting on the table.
 #[derive(Clone, Debug)]
 pub struct MovableObject {
+    /// Its name.
     pub name: String,
     /// Footprint in the object frame, centred on the centre of friction (m).
     pub footprint: Footprint,
@@ -138,7 +157,9 @@ pub struct MovableObject {
     pub mass: f64,
     /// Support friction and contact friction coefficients.
     pub mu_g: f64,
+    /// Friction coefficient against the robot.
     pub mu_c: f64,
+    /// The limit surface under uniform support pressure (object frame).
     pub limit_surface: LimitSurface,
     /// How `c` changes as a push at height loads the support toward an edge.
     pub support: LoadedSupport,
@@ -165,12 +186,15 @@ impl MovableObject {
     }
 }
 
+/// What a plan must achieve.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Goal {
     /// The goal object's centre inside a disc on the table, at least `margin` inside its
     /// edge (so that small execution errors still end inside the disc).
     ObjectInDisc {
+        /// Index of the goal object.
         object: usize,
+        /// Centre of the goal disc (m, world frame).
         center: Vector2<f64>,
         /// Radius of the disc (m).
         radius: f64,
@@ -178,13 +202,21 @@ pub enum Goal {
         margin: f64,
     },
     /// The robot within `tolerance` (Euclidean, joint space) of a configuration.
-    Configuration { q: DVector<f64>, tolerance: f64 },
+    Configuration {
+        /// The configuration (rad or m).
+        q: DVector<f64>,
+        /// How close the robot must come (Euclidean, joint space).
+        tolerance: f64,
+    },
     /// The tool inside one of an object's grasp regions (its `grasps`, where the object is
     /// in the state), within [`GRASP_TOLERANCE`] of the lecture's distance;
     /// clutter may be pushed aside on the way, and the object itself if `object_may_move`.
     Grasp {
+        /// Index of the object to grasp.
         object: usize,
+        /// Its grasp regions, in the object frame.
         grasps: Vec<Grasp>,
+        /// May the pushes move it?
         object_may_move: bool,
         /// Table top (m, world z): where the object frames stand.
         table_top: f64,

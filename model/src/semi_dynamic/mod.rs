@@ -54,11 +54,13 @@ impl Default for RestSettings {
 /// A movable object of the world: its footprint (object frame), mass and frictions.
 #[derive(Clone, Debug)]
 pub struct Body {
+    /// Footprint in the object frame (m).
     pub footprint: Footprint,
     /// kg
     pub mass: f64,
     /// Support friction against the table, and contact friction against others.
     pub mu_g: f64,
+    /// Friction coefficient against other bodies (objects and pushers).
     pub mu_c: f64,
 }
 
@@ -67,14 +69,18 @@ pub struct Body {
 pub struct Unsettled {
     /// The fastest object and its speed (m/s) when time ran out.
     pub object: usize,
+    /// Its speed (m/s).
     pub speed: f64,
 }
 
 /// A pusher's motion: planar velocity in the world frame (m/s, m/s, rad/s).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PusherVelocity {
+    /// Velocity along world x (m/s).
     pub vx: f64,
+    /// Velocity along world y (m/s).
     pub vy: f64,
+    /// Turn rate about z (rad/s).
     pub omega: f64,
 }
 
@@ -143,7 +149,9 @@ pub struct World {
 /// The objects' poses at a time (s since the world was built).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TracePoint {
+    /// Seconds since the world was built.
     pub time: f64,
+    /// Every object's pose then, in the scene's order.
     pub poses: Vec<Pose2>,
 }
 
@@ -509,6 +517,7 @@ impl World {
 pub struct Push {
     /// Index of the [`Sweep`] that pushed.
     pub pusher: usize,
+    /// The object it pushed.
     pub object: usize,
     /// Normal impulse over the whole transition (N s).
     pub impulse: f64,

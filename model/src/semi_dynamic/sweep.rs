@@ -29,6 +29,7 @@ pub struct Sweep {
     pub shape: SharedShape,
     /// That frame's planar pose at the step's start and end (world).
     pub from: Pose2,
+    /// That frame's planar pose at the step's end (world).
     pub to: Pose2,
     /// World height of the cut's lowest point (m): where the link meets an object's side
     /// lowest, the contact a tipping object keeps.

@@ -20,6 +20,7 @@ const APPROACH_TURNS: [f64; 5] = [0.0, 0.6, -0.6, 1.2, -1.2];
 /// A hand holding one object: the object's planar pose in the tool's planar frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cage {
+    /// The object held.
     pub object: usize,
     /// The object's pose (x, y in m, yaw in rad) in the frame of the tool's planar pose.
     pub grip: Pose2,

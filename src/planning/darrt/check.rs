@@ -42,6 +42,7 @@ pub struct PrimitivePath {
     pub durations: Vec<f64>,
     /// How many times the hand picks an object up (PickPlace).
     pub pick_places: usize,
+    /// The path's last state satisfies the goal.
     pub goal_reached: bool,
 }
 

@@ -1,6 +1,6 @@
 //! The model side of the DARRT baseline (the whole-arm paper, Sec. V-A, after Barry,
 //! Kaelbling and Lozano-Pérez): its motion primitives and the check of its paths. The
-//! planner loop is OMPL's side (`cpp/darrt.cpp`).
+//! planner loop is OMPL's side (`cpp/planners/darrt/darrt.cpp`).
 //!
 //! - **Transit** ([`crate::planning::transit`]): the arm moves along a straight line in configuration
 //!   space, the objects stay where they are; every configuration on the line is a valid
@@ -42,7 +42,12 @@ pub enum PrimitiveFailure {
     Unreachable,
     /// Following the line would make a joint jump (rad, or m): a singularity or a
     /// branch change of the inverse kinematics.
-    JointJump { joint: usize, step: f64 },
+    JointJump {
+        /// The joint (configuration index).
+        joint: usize,
+        /// How far it would jump (rad or m).
+        step: f64,
+    },
     /// PickPlace: the manipulation graph found no way within its budget.
     NoPath,
     /// PickPlace: the manipulation graph's way fails the path check (why).

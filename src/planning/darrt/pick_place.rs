@@ -22,6 +22,7 @@ use std::time::Instant;
 /// A state of a DARRT path and what the hand holds in it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PathState {
+    /// The state.
     pub state: State,
     /// The object the hand carries (index into the scene's objects), if any.
     pub held: Option<usize>,

@@ -28,6 +28,7 @@ pub struct ExecuteSettings {
     pub speed: f64,
     /// Seed of the perturbations.
     pub seed: u64,
+    /// The perturbations of the trials after the first (nominal) one.
     pub noise: Noise,
     /// Keep each trial's object poses at the trajectory's rate (for pictures).
     pub record: bool,
@@ -63,17 +64,28 @@ pub const SETTLE: f64 = 1.0;
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Divergence {
     /// An object tilted beyond [`TIPPED_TILT`].
-    Tipped { object: String, time: f64 },
+    Tipped {
+        /// The object.
+        object: String,
+        /// When (s into the trajectory).
+        time: f64,
+    },
     /// Two objects touched (the planar model keeps them apart).
     ObjectContact {
+        /// One object.
         object_a: String,
+        /// The other.
         object_b: String,
+        /// When (s into the trajectory).
         time: f64,
     },
     /// An object's centre left its predicted position by more than [`DRIFT`].
     Drift {
+        /// The object.
         object: String,
+        /// When (s into the trajectory).
         time: f64,
+        /// How far off its predicted position (m).
         error: f64,
     },
 }
@@ -98,6 +110,7 @@ pub struct ExecutionTrial {
     pub final_errors: Vec<f64>,
     /// Each object's final tilt from upright (rad), scene order.
     pub final_tilts: Vec<f64>,
+    /// The first way the trial parted from the plan, if it did.
     pub first_divergence: Option<Divergence>,
     /// Object poses `[x, y, yaw]` at the trajectory's sample times (when recorded).
     #[serde(skip)]
@@ -107,7 +120,9 @@ pub struct ExecutionTrial {
 /// What the trials found.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ExecutionReport {
+    /// Every trial, the nominal one first.
     pub trials: Vec<ExecutionTrial>,
+    /// Execution pace relative to the plan's trajectory.
     pub speed: f64,
     /// Fraction of trials that reached the goal.
     pub success_rate: f64,

@@ -22,7 +22,7 @@ pub const STEP: f64 = 0.001;
 /// face against a face, a box squeezed between two links) need more than one
 /// Gauss-Seidel sweep per iteration: with one, the outcome of a turning hand's push
 /// changed by a radian when the iterations were doubled; with four it changes by less
-/// than doubling them again does (`tests/execute.rs`).
+/// than doubling them again does (`tests/integration/execute.rs`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolverSettings {
     /// Solver iterations (substeps) per step.

@@ -15,7 +15,9 @@ use std::collections::BinaryHeap;
 /// A roadmap edge between samples `a` and `b`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FuzzyEdge {
+    /// One end (sample index).
     pub a: usize,
+    /// The other end (sample index).
     pub b: usize,
     /// Joint-space length (the largest joint's motion, rad or m).
     pub length: f64,
@@ -49,7 +51,9 @@ pub enum Query {
 /// A low-level Fuzzy PRM between samples 0 (start) and 1 (goal).
 #[derive(Clone, Debug)]
 pub struct FuzzyRoadmap {
+    /// Joint configurations: the start first, the goal second, then samples.
     pub samples: Vec<DVector<f64>>,
+    /// The roadmap's edges.
     pub edges: Vec<FuzzyEdge>,
     /// Length of free motion a random edge typically has (rad): the scale of `P*`.
     free_length: f64,

@@ -27,6 +27,7 @@ pub struct Settings {
     pub budget: usize,
     /// `P*`'s scale: joint motion (rad) an unchecked edge is free for with probability 1/e.
     pub free_length: f64,
+    /// Seeds the samples and grasps.
     pub seed: u64,
     /// When to give up whatever the budget left (a caller's time limit; `None`: never).
     /// The budget alone keeps a search repeatable; a deadline it meets first does not.
@@ -48,24 +49,33 @@ impl Default for Settings {
 /// Transfer (the grasp shared) or transit (the placement shared).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EdgeKind {
+    /// The object rests at a placement; the arm moves between grasps.
     Transit,
+    /// The arm carries the object in a grasp.
     Transfer,
 }
 
 /// A node `(q_obj, g, q_rob)`: placement index, grasp index (`None` for the arm's start).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Node {
+    /// Index of the object's placement.
     pub placement: usize,
+    /// Index of the grasp (`None`: the arm's start).
     pub grasp: Option<usize>,
+    /// The arm's configuration.
     pub q: DVector<f64>,
 }
 
 /// An edge of the manipulation graph.
 #[derive(Clone, Debug)]
 pub struct Edge {
+    /// One node (index).
     pub a: usize,
+    /// The other node (index).
     pub b: usize,
+    /// Transit or transfer.
     pub kind: EdgeKind,
+    /// Probability that the edge is free (1 once a path is found).
     pub probability: f64,
     /// Validity checks its low-level runs have spent.
     pub time: usize,
@@ -77,8 +87,11 @@ pub struct Edge {
 
 /// The manipulation graph of a pick-and-place problem, and its query loop.
 pub struct ManipulationGraph {
+    /// The problem.
     pub problem: PickAndPlace,
+    /// The graph's nodes.
     pub nodes: Vec<Node>,
+    /// The graph's edges.
     pub edges: Vec<Edge>,
     /// Validity checks spent on every edge so far.
     pub total_time: usize,

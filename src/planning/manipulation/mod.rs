@@ -30,10 +30,12 @@ pub const IK_SEEDS: usize = 20;
 /// One object to move from its start placement to another, with the grasps to use.
 #[derive(Clone, Debug)]
 pub struct PickAndPlace {
+    /// The scene.
     pub scene: Scene,
     /// Where the arm starts and every object rests (the scene's start, or a state part
     /// way through a plan).
     pub start: State,
+    /// The object to move (scene index).
     pub object: usize,
     /// Placements of the object: its start first, the goal second, then any others
     /// (places to put it down and grasp it anew).
@@ -46,11 +48,17 @@ pub struct PickAndPlace {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Motion {
     /// The object rests at a placement; the arm moves (to or between grasps).
-    Transit { placement: usize },
+    Transit {
+        /// The placement the object rests at.
+        placement: usize,
+    },
     /// The arm carries the object in a grasp from one placement to another.
     Transfer {
+        /// The grasp held (index).
         grasp: usize,
+        /// The placement it is picked up at.
         from: usize,
+        /// The placement it is put down at.
         to: usize,
     },
 }
@@ -58,7 +66,9 @@ pub enum Motion {
 /// Part of a pick-and-place path: joint waypoints joined by straight lines.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Segment {
+    /// How the arm moves.
     pub motion: Motion,
+    /// Joint waypoints, the first where the segment starts.
     pub waypoints: Vec<DVector<f64>>,
 }
 

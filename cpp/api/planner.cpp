@@ -1,0 +1,416 @@
+// pushplan::Planner: the OMPL problem of Alg. 1 set up from a scene, solved with
+// ompl::control::RRT, and the plan checked by re-simulation before it is returned.
+
+#include "pushplan/pushplan.h"
+
+#include "pushplan/cpp/problem/model_handle.h"
+#include "pushplan/cpp/search/parallel_kpiece.h"
+#include "pushplan/cpp/api/planner_source.h"
+#include "pushplan/cpp/search/portfolio.h"
+#include "pushplan/cpp/problem/problem.h"
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/control/SimpleSetup.h>
+#include <ompl/util/Console.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <thread>
+#include <utility>
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+
+namespace pushplan
+{
+    namespace detail
+    {
+        /// `kind` if it is one of PlannerKind's values: an integer cast to the enum must not
+        /// reach Rust, where an unknown discriminant is undefined behaviour.
+        PlannerKind checkedKind(PlannerKind kind)
+        {
+            // PushKpiece is the enum's last value.
+            if (static_cast<unsigned>(kind) > static_cast<unsigned>(PlannerKind::PushKpiece))
+                throw Error("unknown planner kind " + std::to_string(static_cast<unsigned>(kind)));
+            return kind;
+        }
+
+        /// One search per core (at least one).
+        unsigned defaultThreads()
+        {
+            return std::max(1u, std::thread::hardware_concurrency());
+        }
+
+        /// The searches' statistics, summed by the model (reasons in name order).
+        SearchStats searchStats(const std::vector<ModelHandlePtr> &models)
+        {
+            const bridge::SearchStats sum = summedSearchStats(models);
+            SearchStats total{sum.propagations, sum.steps, sum.moved_goal_object, sum.moved_clutter, {}};
+            for (std::size_t i = 0; i < sum.stop_reasons.size(); ++i)
+                total.stopped.emplace_back(std::string(sum.stop_reasons[i]), sum.stop_counts[i]);
+            return total;
+        }
+
+        /// A progress report on stderr, one line (Options::progress without on_progress).
+        void printProgress(const Progress &p)
+        {
+            if (!p.note.empty())
+            {
+                std::fprintf(stderr, "  %s\n", p.note.c_str());
+                return;
+            }
+            std::fprintf(stderr, "  searching: %5.1f s, %llu propagation steps, %.0f steps/s, %.0f %% propagating",
+                         p.seconds, static_cast<unsigned long long>(p.propagation_steps), p.steps_per_second,
+                         100.0 * p.propagating);
+            if (p.tree_states)
+                std::fprintf(stderr, ", tree of %zu states", *p.tree_states);
+            if (p.searches > 1)
+                std::fprintf(stderr, " in %u searches", p.searches);
+            if (std::isfinite(p.closest_goal_distance))
+                std::fprintf(stderr, ", closest to the goal %.3f", p.closest_goal_distance);
+            std::fputc('\n', stderr);
+        }
+    }  // namespace detail
+
+    Planner::Planner(const std::string &scene_file) : Planner(std::make_unique<Source>(Source{scene_file, "", false, ""}))
+    {
+    }
+
+    Planner Planner::fromYaml(const std::string &yaml, const std::string &source)
+    {
+        return Planner(std::make_unique<Source>(Source{source, yaml, true, ""}));
+    }
+
+    Planner::Planner(std::unique_ptr<Source> source) : source_(std::move(source))
+    {
+        source_->name = std::string(bridge::scene_info(*source_->load()).name);  // validates now
+    }
+
+    Planner::~Planner() = default;
+    Planner::Planner(Planner &&) noexcept = default;
+    Planner &Planner::operator=(Planner &&) noexcept = default;
+
+    std::string Planner::sceneName() const
+    {
+        return source().name;
+    }
+
+    const Planner::Source &Planner::source() const
+    {
+        if (!source_)
+            throw Error("this pushplan::Planner was moved from: it has no scene");
+        return *source_;
+    }
+
+    std::string plannerName(PlannerKind kind)
+    {
+        return std::string(bridge::planner_name(detail::checkedKind(kind)));
+    }
+
+    PlannerKind plannerKind(const std::string &name)
+    {
+        try
+        {
+            return bridge::planner_kind(name);
+        }
+        catch (const rust::Error &e)
+        {
+            throw Error(e.what());
+        }
+    }
+
+    double Plan::duration() const
+    {
+        double total = 0.0;
+        for (const auto &c : controls)
+            total += c.duration;
+        return total;
+    }
+
+    Plan Planner::solve(const Options &options) const
+    {
+        // Every failure inside, the model's or OMPL's, leaves as pushplan::Error.
+        return detail::asPushplanError([&]() -> Plan {
+            using detail::checked;
+            const Source &source = this->source();
+            detail::checkedKind(options.planner);
+            if (!bridge::planner_yields_controls(options.planner))
+                throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
+                            "(measure DARRT with `pushplan bench`)");
+            // The KPIECE planners run one search whose propagations use every thread
+            // (detail::ParallelKPIECE); the others one search per thread (detail::Portfolio).
+            // Each search and each propagation lane has a model of its own.
+            const unsigned threads = options.threads.value_or(detail::defaultThreads());
+            checked("threads", threads, threads >= 1 && threads <= 256);
+            const bool lanes_per_search = threads > 1 && bridge::planner_shares_one_search(options.planner);
+            const unsigned search_count = lanes_per_search ? 1 : threads;
+            const unsigned lane_count = lanes_per_search ? detail::lanesFor(threads) : 0;
+            std::vector<detail::ModelHandlePtr> models, lane_models;
+            for (unsigned i = 0; i < search_count + lane_count; ++i)
+            {
+                (i < search_count ? models : lane_models)
+                    .push_back(std::make_shared<detail::ModelHandle>(source.load()));
+                // Static RRT's problem: the same states, the clutter pinned where it starts.
+                (i < search_count ? models.back() : lane_models.back())
+                    ->model()
+                    .set_static_clutter(options.planner == PlannerKind::StaticRrt);
+            }
+            const bridge::SceneInfo &info = models[0]->info();
+            const double time_limit = options.time_limit.value_or(info.planner.time_limit);
+            checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
+            const std::uint64_t seed = options.seed.value_or(info.planner.seed);
+            const unsigned k = checked("k", options.k.value_or(info.planner.k), options.k.value_or(info.planner.k) >= 1);
+            const double goal_bias = options.goal_bias.value_or(info.planner.goal_bias);
+            checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
+            checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
+            checked("robust_shortcut", options.robust_shortcut,
+                    std::isfinite(options.robust_shortcut) && options.robust_shortcut >= 0.0);
+            checked("shortcut", options.shortcut, std::isfinite(options.shortcut) && options.shortcut >= 0.0);
+            checked("robust_particles", options.robust_particles,
+                    options.robust_particles <= 64 &&
+                        (options.robust_particles == 0 ||
+                         (options.robust_trials > 0 && options.planner != PlannerKind::StaticRrt)));
+            const std::uint64_t restart_steps =
+                options.restart_steps.value_or(bridge::planner_restart_steps(options.planner));
+            const std::uint64_t fallback_steps =
+                options.fallback_steps.value_or(bridge::planner_fallback_steps(options.planner));
+            for (unsigned i = 0; i < search_count; ++i)
+                models[i]->setParticles(options.robust_particles, detail::searchSeed(seed, i));
+            // A lane propagates the states of search 0: the same perturbed worlds.
+            for (const detail::ModelHandlePtr &m : lane_models)
+                m->setParticles(options.robust_particles, detail::searchSeed(seed, 0));
+
+            // OMPL's log level is process-wide: quiet below warnings while planning, then put
+            // back as the application had it.
+            const struct LogLevelGuard
+            {
+                ompl::msg::LogLevel saved = ompl::msg::getLogLevel();
+                LogLevelGuard() { ompl::msg::setLogLevel(std::max(saved, ompl::msg::LOG_WARN)); }
+                ~LogLevelGuard() { ompl::msg::setLogLevel(saved); }
+            } log_level;
+            // Set up on this thread, in order: OMPL's planners draw their seeds as they are made.
+            std::vector<detail::Search> searches;
+            for (unsigned i = 0; i < search_count; ++i)
+            {
+                const std::uint64_t search_seed = detail::searchSeed(seed, i);
+                detail::Problem problem = detail::makeProblem(models[i], search_seed, k);
+                std::vector<detail::Lane> lanes;
+                for (std::size_t l = 0; l < lane_models.size(); ++l)
+                    lanes.push_back(detail::makeLane(lane_models[l], search_seed, l, k));
+                ob::PlannerPtr planner =
+                    detail::makePlanner(options.planner, problem, search_seed, goal_bias, options.intermediate_states,
+                                        restart_steps, fallback_steps, std::move(lanes), threads);
+                problem.setup->setPlanner(planner);
+                problem.setup->setup();
+                searches.push_back(detail::Search{std::move(problem), std::move(planner)});
+            }
+            detail::Portfolio portfolio(std::move(searches));
+
+            // Search until an exact solution or the time limit; progress once a second.
+            const auto started = std::chrono::steady_clock::now();
+            const auto elapsed = [&] {
+                return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            };
+            const std::function<bool()> out_of_time = [&] { return elapsed() >= time_limit; };
+            // The models refuse to propagate past the limit: an extension of k long controls
+            // (OMPL checks the limit only between extensions) ends on time. Not PDST's.
+            if (bridge::planner_cut_at_time_limit(options.planner))
+            {
+                for (const detail::ModelHandlePtr &m : models)
+                    m->model().set_time_limit(time_limit);
+                for (const detail::ModelHandlePtr &m : lane_models)
+                    m->model().set_time_limit(time_limit);
+            }
+            // Each report: totals, then the rate since the last one and the share of that
+            // time spent propagating (the rest is the planner: nearest neighbours, sampling).
+            double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
+            std::uint64_t last_steps = 0, told_fallbacks = 0;
+            // Reports go to options.on_progress, or are printed with options.progress.
+            const auto tell = [&](const Progress &p) {
+                if (options.on_progress)
+                    options.on_progress(p);
+                else if (options.progress)
+                    detail::printProgress(p);
+            };
+            // An event rather than a periodic report: the totals so far and what happened.
+            const auto tell_event = [&](std::string what) {
+                Progress p;
+                p.seconds = elapsed();
+                p.propagation_steps = portfolio.propagationSteps();
+                p.searches = search_count;
+                p.closest_goal_distance = portfolio.closestGoalDistance();
+                p.note = std::move(what);
+                tell(p);
+            };
+            const std::function<bool()> report_due = [&] {
+                return (options.progress || options.on_progress) && elapsed() >= next_report;
+            };
+            const std::function<void()> report = [&] {
+                const double t = elapsed();
+                if (const std::uint64_t fallbacks = portfolio.fallbacks(); fallbacks > told_fallbacks)
+                {
+                    tell_event("the goal object has not moved in " + std::to_string(fallback_steps) +
+                               " propagation steps: PC RRT searches on");
+                    told_fallbacks = fallbacks;
+                }
+                Progress p;
+                p.seconds = t;
+                p.propagation_steps = portfolio.propagationSteps();
+                const double propagating = portfolio.propagationSeconds() / threads;
+                p.steps_per_second = static_cast<double>(p.propagation_steps - last_steps) / (t - last_t);
+                p.propagating = (propagating - last_propagating) / (t - last_t);
+                p.tree_states = portfolio.treeStates();
+                p.searches = search_count;
+                p.closest_goal_distance = portfolio.closestGoalDistance();
+                tell(p);
+                last_t = t, last_steps = p.propagation_steps, last_propagating = propagating;
+                next_report = std::floor(t) + 1.0;
+            };
+            const auto search = [&] {
+                try
+                {
+                    return portfolio.solve(out_of_time, report_due, report);
+                }
+                catch (const rust::Error &e)
+                {
+                    throw Error(std::string("planning failed: ") + e.what());
+                }
+            };
+
+            // The path as found: controls with their step counts, and the states OMPL reached.
+            detail::ModelHandle::FlatPath found;
+            std::optional<std::size_t> winner = search();
+            const auto read_path = [&] {
+                found = {};
+                if (const std::optional<std::size_t> best = winner ? winner : portfolio.best())
+                {
+                    const oc::SimpleSetup &setup = *portfolio[*best].problem.setup;
+                    found = portfolio[*best].problem.model->readPath(setup.getSolutionPath());
+                }
+            };
+
+            Plan plan;
+            read_path();
+            // Robust planning: a solution that too few perturbed re-simulations carry to the
+            // goal is first shortcut toward the most robust path (`planner::finish`); if it is
+            // still not robust enough it is dropped, and its search starts over with a new tree
+            // (the old tree's next solutions would mostly extend the dropped one, past its goal
+            // node).
+            while (winner && options.robust_trials > 0)
+            {
+                const bridge::FinishedPath repaired = models[*winner]->finish(
+                    found, true, bridge::FinishSettings{options.robust_shortcut, seed, options.robust_trials,
+                                                        options.robust_rate, time_limit - elapsed()});
+                plan.robustness = repaired.robustness;
+                if (plan.robustness >= options.robust_rate)
+                {
+                    found = {std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
+                             std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
+                             std::vector<double>(repaired.states.begin(), repaired.states.end())};
+                    break;
+                }
+                {
+                    char note[256];
+                    std::snprintf(note, sizeof note,
+                                  "a solution reaches the goal in %.0f %% of %u perturbed re-simulations "
+                                  "(%zu of %zu controls kept shortcutting toward robustness): searching on",
+                                  100.0 * plan.robustness, options.robust_trials, repaired.steps.size(),
+                                  found.steps.size());
+                    tell_event(note);
+                }
+                if (out_of_time())
+                {
+                    winner.reset();  // the last path is kept, as an approximate solution
+                    break;
+                }
+                portfolio.restart(*winner);
+                winner = search();
+                read_path();
+            }
+            const bool solved = winner.has_value();
+            const detail::ModelHandlePtr &model = models[winner.value_or(portfolio.best().value_or(0))];
+
+            plan.planning_time = elapsed();
+            plan.propagation_steps = portfolio.propagationSteps();
+            std::vector<detail::ModelHandlePtr> every_model = models;
+            every_model.insert(every_model.end(), lane_models.begin(), lane_models.end());
+            plan.search = detail::searchStats(every_model);
+            plan.threads = threads;
+            plan.restarts = portfolio.restarts();
+            plan.fallbacks = portfolio.fallbacks();
+            plan.step = info.planner.step;
+            for (std::size_t i = 0; i < portfolio.size(); ++i)
+            {
+                const detail::Search &s = portfolio[i];
+                ob::PlannerData data(s.problem.setup->getSpaceInformation());
+                s.planner->getPlannerData(data);
+                plan.tree_size += data.numVertices();
+            }
+            plan.solved = solved;
+            for (const auto &n : info.joint_names)
+                plan.joint_names.emplace_back(n);
+            for (const auto &n : info.object_names)
+                plan.object_names.emplace_back(n);
+            if (found.states.empty())
+                return plan;
+
+            // Every plan is checked (re-simulating it reproduces its states) and finished
+            // (shortcut, kept robust) by the model, the same way as the CLI's and bench's.
+            // A robust solution was measured in the perturbed worlds as it was kept: without
+            // shortcutting the path stays that one, and its robustness stands.
+            const bool measured = solved && options.robust_trials > 0 && options.shortcut == 0.0;
+            const bridge::FinishedPath path = model->finish(
+                found, solved,
+                bridge::FinishSettings{options.shortcut, seed, measured ? 0u : options.robust_trials,
+                                       options.robust_rate, time_limit - elapsed()});
+            plan.before_shortcut = path.before;
+            plan.after_shortcut = path.after;
+            if (path.robustness >= 0.0)
+                plan.robustness = path.robustness;
+
+            const std::size_t width = model->stateSize();
+            for (std::size_t s = 0; s * width < path.states.size(); ++s)
+            {
+                const double *x = path.states.data() + s * width;
+                plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
+                std::vector<Eigen::Vector3d> poses;
+                for (std::size_t o = 0; o < info.objects; ++o)
+                    poses.emplace_back(x[info.dof + 3 * o], x[info.dof + 3 * o + 1], x[info.dof + 3 * o + 2]);
+                plan.object_poses.push_back(std::move(poses));
+            }
+            const std::size_t cwidth = model->controlSize();
+            for (std::size_t i = 0; i < path.steps.size(); ++i)
+            {
+                const double *c = path.controls.data() + i * cwidth;
+                plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
+                                                Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
+                                                static_cast<double>(path.steps[i]) * info.planner.step, path.steps[i]});
+            }
+            const bridge::Trajectory trajectory =
+                bridge::trajectory(model->model(), rust::Slice<const double>(path.controls.data(), path.controls.size()),
+                                   rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
+            plan.trajectory.rate = trajectory.rate;
+            for (std::size_t k = 0; k < trajectory.times.size(); ++k)
+            {
+                plan.trajectory.times.push_back(trajectory.times[k]);
+                plan.trajectory.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(trajectory.q.data() + k * info.dof, info.dof));
+                std::vector<Eigen::Vector3d> poses;
+                for (std::size_t o = 0; o < info.objects; ++o)
+                {
+                    const double *p = trajectory.objects.data() + (k * info.objects + o) * 3;
+                    poses.emplace_back(p[0], p[1], p[2]);
+                }
+                plan.trajectory.objects.push_back(std::move(poses));
+            }
+            plan.contacts.resize(path.steps.size());
+            for (const auto &c : path.contacts)
+                plan.contacts[c.control].push_back(
+                    Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
+            return plan;
+            });
+    }
+}  // namespace pushplan

@@ -1,0 +1,331 @@
+#include "pushplan/cpp/planners/darrt/darrt.h"
+
+#include "pushplan/cpp/problem/problem.h"
+#include "pushplan/cpp/problem/sampling.h"
+#include "pushplan/pushplan.h"
+
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/StateValidityChecker.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+namespace og = ompl::geometric;
+
+namespace pushplan::detail
+{
+    namespace
+    {
+        rust::Slice<const double> view(const double *data, std::size_t size)
+        {
+            return rust::Slice<const double>(data, size);
+        }
+
+        class SeededRRTConnect : public og::RRTConnect
+        {
+        public:
+            SeededRRTConnect(const ob::SpaceInformationPtr &si, std::uint_fast32_t seed) : og::RRTConnect(si)
+            {
+                rng_.setLocalSeed(seed);
+            }
+        };
+    }  // namespace
+
+    PrimitivePath::PrimitivePath(const oc::SpaceInformationPtr &si, ModelHandlePtr model,
+                                 const std::vector<double> &states, const std::vector<std::int64_t> &held,
+                                 bridge::PrimitiveCheck report)
+      : oc::PathControl(si), model_(std::move(model)), flat_(states), held_(held), report_(std::move(report))
+    {
+        const std::size_t n = model_->stateSize();
+        ob::State *state = si->allocState();
+        oc::Control *control = si->allocControl();
+        si->nullControl(control);
+        FlatState buffer(n);
+        for (std::size_t at = 0; at < flat_.size(); at += n)
+        {
+            std::copy(flat_.begin() + at, flat_.begin() + at + n, buffer.begin());
+            model_->write(buffer, state);
+            // One propagation step per placeholder control: OMPL's interpolation then
+            // keeps the primitive states instead of propagating the placeholders.
+            if (at == 0)
+                append(state);
+            else
+                append(state, control, si->getPropagationStepSize());
+        }
+        si->freeControl(control);
+        si->freeState(state);
+    }
+
+    double PrimitivePath::length() const
+    {
+        return std::accumulate(report_.durations.begin(), report_.durations.end(), 0.0);
+    }
+
+    bool PrimitivePath::check() const
+    {
+        return bridge::darrt_check(model_->model(), slice(flat_), slice(held_)).valid;
+    }
+
+    ArmTransit::ArmTransit(ModelHandlePtr model, double time_cap)
+      : model_(model), space_(std::move(model)), time_cap_(time_cap)
+    {
+    }
+
+    bool ArmTransit::plan(const FlatState &from, const FlatState &to, const ob::PlannerTerminationCondition &ptc,
+                          std::uint_fast32_t seed, std::vector<FlatState> &motion)
+    {
+        space_.context() = from;
+        space_.seedSamplers(subSeed(seed, 1));
+        const ob::SpaceInformationPtr &si = space_.si();
+        ob::ScopedState<> start(si), goal(si);
+        space_.toArm(from, start.get());
+        space_.toArm(to, goal.get());
+        auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+        pdef->setStartAndGoalStates(start, goal);
+        auto planner = std::make_shared<SeededRRTConnect>(si, subSeed(seed, 0));
+        planner->setProblemDefinition(pdef);
+        planner->setup();
+        const ob::PlannerStatus status =
+            planner->solve(ob::plannerOrTerminationCondition(ptc, ob::timedPlannerTerminationCondition(time_cap_)));
+        if (status != ob::PlannerStatus::EXACT_SOLUTION)
+            return false;
+        const auto &path = *pdef->getSolutionPath()->as<og::PathGeometric>();
+        for (std::size_t k = 1; k < path.getStateCount(); ++k)
+        {
+            FlatState waypoint = from;
+            space_.withJoints(path.getState(k), waypoint);
+            motion.push_back(std::move(waypoint));
+        }
+        // The goal tree is rooted at the goal itself, so the path ends exactly there.
+        return !motion.empty() && motion.back() == to;
+    }
+
+    Darrt::Darrt(const oc::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed)
+      : ob::Planner(si, "DARRT"), model_(std::move(model)), transit_(model_, 15.0)
+    {
+        rng_.setLocalSeed(seed);
+        goal_bias_ = model_->info().planner.goal_bias;
+        specs_.approximateSolutions = false;
+        specs_.directed = true;
+        declareParam<double>("goal_bias", this, &Darrt::setGoalBias, &Darrt::getGoalBias, "0.:.05:1.");
+        declareParam<double>("transit_time", this, &Darrt::setTransitTime, &Darrt::getTransitTime, "0.:1.:60.");
+        declareParam<double>("pick_place", this, &Darrt::setPickPlace, &Darrt::getPickPlace, "0.:.1:1.");
+    }
+
+    Darrt::~Darrt()
+    {
+        clear();
+    }
+
+    void Darrt::reseed(std::uint_fast32_t seed)
+    {
+        rng_.setLocalSeed(seed);
+    }
+
+    void Darrt::clear()
+    {
+        ob::Planner::clear();
+        for (Node &node : nodes_)
+            si_->freeState(node.ompl_state);
+        nodes_.clear();
+    }
+
+    int Darrt::addNode(int parent, std::vector<FlatState> motion, std::vector<std::int64_t> held)
+    {
+        if (held.empty())
+            held.assign(motion.size(), -1);
+        Node node;
+        node.state = motion.back();
+        node.ompl_state = si_->allocState();
+        model_->write(node.state, node.ompl_state);
+        node.parent = parent;
+        node.motion = std::move(motion);
+        node.held = std::move(held);
+        nodes_.push_back(std::move(node));
+        return static_cast<int>(nodes_.size()) - 1;
+    }
+
+    bool Darrt::rrtTransit(int from, const FlatState &to, const ob::PlannerTerminationCondition &ptc,
+                           std::vector<FlatState> &motion)
+    {
+        const auto seed = static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()));
+        return transit_.plan(nodes_[from].state, to, ptc, subSeed(seed, transit_calls_++), motion);
+    }
+
+    int Darrt::extendArm(const ob::PlannerTerminationCondition &ptc)
+    {
+        const bridge::SceneInfo &info = model_->info();
+        FlatState q(info.dof);
+        sampleJoints(info, rng_, q.data());
+        int nearest = 0;
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t n = 0; n < nodes_.size(); ++n)
+        {
+            double d = 0.0;
+            for (std::size_t i = 0; i < info.dof; ++i)
+                d += std::pow(nodes_[n].state[i] - q[i], 2);
+            if (d < best)
+                best = d, nearest = static_cast<int>(n);
+        }
+        FlatState target = nodes_[nearest].state;
+        std::copy(q.begin(), q.end(), target.begin());
+        if (!model_->model().is_valid(slice(target), {}))
+            return -1;
+        // Transit if the straight line is free, else RRTTransit.
+        std::vector<FlatState> motion;
+        if (model_->model().darrt_transit(slice(nodes_[nearest].state), slice(target)))
+            motion.push_back(target);
+        else if (!rrtTransit(nearest, target, ptc, motion))
+            return -1;
+        return addNode(nearest, std::move(motion));
+    }
+
+    int Darrt::extendObject(int object, const ob::PlannerTerminationCondition &ptc)
+    {
+        const bridge::SceneInfo &info = model_->info();
+        const bool toward_goal = object == info.goal_object && rng_.uniform01() < goal_bias_;
+        const auto [x, y] = toward_goal ? sampleInGoalDisc(info, rng_) : sampleOnTable(info, rng_);
+        const std::array<double, 3> target{x, y, sampleYaw(rng_)};
+
+        // The node whose copy of the object is nearest (centre distance). Many nodes share
+        // an object pose (every arm motion keeps it); ties are broken uniformly, so that
+        // the arm configurations the tree has reached serve as starts of a Push.
+        const std::size_t at = info.dof + 3 * static_cast<std::size_t>(object);
+        int nearest = 0, ties = 0;
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t n = 0; n < nodes_.size(); ++n)
+        {
+            const double d = std::hypot(nodes_[n].state[at] - target[0], nodes_[n].state[at + 1] - target[1]);
+            if (d < best)
+                best = d, nearest = static_cast<int>(n), ties = 1;
+            else if (d == best && rng_.uniformInt(0, ties++) == 0)
+                nearest = static_cast<int>(n);
+        }
+        if (pick_place_ > 0.0 && rng_.uniform01() < pick_place_)
+        {
+            const int placed = pickPlace(nearest, object, target);
+            if (placed >= 0)
+                return placed;
+        }
+        const rust::Slice<const double> target_pose = view(target.data(), 3);
+        FlatState caged(model_->stateSize());
+        if (!model_->model().darrt_approach(slice(nodes_[nearest].state), object, target_pose,
+                                            rust::Slice<double>(caged.data(), caged.size())))
+            return -1;
+        // The paper: "the RRTTransit primitive is first applied to move the manipulator to
+        // the object".
+        std::vector<FlatState> motion;
+        if (caged != nodes_[nearest].state && !rrtTransit(nearest, caged, ptc, motion))
+            return -1;
+        const rust::Vec<double> carried = model_->model().darrt_carry(slice(caged), object, target_pose);
+        if (carried.empty())
+            return -1;
+        const std::size_t n = model_->stateSize();
+        for (std::size_t k = 0; k < carried.size(); k += n)
+            motion.emplace_back(carried.begin() + k, carried.begin() + k + n);
+        return addNode(nearest, std::move(motion));
+    }
+
+    int Darrt::pickPlace(int from, int object, const std::array<double, 3> &target)
+    {
+        const auto seed = static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()));
+        const bridge::HeldStates placed =
+            bridge::darrt_pick_place(model_->model(), slice(nodes_[from].state), object, view(target.data(), 3), seed);
+        if (placed.held.empty())
+            return -1;
+        const std::size_t n = model_->stateSize();
+        std::vector<FlatState> motion;
+        for (std::size_t k = 0; k < placed.states.size(); k += n)
+            motion.emplace_back(placed.states.begin() + k, placed.states.begin() + k + n);
+        return addNode(from, std::move(motion), std::vector<std::int64_t>(placed.held.begin(), placed.held.end()));
+    }
+
+    ob::PlannerStatus Darrt::solve(const ob::PlannerTerminationCondition &ptc)
+    {
+        checkValidity();
+        const bridge::SceneInfo &info = model_->info();
+        if (nodes_.empty())
+        {
+            const ob::State *start = pis_.nextStart();
+            if (start == nullptr)
+                return ob::PlannerStatus::INVALID_START;
+            FlatState flat;
+            model_->read(start, flat);
+            addNode(-1, {flat});
+            if (model_->goalDistance(start) <= 0.0)
+                return report(0);
+        }
+        // The kinds of sample: the arm, the goal object, another object (if any).
+        std::vector<int> others;
+        for (int i = 0; i < static_cast<int>(info.objects); ++i)
+            if (i != info.goal_object)
+                others.push_back(i);
+        const int kinds = 1 + (info.goal_object >= 0 ? 1 : 0) + (others.empty() ? 0 : 1);
+        while (!ptc)
+        {
+            int kind = rng_.uniformInt(0, kinds - 1);
+            if (kind == 1 && info.goal_object < 0)
+                kind = 2;
+            int added = -1;
+            if (kind == 0)
+                added = extendArm(ptc);
+            else if (kind == 1)
+                added = extendObject(static_cast<int>(info.goal_object), ptc);
+            else
+                added = extendObject(others[rng_.uniformInt(0, static_cast<int>(others.size()) - 1)], ptc);
+            if (added >= 0 && model_->goalDistance(nodes_[added].ompl_state) <= 0.0)
+                return report(added);
+        }
+        return ob::PlannerStatus::TIMEOUT;
+    }
+
+    ob::PlannerStatus Darrt::report(int goal_node)
+    {
+        std::vector<int> chain;
+        for (int n = goal_node; n >= 0; n = nodes_[n].parent)
+            chain.push_back(n);
+        std::vector<double> states(nodes_[0].state);
+        std::vector<std::int64_t> held{-1};
+        for (auto it = chain.rbegin() + 1; it != chain.rend(); ++it)
+        {
+            for (const FlatState &s : nodes_[*it].motion)
+                states.insert(states.end(), s.begin(), s.end());
+            held.insert(held.end(), nodes_[*it].held.begin(), nodes_[*it].held.end());
+        }
+        bridge::PrimitiveCheck check = bridge::darrt_check(model_->model(), slice(states), slice(held));
+        if (!check.valid || !check.goal_reached)
+        {
+            // A primitive the model accepted fails its own check: a bug, never a plan.
+            OMPL_ERROR("%s: the path fails its check: %s", getName().c_str(),
+                       check.valid ? "the goal is not reached" : std::string(check.message).c_str());
+            return ob::PlannerStatus::CRASH;
+        }
+        auto path = std::make_shared<PrimitivePath>(std::static_pointer_cast<oc::SpaceInformation>(si_), model_,
+                                                    states, held, std::move(check));
+        pdef_->addSolutionPath(path, false, 0.0, getName());
+        return ob::PlannerStatus::EXACT_SOLUTION;
+    }
+
+    void Darrt::getPlannerData(ob::PlannerData &data) const
+    {
+        ob::Planner::getPlannerData(data);
+        for (const Node &node : nodes_)
+        {
+            if (node.parent < 0)
+                data.addStartVertex(ob::PlannerDataVertex(node.ompl_state));
+            else
+                data.addEdge(ob::PlannerDataVertex(nodes_[node.parent].ompl_state),
+                             ob::PlannerDataVertex(node.ompl_state));
+        }
+    }
+}  // namespace pushplan::detail

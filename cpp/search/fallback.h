@@ -1,0 +1,68 @@
+// A fallback: a search that hands the problem to another search when, after a budget of
+// propagation steps, no state it has reached has moved the goal object.
+//
+// Push KPIECE's controls push the goal object toward its goal, which needs the hand at
+// the goal object first. Where the arm must swing round through clutter to get there
+// (dense scene 17: in 20 s its goal object never moves), the guided pushes head the tool
+// straight across the clutter and jam, while the paper's PC RRT, whose random joint-space
+// targets sweep the arm's postures, gets there (BENCHMARKS.md, "Dense 17 and 19 over
+// twelve seeds"). A search that has not once moved the goal object has nothing its
+// guidance can build on; it goes on as the other search instead. A search that moves it,
+// if only sideways, keeps going (in dense scenes 02 and 04 such searches get there a few
+// seconds later; handing them over at 1 M steps cost 2-5 s: BENCHMARKS.md, "Push KPIECE
+// falls back to PC RRT"). Counted in propagation steps, the handover happens at the same
+// iteration whatever the timing.
+//
+// Whether the goal object has moved is read from goal distances: the model keeps the
+// least and the largest it has met (lanes credit theirs), both the start's until a state
+// moves the goal object.
+#pragma once
+
+#include "pushplan/cpp/problem/model_handle.h"
+#include "pushplan/cpp/search/wrapped_search.h"
+
+#include <cstdint>
+#include <optional>
+
+namespace pushplan::detail
+{
+    /// Runs `search`; when `patience_steps` propagation steps have gone by and every goal
+    /// distance met is still the start state's, clears it (the closest path found stays
+    /// in the problem definition) and runs `fallback` on the same problem from then on.
+    /// clear() goes back to `search` (the goal distances met stay the model's).
+    class Fallback : public WrappedSearch
+    {
+    public:
+        Fallback(ompl::base::PlannerPtr search, ompl::base::PlannerPtr fallback, ModelHandlePtr model,
+                 std::uint64_t patience_steps);
+
+        ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
+        void clear() override;
+        void setup() override;
+        void setProblemDefinition(const ompl::base::ProblemDefinitionPtr &pdef) override;
+
+        /// The first search (search() is the one running).
+        const ompl::base::PlannerPtr &wrapped() const override { return first_; }
+        /// Whether the fallback has taken over.
+        bool fellBack() const { return search_ == fallback_; }
+
+    private:
+        /// True once the patience is spent and no state has moved the goal object. Goal
+        /// distances met only ever spread, so the first look past the patience decides:
+        /// a search that has moved the goal object is kept, and not asked again.
+        bool handOverDue();
+
+        ompl::base::PlannerPtr first_, fallback_;
+        ModelHandlePtr model_;
+        std::uint64_t patience_steps_;
+        /// The model's step count when the current first search began.
+        std::uint64_t began_at_ = 0;
+        /// The start state's goal distance (m or rad), once solve() has run.
+        std::optional<double> start_distance_;
+        /// The first search has moved the goal object: it keeps the problem.
+        bool kept_ = false;
+    };
+
+    /// Whether a planner is or wraps a Fallback that has handed over.
+    bool fellBack(const ompl::base::PlannerPtr &planner);
+}  // namespace pushplan::detail

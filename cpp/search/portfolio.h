@@ -1,0 +1,78 @@
+// Several independent searches of one problem, one per thread, advancing in lock-step
+// rounds of a fixed number of propagation steps: which search finds the plan, and the
+// plan, depend on the seeds and the number of searches, never on thread scheduling.
+//
+// A round ends inside each search's termination condition: the search pauses there,
+// within one call of its planner's solve(), until every search has paused or returned.
+// So a planner runs as if uninterrupted (OMPL's KPIECE1 keeps its goal-bias samples only
+// within one call), and one search is the planner exactly, as `bench` measures it.
+#pragma once
+
+#include "pushplan/cpp/problem/problem.h"
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace pushplan::detail
+{
+    /// One search: its own model, OMPL problem and planner.
+    struct Search
+    {
+        Problem problem;
+        ompl::base::PlannerPtr planner;
+    };
+
+    /// The seed of search `index` of a plan seeded with `seed`: search 0 keeps the plan's
+    /// seed, so one search is the single-threaded planner exactly.
+    std::uint64_t searchSeed(std::uint64_t seed, std::size_t index);
+
+    class Portfolio
+    {
+    public:
+        /// Propagation steps each search takes per round: about 5 ms of work. A round
+        /// ends when every search has taken them (or solved), so a search that solves
+        /// waits for the rest of the round: short rounds waste little, and a pause costs
+        /// no measurable time at this length (BENCHMARKS.md, "Every core").
+        static constexpr std::uint64_t kRoundSteps = 1000;
+
+        explicit Portfolio(std::vector<Search> searches);
+
+        /// Runs rounds until one ends with an exact solution or `out_of_time` (asked from
+        /// every thread) says stop; every search runs on a thread of its own, and `report`
+        /// on the calling thread after a round when `report_due` says so, while every
+        /// search is paused. A lone search keeps step with nobody: its rounds end only
+        /// when a report is due (a pause wakes the calling thread, which, every 1 000
+        /// steps, cost a lone search a few per cent: BENCHMARKS.md, "The tree's turn").
+        /// Returns the lowest-numbered search holding an exact solution.
+        std::optional<std::size_t> solve(const std::function<bool()> &out_of_time,
+                                         const std::function<bool()> &report_due,
+                                         const std::function<void()> &report);
+
+        /// Drops search `i`'s tree and solutions: it starts over in the next round.
+        void restart(std::size_t i);
+
+        /// The search whose best path is best: exact, else closest to the goal (lowest
+        /// number on ties); nullopt if none has a path.
+        std::optional<std::size_t> best() const;
+
+        std::size_t size() const { return searches_.size(); }
+        const Search &operator[](std::size_t i) const { return searches_[i]; }
+
+        /// Totals over the searches.
+        std::uint64_t propagationSteps() const;
+        double propagationSeconds() const;
+        /// The smallest goal distance any search has reached.
+        double closestGoalDistance() const;
+        /// States in the searches' trees, for the planners that report it cheaply (RRT, KPIECE).
+        std::optional<std::size_t> treeStates() const;
+        /// Attempts started over for lack of a solution (Restarting), all searches.
+        std::uint64_t restarts() const;
+        /// Searches that handed over to their fallback (Fallback).
+        std::uint64_t fallbacks() const;
+
+    private:
+        std::vector<Search> searches_;
+    };
+}  // namespace pushplan::detail
