@@ -344,8 +344,21 @@ fn a_fragile_solution_is_shortcut_toward_robustness_before_the_search_goes_on() 
         // PC RRT: these seeds give it fragile first solutions (the mechanism under test
         // is the planner's, whichever search found the solution).
         let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_pushplan"))
-            .args(["plan", "scenes/benchmark/scene_05.yaml", "--planner", "pcrrt"])
-            .args(["--seed", seed, "--threads", "1", "--robust", "20", robust_shortcut])
+            .args([
+                "plan",
+                "scenes/benchmark/scene_05.yaml",
+                "--planner",
+                "pcrrt",
+            ])
+            .args([
+                "--seed",
+                seed,
+                "--threads",
+                "1",
+                "--robust",
+                "20",
+                robust_shortcut,
+            ])
             .args(["--time", time, "--out", out.to_str().unwrap()])
             .stdout(std::process::Stdio::null())
             .stderr(std::process::Stdio::piped())

@@ -24,9 +24,10 @@ fn compile(source: &str, name: &str) -> PathBuf {
 fn compile_with(source: &str, name: &str, extra: &[String]) -> PathBuf {
     let dir = profile_dir();
     // What a user does first: build the library (cargo copies libpushplan.a into place
-    // only for a direct build of the library; it is up to date, so this is quick).
+    // only for a direct build of the library). With --tests it is the test build's own
+    // library, up to date: nothing is built again.
     let mut build = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
-    build.args(["build", "--lib"]);
+    build.args(["build", "--lib", "--tests"]);
     if dir.ends_with("release") {
         build.arg("--release");
     }

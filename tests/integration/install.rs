@@ -37,9 +37,10 @@ fn plans(binary: &Path) {
 fn an_installed_pushplan_builds_with_cmake_and_with_pkg_config() {
     let work = std::env::temp_dir().join(format!("pushplan-install-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&work);
-    // libpushplan.a lands next to the binary on a direct build of the library.
+    // libpushplan.a lands next to the binary on a direct build of the library (with
+    // --tests, the test build's own: nothing is built again).
     let mut build = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
-    build.args(["build", "--lib"]);
+    build.args(["build", "--lib", "--tests"]);
     let binary = PathBuf::from(env!("CARGO_BIN_EXE_pushplan"));
     if binary.parent().is_some_and(|d| d.ends_with("release")) {
         build.arg("--release");

@@ -178,3 +178,47 @@ fn the_scan_finds_what_it_looks_for() {
         ["ffi", "planning"].iter().map(|s| s.to_string()).collect()
     );
 }
+
+/// Every package of the workspace's build, with its features, as `cargo tree` lists it
+/// over the given dependency kinds.
+fn packages_with_features(kinds: &str) -> BTreeSet<String> {
+    let tree =
+        std::process::Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+            .current_dir(root())
+            .args([
+                "tree",
+                "--offline",
+                "-p",
+                "pushplan",
+                "-p",
+                "pushplan-model",
+                "-e",
+                kinds,
+            ])
+            .args(["-f", "{p} {f}", "--prefix", "none"])
+            .output()
+            .unwrap();
+    assert!(
+        tree.status.success(),
+        "{}",
+        String::from_utf8_lossy(&tree.stderr)
+    );
+    String::from_utf8_lossy(&tree.stdout)
+        .lines()
+        .map(|l| l.trim_end_matches(" (*)").to_string())
+        .collect()
+}
+
+#[test]
+fn the_test_build_reuses_the_release_builds_dependencies() {
+    // The dev-dependencies may add packages, not features of the packages a plain build
+    // has: `cargo test --release` then builds none of them again.
+    let plain = packages_with_features("normal,build");
+    let with_dev = packages_with_features("normal,build,dev");
+    let changed: Vec<&String> = plain.difference(&with_dev).collect();
+    assert!(plain.len() > 50, "{plain:?}");
+    assert!(
+        changed.is_empty(),
+        "features the dev-dependencies change (add them to [dependencies]): {changed:?}"
+    );
+}
