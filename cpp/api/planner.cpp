@@ -378,8 +378,9 @@ namespace pushplan
                 const double *x = path.states.data() + s * width;
                 plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
                 std::vector<Eigen::Vector3d> poses;
+                const detail::FlatLayout flat{info.dof, info.objects};
                 for (std::size_t o = 0; o < info.objects; ++o)
-                    poses.emplace_back(x[info.dof + 3 * o], x[info.dof + 3 * o + 1], x[info.dof + 3 * o + 2]);
+                    poses.emplace_back(x[flat.object(o)], x[flat.object(o) + 1], x[flat.object(o) + 2]);
                 plan.object_poses.push_back(std::move(poses));
             }
             const std::size_t cwidth = model->controlSize();

@@ -40,7 +40,7 @@ namespace pushplan
                 from[i] = q[static_cast<Eigen::Index>(i)];
             for (std::size_t o = 0; o < info.objects; ++o)
                 for (std::size_t c = 0; c < 3; ++c)
-                    from[info.dof + 3 * o + c] = poses[o][static_cast<Eigen::Index>(c)];
+                    from[FlatLayout{info.dof, info.objects}.object(o) + c] = poses[o][static_cast<Eigen::Index>(c)];
             return from;
         }
     }  // namespace detail

@@ -34,7 +34,7 @@ namespace pushplan::detail
         PushStateSampler::sampleRaw(info, rng_, buffer_);
         if (info.goal_object >= 0)
         {
-            const std::size_t at = info.dof + 3 * static_cast<std::size_t>(info.goal_object);
+            const std::size_t at = FlatLayout{info.dof, info.objects}.object(static_cast<std::size_t>(info.goal_object));
             const auto [x, y] = sampleInGoalDisc(info, rng_);
             buffer_[at] = x;
             buffer_[at + 1] = y;

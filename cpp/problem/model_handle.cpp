@@ -80,7 +80,7 @@ namespace pushplan::detail
         for (std::size_t i = 0; i < info_.objects; ++i)
         {
             auto *pose = compound->as<ob::SE2StateSpace::StateType>(1 + i);
-            const std::size_t at = info_.dof + 3 * i;
+            const std::size_t at = flat().object(i);
             pose->setXY(in[at], in[at + 1]);
             pose->setYaw(in[at + 2]);
         }
@@ -119,7 +119,7 @@ namespace pushplan::detail
         for (std::size_t i = 0; i < info_.objects; ++i)
             if (static_cast<std::int64_t>(i) != info_.goal_object)
                 for (std::size_t k = 0; k < 3; ++k)
-                    flat[info_.dof + 3 * i + k] = info_.start[info_.dof + 3 * i + k];
+                    flat[this->flat().object(i) + k] = info_.start[this->flat().object(i) + k];
     }
 
     std::array<double, 5> ModelHandle::project(const ob::State *state) const

@@ -27,7 +27,9 @@ namespace pushplan::detail
         explicit ModelHandle(rust::Box<bridge::Model> model);
 
         const bridge::SceneInfo &info() const { return info_; }
-        std::size_t stateSize() const { return info_.dof + 3 * info_.objects; }
+        std::size_t stateSize() const { return flat().size(); }
+        /// The bridge's flat layout of this scene's states.
+        FlatLayout flat() const { return FlatLayout{info_.dof, info_.objects}; }
         std::size_t controlSize() const { return 3 + info_.dof; }
 
         /// Flat copy of an OMPL state of the pushplan state space.

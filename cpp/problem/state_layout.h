@@ -1,4 +1,5 @@
-// Where the parts of one pushplan state lie within its single memory block.
+// Where the parts of one pushplan state lie: within OMPL's memory block (StateLayout), and
+// in the flat layout states cross the bridge in (FlatLayout).
 #pragma once
 
 #include <cstddef>
@@ -17,4 +18,17 @@ namespace pushplan::detail
     /// The layout for `dof` joints, `objects` movable objects and `particle_values`
     /// doubles of perturbed worlds.
     StateLayout stateLayout(std::size_t dof, std::size_t objects, std::size_t particle_values);
+
+    /// A state in the bridge's flat layout (Rust's `State::to_flat`): the joint values
+    /// (rad or m), then every object's x, y (m) and yaw (rad), world frame. The one place
+    /// the C++ side writes that layout out.
+    struct FlatLayout
+    {
+        std::size_t dof, objects;
+
+        /// Values in one state.
+        std::size_t size() const { return dof + 3 * objects; }
+        /// Where object `o`'s x is; its y and yaw follow.
+        std::size_t object(std::size_t o) const { return dof + 3 * o; }
+    };
 }  // namespace pushplan::detail

@@ -89,7 +89,7 @@ impl DistanceMetric {
     /// The same distance for states in the flat layout `[q, x_1, y_1, theta_1, ...]`
     /// (no allocation: the planner's nearest-neighbour queries call this a lot).
     pub fn distance_flat(&self, a: &[f64], b: &[f64]) -> f64 {
-        let dof = a.len() - 3 * self.object_weights.len();
+        let dof = a.len() - State::flat_len(0, self.object_weights.len());
         let robot = a[..dof]
             .iter()
             .zip(&b[..dof])
@@ -97,7 +97,8 @@ impl DistanceMetric {
             .sum::<f64>()
             .sqrt();
         let pose = |s: &[f64], i: usize| {
-            Pose2::new(s[dof + 3 * i], s[dof + 3 * i + 1], s[dof + 3 * i + 2])
+            let k = State::flat_object(dof, i);
+            Pose2::new(s[k], s[k + 1], s[k + 2])
         };
         self.combine(robot, |i| {
             self.squared_object_distance(&pose(a, i), &pose(b, i))
@@ -113,13 +114,13 @@ impl DistanceMetric {
         // differences is positive, so the larger of them and 0 is the gap, with no branch
         // to mispredict (a query's boxes fall either side at random).
         let gap = |x: f64, lo: f64, hi: f64| (lo - x).max(x - hi).max(0.0);
-        let dof = a.len() - 3 * self.object_weights.len();
+        let dof = a.len() - State::flat_len(0, self.object_weights.len());
         let robot = (0..dof)
             .map(|j| gap(a[j], lo[j], hi[j]).powi(2))
             .sum::<f64>()
             .sqrt();
         self.combine(robot, |i| {
-            let k = dof + 3 * i;
+            let k = State::flat_object(dof, i);
             let dx = gap(a[k], lo[k], hi[k]);
             let dy = gap(a[k + 1], lo[k + 1], hi[k + 1]);
             let dtheta = arc_gap(a[k + 2], lo[k + 2], hi[k + 2]) * self.rotation_length;

@@ -38,8 +38,15 @@ impl Clone for State {
 /// the world frame).
 impl State {
     /// The number of values of a flat state.
+    #[inline]
     pub fn flat_len(dof: usize, objects: usize) -> usize {
-        dof + 3 * objects
+        Self::flat_object(dof, objects)
+    }
+
+    /// Where object `object`'s x is in a flat state of `dof` joints; its y and yaw follow.
+    #[inline]
+    pub fn flat_object(dof: usize, object: usize) -> usize {
+        dof + 3 * object
     }
 
     /// The state in the flat layout (`flat_len` values).

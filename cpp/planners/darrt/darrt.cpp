@@ -200,7 +200,7 @@ namespace pushplan::detail
         // The node whose copy of the object is nearest (centre distance). Many nodes share
         // an object pose (every arm motion keeps it); ties are broken uniformly, so that
         // the arm configurations the tree has reached serve as starts of a Push.
-        const std::size_t at = info.dof + 3 * static_cast<std::size_t>(object);
+        const std::size_t at = FlatLayout{info.dof, info.objects}.object(static_cast<std::size_t>(object));
         int nearest = 0, ties = 0;
         double best = std::numeric_limits<double>::infinity();
         for (std::size_t n = 0; n < nodes_.size(); ++n)
