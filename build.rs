@@ -65,7 +65,7 @@ fn main() {
         }
     }
     sources.sort();
-    let mut build = cxx_build::bridges(["src/ffi.rs", "src/ffi/entry.rs"]);
+    let mut build = cxx_build::bridges(["src/bridge.rs", "src/bridge/entry.rs"]);
     build.files(&sources);
     build
         .include("include")
@@ -82,8 +82,8 @@ fn main() {
     for dir in ["cpp", "include"] {
         println!("cargo:rerun-if-changed={dir}");
     }
-    println!("cargo:rerun-if-changed=src/ffi.rs");
-    println!("cargo:rerun-if-changed=src/ffi/entry.rs");
+    println!("cargo:rerun-if-changed=src/bridge.rs");
+    println!("cargo:rerun-if-changed=src/bridge/entry.rs");
     write_pkg_config(&deps);
     write_install_manifest(&deps);
     // Debian's OMPL 1.5.2 defines OMPL_VERSION as "": benchmark logs take the version

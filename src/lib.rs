@@ -11,10 +11,7 @@
 #![warn(missing_docs)]
 
 pub mod benchmark;
-// The cxx bridge is reshaped into narrow types, one per OMPL concept, by issue 56's point 2;
-// its declarations get their docs there.
-#[allow(missing_docs)]
-pub mod ffi;
+pub mod bridge;
 pub mod planner;
 pub mod planning;
 pub mod render;

@@ -12,8 +12,8 @@
 #include "pushplan/cpp/search/restarts.h"
 #include "pushplan/cpp/search/wrapped_search.h"
 #include "pushplan/pushplan.h"
-#include "pushplan/src/ffi.rs.h"
-#include "pushplan/src/ffi/entry.rs.h"
+#include "pushplan/src/bridge.rs.h"
+#include "pushplan/src/bridge/entry.rs.h"
 
 #include <ompl/control/PathControl.h>
 #include <ompl/tools/benchmark/Benchmark.h>
@@ -54,7 +54,7 @@ namespace pushplan::bridge
         ompl::RNG::setSeed(seed);
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
         const auto load = [&] {
-            return detail::asPushplanError([&] { return std::make_shared<detail::ModelHandle>(Model::load(scene_path)); });
+            return detail::asPushplanError([&] { return std::make_shared<detail::ModelHandle>(Problem::load(scene_path)); });
         };
         const detail::ModelHandlePtr model = load();
         const SceneInfo &info = model->info();
@@ -74,7 +74,7 @@ namespace pushplan::bridge
             lanes.push_back(detail::makeLane(models.back(), seed, l, info.planner.k));
         }
         // Static RRT shares the problem: the model treats the clutter as obstacles.
-        model->model().set_static_clutter(options.planner == PlannerKind::StaticRrt);
+        model->problem().set_static_clutter(options.planner == PlannerKind::StaticRrt);
 
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));

@@ -20,7 +20,7 @@ namespace pushplan
     {
         return detail::asPushplanError([&] {
             auto model = std::make_shared<detail::ModelHandle>(planner.source().load());
-            model->model().set_static_clutter(options.static_clutter);
+            model->problem().set_static_clutter(options.static_clutter);
             const bridge::SceneInfo &info = model->info();
             const unsigned k = options.k.value_or(info.planner.k);
             if (k < 1)

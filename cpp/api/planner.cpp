@@ -87,7 +87,7 @@ namespace pushplan
 
     Planner::Planner(std::unique_ptr<Source> source) : source_(std::move(source))
     {
-        source_->name = std::string(bridge::scene_info(*source_->load()).name);  // validates now
+        source_->name = std::string(source_->load()->info().name);  // validates now
     }
 
     Planner::~Planner() = default;
@@ -156,7 +156,7 @@ namespace pushplan
                     .push_back(std::make_shared<detail::ModelHandle>(source.load()));
                 // Static RRT's problem: the same states, the clutter pinned where it starts.
                 (i < search_count ? models.back() : lane_models.back())
-                    ->model()
+                    ->problem()
                     .set_static_clutter(options.planner == PlannerKind::StaticRrt);
             }
             const bridge::SceneInfo &info = models[0]->info();
@@ -221,9 +221,9 @@ namespace pushplan
             if (bridge::planner_cut_at_time_limit(options.planner))
             {
                 for (const detail::ModelHandlePtr &m : models)
-                    m->model().set_time_limit(time_limit);
+                    m->propagator().set_time_limit(time_limit);
                 for (const detail::ModelHandlePtr &m : lane_models)
-                    m->model().set_time_limit(time_limit);
+                    m->propagator().set_time_limit(time_limit);
             }
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
@@ -392,7 +392,7 @@ namespace pushplan
                                                 static_cast<double>(path.steps[i]) * info.planner.step, path.steps[i]});
             }
             const bridge::Trajectory trajectory =
-                bridge::trajectory(model->model(), rust::Slice<const double>(path.controls.data(), path.controls.size()),
+                model->finisher().trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
                                    rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
             plan.trajectory.rate = trajectory.rate;
             for (std::size_t k = 0; k < trajectory.times.size(); ++k)

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "pushplan/pushplan.h"
-#include "pushplan/src/ffi.rs.h"
+#include "pushplan/src/bridge.rs.h"
 #include "rust/cxx.h"  // rust::Error
 
 #include <string>
@@ -52,12 +52,12 @@ namespace pushplan
         bool from_yaml = false;
         std::string name;
 
-        rust::Box<bridge::Model> load() const
+        rust::Box<bridge::Problem> load() const
         {
             try
             {
-                return from_yaml ? bridge::Model::from_yaml(yaml, path) :
-                                   bridge::Model::load(path);
+                return from_yaml ? bridge::Problem::from_yaml(yaml, path) :
+                                   bridge::Problem::load(path);
             }
             catch (const rust::Error &e)
             {

@@ -50,7 +50,7 @@ namespace pushplan
         return detail::asPushplanError([&] {
             auto model = std::make_shared<detail::ModelHandle>(source().load());
             const bridge::SceneInfo &info = model->info();
-            const std::size_t index = model->model().graspable_object(object);
+            const std::size_t index = model->grasping().graspable_object(object);
             const double time_limit = options.time_limit.value_or(info.planner.time_limit);
             detail::checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
             detail::checked("sample_probability", options.sample_probability,
@@ -92,7 +92,7 @@ namespace pushplan
                 flat.insert(flat.end(), full.begin(), full.begin() + info.dof);
             }
             // Every reach returned is checked by the model, independently of the search.
-            const rust::String problem = model->model().check_reach(detail::slice(from), index, detail::slice(flat));
+            const rust::String problem = model->grasping().check_reach(detail::slice(from), index, detail::slice(flat));
             if (!problem.empty())
                 throw Error("internal error: IK-BiRRT's reach does not check: " + std::string(problem));
             reach.solved = true;

@@ -1,7 +1,7 @@
 #include "pushplan/cpp/api/solve.h"
 
 #include "pushplan/pushplan.h"
-#include "pushplan/src/ffi/entry.rs.h"
+#include "pushplan/src/bridge/entry.rs.h"
 
 namespace pushplan::bridge
 {

@@ -28,7 +28,7 @@ namespace pushplan::detail
             bool isValid(const ob::State *state) const override
             {
                 std::copy(joints(state), joints(state) + model_->info().dof, context_->begin());
-                return model_->model().is_valid(slice(*context_), {});
+                return model_->validityChecker().is_valid(slice(*context_), {});
             }
 
         private:
@@ -51,7 +51,7 @@ namespace pushplan::detail
                 to_ = *context_;
                 std::copy(joints(s1), joints(s1) + dof, from_.begin());
                 std::copy(joints(s2), joints(s2) + dof, to_.begin());
-                const bool valid = model_->model().darrt_transit(slice(from_), slice(to_));
+                const bool valid = model_->darrt().transit(slice(from_), slice(to_));
                 (valid ? valid_ : invalid_)++;
                 return valid;
             }

@@ -55,8 +55,8 @@ namespace pushplan::detail
         const std::uint64_t seed = (static_cast<std::uint64_t>(rng_.uniformInt(0, 0x7fffffff)) << 31) |
                                    static_cast<std::uint64_t>(rng_.uniformInt(0, 0x7fffffff));
         const rust::Vec<double> q =
-            model_->model().grasp_sample(rust::Slice<const double>(info.start.data(), info.start.size()),
-                                         static_cast<std::size_t>(info.grasp_object), seed, true);
+            model_->goal().sample_grasp(rust::Slice<const double>(info.start.data(), info.start.size()),
+                                        static_cast<std::size_t>(info.grasp_object), seed);
         if (q.empty())
             return false;
         buffer_.assign(info.start.begin(), info.start.end());

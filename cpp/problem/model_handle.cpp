@@ -13,10 +13,18 @@ namespace oc = ompl::control;
 
 namespace pushplan::detail
 {
-    ModelHandle::ModelHandle(rust::Box<bridge::Model> model)
-      : model_(std::move(model)),
-        info_(bridge::scene_info(*model_)),
-        layout_(stateLayout(info_.dof, info_.objects, model_->particle_len()))
+    ModelHandle::ModelHandle(rust::Box<bridge::Problem> problem)
+      : problem_(std::move(problem)),
+        info_(problem_->info()),
+        propagator_(bridge::Propagator::make(*problem_)),
+        validity_(bridge::ValidityChecker::make(*problem_)),
+        metric_(bridge::Metric::make(*problem_)),
+        goal_(bridge::Goal::make(*problem_)),
+        projection_(bridge::Projection::make(*problem_)),
+        finisher_(bridge::Finisher::make(*problem_)),
+        darrt_(bridge::Darrt::make(*problem_)),
+        grasping_(bridge::Grasping::make(*problem_)),
+        layout_(stateLayout(info_.dof, info_.objects, 0))
     {
     }
 
@@ -24,8 +32,8 @@ namespace pushplan::detail
     {
         if (layout_fixed_)
             throw std::logic_error("perturbed worlds must be set before the state space is made");
-        model_->set_particles(count, seed);
-        layout_ = stateLayout(info_.dof, info_.objects, model_->particle_len());
+        problem_->set_particles(count, seed);
+        layout_ = stateLayout(info_.dof, info_.objects, problem_->start_particles().size());
     }
 
     const StateLayout &ModelHandle::fixLayout()
@@ -49,7 +57,7 @@ namespace pushplan::detail
     void ModelHandle::writeStart(ob::State *state) const
     {
         write(std::vector<double>(info_.start.begin(), info_.start.end()), state);
-        const rust::Vec<double> start = model_->start_particles();
+        const rust::Vec<double> start = problem_->start_particles();
         std::copy(start.begin(), start.end(), particles(state).begin());
     }
 
@@ -95,7 +103,7 @@ namespace pushplan::detail
     bool ModelHandle::isValid(const ob::State *state) const
     {
         read(state, a_);
-        return model_->is_valid(slice(a_), particles(state));
+        return validity_->is_valid(slice(a_), particles(state));
     }
 
     double ModelHandle::distance(const ob::State *a, const ob::State *b) const
@@ -103,18 +111,18 @@ namespace pushplan::detail
         // Hot: every distance in a nearest-neighbour query reads two states.
         read(a, a_);
         read(b, b_);
-        return model_->distance(slice(a_), slice(b_));
+        return metric_->distance(slice(a_), slice(b_));
     }
 
     double ModelHandle::goalDistance(const ob::State *state) const
     {
         read(state, a_);
-        return model_->goal_distance(slice(a_), particles(state));
+        return goal_->distance(slice(a_), particles(state));
     }
 
     void ModelHandle::pinClutter(std::vector<double> &flat) const
     {
-        if (!model_->static_clutter())
+        if (!problem_->static_clutter())
             return;
         for (std::size_t i = 0; i < info_.objects; ++i)
             if (static_cast<std::int64_t>(i) != info_.goal_object)
@@ -125,7 +133,7 @@ namespace pushplan::detail
     std::array<double, 5> ModelHandle::project(const ob::State *state) const
     {
         read(state, a_);
-        const rust::Vec<double> p = model_->projection(slice(a_));
+        const rust::Vec<double> p = projection_->project(slice(a_));
         return {p[0], p[1], p[2], p[3], p[4]};
     }
 
@@ -134,7 +142,7 @@ namespace pushplan::detail
     {
         read(state, a_);
         const rust::Vec<double> h =
-            model_->push_heading(slice(a_), object, rust::Slice<const double>(target.data(), target.size()));
+            projection_->push_heading(slice(a_), object, rust::Slice<const double>(target.data(), target.size()));
         if (h.empty())
             return std::nullopt;
         return std::array<double, 2>{h[0], h[1]};
@@ -143,7 +151,7 @@ namespace pushplan::detail
     rust::Vec<bridge::PushTarget> ModelHandle::pushBlockers(const ob::State *state) const
     {
         read(state, a_);
-        return bridge::push_blockers(*model_, slice(a_));
+        return projection_->push_blockers(slice(a_));
     }
 
     bool ModelHandle::propagate(const ob::State *state, const oc::Control *control, std::size_t steps,
@@ -154,7 +162,7 @@ namespace pushplan::detail
         particles_.assign(from.begin(), from.end());
         readControl(control, control_);
         b_.resize(a_.size());
-        const bool valid = model_->propagate(slice(a_), slice(particles_), slice(control_), steps,
+        const bool valid = propagator_->propagate(slice(a_), slice(particles_), slice(control_), steps,
                                              rust::Slice<double>(b_.data(), b_.size()), particles(result));
         write(b_, result);
         return valid;
@@ -180,15 +188,14 @@ namespace pushplan::detail
     bridge::FinishedPath ModelHandle::finish(const FlatPath &found, bool solved,
                                              const bridge::FinishSettings &settings) const
     {
-        return bridge::finish(*model_, slice(found.controls), slice(found.steps), slice(found.states), solved,
-                              settings);
+        return finisher_->finish(slice(found.controls), slice(found.steps), slice(found.states), solved, settings);
     }
 
     bridge::SearchStats summedSearchStats(const std::vector<ModelHandlePtr> &models)
     {
-        bridge::SearchStats sum = bridge::search_stats(models.at(0)->model());
+        bridge::SearchStats sum = bridge::search_stats(models.at(0)->propagator());
         for (std::size_t i = 1; i < models.size(); ++i)
-            sum = bridge::add_search_stats(sum, bridge::search_stats(models[i]->model()));
+            sum = bridge::add_search_stats(sum, bridge::search_stats(models[i]->propagator()));
         return sum;
     }
 }  // namespace pushplan::detail

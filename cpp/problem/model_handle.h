@@ -1,7 +1,7 @@
 // The Rust model as the OMPL classes of one planning problem share it.
 #pragma once
 
-#include "pushplan/src/ffi.rs.h"
+#include "pushplan/src/bridge.rs.h"
 #include "rust/cxx.h"  // rust::Error
 #include "pushplan/cpp/problem/state_layout.h"
 
@@ -18,13 +18,15 @@
 
 namespace pushplan::detail
 {
-    /// Owns the Rust model and converts OMPL states and controls to the flat layouts of
-    /// the bridge. Single-threaded, like the planners that use it (OMPL calls its
-    /// const methods, hence the mutable scratch buffers).
+    /// Owns the Rust model of one problem, its parts (one per OMPL concept: propagator,
+    /// validity checker, metric, goal, projection, finisher, DARRT's primitives,
+    /// grasping), and converts OMPL states and controls to the flat layouts of the
+    /// bridge. Single-threaded, like the planners that use it (OMPL calls its const
+    /// methods, hence the mutable scratch buffers).
     class ModelHandle
     {
     public:
-        explicit ModelHandle(rust::Box<bridge::Model> model);
+        explicit ModelHandle(rust::Box<bridge::Problem> problem);
 
         const bridge::SceneInfo &info() const { return info_; }
         std::size_t stateSize() const { return flat().size(); }
@@ -81,13 +83,20 @@ namespace pushplan::detail
         bridge::FinishedPath finish(const FlatPath &found, bool solved,
                                     const bridge::FinishSettings &settings) const;
 
-        bridge::Model &model() const { return *model_; }
+        bridge::Problem &problem() const { return *problem_; }
+        bridge::Propagator &propagator() const { return *propagator_; }
+        const bridge::ValidityChecker &validityChecker() const { return *validity_; }
+        const bridge::Metric &metric() const { return *metric_; }
+        const bridge::Goal &goal() const { return *goal_; }
+        const bridge::Finisher &finisher() const { return *finisher_; }
+        const bridge::Darrt &darrt() const { return *darrt_; }
+        const bridge::Grasping &grasping() const { return *grasping_; }
 
         /// The propagation steps and seconds of this model's search: its own, and those a
         /// parallel search's lanes credited to it as their iterations joined its tree
         /// (ParallelKPIECE). What termination conditions and progress reports count.
-        std::uint64_t propagationSteps() const { return model_->propagation_steps() + credited_steps_; }
-        double propagationSeconds() const { return model_->propagation_seconds() + credited_seconds_; }
+        std::uint64_t propagationSteps() const { return propagator_->steps() + credited_steps_; }
+        double propagationSeconds() const { return propagator_->seconds() + credited_seconds_; }
         void credit(std::uint64_t steps, double seconds)
         {
             credited_steps_ += steps;
@@ -95,8 +104,8 @@ namespace pushplan::detail
         }
         /// The smallest and the largest goal distance this model's search has met (m or
         /// rad), its own or credited by lanes.
-        double closestGoalDistance() const { return std::min(model_->closest_goal_distance(), credited_closest_); }
-        double farthestGoalDistance() const { return std::max(model_->farthest_goal_distance(), credited_farthest_); }
+        double closestGoalDistance() const { return std::min(goal_->closest_distance(), credited_closest_); }
+        double farthestGoalDistance() const { return std::max(goal_->farthest_distance(), credited_farthest_); }
         void creditGoalDistance(double distance)
         {
             credited_closest_ = std::min(credited_closest_, distance);
@@ -108,8 +117,16 @@ namespace pushplan::detail
         rust::Slice<const double> particles(const ompl::base::State *state) const;
         rust::Slice<double> particles(ompl::base::State *state) const;
 
-        mutable rust::Box<bridge::Model> model_;
+        mutable rust::Box<bridge::Problem> problem_;
         bridge::SceneInfo info_;
+        mutable rust::Box<bridge::Propagator> propagator_;
+        rust::Box<bridge::ValidityChecker> validity_;
+        rust::Box<bridge::Metric> metric_;
+        rust::Box<bridge::Goal> goal_;
+        rust::Box<bridge::Projection> projection_;
+        rust::Box<bridge::Finisher> finisher_;
+        rust::Box<bridge::Darrt> darrt_;
+        rust::Box<bridge::Grasping> grasping_;
         StateLayout layout_;
         bool layout_fixed_ = false;
         std::uint64_t credited_steps_ = 0;

@@ -20,7 +20,7 @@ namespace pushplan::detail
     {
     public:
         explicit ModelNearestNeighbors(ModelHandlePtr model)
-          : model_(std::move(model)), tree_(bridge::nearest_tree(model_->model()))
+          : model_(std::move(model)), tree_(model_->metric().nearest_tree())
         {
         }
 

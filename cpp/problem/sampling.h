@@ -2,7 +2,7 @@
 // region's sampler and DARRT's (one definition of "uniform" for each part of a state).
 #pragma once
 
-#include "pushplan/src/ffi.rs.h"
+#include "pushplan/src/bridge.rs.h"
 
 #include <ompl/util/RandomNumbers.h>
 

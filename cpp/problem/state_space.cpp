@@ -73,7 +73,7 @@ namespace pushplan::detail
 
     double PushStateSpace::getMaximumExtent() const
     {
-        return model_->model().max_extent();
+        return model_->metric().max_extent();
     }
 
     ob::State *PushStateSpace::allocState() const

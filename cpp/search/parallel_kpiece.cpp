@@ -85,12 +85,12 @@ namespace pushplan::detail
         sampler.sampleNext(e.control, e.from->control, e.from->state);
         const unsigned steps = sampler.sampleStepCount(siC_->getMinControlDuration(), siC_->getMaxControlDuration());
 
-        bridge::Model &model = l.model->model();
-        const std::uint64_t steps_before = model.propagation_steps();
-        const double seconds_before = model.propagation_seconds();
+        const bridge::Propagator &propagator = l.model->propagator();
+        const std::uint64_t steps_before = propagator.steps();
+        const double seconds_before = propagator.seconds();
         e.reached = l.si->propagateWhileValid(e.from->state, e.control, static_cast<int>(steps), e.states, false);
-        e.model_steps = model.propagation_steps() - steps_before;
-        e.model_seconds = model.propagation_seconds() - seconds_before;
+        e.model_steps = propagator.steps() - steps_before;
+        e.model_seconds = propagator.seconds() - seconds_before;
 
         e.ends.clear();
         e.distances.clear();

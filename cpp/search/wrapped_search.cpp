@@ -60,11 +60,11 @@ namespace pushplan::detail
             ~Lift()
             {
                 for (const ModelHandlePtr &m : models)
-                    m->model().set_time_limit(std::numeric_limits<double>::infinity());
+                    m->propagator().set_time_limit(std::numeric_limits<double>::infinity());
             }
         };
         for (const ModelHandlePtr &m : models_)
-            m->model().set_time_limit(seconds_);
+            m->propagator().set_time_limit(seconds_);
         const Lift lift{models_};
         return search_->solve(ptc);
     }

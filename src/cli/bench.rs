@@ -4,7 +4,7 @@
 
 use pushplan::benchmark::grid::{Grid, Shard};
 use pushplan::benchmark::run::{merge, run_shard};
-pub use pushplan::ffi::BenchOptions;
+pub use pushplan::bridge::BenchOptions;
 use pushplan::Scene;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -60,7 +60,7 @@ pub fn bench(
 /// run of one planner on one scene with OMPL's benchmark tooling, its log written to
 /// `options.log`.
 pub fn bench_scene(scene: &Path, options: &BenchOptions) -> Result<ExitCode, String> {
-    pushplan::ffi::benchmark_scene(scene, options).map(|_| ExitCode::SUCCESS)
+    pushplan::bridge::benchmark_scene(scene, options).map(|_| ExitCode::SUCCESS)
 }
 
 /// `bench merge`: the shards in `dirs` into `out` (logs, database, plots).

@@ -1,7 +1,7 @@
 //! `pushplan plan`: search a scene with OMPL, finish the path, write the plan file.
 
 use super::progress;
-use pushplan::ffi::{solve, ReachOptions, SolveOptions};
+use pushplan::bridge::{solve, ReachOptions, SolveOptions};
 use pushplan::planning::path::PathControl;
 use pushplan::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
 use pushplan::planning::shortcut::ShortcutProgress;
@@ -73,7 +73,7 @@ fn reach(
         seed,
         sample_probability: run.sample_probability,
     };
-    let found = pushplan::ffi::reach(scene_path, object, from, &options)?;
+    let found = pushplan::bridge::reach(scene_path, object, from, &options)?;
     if !run.quiet {
         eprintln!(
             "reaching a grasp of '{object}' with IK-BiRRT: {} in {:.2} s, {} IK solutions, trees of {} states",

@@ -56,7 +56,7 @@ int main()
            "an ompl::Exception leaves as pushplan::Error, marked as OMPL's, with OMPL's message");
 
     // The model refuses YAML that is not a scene: a rust::Error from across the bridge.
-    const std::string model = pushplanErrorOf([] { pushplan::bridge::Model::from_yaml("[1, 2", "inline.yaml"); });
+    const std::string model = pushplanErrorOf([] { pushplan::bridge::Problem::from_yaml("[1, 2", "inline.yaml"); });
     std::cout << "  " << model << "\n";
     expect(model.find("inline.yaml") != std::string::npos && model.rfind("OMPL: ", 0) != 0,
            "the model's rust::Error leaves as pushplan::Error naming the source");

@@ -25,7 +25,7 @@ namespace test
 
     inline pushplan::detail::ModelHandlePtr load(const std::string &scene)
     {
-        return std::make_shared<pushplan::detail::ModelHandle>(pushplan::bridge::Model::load(scene));
+        return std::make_shared<pushplan::detail::ModelHandle>(pushplan::bridge::Problem::load(scene));
     }
 
     /// A search of `kind` on `scene` from `seed`, with `lanes` lanes (0: OMPL's planner

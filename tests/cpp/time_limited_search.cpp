@@ -61,7 +61,7 @@ int main()
     // A dense scene PDST does not solve in a fraction of a second: the search runs until
     // its limit, and its tree is read after it.
     const std::string scene = "scenes/dense/scene_17.yaml";
-    const pd::ModelHandlePtr model = std::make_shared<pd::ModelHandle>(pushplan::bridge::Model::load(scene));
+    const pd::ModelHandlePtr model = std::make_shared<pd::ModelHandle>(pushplan::bridge::Problem::load(scene));
     const unsigned k = model->info().planner.k;
     const pd::Problem problem = pd::makeProblem(model, 3, k);
     const double limit = 0.5;

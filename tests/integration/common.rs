@@ -14,7 +14,7 @@ use std::path::Path;
 /// The PC RRT plan of the default (Fig. 1) scene for `seed`, as controls (seed 5 solves in
 /// about half a second, seed 2 in 15 s).
 pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::planning::path::PathControl>) {
-    let options = pushplan::ffi::SolveOptions {
+    let options = pushplan::bridge::SolveOptions {
         time_limit: 30.0,
         seed,
         k: 3,
@@ -31,7 +31,7 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::planning::path::Pa
         fallback_steps: 0,
     };
     let scene_file = "scenes/herb_fig1_clutter.yaml";
-    let out = pushplan::ffi::solve(Path::new(scene_file), &options, |_| {}).unwrap();
+    let out = pushplan::bridge::solve(Path::new(scene_file), &options, |_| {}).unwrap();
     assert!(out.exact, "seed {seed} should solve the default scene");
     let scene = Scene::load(scene_file).unwrap();
     let controls = pushplan::planning::path::PathControl::from_flat(

@@ -3,20 +3,19 @@
 //! The model is a crate of its own (`model/`), so the compiler keeps it below everything
 //! here; this test keeps the order above it:
 //!
-//! model < planning < planner (the search's side) < bridge (`ffi`) < render, benchmark
+//! model < planning < planner (the search's side) < bridge < render, benchmark
 //! (the library) < install, cli (the binary).
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 /// The modules each part of `src/` may name through `crate::`, beside the model's and its
-/// own: the layers below it. `ffi` above the applications is the bridge until it is
-/// narrowed to the types OMPL's concepts need (issue 56, point 2), which the CLI calls
-/// through for now.
+/// own: the layers below it. The CLI still reaches the C++ search through the bridge's
+/// entry points (`bridge::entry`) until it gets a planning-level way in (issue 56).
 const LAYERS: &[(&str, &[&str])] = &[
     ("planning", &[]),
     ("planner", &["planning"]),
-    ("ffi", &["planning", "planner"]),
+    ("bridge", &["planning", "planner"]),
     ("render", &["planning"]),
     ("benchmark", &["planning"]),
     ("install", &[]),
@@ -25,7 +24,7 @@ const LAYERS: &[(&str, &[&str])] = &[
         &[
             "planning",
             "planner",
-            "ffi",
+            "bridge",
             "render",
             "benchmark",
             "install",
@@ -169,10 +168,13 @@ fn the_model_crate_depends_on_neither_cxx_nor_the_planner() {
 #[test]
 fn the_scan_finds_what_it_looks_for() {
     let found =
-        crate_modules("use crate::planning::path;\nlet x = crate::ffi::solve(); my_crate::no");
+        crate_modules("use crate::planning::path;\nlet x = crate::bridge::solve(); my_crate::no");
     assert_eq!(
         found,
-        ["ffi", "planning"].iter().map(|s| s.to_string()).collect()
+        ["bridge", "planning"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
     );
 }
 

@@ -1,9 +1,9 @@
 //! Robust planning's perturbed worlds carried along the search (`planner::ParticleWorlds`
-//! through `planner::Model`): the planar hand pushes a box straight toward the goal disc
+//! through the bridge's `Problem` and its parts): the planar hand pushes a box straight toward the goal disc
 //! (tests/data/hand_push_straight.yaml: hand front at x 0.42, box 0.1 m wide centred at
 //! 0.6, disc of radius 0.1 at 0.85, goal margin 0.03).
 
-use pushplan::planner::Model;
+use pushplan::bridge::{Goal as GoalRegion, Problem, Propagator, ValidityChecker};
 use pushplan::scene::Goal;
 use pushplan::Scene;
 
@@ -12,24 +12,44 @@ const SCENE: &str = "tests/data/hand_push_straight.yaml";
 /// three joints, which has none).
 const PUSH: [f64; 6] = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0];
 
-fn model(worlds: usize) -> (Scene, Model) {
+/// A problem's parts, as the OMPL classes hold them.
+struct Parts {
+    problem: Problem,
+    propagator: Box<Propagator>,
+    validity: Box<ValidityChecker>,
+    goal: Box<GoalRegion>,
+}
+
+fn parts(scene: Scene, worlds: usize) -> Parts {
+    let mut problem = Problem::new(scene);
+    problem.set_particles(worlds, 7).unwrap();
+    Parts {
+        propagator: Propagator::new(&problem),
+        validity: ValidityChecker::new(&problem),
+        goal: GoalRegion::new(&problem),
+        problem,
+    }
+}
+
+fn model(worlds: usize) -> (Scene, Parts) {
     let scene = Scene::load(SCENE).unwrap();
-    let mut model = Model::new(scene.clone());
-    model.set_particles(worlds, 7).unwrap();
-    (scene, model)
+    (scene.clone(), parts(scene, worlds))
 }
 
 /// Holds `PUSH` step by step (as OMPL does) for up to `steps` steps; the last valid state
 /// and worlds, the steps taken, and the nominal state the first invalid step tried.
 fn push(
-    model: &mut Model,
+    propagator: &mut Propagator,
     mut x: Vec<f64>,
     mut p: Vec<f64>,
     steps: usize,
 ) -> (Vec<f64>, Vec<f64>, usize, Option<Vec<f64>>) {
     for taken in 0..steps {
         let (mut x2, mut p2) = (vec![0.0; x.len()], vec![0.0; p.len()]);
-        if !model.propagate(&x, &p, &PUSH, 1, &mut x2, &mut p2).unwrap() {
+        if !propagator
+            .propagate(&x, &p, &PUSH, 1, &mut x2, &mut p2)
+            .unwrap()
+        {
             return (x, p, taken, Some(x2));
         }
         (x, p) = (x2, p2);
@@ -41,9 +61,8 @@ fn push(
 fn perturbed_worlds_start_near_the_scene_and_follow_the_same_push() {
     let (scene, mut model) = model(4);
     let start = scene.start.to_flat();
-    let worlds = model.start_particles();
+    let worlds = model.problem.start_particles();
     assert_eq!(worlds.len(), 4 * 3);
-    assert_eq!(model.particle_len(), 12);
     // Each world's box starts within the noise's ±5 mm per axis and ±0.05 rad, not exactly
     // where the scene puts it.
     for w in worlds.chunks(3) {
@@ -53,7 +72,7 @@ fn perturbed_worlds_start_near_the_scene_and_follow_the_same_push() {
     }
     // 1.4 s: 0.65 s to reach the box, then 0.15 m of pushing. Flat on through the middle,
     // the box goes straight along in every world, a few millimetres apart.
-    let (x, p, taken, _) = push(&mut model, start.clone(), worlds.clone(), 140);
+    let (x, p, taken, _) = push(&mut model.propagator, start.clone(), worlds.clone(), 140);
     assert_eq!(taken, 140);
     let nominal = [x[3], x[4]];
     assert!(
@@ -72,13 +91,13 @@ fn perturbed_worlds_start_near_the_scene_and_follow_the_same_push() {
         .chunks(3)
         .map(|w| (w[0] - cx).hypot(w[1] - cy) - r)
         .fold(f64::NEG_INFINITY, f64::max);
-    let distance = model.goal_distance(&x, &p).unwrap();
+    let distance = model.goal.distance(&x, &p).unwrap();
     assert_eq!(distance, nominal_distance.max(worst_world));
     // One world's box moved 15 cm aside, off the disc: the goal is as far as it is.
     let mut aside = p.clone();
     aside[1] += 0.15;
     let expected = (aside[0] - cx).hypot(aside[1] - cy) - r;
-    assert!((model.goal_distance(&x, &aside).unwrap() - expected).abs() < 1e-12);
+    assert!((model.goal.distance(&x, &aside).unwrap() - expected).abs() < 1e-12);
     assert!(expected > 0.0);
 }
 
@@ -100,12 +119,11 @@ fn a_push_whose_goal_object_scatters_across_the_worlds_is_cut_at_the_margin() {
         radius: 0.3,
         margin,
     };
-    let mut model = Model::new(scene.clone());
-    model.set_particles(2, 7).unwrap();
+    let mut model = parts(scene.clone(), 2);
     let start = scene.start.to_flat();
-    let mut worlds = model.start_particles();
+    let mut worlds = model.problem.start_particles();
     worlds[3..6].copy_from_slice(&[start[3], start[4] + 0.12, start[5]]);
-    let (x, p, taken, attempted) = push(&mut model, start.clone(), worlds.clone(), 300);
+    let (x, p, taken, attempted) = push(&mut model.propagator, start.clone(), worlds.clone(), 300);
     let attempted = attempted.expect("the push is cut");
     let apart = |x: &[f64]| (x[3] - worlds[3]).hypot(x[4] - worlds[4]);
     assert!(
@@ -121,26 +139,27 @@ fn a_push_whose_goal_object_scatters_across_the_worlds_is_cut_at_the_margin() {
     assert!(taken > 65, "the hand reached the box first ({taken} steps)");
     assert_eq!(
         model
+            .propagator
             .search_stats()
             .stopped
             .get("goal object diverges (in a perturbed world)"),
         Some(&1)
     );
     // Without worlds the same push goes on.
-    let mut nominal = Model::new(scene);
-    let (_, _, taken, _) = push(&mut nominal, start, Vec::new(), 150);
+    let mut nominal = parts(scene, 0);
+    let (_, _, taken, _) = push(&mut nominal.propagator, start, Vec::new(), 150);
     assert_eq!(taken, 150);
 }
 
 #[test]
 fn a_world_in_which_the_state_is_invalid_makes_it_invalid() {
-    let (scene, mut model) = model(2);
+    let (scene, model) = model(2);
     let start = scene.start.to_flat();
-    let mut worlds = model.start_particles();
-    assert!(model.is_valid(&start, &worlds).unwrap());
+    let mut worlds = model.problem.start_particles();
+    assert!(model.validity.is_valid(&start, &worlds).unwrap());
     // The first world's box off the table (x beyond the table's 1.03 m edge).
     worlds[0] = 1.2;
-    assert!(!model.is_valid(&start, &worlds).unwrap());
+    assert!(!model.validity.is_valid(&start, &worlds).unwrap());
 }
 
 #[test]
@@ -149,14 +168,15 @@ fn worlds_of_the_wrong_size_or_in_the_static_problem_are_refused() {
     let start = scene.start.to_flat();
     let mut out = vec![0.0; start.len()];
     let err = model
+        .propagator
         .propagate(&start, &[0.0; 3], &PUSH, 1, &mut out, &mut [0.0; 3])
         .unwrap_err();
     assert!(
         err.contains("perturbed worlds have 3 values, this search needs 9"),
         "{err}"
     );
-    assert!(model.goal_distance(&start, &[]).is_err());
-    model.set_static_clutter(true);
-    let err = model.set_particles(3, 1).unwrap_err();
+    assert!(model.goal.distance(&start, &[]).is_err());
+    model.problem.set_static_clutter(true);
+    let err = model.problem.set_particles(3, 1).unwrap_err();
     assert!(err.contains("pushing problem only"), "{err}");
 }

@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use pushplan::ffi::{solve, SolveOptions, SolveOutput};
+use pushplan::bridge::{solve, SolveOptions, SolveOutput};
 use pushplan::planning::path::PathControl;
 use pushplan::planning::plan_file::{PlanFile, PlanSettings};
 use pushplan::planning::PlannerKind;
@@ -398,17 +398,20 @@ fn a_robot_configuration_goal_is_planned_for_too() {
 
 #[test]
 fn the_static_mode_of_the_full_problem_is_the_static_clutter_scene() {
-    use pushplan::planner::Model;
+    use pushplan::bridge::{Problem, Propagator, ValidityChecker};
     let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
     // The scene with the clutter as obstacles, pushed in: the physics Static RRT's mode
     // must have while it keeps every object in the state.
-    let mut reduced = Model::new(scene.with_static_clutter());
-    let mut full = Model::new(scene.clone());
-    full.set_static_clutter(true);
+    let reduced_problem = Problem::new(scene.with_static_clutter());
+    let mut reduced = Propagator::new(&reduced_problem);
+    let mut full_problem = Problem::new(scene.clone());
+    full_problem.set_static_clutter(true);
+    let mut full = Propagator::new(&full_problem);
+    let full_validity = ValidityChecker::new(&full_problem);
     // Push forward into the clutter: in the static problem the first contact is invalid.
     let control = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
     let start_full = scene.start.to_flat();
-    let start_reduced = reduced.scene().start.to_flat();
+    let start_reduced = reduced_problem.scene().start.to_flat();
     let (mut a, mut b) = (vec![0.0; start_reduced.len()], vec![0.0; start_full.len()]);
     for steps in [1, 20, 80, 200] {
         let valid_a = reduced
@@ -425,18 +428,18 @@ fn the_static_mode_of_the_full_problem_is_the_static_clutter_scene() {
     // Clutter out of place is invalid in the static problem, fine in the pushing one.
     let mut moved = start_full.clone();
     moved[10] += 0.01;
-    assert!(!full.is_valid(&moved, &[]).unwrap());
-    full.set_static_clutter(false);
-    assert!(full.is_valid(&moved, &[]).unwrap());
+    assert!(!full_validity.is_valid(&moved, &[]).unwrap());
+    full_problem.set_static_clutter(false);
+    assert!(full_validity.is_valid(&moved, &[]).unwrap());
 }
 
 #[test]
 fn search_statistics_count_propagations_as_ompl_runs_them() {
-    use pushplan::planner::Model;
+    use pushplan::bridge::{Problem, Propagator};
     // OMPL holds a control one step at a time, each from the last result, and stops at
     // the first invalid step. Counted here from the states themselves.
     let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
-    let mut model = Model::new(scene.clone());
+    let mut model = Propagator::new(&Problem::new(scene.clone()));
     let start = scene.start.to_flat();
     let goal_object = 7..10; // the goal object (green box) is the first object
                              // Toward the goal box's near face, low down (a push straight ahead, +x, brings the
@@ -481,11 +484,11 @@ fn search_statistics_count_propagations_as_ompl_runs_them() {
 
 #[test]
 fn past_its_time_limit_the_model_refuses_to_propagate() {
-    use pushplan::planner::Model;
+    use pushplan::bridge::{Problem, Propagator};
     // OMPL checks its time limit only between extensions; an extension of k controls of
     // many steps each would overrun it. Past the limit every step is refused at once.
     let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
-    let mut model = Model::new(scene.clone());
+    let mut model = Propagator::new(&Problem::new(scene.clone()));
     let start = scene.start.to_flat();
     let forward = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
     let mut next = vec![f64::NAN; start.len()];
@@ -494,14 +497,14 @@ fn past_its_time_limit_the_model_refuses_to_propagate() {
         .propagate(&start, &[], &forward, 1, &mut next, &mut [])
         .unwrap());
     assert_eq!(next, start, "a refused step stays at its start");
-    assert_eq!(model.propagation_steps(), 0);
+    assert_eq!(model.steps(), 0);
     assert_eq!(model.search_stats().propagations, 0, "nothing counted");
     model.set_time_limit(f64::INFINITY);
     assert!(model
         .propagate(&start, &[], &forward, 1, &mut next, &mut [])
         .unwrap());
     assert_ne!(next, start);
-    assert_eq!(model.propagation_steps(), 1);
+    assert_eq!(model.steps(), 1);
 }
 
 #[test]
@@ -510,17 +513,17 @@ fn the_projection_tells_a_cleared_way_from_a_blocked_one() {
     // bottle_2 within the disc's reach, so the projection's fifth coordinate (the
     // blockage, m) is positive; with both moved to the far left corner it is zero, and the
     // end-effector and goal-object coordinates stay as they were.
-    use pushplan::planner::Model;
+    use pushplan::bridge::{Problem, Projection};
     let scene = Scene::load("scenes/benchmark/scene_22.yaml").unwrap();
-    let model = Model::new(scene.clone());
+    let model = Projection::new(&Problem::new(scene.clone()));
     let index = |name: &str| scene.objects.iter().position(|o| o.name == name).unwrap();
-    let blocked = model.projection(&scene.start.to_flat()).unwrap();
+    let blocked = model.project(&scene.start.to_flat()).unwrap();
     assert_eq!(blocked.len(), 5);
     assert!(blocked[4] > 0.05, "{blocked:?}");
     let mut cleared = scene.start.clone();
     cleared.objects[index("bowl_4")] = pushplan::Pose2::new(0.4, 0.8, 0.0);
     cleared.objects[index("bottle_2")] = pushplan::Pose2::new(0.6, 0.8, 0.0);
-    let projected = model.projection(&cleared.to_flat()).unwrap();
+    let projected = model.project(&cleared.to_flat()).unwrap();
     assert_eq!(projected[4], 0.0, "{projected:?}");
     assert_eq!(projected[..4], blocked[..4]);
 }
@@ -531,12 +534,14 @@ fn the_projection_of_a_propagated_state_is_the_one_a_fresh_model_computes() {
     // then runs no forward kinematics); a fresh model has nothing remembered and computes
     // it. Both must agree bit for bit, pushing and in Static RRT's mode, including states
     // from before a stop and older than the remembered motion.
-    use pushplan::planner::Model;
+    use pushplan::bridge::{Problem, Projection, Propagator};
     let scene = Scene::load("scenes/benchmark/scene_22.yaml").unwrap();
-    let fresh = Model::new(scene.clone());
+    let fresh = Projection::new(&Problem::new(scene.clone()));
     for static_clutter in [false, true] {
-        let mut model = Model::new(scene.clone());
-        model.set_static_clutter(static_clutter);
+        let mut problem = Problem::new(scene.clone());
+        problem.set_static_clutter(static_clutter);
+        let mut model = Propagator::new(&problem);
+        let projection = Projection::new(&problem);
         let mut state = scene.start.to_flat();
         let mut reached = vec![state.clone()];
         for control in [
@@ -558,8 +563,8 @@ fn the_projection_of_a_propagated_state_is_the_one_a_fresh_model_computes() {
         assert!(reached.len() > 60, "{} states", reached.len());
         for state in reached.iter().rev() {
             assert_eq!(
-                model.projection(state).unwrap(),
-                fresh.projection(state).unwrap()
+                projection.project(state).unwrap(),
+                fresh.project(state).unwrap()
             );
         }
     }

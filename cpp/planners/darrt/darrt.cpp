@@ -73,7 +73,7 @@ namespace pushplan::detail
 
     bool PrimitivePath::check() const
     {
-        return bridge::darrt_check(model_->model(), slice(flat_), slice(held_)).valid;
+        return model_->darrt().check(slice(flat_), slice(held_)).valid;
     }
 
     ArmTransit::ArmTransit(ModelHandlePtr model, double time_cap)
@@ -179,11 +179,11 @@ namespace pushplan::detail
         }
         FlatState target = nodes_[nearest].state;
         std::copy(q.begin(), q.end(), target.begin());
-        if (!model_->model().is_valid(slice(target), {}))
+        if (!model_->validityChecker().is_valid(slice(target), {}))
             return -1;
         // Transit if the straight line is free, else RRTTransit.
         std::vector<FlatState> motion;
-        if (model_->model().darrt_transit(slice(nodes_[nearest].state), slice(target)))
+        if (model_->darrt().transit(slice(nodes_[nearest].state), slice(target)))
             motion.push_back(target);
         else if (!rrtTransit(nearest, target, ptc, motion))
             return -1;
@@ -219,7 +219,7 @@ namespace pushplan::detail
         }
         const rust::Slice<const double> target_pose = view(target.data(), 3);
         FlatState caged(model_->stateSize());
-        if (!model_->model().darrt_approach(slice(nodes_[nearest].state), object, target_pose,
+        if (!model_->darrt().approach(slice(nodes_[nearest].state), object, target_pose,
                                             rust::Slice<double>(caged.data(), caged.size())))
             return -1;
         // The paper: "the RRTTransit primitive is first applied to move the manipulator to
@@ -227,7 +227,7 @@ namespace pushplan::detail
         std::vector<FlatState> motion;
         if (caged != nodes_[nearest].state && !rrtTransit(nearest, caged, ptc, motion))
             return -1;
-        const rust::Vec<double> carried = model_->model().darrt_carry(slice(caged), object, target_pose);
+        const rust::Vec<double> carried = model_->darrt().carry(slice(caged), object, target_pose);
         if (carried.empty())
             return -1;
         const std::size_t n = model_->stateSize();
@@ -240,7 +240,7 @@ namespace pushplan::detail
     {
         const auto seed = static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()));
         const bridge::HeldStates placed =
-            bridge::darrt_pick_place(model_->model(), slice(nodes_[from].state), object, view(target.data(), 3), seed);
+            model_->darrt().pick_place(slice(nodes_[from].state), object, view(target.data(), 3), seed);
         if (placed.held.empty())
             return -1;
         const std::size_t n = model_->stateSize();
@@ -302,7 +302,7 @@ namespace pushplan::detail
                 states.insert(states.end(), s.begin(), s.end());
             held.insert(held.end(), nodes_[*it].held.begin(), nodes_[*it].held.end());
         }
-        bridge::PrimitiveCheck check = bridge::darrt_check(model_->model(), slice(states), slice(held));
+        bridge::PrimitiveCheck check = model_->darrt().check(slice(states), slice(held));
         if (!check.valid || !check.goal_reached)
         {
             // A primitive the model accepted fails its own check: a bug, never a plan.

@@ -27,7 +27,7 @@ namespace pushplan::detail
 
     bool GraspGoal::trySample(ob::State *state) const
     {
-        const rust::Vec<double> q = model_->model().grasp_sample(slice(from_), object_, seed_++, false);
+        const rust::Vec<double> q = model_->grasping().sample(slice(from_), object_, seed_++);
         if (q.empty())
             return false;
         std::copy(q.begin(), q.end(), scratch_.begin());
@@ -52,7 +52,7 @@ namespace pushplan::detail
     {
         scratch_ = from_;
         space_.withJoints(state, scratch_);
-        return model_->model().grasp_distance(slice(scratch_), object_);
+        return model_->grasping().distance(slice(scratch_), object_);
     }
 
     IkBiRrt::IkBiRrt(const ob::SpaceInformationPtr &si, std::uint_fast32_t seed) : ob::Planner(si, "IK-BiRRT")

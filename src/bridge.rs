@@ -1,26 +1,60 @@
-//! The bridge between the Rust model and the OMPL side (cxx): declarations and one-line
-//! delegations only. The model behind it is [`crate::planner::Model`]; states and
-//! controls cross in the flat layouts of [`crate::state::State::to_flat`] and
-//! [`crate::robot::EeAction::from_flat`]; the conversions of its shared types, and the
-//! delegations that convert, are in `ffi/convert.rs`. Failures cross as errors (C++ exceptions) with their message.
+//! The bridge between the Rust model and the OMPL side (cxx): one narrow opaque type per
+//! OMPL concept the C++ side holds, each made from a [`Problem`] (a loaded scene and the
+//! search it is set up for):
+//!
+//! | Rust type           | OMPL concept                         | C++ holder                     |
+//! |---------------------|--------------------------------------|--------------------------------|
+//! | [`Problem`]         | problem definition, space information | `detail::Model`                |
+//! | [`Propagator`]      | `oc::StatePropagator`                | `PushStatePropagator`, searches |
+//! | [`ValidityChecker`] | `ob::StateValidityChecker`           | `PushValidityChecker`          |
+//! | [`Metric`], [`NearestTree`] | `ob::StateSpace::distance`, `NearestNeighbors` | `PushStateSpace`, `ModelNearestNeighbors` |
+//! | [`Goal`]            | `ob::GoalSampleableRegion`           | `PushGoal`                     |
+//! | [`Projection`]      | `ob::ProjectionEvaluator`, push headings | `PushProjection`, `PushControlSampler` |
+//! | [`Finisher`]        | the path after the search            | `Planner::solve`               |
+//! | [`Darrt`]           | DARRT's primitives                   | `Darrt`                        |
+//! | [`Grasping`]        | grasp regions                        | `IkBiRrt`, `Planner::reach`    |
+//!
+//! The parts of one problem share its [`core`] state (the mode, the perturbed worlds,
+//! the last propagation's result). Declarations and one-line delegations only here; the
+//! types are in their files. States and controls cross in the flat layouts of
+//! [`crate::state::State::to_flat`] and [`crate::robot::EeAction::from_flat`]. Failures
+//! cross as errors (C++ exceptions) with their message; a panic becomes such an error.
 
 mod convert;
+mod core;
+mod darrt;
 pub mod entry;
+mod finisher;
+mod goal;
+mod grasping;
+mod metric;
+mod problem;
+mod projection;
+mod propagator;
+mod validity;
 
+pub use darrt::Darrt;
 pub use entry::{
     benchmark_scene, reach, solve, BenchOptions, ReachOptions, ReachOutput, SearchProgress,
     SolveOptions, SolveOutput,
 };
+pub use finisher::Finisher;
+pub use goal::Goal;
+pub use grasping::Grasping;
+pub use metric::Metric;
+pub use problem::Problem;
+pub use projection::Projection;
+pub use propagator::Propagator;
+pub use validity::ValidityChecker;
 
-use crate::planner::Model;
 use crate::planner::NearestTree;
 use crate::planning::PlannerKind;
 use convert::{
-    add_search_stats, darrt_check, darrt_pick_place, finish, nearest_tree,
-    planner_cut_at_time_limit, planner_fallback_steps, planner_kind, planner_name,
-    planner_restart_steps, planner_shares_one_search, planner_yields_controls, push_blockers,
-    scene_info, search_stats, trajectory, tree_add, tree_nearest, tree_nearest_k, tree_nearest_r,
+    add_search_stats, planner_cut_at_time_limit, planner_fallback_steps, planner_kind,
+    planner_name, planner_restart_steps, planner_shares_one_search, planner_yields_controls,
+    search_stats,
 };
+use metric::{tree_add, tree_nearest, tree_nearest_k, tree_nearest_r};
 
 // SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
 // twin, a trivial type. `PlannerKind`: the values of `enum class PlannerKind :
@@ -49,8 +83,10 @@ unsafe impl cxx::ExternType for PlannerParams {
     type Kind = cxx::kind::Trivial;
 }
 
+/// The declarations cxx generates both sides from (`pushplan/src/bridge.rs.h`).
+#[allow(missing_docs)]
 #[cxx::bridge(namespace = "pushplan::bridge")]
-pub mod bridge {
+pub mod ffi {
     /// What the OMPL side needs to know about a scene (lengths in m, angles in rad).
     pub struct SceneInfo {
         pub name: String,
@@ -155,14 +191,23 @@ pub mod bridge {
     }
 
     extern "Rust" {
-        type Model;
-        #[Self = "Model"]
-        fn load(path: &str) -> Result<Box<Model>>;
-        #[Self = "Model"]
-        fn from_yaml(yaml: &str, source: &str) -> Result<Box<Model>>;
-        fn scene_info(model: &Model) -> SceneInfo;
+        type Problem;
+        #[Self = "Problem"]
+        fn load(path: &str) -> Result<Box<Problem>>;
+        #[Self = "Problem"]
+        fn from_yaml(yaml: &str, source: &str) -> Result<Box<Problem>>;
+        fn info(self: &Problem) -> SceneInfo;
+        fn set_static_clutter(self: &mut Problem, on: bool);
+        fn static_clutter(self: &Problem) -> bool;
+        fn set_particles(self: &mut Problem, count: usize, seed: u64) -> Result<()>;
+        fn start_particles(self: &Problem) -> Vec<f64>;
+
+        type Propagator;
+        #[Self = "Propagator"]
+        #[cxx_name = "make"]
+        fn new(problem: &Problem) -> Box<Propagator>;
         fn propagate(
-            self: &mut Model,
+            self: &mut Propagator,
             x: &[f64],
             particles: &[f64],
             u: &[f64],
@@ -170,82 +215,27 @@ pub mod bridge {
             out: &mut [f64],
             out_particles: &mut [f64],
         ) -> Result<bool>;
-        fn is_valid(self: &mut Model, state: &[f64], particles: &[f64]) -> Result<bool>;
-        fn distance(self: &Model, a: &[f64], b: &[f64]) -> Result<f64>;
-        fn max_extent(self: &Model) -> f64;
-        fn goal_distance(self: &Model, state: &[f64], particles: &[f64]) -> Result<f64>;
-        fn set_particles(self: &mut Model, count: usize, seed: u64) -> Result<()>;
-        fn particle_len(self: &Model) -> usize;
-        fn start_particles(self: &Model) -> Vec<f64>;
-        fn projection(self: &Model, state: &[f64]) -> Result<Vec<f64>>;
-        fn push_heading(
-            self: &Model,
-            state: &[f64],
-            object: usize,
-            target: &[f64],
-        ) -> Result<Vec<f64>>;
-        fn push_blockers(model: &Model, state: &[f64]) -> Result<Vec<PushTarget>>;
-        fn propagation_steps(self: &Model) -> u64;
-        /// The smallest goal distance of a state so far (progress reports).
-        fn closest_goal_distance(self: &Model) -> f64;
-        /// The largest goal distance of a state so far.
-        fn farthest_goal_distance(self: &Model) -> f64;
-        fn propagation_seconds(self: &Model) -> f64;
-        fn search_stats(model: &Model) -> SearchStats;
+        fn set_time_limit(self: &mut Propagator, seconds: f64);
+        fn steps(self: &Propagator) -> u64;
+        fn seconds(self: &Propagator) -> f64;
+        fn search_stats(propagator: &Propagator) -> SearchStats;
         fn add_search_stats(a: &SearchStats, b: &SearchStats) -> SearchStats;
-        fn set_static_clutter(self: &mut Model, on: bool);
-        fn set_time_limit(self: &mut Model, seconds: f64);
-        fn static_clutter(self: &Model) -> bool;
-        fn robustness(
-            self: &Model,
-            u: &[f64],
-            steps: &[usize],
-            trials: usize,
-            seed: u64,
-        ) -> Result<f64>;
-        fn finish(
-            model: &mut Model,
-            u: &[f64],
-            steps: &[usize],
-            x: &[f64],
-            solved: bool,
-            settings: &FinishSettings,
-        ) -> Result<FinishedPath>;
-        fn trajectory(model: &mut Model, u: &[f64], steps: &[usize]) -> Result<Trajectory>;
-        fn darrt_transit(self: &Model, from: &[f64], to: &[f64]) -> Result<bool>;
-        fn darrt_approach(
-            self: &Model,
-            x: &[f64],
-            object: usize,
-            target: &[f64],
-            out: &mut [f64],
-        ) -> Result<bool>;
-        fn darrt_carry(self: &Model, x: &[f64], object: usize, target: &[f64]) -> Result<Vec<f64>>;
-        fn darrt_pick_place(
-            model: &Model,
-            x: &[f64],
-            object: usize,
-            target: &[f64],
-            seed: u64,
-        ) -> Result<HeldStates>;
-        fn darrt_check(model: &Model, states: &[f64], held: &[i64]) -> Result<PrimitiveCheck>;
-        fn graspable_object(self: &Model, name: &str) -> Result<usize>;
-        fn grasp_sample(
-            self: &Model,
-            state: &[f64],
-            object: usize,
-            seed: u64,
-            arm_only: bool,
-        ) -> Result<Vec<f64>>;
-        fn grasp_distance(self: &Model, state: &[f64], object: usize) -> Result<f64>;
-        fn check_reach(
-            self: &Model,
-            from: &[f64],
-            object: usize,
-            waypoints: &[f64],
-        ) -> Result<String>;
+
+        type ValidityChecker;
+        #[Self = "ValidityChecker"]
+        #[cxx_name = "make"]
+        fn new(problem: &Problem) -> Box<ValidityChecker>;
+        fn is_valid(self: &ValidityChecker, state: &[f64], particles: &[f64]) -> Result<bool>;
+
+        type Metric;
+        #[Self = "Metric"]
+        #[cxx_name = "make"]
+        fn new(problem: &Problem) -> Box<Metric>;
+        fn distance(self: &Metric, a: &[f64], b: &[f64]) -> Result<f64>;
+        fn max_extent(self: &Metric) -> f64;
+        fn nearest_tree(self: &Metric) -> Box<NearestTree>;
+
         type NearestTree;
-        fn nearest_tree(model: &Model) -> Box<NearestTree>;
         fn tree_add(tree: &mut NearestTree, state: &[f64]) -> Result<usize>;
         fn remove(self: &mut NearestTree, id: usize) -> bool;
         fn clear(self: &mut NearestTree);
@@ -253,6 +243,81 @@ pub mod bridge {
         fn tree_nearest(tree: &NearestTree, state: &[f64]) -> Result<i64>;
         fn tree_nearest_k(tree: &NearestTree, state: &[f64], k: usize) -> Result<Vec<usize>>;
         fn tree_nearest_r(tree: &NearestTree, state: &[f64], radius: f64) -> Result<Vec<usize>>;
+
+        type Goal;
+        #[Self = "Goal"]
+        #[cxx_name = "make"]
+        fn new(problem: &Problem) -> Box<Goal>;
+        fn distance(self: &Goal, state: &[f64], particles: &[f64]) -> Result<f64>;
+        /// The smallest goal distance of a state so far (progress reports).
+        fn closest_distance(self: &Goal) -> f64;
+        /// The largest goal distance of a state so far.
+        fn farthest_distance(self: &Goal) -> f64;
+        fn sample_grasp(self: &Goal, state: &[f64], object: usize, seed: u64) -> Result<Vec<f64>>;
+
+        type Projection;
+        #[Self = "Projection"]
+        #[cxx_name = "make"]
+        fn new(problem: &Problem) -> Box<Projection>;
+        fn project(self: &Projection, state: &[f64]) -> Result<Vec<f64>>;
+        fn push_heading(
+            self: &Projection,
+            state: &[f64],
+            object: usize,
+            target: &[f64],
+        ) -> Result<Vec<f64>>;
+        fn push_blockers(self: &Projection, state: &[f64]) -> Result<Vec<PushTarget>>;
+
+        type Finisher;
+        #[Self = "Finisher"]
+        #[cxx_name = "make"]
+        fn new(problem: &Problem) -> Box<Finisher>;
+        fn finish(
+            self: &Finisher,
+            u: &[f64],
+            steps: &[usize],
+            x: &[f64],
+            solved: bool,
+            settings: &FinishSettings,
+        ) -> Result<FinishedPath>;
+        fn trajectory(self: &Finisher, u: &[f64], steps: &[usize]) -> Result<Trajectory>;
+
+        type Darrt;
+        #[Self = "Darrt"]
+        #[cxx_name = "make"]
+        fn new(problem: &Problem) -> Box<Darrt>;
+        fn transit(self: &Darrt, from: &[f64], to: &[f64]) -> Result<bool>;
+        fn approach(
+            self: &Darrt,
+            x: &[f64],
+            object: usize,
+            target: &[f64],
+            out: &mut [f64],
+        ) -> Result<bool>;
+        fn carry(self: &Darrt, x: &[f64], object: usize, target: &[f64]) -> Result<Vec<f64>>;
+        fn pick_place(
+            self: &Darrt,
+            x: &[f64],
+            object: usize,
+            target: &[f64],
+            seed: u64,
+        ) -> Result<HeldStates>;
+        fn check(self: &Darrt, states: &[f64], held: &[i64]) -> Result<PrimitiveCheck>;
+
+        type Grasping;
+        #[Self = "Grasping"]
+        #[cxx_name = "make"]
+        fn new(problem: &Problem) -> Box<Grasping>;
+        fn graspable_object(self: &Grasping, name: &str) -> Result<usize>;
+        fn sample(self: &Grasping, state: &[f64], object: usize, seed: u64) -> Result<Vec<f64>>;
+        fn distance(self: &Grasping, state: &[f64], object: usize) -> Result<f64>;
+        fn check_reach(
+            self: &Grasping,
+            from: &[f64],
+            object: usize,
+            waypoints: &[f64],
+        ) -> Result<String>;
+
         fn planner_name(kind: PlannerKind) -> &'static str;
         fn planner_yields_controls(kind: PlannerKind) -> bool;
         fn planner_restart_steps(kind: PlannerKind) -> u64;
@@ -270,6 +335,6 @@ pub mod bridge {
         type PathMetrics = crate::planning::path::PathMetrics;
         include!("pushplan/cpp/problem/bridge_types.h");
         #[namespace = "pushplan::detail"]
-        type PlannerParams = crate::ffi::PlannerParams;
+        type PlannerParams = crate::bridge::PlannerParams;
     }
 }

@@ -2,8 +2,10 @@
 //! benchmark of a scene), declarations only. `cpp/api/solve.h` and `cpp/api/benchmark.h` declare
 //! them on the C++ side.
 
+/// The declarations cxx generates both sides from (`pushplan/src/bridge/entry.rs.h`).
+#[allow(missing_docs)]
 #[cxx::bridge(namespace = "pushplan::bridge")]
-pub mod bridge {
+pub mod ffi {
     /// One search of the CLI (`plan`); the CLI finishes the path itself.
     #[derive(Debug, Clone)]
     pub struct SolveOptions {
@@ -110,8 +112,8 @@ pub mod bridge {
         include!("pushplan/pushplan.h");
         #[namespace = "pushplan"]
         type PlannerKind = crate::planning::PlannerKind;
-        include!("pushplan/src/ffi.rs.h");
-        type SearchStats = crate::ffi::bridge::SearchStats;
+        include!("pushplan/src/bridge.rs.h");
+        type SearchStats = crate::bridge::ffi::SearchStats;
         include!("pushplan/cpp/api/solve.h");
         /// Searches the scene file with OMPL (the CLI's entry point), telling `progress`
         /// how far it is when `options.progress` is set.
@@ -136,9 +138,7 @@ pub mod bridge {
     }
 }
 
-pub use bridge::{
-    BenchOptions, ReachOptions, ReachOutput, SearchProgress, SolveOptions, SolveOutput,
-};
+pub use ffi::{BenchOptions, ReachOptions, ReachOutput, SearchProgress, SolveOptions, SolveOutput};
 use std::path::Path;
 
 /// Searches a scene file with OMPL (the C++ side), as the CLI does.
@@ -147,14 +147,12 @@ pub fn solve(
     options: &SolveOptions,
     progress: fn(&SearchProgress),
 ) -> Result<SolveOutput, String> {
-    bridge::solve(&scene_path.to_string_lossy(), options, progress)
-        .map_err(|e| e.what().to_string())
+    ffi::solve(&scene_path.to_string_lossy(), options, progress).map_err(|e| e.what().to_string())
 }
 
 /// Benchmarks one scene with OMPL's tooling, writing `options.log`.
 pub fn benchmark_scene(scene_path: &Path, options: &BenchOptions) -> Result<(), String> {
-    bridge::benchmark_scene(&scene_path.to_string_lossy(), options)
-        .map_err(|e| e.what().to_string())
+    ffi::benchmark_scene(&scene_path.to_string_lossy(), options).map_err(|e| e.what().to_string())
 }
 
 /// Reaches a grasp of `object` with IK-BiRRT (the C++ side) from `from` (`None`: the
@@ -172,6 +170,6 @@ pub fn reach(
         ),
         None => (Vec::new(), Vec::new()),
     };
-    bridge::reach(&scene_path.to_string_lossy(), object, &q, &objects, options)
+    ffi::reach(&scene_path.to_string_lossy(), object, &q, &objects, options)
         .map_err(|e| e.what().to_string())
 }

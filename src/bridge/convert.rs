@@ -1,75 +1,14 @@
 //! The bridge's shared types from and to the model's own, and the delegations that
 //! convert.
 
-use super::bridge::{
-    self, FinishedPath as FlatFinishedPath, PrimitiveCheck, SceneInfo, Trajectory,
-};
-use crate::planner::{Model, NearestTree, SearchStats};
+use super::ffi as bridge;
+use super::Propagator;
+use crate::planner::SearchStats;
 use crate::planning::darrt::PrimitivePath;
 use crate::planning::path::{PathControl, PathMetrics};
 use crate::planning::PlannerKind;
 use crate::planning::{FinishSettings, FinishedPath, RobustRequirement};
 use crate::scene::{Goal, Scene};
-
-pub(super) fn scene_info(model: &Model) -> SceneInfo {
-    SceneInfo::from(model.scene())
-}
-
-pub(super) fn finish(
-    model: &mut Model,
-    controls: &[f64],
-    steps: &[usize],
-    states: &[f64],
-    solved: bool,
-    settings: &bridge::FinishSettings,
-) -> Result<FlatFinishedPath, String> {
-    let settings = settings.try_into()?;
-    model
-        .finish(controls, steps, states, solved, &settings)
-        .map(FlatFinishedPath::from)
-}
-
-pub(super) fn trajectory(
-    model: &mut Model,
-    controls: &[f64],
-    steps: &[usize],
-) -> Result<Trajectory, String> {
-    model.trajectory(controls, steps).map(Trajectory::from)
-}
-
-pub(super) fn darrt_check(
-    model: &Model,
-    states: &[f64],
-    held: &[i64],
-) -> Result<PrimitiveCheck, String> {
-    model.darrt_check(states, held).map(PrimitiveCheck::from)
-}
-
-pub(super) fn darrt_pick_place(
-    model: &Model,
-    state: &[f64],
-    object: usize,
-    target: &[f64],
-    seed: u64,
-) -> Result<bridge::HeldStates, String> {
-    model
-        .darrt_pick_place(state, object, target, seed)
-        .map(|(states, held)| bridge::HeldStates { states, held })
-}
-
-pub(super) fn push_blockers(
-    model: &Model,
-    state: &[f64],
-) -> Result<Vec<bridge::PushTarget>, String> {
-    Ok(model
-        .push_blockers(state)?
-        .into_iter()
-        .map(|b| bridge::PushTarget {
-            object: b.object,
-            target: [b.target.x, b.target.y],
-        })
-        .collect())
-}
 
 pub(super) fn planner_name(kind: PlannerKind) -> &'static str {
     kind.name()
@@ -99,8 +38,8 @@ pub(super) fn planner_kind(name: &str) -> Result<PlannerKind, String> {
     name.parse()
 }
 
-pub(super) fn search_stats(model: &Model) -> bridge::SearchStats {
-    bridge::SearchStats::from(model.search_stats())
+pub(super) fn search_stats(propagator: &Propagator) -> bridge::SearchStats {
+    bridge::SearchStats::from(propagator.search_stats())
 }
 
 pub(super) fn add_search_stats(
@@ -140,41 +79,6 @@ impl From<&bridge::SearchStats> for SearchStats {
                 .collect(),
         }
     }
-}
-
-pub(super) fn nearest_tree(model: &Model) -> Box<NearestTree> {
-    Box::new(model.nearest_tree())
-}
-
-pub(super) fn tree_add(tree: &mut NearestTree, state: &[f64]) -> Result<usize, String> {
-    tree.checked(state)?;
-    Ok(tree.add(state))
-}
-
-/// The nearest state's index, or -1 for an empty tree.
-pub(super) fn tree_nearest(tree: &NearestTree, state: &[f64]) -> Result<i64, String> {
-    let nearest = tree.nearest(tree.checked(state)?);
-    Ok(nearest.map_or(-1, |(id, _)| id as i64))
-}
-
-pub(super) fn tree_nearest_k(
-    tree: &NearestTree,
-    state: &[f64],
-    k: usize,
-) -> Result<Vec<usize>, String> {
-    Ok(indices(tree.nearest_k(tree.checked(state)?, k)))
-}
-
-pub(super) fn tree_nearest_r(
-    tree: &NearestTree,
-    state: &[f64],
-    radius: f64,
-) -> Result<Vec<usize>, String> {
-    Ok(indices(tree.nearest_r(tree.checked(state)?, radius)))
-}
-
-fn indices(found: Vec<(usize, f64)>) -> Vec<usize> {
-    found.into_iter().map(|(id, _)| id).collect()
 }
 
 impl From<&Scene> for bridge::SceneInfo {
@@ -219,7 +123,7 @@ impl From<&Scene> for bridge::SceneInfo {
                 scene.table.y.0,
                 scene.table.y.1,
             ],
-            planner: crate::ffi::PlannerParams(scene.planner),
+            planner: super::PlannerParams(scene.planner),
             goal_object,
             goal_center: center,
             goal_radius: radius,

@@ -1,0 +1,89 @@
+//! [`Problem`]: a scene loaded for OMPL, and the search it is set up for (pushing or
+//! Static RRT's pinned clutter; perturbed worlds). Its parts ([`super::Propagator`],
+//! [`super::ValidityChecker`], ...) are made from it and share its [`Core`].
+
+use super::core::{guarded, SharedCore};
+use super::ffi::SceneInfo;
+use crate::planner::ParticleWorlds;
+use crate::planning::static_clutter::StaticClutter;
+use crate::scene::Scene;
+use std::sync::Arc;
+
+/// A scene loaded for OMPL (OMPL's problem definition and space information, as far as
+/// the model is concerned).
+pub struct Problem {
+    pub(crate) scene: Arc<Scene>,
+    pub(crate) core: SharedCore,
+}
+
+impl Problem {
+    /// The problem of `scene`, in the pushing problem without perturbed worlds.
+    pub fn new(scene: Scene) -> Problem {
+        Problem {
+            core: SharedCore::new(&scene),
+            scene: Arc::new(scene),
+        }
+    }
+
+    /// Loads a scene file (boxed for C++).
+    pub fn load(path: &str) -> Result<Box<Problem>, String> {
+        guarded("loading a scene", || {
+            let scene = Scene::load(path).map_err(|e| e.to_string())?;
+            Ok(Box::new(Problem::new(scene)))
+        })
+    }
+
+    /// A problem from a scene's YAML text; `source` names it in messages and anchors its
+    /// relative paths.
+    pub fn from_yaml(yaml: &str, source: &str) -> Result<Box<Problem>, String> {
+        guarded("reading a scene", || {
+            let scene =
+                Scene::from_yaml(yaml, std::path::Path::new(source)).map_err(|e| e.to_string())?;
+            Ok(Box::new(Problem::new(scene)))
+        })
+    }
+
+    /// What the OMPL side needs to know about the scene.
+    pub fn info(&self) -> SceneInfo {
+        SceneInfo::from(&*self.scene)
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Switches to (or from) the Static RRT baseline: clutter objects become static
+    /// obstacles at their start poses.
+    pub fn set_static_clutter(&mut self, on: bool) {
+        let mut core = self.core.lock();
+        core.static_clutter = on.then(|| StaticClutter::new(&self.scene));
+        core.last_result = None;
+    }
+
+    /// Is the clutter pinned (Static RRT's mode)?
+    pub fn static_clutter(&self) -> bool {
+        self.core.lock().static_clutter.is_some()
+    }
+
+    /// Robust planning: from now on every state carries `count` perturbed worlds drawn
+    /// from `seed` ([`ParticleWorlds`]); 0 turns them off. In the pushing problem only.
+    pub fn set_particles(&mut self, count: usize, seed: u64) -> Result<(), String> {
+        guarded("set_particles", || {
+            let mut core = self.core.lock();
+            if count > 0 && core.static_clutter.is_some() {
+                return Err("perturbed worlds are carried in the pushing problem only".into());
+            }
+            core.particles = ParticleWorlds::draw(&self.scene, count, seed)
+                .map_err(|e| format!("no valid perturbed start for a perturbed world: {e}"))?;
+            core.last_result = None;
+            Ok(())
+        })
+    }
+
+    /// The perturbed worlds' start poses (empty without worlds): a state's block of
+    /// perturbed poses has this many values.
+    pub fn start_particles(&self) -> Vec<f64> {
+        self.core.lock().particles.start_flat()
+    }
+}
