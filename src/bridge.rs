@@ -34,10 +34,7 @@ mod propagator;
 mod validity;
 
 pub use darrt::Darrt;
-pub use entry::{
-    benchmark_scene, reach, solve, BenchOptions, ReachOptions, ReachOutput, SearchProgress,
-    SolveOptions, SolveOutput,
-};
+pub use entry::OmplSearch;
 pub use finisher::Finisher;
 pub use goal::Goal;
 pub use grasping::Grasping;
@@ -56,14 +53,24 @@ use convert::{
 };
 use metric::{tree_add, tree_nearest, tree_nearest_k, tree_nearest_r};
 
-// SAFETY (the three impls): each Rust type is `#[repr(..)]` with the layout of its C++
+// SAFETY (the five impls): each Rust type is `#[repr(..)]` with the layout of its C++
 // twin, a trivial type. `PlannerKind`: the values of `enum class PlannerKind :
 // std::uint8_t` (tests/cpp/api_contract.cpp sends every kind through the bridge and
-// back); `PathMetrics` (include/pushplan/pushplan.h) and `PlannerParams`
-// (cpp/problem/bridge_types.h): the same fields in the same order, checked there by
-// static_assert on their offsets.
+// back); `PathMetrics` (include/pushplan/pushplan.h), `RunSettings`, `ReachSettings` and
+// `PlannerParams` (cpp/problem/bridge_types.h): the same fields in the same order,
+// checked there by static_assert on their offsets.
 unsafe impl cxx::ExternType for PlannerKind {
     type Id = cxx::type_id!("pushplan::PlannerKind");
+    type Kind = cxx::kind::Trivial;
+}
+
+unsafe impl cxx::ExternType for crate::planning::RunSettings {
+    type Id = cxx::type_id!("pushplan::detail::RunSettings");
+    type Kind = cxx::kind::Trivial;
+}
+
+unsafe impl cxx::ExternType for crate::planner::ReachSettings {
+    type Id = cxx::type_id!("pushplan::detail::ReachSettings");
     type Kind = cxx::kind::Trivial;
 }
 

@@ -7,10 +7,11 @@ mod install;
 use clap::{Parser, Subcommand};
 use cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
-    plan, plots, robot, BenchOptions, PickPlaceOptions, PlanOptions, RobotQuery,
+    plan, plots, robot, PickPlaceOptions, PlanOptions, RobotQuery,
 };
 use pushplan::benchmark::grid::{Grid, Shard};
-use pushplan::planning::PlannerKind;
+use pushplan::bridge::OmplSearch;
+use pushplan::planning::{PlannerKind, RunSettings};
 use pushplan::scene::builtin;
 use pushplan::scene::generate::Design;
 use std::path::PathBuf;
@@ -66,7 +67,7 @@ enum Command {
         /// Keep a solution only if at least --robust-rate of this many re-simulations from
         /// perturbed scenes (as `check --noise`) reach the goal; search on otherwise.
         #[arg(long, default_value_t = 0)]
-        robust: usize,
+        robust: u32,
         /// The fraction of --robust re-simulations that must reach the goal (0.95: one
         /// perturbed world in 20 may miss; BENCHMARKS.md, "19 of 20 perturbed worlds").
         #[arg(long, default_value_t = 0.95)]
@@ -415,7 +416,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 intermediate_states,
                 quiet,
             };
-            plan(&scene, &options, &out).and_then(|code| match render {
+            plan(&OmplSearch, &scene, &options, &out).and_then(|code| match render {
                 Some(dir) => draw(&out, &dir, &[]).map(|_| code),
                 None => Ok(code),
             })
@@ -531,22 +532,24 @@ fn run(command: Command) -> Result<ExitCode, String> {
             threads,
             log,
         } => {
-            let options = BenchOptions {
-                planner,
-                run,
+            let params = pushplan::Scene::load(&scene)
+                .map_err(|e| e.to_string())?
+                .planner;
+            let own = RunSettings::of_scene(planner, &params);
+            let settings = RunSettings {
                 time_limit: time,
                 seed,
                 shortcut,
                 threads,
-                restart_steps: restart.unwrap_or(planner.restart_steps()),
+                restart_steps: restart.unwrap_or(own.restart_steps),
                 // The grid's patience is push_kpiece's: the others never fall back.
-                fallback_steps: match planner.fallback_steps() {
+                fallback_steps: match own.fallback_steps {
                     0 => 0,
                     own => fallback.unwrap_or(own),
                 },
-                log: log.to_string_lossy().into_owned(),
+                ..own
             };
-            bench_scene(&scene, &options)
+            bench_scene(&OmplSearch, &scene, &settings, run, &log)
         }
     }
 }

@@ -45,12 +45,12 @@ namespace pushplan::bridge
         }
     }
 
-    void benchmark_scene(rust::Str scene_path, const BenchOptions &options)
+    void benchmark_scene(rust::Str scene_path, const detail::RunSettings &settings, std::uint32_t run, rust::Str log)
     {
         // One run per process, seeded from the grid's seed and the run's index only: the
         // run is the same whichever shard or machine runs it. OMPL's global generator is
         // seeded before any other exists (its planners draw their own seeds from it).
-        const std::uint_fast32_t seed = detail::subSeed(options.seed, 100 + options.run);
+        const std::uint_fast32_t seed = detail::subSeed(settings.seed, 100 + run);
         ompl::RNG::setSeed(seed);
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
         const auto load = [&] {
@@ -58,12 +58,12 @@ namespace pushplan::bridge
         };
         const detail::ModelHandlePtr model = load();
         const SceneInfo &info = model->info();
-        const detail::Problem problem = detail::makeProblem(model, seed, info.planner.k);
+        const detail::Problem problem = detail::makeProblem(model, seed, settings.k);
         // As `plan --threads`: the planners that share one search propagate on lanes of
         // their own models (detail::ParallelKPIECE); the others run on one thread.
-        const unsigned threads = detail::checked("threads", options.threads, options.threads >= 1 && options.threads <= 256);
-        if (threads > 1 && !planner_shares_one_search(options.planner))
-            throw Error("threads: " + std::string(planner_name(options.planner)) +
+        const unsigned threads = detail::checked("threads", settings.threads, settings.threads >= 1 && settings.threads <= 256);
+        if (threads > 1 && !planner_shares_one_search(settings.planner))
+            throw Error("threads: " + std::string(planner_name(settings.planner)) +
                         " runs one search per thread, which a benchmark's run does not; only push_kpiece "
                         "and kpiece run on several threads there");
         std::vector<detail::ModelHandlePtr> models{model};
@@ -71,27 +71,27 @@ namespace pushplan::bridge
         for (unsigned l = 0; threads > 1 && l < detail::lanesFor(threads); ++l)
         {
             models.push_back(load());
-            lanes.push_back(detail::makeLane(models.back(), seed, l, info.planner.k));
+            lanes.push_back(detail::makeLane(models.back(), seed, l, settings.k));
         }
         // Static RRT shares the problem: the model treats the clutter as obstacles.
-        model->problem().set_static_clutter(options.planner == PlannerKind::StaticRrt);
+        model->problem().set_static_clutter(settings.planner == PlannerKind::StaticRrt);
 
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
-        benchmark.addExperimentParameter("k", "INTEGER", std::to_string(info.planner.k));
+        benchmark.addExperimentParameter("k", "INTEGER", std::to_string(settings.k));
         // As in Planner::solve: no propagation past the run's time limit, while it runs
         // (not PDST's).
         ob::PlannerPtr planner =
-            detail::makePlanner(options.planner, problem, seed, info.planner.goal_bias, false, options.restart_steps,
-                                options.fallback_steps, std::move(lanes), threads);
-        if (planner_cut_at_time_limit(options.planner))
-            planner = std::make_shared<detail::TimeLimitedSearch>(std::move(planner), models, options.time_limit);
+            detail::makePlanner(settings.planner, problem, seed, settings.goal_bias, settings.intermediate_states, settings.restart_steps,
+                                settings.fallback_steps, std::move(lanes), threads);
+        if (planner_cut_at_time_limit(settings.planner))
+            planner = std::make_shared<detail::TimeLimitedSearch>(std::move(planner), models, settings.time_limit);
         benchmark.addPlanner(planner);
 
         std::uint64_t steps_before = 0;
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &) { steps_before = model->propagationSteps(); });
         benchmark.setPostRunEvent([&](const ob::PlannerPtr &planner, ompl::tools::Benchmark::RunProperties &props) {
-            props["run INTEGER"] = std::to_string(options.run);
+            props["run INTEGER"] = std::to_string(run);
             props["threads INTEGER"] = std::to_string(threads);
             props["restarts INTEGER"] = std::to_string(detail::restartsOf(planner));
             props["fell back INTEGER"] = std::to_string(detail::fellBack(planner) ? 1 : 0);
@@ -126,16 +126,16 @@ namespace pushplan::bridge
             // problem the planner searched (Static RRT's clutter stays put).
             const auto found = model->readPath(*pdef->getSolutionPath()->as<oc::PathControl>());
             const FinishedPath s =
-                model->finish(found, true, FinishSettings{options.shortcut, seed, 0, 0.0, std::numeric_limits<double>::infinity()});
+                model->finish(found, true, FinishSettings{settings.shortcut, seed, 0, 0.0, std::numeric_limits<double>::infinity()});
             props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
             props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);
             measured(s.before, "");
             measured(s.after, " shortcut");
         });
 
-        ompl::tools::Benchmark::Request request(options.time_limit, 8192.0, 1, 0.5, false, false, false);
+        ompl::tools::Benchmark::Request request(settings.time_limit, 8192.0, 1, 0.5, false, false, false);
         benchmark.benchmark(request);
-        if (!benchmark.saveResultsToFile(std::string(options.log).c_str()))
-            throw Error("cannot write " + std::string(options.log));
+        if (!benchmark.saveResultsToFile(std::string(log).c_str()))
+            throw Error("cannot write " + std::string(log));
     }
 }  // namespace pushplan::bridge

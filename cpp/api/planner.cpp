@@ -131,58 +131,98 @@ namespace pushplan
         return total;
     }
 
+    namespace detail
+    {
+        RunSettings resolve(const Options &options, const bridge::SceneInfo &info)
+        {
+            RunSettings run{};
+            run.planner = options.planner;
+            run.intermediate_states = options.intermediate_states;
+            run.k = options.k.value_or(info.planner.k);
+            run.threads = options.threads.value_or(defaultThreads());
+            run.robust_trials = options.robust_trials;
+            run.robust_particles = options.robust_particles;
+            run.time_limit = options.time_limit.value_or(info.planner.time_limit);
+            run.seed = options.seed.value_or(info.planner.seed);
+            run.goal_bias = options.goal_bias.value_or(info.planner.goal_bias);
+            run.shortcut = options.shortcut;
+            run.robust_rate = options.robust_rate;
+            run.robust_shortcut = options.robust_shortcut;
+            const PlannerKind kind = checkedKind(options.planner);
+            run.restart_steps = options.restart_steps.value_or(bridge::planner_restart_steps(kind));
+            run.fallback_steps = options.fallback_steps.value_or(bridge::planner_fallback_steps(kind));
+            return run;
+        }
+
+        /// Throws pushplan::Error, naming the option, for a value out of range.
+        static void check(const RunSettings &run)
+        {
+            checkedKind(run.planner);
+            if (!bridge::planner_yields_controls(run.planner))
+                throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
+                            "(measure DARRT with `pushplan bench`)");
+            checked("threads", run.threads, run.threads >= 1 && run.threads <= 256);
+            checked("time_limit", run.time_limit, std::isfinite(run.time_limit) && run.time_limit > 0.0);
+            checked("k", run.k, run.k >= 1);
+            checked("goal_bias", run.goal_bias, run.goal_bias >= 0.0 && run.goal_bias <= 1.0);
+            checked("robust_rate", run.robust_rate, run.robust_rate >= 0.0 && run.robust_rate <= 1.0);
+            checked("robust_shortcut", run.robust_shortcut,
+                    std::isfinite(run.robust_shortcut) && run.robust_shortcut >= 0.0);
+            checked("shortcut", run.shortcut, std::isfinite(run.shortcut) && run.shortcut >= 0.0);
+            checked("robust_particles", run.robust_particles,
+                    run.robust_particles <= 64 &&
+                        (run.robust_particles == 0 || (run.robust_trials > 0 && run.planner != PlannerKind::StaticRrt)));
+        }
+    }  // namespace detail
+
     Plan Planner::solve(const Options &options) const
+    {
+        // Reports go to options.on_progress, or are printed with options.progress.
+        std::function<void(const Progress &)> tell = options.on_progress;
+        if (!tell && options.progress)
+            tell = detail::printProgress;
+        const Source &source = this->source();
+        return detail::solve([&] { return source.load(); },
+                             [&](const bridge::SceneInfo &info) { return detail::resolve(options, info); }, tell);
+    }
+
+    Plan detail::solve(const std::function<rust::Box<bridge::Problem>()> &load,
+                       const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
+                       const std::function<void(const Progress &)> &tell)
     {
         // Every failure inside, the model's or OMPL's, leaves as pushplan::Error.
         return detail::asPushplanError([&]() -> Plan {
             using detail::checked;
-            const Source &source = this->source();
-            detail::checkedKind(options.planner);
-            if (!bridge::planner_yields_controls(options.planner))
-                throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
-                            "(measure DARRT with `pushplan bench`)");
+            auto first = std::make_shared<detail::ModelHandle>(load());
+            const bridge::SceneInfo &info = first->info();
+            const RunSettings run = settings_of(info);
+            check(run);
             // The KPIECE planners run one search whose propagations use every thread
             // (detail::ParallelKPIECE); the others one search per thread (detail::Portfolio).
             // Each search and each propagation lane has a model of its own.
-            const unsigned threads = options.threads.value_or(detail::defaultThreads());
-            checked("threads", threads, threads >= 1 && threads <= 256);
-            const bool lanes_per_search = threads > 1 && bridge::planner_shares_one_search(options.planner);
+            const unsigned threads = run.threads;
+            const bool lanes_per_search = threads > 1 && bridge::planner_shares_one_search(run.planner);
             const unsigned search_count = lanes_per_search ? 1 : threads;
             const unsigned lane_count = lanes_per_search ? detail::lanesFor(threads) : 0;
             std::vector<detail::ModelHandlePtr> models, lane_models;
             for (unsigned i = 0; i < search_count + lane_count; ++i)
             {
                 (i < search_count ? models : lane_models)
-                    .push_back(std::make_shared<detail::ModelHandle>(source.load()));
+                    .push_back(i == 0 ? first : std::make_shared<detail::ModelHandle>(load()));
                 // Static RRT's problem: the same states, the clutter pinned where it starts.
                 (i < search_count ? models.back() : lane_models.back())
                     ->problem()
-                    .set_static_clutter(options.planner == PlannerKind::StaticRrt);
+                    .set_static_clutter(run.planner == PlannerKind::StaticRrt);
             }
-            const bridge::SceneInfo &info = models[0]->info();
-            const double time_limit = options.time_limit.value_or(info.planner.time_limit);
-            checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
-            const std::uint64_t seed = options.seed.value_or(info.planner.seed);
-            const unsigned k = checked("k", options.k.value_or(info.planner.k), options.k.value_or(info.planner.k) >= 1);
-            const double goal_bias = options.goal_bias.value_or(info.planner.goal_bias);
-            checked("goal_bias", goal_bias, goal_bias >= 0.0 && goal_bias <= 1.0);
-            checked("robust_rate", options.robust_rate, options.robust_rate >= 0.0 && options.robust_rate <= 1.0);
-            checked("robust_shortcut", options.robust_shortcut,
-                    std::isfinite(options.robust_shortcut) && options.robust_shortcut >= 0.0);
-            checked("shortcut", options.shortcut, std::isfinite(options.shortcut) && options.shortcut >= 0.0);
-            checked("robust_particles", options.robust_particles,
-                    options.robust_particles <= 64 &&
-                        (options.robust_particles == 0 ||
-                         (options.robust_trials > 0 && options.planner != PlannerKind::StaticRrt)));
-            const std::uint64_t restart_steps =
-                options.restart_steps.value_or(bridge::planner_restart_steps(options.planner));
-            const std::uint64_t fallback_steps =
-                options.fallback_steps.value_or(bridge::planner_fallback_steps(options.planner));
+            const double time_limit = run.time_limit;
+            const std::uint64_t seed = run.seed;
+            const unsigned k = run.k;
+            const std::uint64_t fallback_steps = run.fallback_steps;
             for (unsigned i = 0; i < search_count; ++i)
-                models[i]->setParticles(options.robust_particles, detail::searchSeed(seed, i));
+                models[i]->setParticles(run.robust_particles, detail::searchSeed(seed, i));
             // A lane propagates the states of search 0: the same perturbed worlds.
             for (const detail::ModelHandlePtr &m : lane_models)
-                m->setParticles(options.robust_particles, detail::searchSeed(seed, 0));
+                m->setParticles(run.robust_particles, detail::searchSeed(seed, 0));
 
             // OMPL's log level is process-wide: quiet below warnings while planning, then put
             // back as the application had it.
@@ -202,8 +242,8 @@ namespace pushplan
                 for (std::size_t l = 0; l < lane_models.size(); ++l)
                     lanes.push_back(detail::makeLane(lane_models[l], search_seed, l, k));
                 ob::PlannerPtr planner =
-                    detail::makePlanner(options.planner, problem, search_seed, goal_bias, options.intermediate_states,
-                                        restart_steps, fallback_steps, std::move(lanes), threads);
+                    detail::makePlanner(run.planner, problem, search_seed, run.goal_bias, run.intermediate_states,
+                                        run.restart_steps, fallback_steps, std::move(lanes), threads);
                 problem.setup->setPlanner(planner);
                 problem.setup->setup();
                 searches.push_back(detail::Search{std::move(problem), std::move(planner)});
@@ -218,7 +258,7 @@ namespace pushplan
             const std::function<bool()> out_of_time = [&] { return elapsed() >= time_limit; };
             // The models refuse to propagate past the limit: an extension of k long controls
             // (OMPL checks the limit only between extensions) ends on time. Not PDST's.
-            if (bridge::planner_cut_at_time_limit(options.planner))
+            if (bridge::planner_cut_at_time_limit(run.planner))
             {
                 for (const detail::ModelHandlePtr &m : models)
                     m->propagator().set_time_limit(time_limit);
@@ -229,15 +269,10 @@ namespace pushplan
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
             std::uint64_t last_steps = 0, told_fallbacks = 0;
-            // Reports go to options.on_progress, or are printed with options.progress.
-            const auto tell = [&](const Progress &p) {
-                if (options.on_progress)
-                    options.on_progress(p);
-                else if (options.progress)
-                    detail::printProgress(p);
-            };
             // An event rather than a periodic report: the totals so far and what happened.
             const auto tell_event = [&](std::string what) {
+                if (!tell)
+                    return;
                 Progress p;
                 p.seconds = elapsed();
                 p.propagation_steps = portfolio.propagationSteps();
@@ -247,7 +282,7 @@ namespace pushplan
                 tell(p);
             };
             const std::function<bool()> report_due = [&] {
-                return (options.progress || options.on_progress) && elapsed() >= next_report;
+                return tell && elapsed() >= next_report;
             };
             const std::function<void()> report = [&] {
                 const double t = elapsed();
@@ -300,13 +335,13 @@ namespace pushplan
             // still not robust enough it is dropped, and its search starts over with a new tree
             // (the old tree's next solutions would mostly extend the dropped one, past its goal
             // node).
-            while (winner && options.robust_trials > 0)
+            while (winner && run.robust_trials > 0)
             {
                 const bridge::FinishedPath repaired = models[*winner]->finish(
-                    found, true, bridge::FinishSettings{options.robust_shortcut, seed, options.robust_trials,
-                                                        options.robust_rate, time_limit - elapsed()});
+                    found, true, bridge::FinishSettings{run.robust_shortcut, seed, run.robust_trials,
+                                                        run.robust_rate, time_limit - elapsed()});
                 plan.robustness = repaired.robustness;
-                if (plan.robustness >= options.robust_rate)
+                if (plan.robustness >= run.robust_rate)
                 {
                     found = {std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
                              std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
@@ -318,7 +353,7 @@ namespace pushplan
                     std::snprintf(note, sizeof note,
                                   "a solution reaches the goal in %.0f %% of %u perturbed re-simulations "
                                   "(%zu of %zu controls kept shortcutting toward robustness): searching on",
-                                  100.0 * plan.robustness, options.robust_trials, repaired.steps.size(),
+                                  100.0 * plan.robustness, run.robust_trials, repaired.steps.size(),
                                   found.steps.size());
                     tell_event(note);
                 }
@@ -362,11 +397,11 @@ namespace pushplan
             // (shortcut, kept robust) by the model, the same way as the CLI's and bench's.
             // A robust solution was measured in the perturbed worlds as it was kept: without
             // shortcutting the path stays that one, and its robustness stands.
-            const bool measured = solved && options.robust_trials > 0 && options.shortcut == 0.0;
+            const bool measured = solved && run.robust_trials > 0 && run.shortcut == 0.0;
             const bridge::FinishedPath path = model->finish(
                 found, solved,
-                bridge::FinishSettings{options.shortcut, seed, measured ? 0u : options.robust_trials,
-                                       options.robust_rate, time_limit - elapsed()});
+                bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate,
+                                       time_limit - elapsed()});
             plan.before_shortcut = path.before;
             plan.after_shortcut = path.after;
             if (path.robustness >= 0.0)

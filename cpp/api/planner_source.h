@@ -3,9 +3,11 @@
 #pragma once
 
 #include "pushplan/pushplan.h"
+#include "pushplan/cpp/problem/bridge_types.h"
 #include "pushplan/src/bridge.rs.h"
 #include "rust/cxx.h"  // rust::Error
 
+#include <functional>
 #include <string>
 
 namespace pushplan
@@ -43,6 +45,22 @@ namespace pushplan
                 throw Error(std::string("OMPL: ") + e.what());
             }
         }
+
+        /// Options with every unset value taken from the scene (`info`).
+        RunSettings resolve(const Options &options, const bridge::SceneInfo &info);
+
+        /// Plans the scene `load` reads as the settings `settings_of` gives for it (checked
+        /// here, every value named), telling `tell` (if set) how far the search is: what
+        /// Planner::solve and the CLI's search do. Throws pushplan::Error.
+        Plan solve(const std::function<rust::Box<bridge::Problem>()> &load,
+                   const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
+                   const std::function<void(const Progress &)> &tell);
+
+        /// Reaches a grasp of `object` in the scene `load` reads as the settings
+        /// `settings_of` gives for it (checked here), from the end of `after` or the scene's
+        /// start: what Planner::reach and the CLI's reach do. Throws pushplan::Error.
+        Reach reach(const std::function<rust::Box<bridge::Problem>()> &load, const std::string &object,
+                    const std::function<ReachSettings(const bridge::SceneInfo &)> &settings_of, const Plan *after);
     }  // namespace detail
 
     struct Planner::Source

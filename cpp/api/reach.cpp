@@ -47,15 +47,29 @@ namespace pushplan
 
     Reach Planner::reach(const std::string &object, const ReachOptions &options, const Plan *after) const
     {
+        const Source &source = this->source();
+        return detail::reach([&] { return source.load(); }, object,
+                             [&](const bridge::SceneInfo &info) {
+                                 return detail::ReachSettings{options.time_limit.value_or(info.planner.time_limit),
+                                                              options.seed.value_or(info.planner.seed),
+                                                              options.sample_probability};
+                             },
+                             after);
+    }
+
+    Reach detail::reach(const std::function<rust::Box<bridge::Problem>()> &load, const std::string &object,
+                        const std::function<ReachSettings(const bridge::SceneInfo &)> &settings_of, const Plan *after)
+    {
         return detail::asPushplanError([&] {
-            auto model = std::make_shared<detail::ModelHandle>(source().load());
+            auto model = std::make_shared<detail::ModelHandle>(load());
             const bridge::SceneInfo &info = model->info();
             const std::size_t index = model->grasping().graspable_object(object);
-            const double time_limit = options.time_limit.value_or(info.planner.time_limit);
+            const ReachSettings settings = settings_of(info);
+            const double time_limit = settings.time_limit;
             detail::checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
-            detail::checked("sample_probability", options.sample_probability,
-                            options.sample_probability >= 0.0 && options.sample_probability <= 1.0);
-            const std::uint64_t seed = options.seed.value_or(info.planner.seed);
+            detail::checked("sample_probability", settings.sample_probability,
+                            settings.sample_probability >= 0.0 && settings.sample_probability <= 1.0);
+            const std::uint64_t seed = settings.seed;
             const detail::FlatState from = detail::reachStart(info, after);
 
             ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
@@ -69,7 +83,7 @@ namespace pushplan
             pdef->addStartState(start);
             pdef->setGoal(std::make_shared<detail::GraspGoal>(space, model, from, index, detail::subSeed(seed, 2)));
             detail::IkBiRrt planner(si, detail::subSeed(seed, 0));
-            planner.setSampleProbability(options.sample_probability);
+            planner.setSampleProbability(settings.sample_probability);
             planner.setProblemDefinition(pdef);
             planner.setup();
 

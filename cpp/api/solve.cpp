@@ -1,44 +1,26 @@
 #include "pushplan/cpp/api/solve.h"
 
+#include "pushplan/cpp/api/planner_source.h"
 #include "pushplan/pushplan.h"
 #include "pushplan/src/bridge/entry.rs.h"
 
 namespace pushplan::bridge
 {
-    SolveOutput solve(rust::Str scene_path, const SolveOptions &options,
+    SolveOutput solve(rust::Str scene_path, const detail::RunSettings &settings, bool report,
                       rust::Fn<void(const SearchProgress &)> progress)
     {
-        Options o;
-        o.planner = options.planner;
-        o.time_limit = options.time_limit;
-        o.seed = options.seed;
-        o.k = options.k;
-        o.goal_bias = options.goal_bias;
-        o.intermediate_states = options.intermediate_states;
-        o.progress = options.progress;
-        if (options.progress)
-            o.on_progress = [progress](const Progress &p) {
-                SearchProgress report;
-                report.seconds = p.seconds;
-                report.propagation_steps = p.propagation_steps;
-                report.steps_per_second = p.steps_per_second;
-                report.propagating = p.propagating;
-                report.tree_states = p.tree_states.value_or(0);
-                report.searches = p.searches;
-                report.closest_goal_distance = p.closest_goal_distance;
-                report.note = p.note;
-                progress(report);
+        const std::string path(scene_path);
+        // The caller finishes the path itself (planning::finish), to report on it.
+        detail::RunSettings run = settings;
+        run.shortcut = 0.0;
+        std::function<void(const Progress &)> tell;
+        if (report)
+            tell = [progress](const Progress &p) {
+                progress(SearchProgress{p.seconds, p.propagation_steps, p.steps_per_second, p.propagating,
+                                        p.tree_states.value_or(0), p.searches, p.closest_goal_distance, p.note});
             };
-        o.robust_trials = static_cast<unsigned>(options.robust_trials);
-        o.robust_rate = options.robust_rate;
-        o.robust_shortcut = options.robust_shortcut;
-        o.robust_particles = options.robust_particles;
-        o.threads = options.threads;
-        o.restart_steps = options.restart_steps;
-        o.fallback_steps = options.fallback_steps;
-        o.shortcut = 0.0;  // the CLI finishes the path itself (planner::finish), to report on it
-
-        const Plan plan = Planner(std::string(scene_path)).solve(o);
+        const Plan plan = detail::solve([&] { return Problem::load(path); },
+                                        [&](const SceneInfo &) { return run; }, tell);
         SolveOutput out;
         out.exact = plan.solved;
         out.approximate = !plan.solved && !plan.controls.empty();
@@ -56,6 +38,8 @@ namespace pushplan::bridge
             out.search.stop_reasons.emplace_back(reason);
             out.search.stop_counts.push_back(count);
         }
+        out.dof = plan.joint_names.size();
+        out.objects = plan.object_names.size();
         for (std::size_t i = 0; i < plan.joint_trajectory.size(); ++i)
         {
             for (double v : plan.joint_trajectory[i])
@@ -76,25 +60,28 @@ namespace pushplan::bridge
     }
 
     ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from_q,
-                      rust::Slice<const double> from_objects, const ReachOptions &options)
+                      rust::Slice<const double> from_objects, const detail::ReachSettings &settings)
     {
-        const Planner planner{std::string(scene_path)};
-        pushplan::ReachOptions o;
-        o.time_limit = options.time_limit;
-        o.seed = options.seed;
-        o.sample_probability = options.sample_probability;
+        const std::string path(scene_path);
         // A state to reach from is passed as the one state of a plan.
         Plan after;
         after.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(from_q.data(), from_q.size()));
         after.object_poses.emplace_back();
         for (std::size_t at = 0; at + 3 <= from_objects.size(); at += 3)
             after.object_poses.back().emplace_back(from_objects[at], from_objects[at + 1], from_objects[at + 2]);
-        const Reach r = planner.reach(std::string(object), o, from_q.empty() ? nullptr : &after);
+        std::size_t dof = 0;
+        const Reach r = detail::reach([&] { return Problem::load(path); }, std::string(object),
+                                      [&](const SceneInfo &info) {
+                                          dof = info.dof;
+                                          return settings;
+                                      },
+                                      from_q.empty() ? nullptr : &after);
         ReachOutput out;
         out.solved = r.solved;
         out.planning_time = r.planning_time;
         out.goal_samples = r.goal_samples;
         out.tree_size = r.tree_size;
+        out.dof = dof;
         for (const auto &q : r.waypoints)
             for (Eigen::Index i = 0; i < q.size(); ++i)
                 out.waypoints.push_back(q[i]);

@@ -1,23 +1,24 @@
-// The CLI's way into the C++ planner (declared for the cxx bridge in src/ffi/entry.rs).
+// The applications' way into the C++ planner (declared for the cxx bridge in
+// src/bridge/entry.rs).
 #pragma once
 
+#include "pushplan/cpp/problem/bridge_types.h"
 #include "rust/cxx.h"
 
 namespace pushplan::bridge
 {
-    struct SolveOptions;
     struct SolveOutput;
     struct SearchProgress;
-    struct ReachOptions;
     struct ReachOutput;
 
-    /// Plans a scene file, telling `progress` how far it is (with options.progress);
-    /// throws (a Rust Err) on bad input.
-    SolveOutput solve(rust::Str scene_path, const SolveOptions &options,
+    /// Searches a scene file as `settings` say, telling `progress` how far it is when
+    /// `report` is set; the path comes back as found (not shortcut). Throws (a Rust Err)
+    /// on bad input.
+    SolveOutput solve(rust::Str scene_path, const detail::RunSettings &settings, bool report,
                       rust::Fn<void(const SearchProgress &)> progress);
 
     /// Reaches a grasp of `object` from the arm at `from_q` with the objects at
     /// `from_objects` (x, y, yaw each); from the scene's start if `from_q` is empty.
     ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from_q,
-                      rust::Slice<const double> from_objects, const ReachOptions &options);
+                      rust::Slice<const double> from_objects, const detail::ReachSettings &settings);
 }  // namespace pushplan::bridge

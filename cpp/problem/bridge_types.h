@@ -1,5 +1,5 @@
 // The C++ twins of Rust types the bridge passes as they are (`#[repr(C)]` in Rust, bound
-// with cxx::ExternType in src/ffi.rs): same fields, same order, checked here.
+// with cxx::ExternType in src/bridge.rs): same fields, same order, checked here.
 #pragma once
 
 #include "pushplan/pushplan.h"
@@ -39,4 +39,39 @@ namespace pushplan::detail
     static_assert(offsetof(PlannerParams, k) == 16 && offsetof(PlannerParams, nearest_checks) == 20 && offsetof(PlannerParams, goal_bias) == 24 &&
                       offsetof(PlannerParams, rotation_length) == 104 && sizeof(PlannerParams) == 112,
                   "PlannerParams must have the layout of Rust's #[repr(C)] scene::PlannerSpec");
+
+    /// How one search runs, every value resolved: Rust's planning::RunSettings, the one
+    /// settings type of the CLI, a benchmark cell and (resolved from) Options.
+    struct RunSettings
+    {
+        PlannerKind planner;
+        bool intermediate_states;        ///< every propagation step joins the tree
+        std::uint32_t k;                 ///< control samples per extension
+        std::uint32_t threads;           ///< threads to plan on
+        std::uint32_t robust_trials;     ///< perturbed re-simulations a solution must pass (0: none)
+        std::uint32_t robust_particles;  ///< perturbed worlds every tree state carries
+        double time_limit;               ///< s
+        std::uint64_t seed;
+        double goal_bias;
+        double shortcut;                 ///< shortcutting budget (s of work)
+        double robust_rate;              ///< share of re-simulations that must reach the goal
+        double robust_shortcut;          ///< shortcutting toward robustness (s of work)
+        std::uint64_t restart_steps;     ///< first restart budget (propagation steps; 0: never)
+        std::uint64_t fallback_steps;    ///< Push KPIECE's patience (propagation steps; 0: never)
+    };
+    static_assert(offsetof(RunSettings, intermediate_states) == 1 && offsetof(RunSettings, k) == 4 &&
+                      offsetof(RunSettings, robust_particles) == 16 && offsetof(RunSettings, time_limit) == 24 &&
+                      offsetof(RunSettings, fallback_steps) == 80 && sizeof(RunSettings) == 88,
+                  "RunSettings must have the layout of Rust's #[repr(C)] planning::RunSettings");
+
+    /// Reaching a grasp: Rust's planner::ReachSettings.
+    struct ReachSettings
+    {
+        double time_limit;  ///< s
+        std::uint64_t seed;
+        double sample_probability;  ///< IK-BiRRT's P_sample
+    };
+    static_assert(offsetof(ReachSettings, seed) == 8 && offsetof(ReachSettings, sample_probability) == 16 &&
+                      sizeof(ReachSettings) == 24,
+                  "ReachSettings must have the layout of Rust's #[repr(C)] planner::ReachSettings");
 }  // namespace pushplan::detail

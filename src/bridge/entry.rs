@@ -1,41 +1,21 @@
-//! The bridge's second half: the C++ entry points Rust calls (the CLI's search and the
-//! benchmark of a scene), declarations only. `cpp/api/solve.h` and `cpp/api/benchmark.h` declare
-//! them on the C++ side.
+//! The bridge's second half: the C++ entry points of the applications (a search, a
+//! reach, a benchmark run; declared in `cpp/api/solve.h` and `cpp/api/benchmark.h`), and
+//! [`OmplSearch`], which offers them as [`crate::planner::Search`] in the model's types.
+
+use crate::planner::{Found, ReachSettings, Reached, Search, SearchProgress, SearchStats};
+use crate::planning::path::PathControl;
+use crate::planning::RunSettings;
+use crate::state::State;
+use nalgebra::DVector;
+use std::cell::Cell;
+use std::path::Path;
 
 /// The declarations cxx generates both sides from (`pushplan/src/bridge/entry.rs.h`).
 #[allow(missing_docs)]
 #[cxx::bridge(namespace = "pushplan::bridge")]
 pub mod ffi {
-    /// One search of the CLI (`plan`); the CLI finishes the path itself.
-    #[derive(Debug, Clone)]
-    pub struct SolveOptions {
-        pub planner: PlannerKind,
-        pub time_limit: f64,
-        pub seed: u64,
-        pub k: u32,
-        pub goal_bias: f64,
-        pub intermediate_states: bool,
-        pub progress: bool,
-        /// Robust planning: the search goes on until a solution keeps this robustness.
-        pub robust_trials: usize,
-        pub robust_rate: f64,
-        /// Shortcutting budget (s of work) toward robustness for each solution not robust
-        /// enough (pushplan::Options::robust_shortcut).
-        pub robust_shortcut: f64,
-        /// Perturbed worlds every tree state carries (pushplan::Options::robust_particles).
-        pub robust_particles: u32,
-        /// Threads to plan on (pushplan::Options::threads); at least 1.
-        pub threads: u32,
-        /// First restart budget in propagation steps (pushplan::Options::restart_steps);
-        /// 0: never.
-        pub restart_steps: u64,
-        /// Push KPIECE's patience before it falls back to PC RRT, in propagation steps
-        /// (pushplan::Options::fallback_steps); 0: never.
-        pub fallback_steps: u64,
-    }
-
     /// The outcome of one search and the path found: controls, their step counts and the
-    /// states at the start and after each control, flat.
+    /// states at the start and after each control, flat (`dof` joints, `objects` poses).
     #[derive(Debug, Clone)]
     pub struct SolveOutput {
         pub exact: bool,
@@ -44,82 +24,55 @@ pub mod ffi {
         pub tree_size: usize,
         pub propagation_steps: u64,
         pub search: SearchStats,
-        /// Attempts started over for lack of a solution (pushplan::Plan::restarts).
         pub restarts: u64,
-        /// Searches that fell back to PC RRT (pushplan::Plan::fallbacks).
         pub fallbacks: u64,
+        pub dof: usize,
+        pub objects: usize,
         pub controls: Vec<f64>,
         pub steps: Vec<usize>,
         pub states: Vec<f64>,
     }
 
-    /// How far the CLI's search is (pushplan::Progress): once a second, or an event.
+    /// `planner::SearchProgress`.
     #[derive(Debug, Clone)]
     pub struct SearchProgress {
         pub seconds: f64,
         pub propagation_steps: u64,
         pub steps_per_second: f64,
-        /// Share of the time since the last report spent propagating.
         pub propagating: f64,
-        /// States in all trees; 0 when the planner has none to count.
         pub tree_states: usize,
         pub searches: u32,
-        /// Smallest goal distance reached (m, or rad for a configuration goal).
         pub closest_goal_distance: f64,
-        /// Not empty: an event rather than a periodic report.
         pub note: String,
     }
 
-    /// One run of one planner on one scene (`ompl::tools::Benchmark`), seeded from
-    /// `seed` and `run` only; the OMPL log goes to `log`.
-    #[derive(Debug, Clone)]
-    pub struct BenchOptions {
-        pub planner: PlannerKind,
-        pub run: u32,
-        pub time_limit: f64,
-        pub seed: u64,
-        /// Shortcutting budget (s of work) measured after a solved run.
-        pub shortcut: f64,
-        /// First restart budget in propagation steps; 0: never.
-        pub restart_steps: u64,
-        /// Push KPIECE's patience before it falls back to PC RRT (steps); 0: never.
-        pub fallback_steps: u64,
-        /// Threads of the run: one search whose propagations run on them (the planners
-        /// that share one search), else 1.
-        pub threads: u32,
-        pub log: String,
-    }
-
-    /// Reaching a grasp (pushplan::ReachOptions): IK-BiRRT's time, seed and P_sample.
-    #[derive(Debug, Clone)]
-    pub struct ReachOptions {
-        pub time_limit: f64,
-        pub seed: u64,
-        pub sample_probability: f64,
-    }
-
-    /// A reach (pushplan::Reach): waypoints flat, one configuration after another.
+    /// A reach (pushplan::Reach): waypoints flat, one configuration of `dof` joints
+    /// after another.
     #[derive(Debug, Clone)]
     pub struct ReachOutput {
         pub solved: bool,
         pub planning_time: f64,
         pub goal_samples: usize,
         pub tree_size: usize,
+        pub dof: usize,
         pub waypoints: Vec<f64>,
     }
 
     unsafe extern "C++" {
-        include!("pushplan/pushplan.h");
-        #[namespace = "pushplan"]
-        type PlannerKind = crate::planning::PlannerKind;
         include!("pushplan/src/bridge.rs.h");
         type SearchStats = crate::bridge::ffi::SearchStats;
+        include!("pushplan/cpp/problem/bridge_types.h");
+        #[namespace = "pushplan::detail"]
+        type RunSettings = crate::planning::RunSettings;
+        #[namespace = "pushplan::detail"]
+        type ReachSettings = crate::planner::ReachSettings;
         include!("pushplan/cpp/api/solve.h");
-        /// Searches the scene file with OMPL (the CLI's entry point), telling `progress`
-        /// how far it is when `options.progress` is set.
+        /// Searches the scene file with OMPL, telling `progress` how far it is when
+        /// `report` is set; the path comes back as found (not shortcut).
         fn solve(
             scene_path: &str,
-            options: &SolveOptions,
+            settings: &RunSettings,
+            report: bool,
             progress: fn(report: &SearchProgress),
         ) -> Result<SolveOutput>;
         /// Reaches a grasp of `object` with IK-BiRRT from the arm at `from_q` with the
@@ -130,46 +83,112 @@ pub mod ffi {
             object: &str,
             from_q: &[f64],
             from_objects: &[f64],
-            options: &ReachOptions,
+            settings: &ReachSettings,
         ) -> Result<ReachOutput>;
         include!("pushplan/cpp/api/benchmark.h");
         /// Runs one benchmark run with ompl::tools::Benchmark and writes its log.
-        fn benchmark_scene(scene_path: &str, options: &BenchOptions) -> Result<()>;
+        fn benchmark_scene(
+            scene_path: &str,
+            settings: &RunSettings,
+            run: u32,
+            log: &str,
+        ) -> Result<()>;
     }
 }
 
-pub use ffi::{BenchOptions, ReachOptions, ReachOutput, SearchProgress, SolveOptions, SolveOutput};
-use std::path::Path;
+/// OMPL's planners (the C++ side), as the applications' [`Search`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct OmplSearch;
 
-/// Searches a scene file with OMPL (the C++ side), as the CLI does.
-pub fn solve(
-    scene_path: &Path,
-    options: &SolveOptions,
-    progress: fn(&SearchProgress),
-) -> Result<SolveOutput, String> {
-    ffi::solve(&scene_path.to_string_lossy(), options, progress).map_err(|e| e.what().to_string())
+thread_local! {
+    /// Where this thread's search reports go: C++ calls back on the thread that called
+    /// `solve`, through a plain function pointer.
+    static PROGRESS: Cell<Option<fn(&SearchProgress)>> = const { Cell::new(None) };
 }
 
-/// Benchmarks one scene with OMPL's tooling, writing `options.log`.
-pub fn benchmark_scene(scene_path: &Path, options: &BenchOptions) -> Result<(), String> {
-    ffi::benchmark_scene(&scene_path.to_string_lossy(), options).map_err(|e| e.what().to_string())
+/// The C++ search's report, passed on to this thread's progress function.
+fn tell(report: &ffi::SearchProgress) {
+    if let Some(progress) = PROGRESS.with(Cell::get) {
+        progress(&SearchProgress {
+            seconds: report.seconds,
+            propagation_steps: report.propagation_steps,
+            steps_per_second: report.steps_per_second,
+            propagating: report.propagating,
+            tree_states: report.tree_states,
+            searches: report.searches,
+            closest_goal_distance: report.closest_goal_distance,
+            note: report.note.clone(),
+        });
+    }
 }
 
-/// Reaches a grasp of `object` with IK-BiRRT (the C++ side) from `from` (`None`: the
-/// scene's start).
-pub fn reach(
-    scene_path: &Path,
-    object: &str,
-    from: Option<&crate::state::State>,
-    options: &ReachOptions,
-) -> Result<ReachOutput, String> {
-    let (q, objects): (Vec<f64>, Vec<f64>) = match from {
-        Some(s) => (
-            s.q.as_slice().to_vec(),
-            s.objects.iter().flat_map(|p| [p.x, p.y, p.theta]).collect(),
-        ),
-        None => (Vec::new(), Vec::new()),
-    };
-    ffi::reach(&scene_path.to_string_lossy(), object, &q, &objects, options)
+impl Search for OmplSearch {
+    fn solve(
+        &self,
+        scene: &Path,
+        settings: &RunSettings,
+        progress: Option<fn(&SearchProgress)>,
+    ) -> Result<Found, String> {
+        PROGRESS.with(|p| p.set(progress));
+        let out = ffi::solve(&scene.to_string_lossy(), settings, progress.is_some(), tell);
+        PROGRESS.with(|p| p.set(None));
+        let out = out.map_err(|e| e.what().to_string())?;
+        Ok(Found {
+            exact: out.exact,
+            approximate: out.approximate,
+            planning_time: out.planning_time,
+            tree_size: out.tree_size,
+            propagation_steps: out.propagation_steps,
+            search: SearchStats::from(&out.search),
+            restarts: out.restarts,
+            fallbacks: out.fallbacks,
+            controls: PathControl::from_flat(&out.controls, &out.steps, out.dof)?,
+            states: State::many_from_flat(&out.states, out.dof, out.objects)?,
+        })
+    }
+
+    fn reach(
+        &self,
+        scene: &Path,
+        object: &str,
+        from: Option<&State>,
+        settings: &ReachSettings,
+    ) -> Result<Reached, String> {
+        let (q, objects): (Vec<f64>, Vec<f64>) = match from {
+            Some(s) => (
+                s.q.as_slice().to_vec(),
+                s.objects.iter().flat_map(|p| [p.x, p.y, p.theta]).collect(),
+            ),
+            None => (Vec::new(), Vec::new()),
+        };
+        let out = ffi::reach(&scene.to_string_lossy(), object, &q, &objects, settings)
+            .map_err(|e| e.what().to_string())?;
+        Ok(Reached {
+            solved: out.solved,
+            planning_time: out.planning_time,
+            goal_samples: out.goal_samples,
+            tree_size: out.tree_size,
+            waypoints: out
+                .waypoints
+                .chunks(out.dof.max(1))
+                .map(DVector::from_column_slice)
+                .collect(),
+        })
+    }
+
+    fn benchmark(
+        &self,
+        scene: &Path,
+        settings: &RunSettings,
+        run: u32,
+        log: &Path,
+    ) -> Result<(), String> {
+        ffi::benchmark_scene(
+            &scene.to_string_lossy(),
+            settings,
+            run,
+            &log.to_string_lossy(),
+        )
         .map_err(|e| e.what().to_string())
+    }
 }

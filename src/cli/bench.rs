@@ -4,7 +4,8 @@
 
 use pushplan::benchmark::grid::{Grid, Shard};
 use pushplan::benchmark::run::{merge, run_shard};
-pub use pushplan::bridge::BenchOptions;
+use pushplan::planner::Search;
+use pushplan::planning::RunSettings;
 use pushplan::Scene;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -56,11 +57,19 @@ pub fn bench(
     })
 }
 
-/// `bench-scene`: one cell of the grid, run in a process of its own by [`bench`]: one
-/// run of one planner on one scene with OMPL's benchmark tooling, its log written to
-/// `options.log`.
-pub fn bench_scene(scene: &Path, options: &BenchOptions) -> Result<ExitCode, String> {
-    pushplan::bridge::benchmark_scene(scene, options).map(|_| ExitCode::SUCCESS)
+/// `bench-scene`: one cell of the grid, run in a process of its own by [`bench`]: run
+/// `run` of one planner on one scene with OMPL's benchmark tooling, its log written to
+/// `log`.
+pub fn bench_scene(
+    search: &dyn Search,
+    scene: &Path,
+    settings: &RunSettings,
+    run: u32,
+    log: &Path,
+) -> Result<ExitCode, String> {
+    search
+        .benchmark(scene, settings, run, log)
+        .map(|_| ExitCode::SUCCESS)
 }
 
 /// `bench merge`: the shards in `dirs` into `out` (logs, database, plots).

@@ -11,7 +11,7 @@ mod plan;
 mod progress;
 mod robot;
 
-pub use bench::{bench, bench_merge, bench_scene, plots, BenchOptions};
+pub use bench::{bench, bench_merge, bench_scene, plots};
 pub use check::check;
 pub use execute::execute;
 pub use files::{draw, generate_scenes, install};

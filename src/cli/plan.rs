@@ -1,19 +1,20 @@
 //! `pushplan plan`: search a scene with OMPL, finish the path, write the plan file.
 
 use super::progress;
-use pushplan::bridge::{solve, ReachOptions, SolveOptions};
-use pushplan::planning::path::PathControl;
+use pushplan::planner::{ReachSettings, Search};
 use pushplan::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
 use pushplan::planning::shortcut::ShortcutProgress;
-use pushplan::planning::{FinishSettings, PlannerKind, Problem, RobustRequirement};
+use pushplan::planning::{FinishSettings, PlannerKind, Problem, RobustRequirement, RunSettings};
+use pushplan::scene::PlannerParams;
 use pushplan::state::State;
 use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 
-/// The `plan` command's options.
+/// The `plan` command's options: the search's settings as the flags set them (`None`:
+/// the scene's, see [`PlanOptions::settings`]) and what the command does around it.
 pub struct PlanOptions {
-    pub robust: usize,
+    pub robust: u32,
     pub robust_rate: f64,
     /// Shortcutting toward robustness per solution not robust enough (s of work).
     pub robust_shortcut: f64,
@@ -41,6 +42,28 @@ pub struct PlanOptions {
     pub sample_probability: f64,
 }
 
+impl PlanOptions {
+    /// The search's settings: the scene's `planner:` parameters, overridden by the flags.
+    pub fn settings(&self, params: &PlannerParams) -> RunSettings {
+        let scene = RunSettings::of_scene(self.planner, params);
+        RunSettings {
+            intermediate_states: self.intermediate_states,
+            k: self.k.unwrap_or(scene.k),
+            threads: self.threads,
+            robust_trials: self.robust,
+            robust_particles: self.particles,
+            time_limit: self.time.unwrap_or(scene.time_limit),
+            seed: self.seed.unwrap_or(scene.seed),
+            shortcut: self.shortcut,
+            robust_rate: self.robust_rate,
+            robust_shortcut: self.robust_shortcut,
+            restart_steps: self.restart.unwrap_or(scene.restart_steps),
+            fallback_steps: self.fallback.unwrap_or(scene.fallback_steps),
+            ..scene
+        }
+    }
+}
+
 /// The object of a `--goal` value `grasp:OBJECT`.
 pub fn grasp_goal(goal: &str) -> Result<String, String> {
     match goal.strip_prefix("grasp:") {
@@ -52,14 +75,15 @@ pub fn grasp_goal(goal: &str) -> Result<String, String> {
 }
 
 /// IK-BiRRT's reach of a grasp of `object` from `from` (`None`: the start), as the plan
-/// file records it; `None` if no reach was found within `time` seconds.
+/// file records it; `None` if no reach was found within the search's time limit (with
+/// its seed: `search_settings`).
 fn reach(
+    search: &dyn Search,
     scene_path: &Path,
     object: &str,
     from: Option<&State>,
     run: &PlanOptions,
-    time: f64,
-    seed: u64,
+    search_settings: &RunSettings,
     dof: usize,
 ) -> Result<Option<ReachRecord>, String> {
     if !(0.0..=1.0).contains(&run.sample_probability) {
@@ -68,12 +92,12 @@ fn reach(
             run.sample_probability
         ));
     }
-    let options = ReachOptions {
-        time_limit: time,
-        seed,
+    let settings = ReachSettings {
+        time_limit: search_settings.time_limit,
+        seed: search_settings.seed,
         sample_probability: run.sample_probability,
     };
-    let found = pushplan::bridge::reach(scene_path, object, from, &options)?;
+    let found = search.reach(scene_path, object, from, &settings)?;
     if !run.quiet {
         eprintln!(
             "reaching a grasp of '{object}' with IK-BiRRT: {} in {:.2} s, {} IK solutions, trees of {} states",
@@ -86,11 +110,22 @@ fn reach(
     Ok(found.solved.then(|| ReachRecord {
         object: object.to_string(),
         sample_probability: run.sample_probability,
-        waypoints: found.waypoints.chunks(dof).map(<[f64]>::to_vec).collect(),
+        waypoints: found
+            .waypoints
+            .iter()
+            .map(|q| q.as_slice()[..dof].to_vec())
+            .collect(),
     }))
 }
 
-pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode, String> {
+/// `pushplan plan`: searches the scene with `search`, finishes the path and writes the plan
+/// file to `out`.
+pub fn plan(
+    search: &dyn Search,
+    scene_path: &Path,
+    run: &PlanOptions,
+    out: &Path,
+) -> Result<ExitCode, String> {
     // --time bounds the whole command: loading, search, shortcutting and writing.
     let started = std::time::Instant::now();
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
@@ -99,25 +134,9 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         std::fs::create_dir_all(folder)
             .map_err(|e| format!("{}: cannot make the plan's folder: {e}", folder.display()))?;
     }
-    let p = scene.planner;
     let (planner, quiet) = (run.planner, run.quiet);
-    let seed = run.seed.unwrap_or(p.seed);
-    let options = SolveOptions {
-        planner,
-        time_limit: run.time.unwrap_or(p.time_limit),
-        seed,
-        k: run.k.unwrap_or(p.k),
-        goal_bias: p.goal_bias,
-        intermediate_states: run.intermediate_states,
-        progress: !quiet,
-        robust_trials: run.robust,
-        robust_rate: run.robust_rate,
-        robust_shortcut: run.robust_shortcut,
-        robust_particles: run.particles,
-        threads: run.threads,
-        restart_steps: run.restart.unwrap_or(planner.restart_steps()),
-        fallback_steps: run.fallback.unwrap_or(planner.fallback_steps()),
-    };
+    let options = run.settings(&scene.planner);
+    let seed = options.seed;
     if options.fallback_steps > 0 && planner.fallback_steps() == 0 {
         return Err(format!(
             "--fallback {}: only {} falls back (to {}), not {}",
@@ -173,23 +192,13 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             return Err(format!("{flag} must be zero or positive, got {seconds}"));
         }
     }
-    let settings = PlanSettings {
-        planner,
-        seed: options.seed,
-        k: options.k,
-        goal_bias: options.goal_bias,
-        time_limit: options.time_limit,
-        shortcut: run.shortcut,
-        threads: options.threads,
-        restart_steps: options.restart_steps,
-        fallback_steps: options.fallback_steps,
-    };
+    let settings = PlanSettings::from(&options);
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
         // Reaching a grasp only: no controls, the reach from the start.
         pushplan::planning::reach::graspable_object(&scene, object)?;
         let dof = scene.robot.dof();
-        let found = reach(scene_path, object, None, run, options.time_limit, seed, dof)?;
+        let found = reach(search, scene_path, object, None, run, &options, dof)?;
         let solved = found.is_some();
         let mut file = PlanFile::build(&reference, scene.clone(), &settings, &[], None)?;
         if let Some(record) = found {
@@ -226,23 +235,27 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             pushplan::scene::Goal::Grasp { .. } => "(m and rad)",
         });
     }
-    let solution =
-        solve(scene_path, &options, progress::search).inspect_err(|_| progress::finish())?;
+    let solution = search
+        .solve(
+            scene_path,
+            &options,
+            (!quiet).then_some(progress::search as _),
+        )
+        .inspect_err(|_| progress::finish())?;
     let problem = Problem::new(scene.clone(), planner);
     let dof = scene.robot.dof();
-    let found = PathControl::from_flat(&solution.controls, &solution.steps, dof)?;
-    let found_states = State::many_from_flat(&solution.states, dof, scene.objects.len())?;
+    let found = &solution.controls;
     let finish_settings = FinishSettings {
         shortcut: run.shortcut,
         seed,
         robust: (run.robust > 0).then_some(RobustRequirement {
-            trials: run.robust,
+            trials: run.robust as usize,
             rate: run.robust_rate,
         }),
         deadline: pushplan::planning::deadline(started, options.time_limit),
         progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
     };
-    let path = problem.finish(&found, &found_states, solution.exact, &finish_settings);
+    let path = problem.finish(found, &solution.states, solution.exact, &finish_settings);
     progress::finish();
     let path = path?;
     if !quiet && path.shortcut.attempts > 0 {
@@ -265,7 +278,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         Some(path.before),
     )?;
     file.robustness = path.robustness.map(|success_rate| RobustnessRecord {
-        trials: run.robust,
+        trials: run.robust as usize,
         required_rate: run.robust_rate,
         success_rate,
         particles: run.particles,
@@ -275,15 +288,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
         let goal_object = problem.scene().goal.object().expect("checked above");
         let name = problem.scene().objects[goal_object].name.clone();
         let end = file.end_state();
-        match reach(
-            scene_path,
-            &name,
-            Some(&end),
-            run,
-            options.time_limit,
-            seed,
-            dof,
-        )? {
+        match reach(search, scene_path, &name, Some(&end), run, &options, dof)? {
             Some(record) => file = file.with_reach(problem.scene(), record)?,
             None => {
                 file.solved = false;
@@ -343,10 +348,7 @@ pub fn plan(scene_path: &Path, run: &PlanOptions, out: &Path) -> Result<ExitCode
             }
         );
     }
-    println!(
-        "search: {}",
-        pushplan::planner::SearchStats::from(&solution.search).report()
-    );
+    println!("search: {}", solution.search.report());
     if let Some(r) = &file.robustness {
         println!(
             "robust: {:.0} % of {} perturbed re-simulations reach the goal (at least {:.0} % required)",

@@ -3,7 +3,7 @@
 //! report through plain function pointers, so the line is one per process, here.
 
 use indicatif::{ProgressBar, ProgressStyle};
-use pushplan::bridge::SearchProgress;
+use pushplan::planner::SearchProgress;
 use pushplan::planning::shortcut::ShortcutProgress;
 use std::io::IsTerminal;
 use std::sync::Mutex;

@@ -1,15 +1,18 @@
 //! The search's side of the model: the planners' trees' nearest neighbours in the model's
 //! metric ([`NearestTree`]), push headings, perturbed worlds, the tool points of recent
-//! propagations and search statistics. The bridge hands these to C++.
+//! propagations and search statistics, which the bridge hands to C++; and the search
+//! the applications call ([`Search`]), which the bridge implements.
 
 mod heading;
 mod nearest;
 mod particles;
 mod recent_tools;
+mod search;
 mod stats;
 
 pub use heading::{PushHeading, PushTarget};
 pub use nearest::NearestTree;
 pub use particles::ParticleWorlds;
 pub use recent_tools::RecentTools;
+pub use search::{Found, ReachSettings, Reached, Search, SearchProgress};
 pub use stats::{SearchCounter, SearchStats};

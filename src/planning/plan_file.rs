@@ -8,7 +8,7 @@
 use crate::planning::path::{PathControl, PathMetrics};
 pub use crate::planning::trajectory::TRAJECTORY_RATE;
 use crate::planning::trajectory::{executable, Trajectory};
-use crate::planning::{PlannerKind, Problem};
+use crate::planning::{PlannerKind, Problem, RunSettings};
 use crate::scene::Scene;
 use crate::state::State;
 use serde::{Deserialize, Serialize};
@@ -53,6 +53,24 @@ pub struct PlanSettings {
 
 fn one_search() -> u32 {
     1
+}
+
+impl From<&RunSettings> for PlanSettings {
+    /// What a plan file records of the settings its search ran with (robust planning's
+    /// are in its `robustness` record).
+    fn from(run: &RunSettings) -> Self {
+        PlanSettings {
+            planner: run.planner,
+            seed: run.seed,
+            k: run.k,
+            goal_bias: run.goal_bias,
+            time_limit: run.time_limit,
+            shortcut: run.shortcut,
+            threads: run.threads,
+            restart_steps: run.restart_steps,
+            fallback_steps: run.fallback_steps,
+        }
+    }
 }
 
 /// A plan file. Unknown fields are refused ([`PlanFile::read`]): serde cannot deny them

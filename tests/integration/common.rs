@@ -14,33 +14,31 @@ use std::path::Path;
 /// The PC RRT plan of the default (Fig. 1) scene for `seed`, as controls (seed 5 solves in
 /// about half a second, seed 2 in 15 s).
 pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::planning::path::PathControl>) {
-    let options = pushplan::bridge::SolveOptions {
+    use pushplan::planner::Search;
+    let settings = pushplan::planning::RunSettings {
         time_limit: 30.0,
         seed,
         k: 3,
         goal_bias: 0.05,
-        planner: pushplan::planning::PlannerKind::PcRrt,
-        intermediate_states: false,
-        progress: false,
-        robust_trials: 0,
-        robust_rate: 0.9,
-        robust_shortcut: 3.0,
-        robust_particles: 0,
-        threads: 1,
         restart_steps: 0,
         fallback_steps: 0,
+        ..run_settings("pcrrt")
     };
     let scene_file = "scenes/herb_fig1_clutter.yaml";
-    let out = pushplan::bridge::solve(Path::new(scene_file), &options, |_| {}).unwrap();
+    let out = pushplan::bridge::OmplSearch
+        .solve(Path::new(scene_file), &settings, None)
+        .unwrap();
     assert!(out.exact, "seed {seed} should solve the default scene");
     let scene = Scene::load(scene_file).unwrap();
-    let controls = pushplan::planning::path::PathControl::from_flat(
-        &out.controls,
-        &out.steps,
-        scene.robot.dof(),
-    )
-    .unwrap();
+    let controls = out.controls;
     (scene, controls)
+}
+
+/// The settings of `planner` with the default `planner:` parameters of a scene, on one
+/// thread, without robust planning, with the planner's own restarts and fallback.
+pub fn run_settings(planner: &str) -> pushplan::planning::RunSettings {
+    let params = pushplan::scene::PlannerParams::default();
+    pushplan::planning::RunSettings::of_scene(planner.parse().unwrap(), &params)
 }
 
 /// How a test's plan was made: k = 3, goal bias 0.05, 30 s, and the given shortcut budget.

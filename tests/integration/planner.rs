@@ -3,48 +3,41 @@
 
 use crate::common;
 
-use pushplan::bridge::{solve, SolveOptions, SolveOutput};
-use pushplan::planning::path::PathControl;
+use pushplan::bridge::OmplSearch;
+use pushplan::planner::{Found, Search};
 use pushplan::planning::plan_file::{PlanFile, PlanSettings};
-use pushplan::planning::PlannerKind;
+use pushplan::planning::{PlannerKind, RunSettings};
 use pushplan::Scene;
 use std::path::Path;
 
-fn options(planner: &str, seed: u64, time_limit: f64) -> SolveOptions {
-    let planner: PlannerKind = planner.parse().unwrap();
-    SolveOptions {
+fn options(planner: &str, seed: u64, time_limit: f64) -> RunSettings {
+    RunSettings {
         time_limit,
         seed,
         k: 3,
         goal_bias: 0.05,
-        planner,
-        intermediate_states: false,
-        progress: false,
-        robust_trials: 0,
-        robust_rate: 0.9,
-        robust_shortcut: 3.0,
-        robust_particles: 0,
-        threads: 1,
-        restart_steps: planner.restart_steps(),
-        fallback_steps: planner.fallback_steps(),
+        ..common::run_settings(planner)
     }
+}
+
+/// The search the CLI runs (OMPL's, through the bridge), without progress reports.
+fn solve(scene: &Path, settings: &RunSettings) -> Result<Found, String> {
+    OmplSearch.solve(scene, settings, None)
 }
 
 fn settings(planner: &str, seed: u64) -> PlanSettings {
     common::plan_settings(planner, seed, 0.0)
 }
 
-fn plan_file(scene: &str, planner: &str, seed: u64, out: &SolveOutput) -> PlanFile {
+fn plan_file(scene: &str, planner: &str, seed: u64, out: &Found) -> PlanFile {
     let loaded = Scene::load(scene).unwrap();
-    let dof = loaded.robot.dof();
-    let controls = PathControl::from_flat(&out.controls, &out.steps, dof).unwrap();
-    PlanFile::build(scene, loaded, &settings(planner, seed), &controls, None).unwrap()
+    PlanFile::build(scene, loaded, &settings(planner, seed), &out.controls, None).unwrap()
 }
 
 #[test]
 fn pc_rrt_solves_the_single_object_scene_and_its_plan_checks() {
     let scene = "scenes/herb_single_object.yaml";
-    let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0), |_| {}).unwrap();
+    let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0)).unwrap();
     assert!(out.exact, "no exact solution");
     assert!(out.tree_size > 1 && out.propagation_steps > 0);
     let plan = plan_file(scene, "pcrrt", 1, &out);
@@ -52,10 +45,9 @@ fn pc_rrt_solves_the_single_object_scene_and_its_plan_checks() {
     let report = plan.check(Path::new("plan.json")).unwrap();
     assert!(report.passed(), "{report:?}");
     // The planner's own states are the simulated ones.
-    let width = plan.start.flat().len();
-    assert_eq!(out.states.len(), width * (plan.controls.len() + 1));
+    assert_eq!(out.states.len(), plan.controls.len() + 1);
     assert_eq!(
-        &out.states[out.states.len() - width..],
+        out.states.last().unwrap().to_flat().as_slice(),
         plan.controls.last().unwrap().state.flat().as_slice()
     );
     // The goal object was pushed by the arm.
@@ -69,7 +61,7 @@ fn pc_rrt_solves_the_single_object_scene_and_its_plan_checks() {
 #[test]
 fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_away() {
     let scene = "tests/data/clutter_on_goal.yaml";
-    let out = solve(Path::new(scene), &options("pcrrt", 5, 30.0), |_| {}).unwrap();
+    let out = solve(Path::new(scene), &options("pcrrt", 5, 30.0)).unwrap();
     assert!(out.exact);
     let plan = plan_file(scene, "pcrrt", 5, &out);
     assert!(plan.check(Path::new("plan.json")).unwrap().passed());
@@ -84,7 +76,7 @@ fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_awa
         .any(|c| c.object == "clutter"));
 
     // Static RRT treats the clutter as an obstacle: that goal is unreachable for it.
-    let stuck = solve(Path::new(scene), &options("static", 5, 1.0), |_| {}).unwrap();
+    let stuck = solve(Path::new(scene), &options("static", 5, 1.0)).unwrap();
     assert!(!stuck.exact);
     let static_plan = plan_file(scene, "static", 5, &stuck);
     // Its plan holds the whole scene, the clutter pinned where it starts.
@@ -104,7 +96,7 @@ fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_awa
 #[test]
 fn static_rrt_solves_when_no_clutter_is_in_the_way() {
     let scene = "scenes/herb_single_object.yaml";
-    let out = solve(Path::new(scene), &options("static", 2, 30.0), |_| {}).unwrap();
+    let out = solve(Path::new(scene), &options("static", 2, 30.0)).unwrap();
     assert!(out.exact);
     assert!(plan_file(scene, "static", 2, &out)
         .check(Path::new("plan.json"))
@@ -115,14 +107,14 @@ fn static_rrt_solves_when_no_clutter_is_in_the_way() {
 #[test]
 fn the_same_seed_gives_the_same_plan() {
     let scene = "scenes/herb_single_object.yaml";
-    let a = solve(Path::new(scene), &options("pcrrt", 3, 30.0), |_| {}).unwrap();
-    let b = solve(Path::new(scene), &options("pcrrt", 3, 30.0), |_| {}).unwrap();
+    let a = solve(Path::new(scene), &options("pcrrt", 3, 30.0)).unwrap();
+    let b = solve(Path::new(scene), &options("pcrrt", 3, 30.0)).unwrap();
     assert_eq!(
-        (a.states.clone(), a.controls.clone(), a.steps.clone()),
-        (b.states, b.controls, b.steps)
+        (a.states.clone(), a.controls.clone()),
+        (b.states, b.controls)
     );
     assert_eq!(a.tree_size, b.tree_size);
-    let c = solve(Path::new(scene), &options("pcrrt", 4, 30.0), |_| {}).unwrap();
+    let c = solve(Path::new(scene), &options("pcrrt", 4, 30.0)).unwrap();
     assert_ne!(
         a.controls, c.controls,
         "a different seed should give a different plan"
@@ -132,22 +124,18 @@ fn the_same_seed_gives_the_same_plan() {
 /// Solves `scene` twice with `parallel`, the second time while a search with `noise`
 /// competes for the cores (other thread timings); asserts an exact solution, the same
 /// both times, bit for bit, and returns it.
-fn the_same_plan_under_load(
-    scene: &str,
-    parallel: &SolveOptions,
-    noise: &SolveOptions,
-) -> SolveOutput {
-    let a = solve(Path::new(scene), parallel, |_| {}).unwrap();
+fn the_same_plan_under_load(scene: &str, parallel: &RunSettings, noise: &RunSettings) -> Found {
+    let a = solve(Path::new(scene), parallel).unwrap();
     let b = std::thread::scope(|s| {
-        let competing = s.spawn(|| solve(Path::new(scene), noise, |_| {}));
-        let b = solve(Path::new(scene), parallel, |_| {}).unwrap();
+        let competing = s.spawn(|| solve(Path::new(scene), noise));
+        let b = solve(Path::new(scene), parallel).unwrap();
         competing.join().unwrap().unwrap();
         b
     });
     assert!(a.exact);
     assert_eq!(
-        (&a.states, &a.controls, &a.steps, a.tree_size),
-        (&b.states, &b.controls, &b.steps, b.tree_size)
+        (&a.states, &a.controls, a.tree_size),
+        (&b.states, &b.controls, b.tree_size)
     );
     assert_eq!(a.propagation_steps, b.propagation_steps);
     a
@@ -164,16 +152,15 @@ fn pdst_out_of_time_returns_an_approximate_path_that_re_simulates() {
     for threads in [1, 2] {
         let out = solve(
             Path::new(scene),
-            &SolveOptions {
+            &RunSettings {
                 threads,
                 ..options("pdst", 1, 0.5)
             },
-            |_| {},
         )
         .unwrap_or_else(|e| panic!("{threads} thread(s): {e}"));
         assert!(!out.exact);
         assert!(
-            !out.steps.is_empty(),
+            !out.controls.is_empty(),
             "an approximate path of some controls"
         );
         let plan = plan_file(scene, "pdst", 1, &out);
@@ -185,7 +172,7 @@ fn pdst_out_of_time_returns_an_approximate_path_that_re_simulates() {
 #[test]
 fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
     let scene = "scenes/herb_fig1_clutter.yaml";
-    let threads = |n: u32| SolveOptions {
+    let threads = |n: u32| RunSettings {
         threads: n,
         ..options("pcrrt", 1, 60.0)
     };
@@ -194,7 +181,7 @@ fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
         .check(Path::new("plan.json"))
         .unwrap()
         .passed());
-    assert!(solve(Path::new(scene), &threads(0), |_| {}).is_err());
+    assert!(solve(Path::new(scene), &threads(0)).is_err());
 }
 
 #[test]
@@ -202,7 +189,7 @@ fn push_kpiece_on_two_threads_gives_the_same_plan_whatever_the_timing() {
     // One search whose propagations run on both threads (ParallelKPIECE): the tree takes
     // them in a fixed order, so thread timing cannot change the plan.
     let scene = "scenes/herb_fig1_clutter.yaml";
-    let two = SolveOptions {
+    let two = RunSettings {
         threads: 2,
         ..options("push_kpiece", 2, 60.0)
     };
@@ -218,7 +205,7 @@ fn push_kpiece_on_two_threads_gives_the_same_plan_whatever_the_timing() {
 #[test]
 fn push_kpiece_solves_the_clutter_scene_the_same_way_for_the_same_seed() {
     let scene = "scenes/herb_fig1_clutter.yaml";
-    let a = solve(Path::new(scene), &options("push_kpiece", 2, 60.0), |_| {}).unwrap();
+    let a = solve(Path::new(scene), &options("push_kpiece", 2, 60.0)).unwrap();
     assert!(a.exact);
     let plan = plan_file(scene, "push_kpiece", 2, &a);
     assert!(plan.check(Path::new("plan.json")).unwrap().passed());
@@ -230,17 +217,12 @@ fn push_kpiece_solves_the_clutter_scene_the_same_way_for_the_same_seed() {
     // Its random numbers come from the plan's seed only, as do KPIECE1's: OMPL would seed
     // them from the process (what ran before would change the plan).
     for planner in ["push_kpiece", "kpiece"] {
-        let once = solve(Path::new(scene), &options(planner, 2, 60.0), |_| {}).unwrap();
-        let again = solve(Path::new(scene), &options(planner, 2, 60.0), |_| {}).unwrap();
+        let once = solve(Path::new(scene), &options(planner, 2, 60.0)).unwrap();
+        let again = solve(Path::new(scene), &options(planner, 2, 60.0)).unwrap();
         assert!(once.exact, "{planner}");
         assert_eq!(
-            (&once.states, &once.controls, &once.steps, once.tree_size),
-            (
-                &again.states,
-                &again.controls,
-                &again.steps,
-                again.tree_size
-            ),
+            (&once.states, &once.controls, once.tree_size),
+            (&again.states, &again.controls, again.tree_size),
             "{planner}"
         );
     }
@@ -262,11 +244,11 @@ fn luby(i: u64) -> u64 {
 fn a_search_without_a_solution_starts_over_with_luby_budgets() {
     let scene = "scenes/herb_fig1_clutter.yaml";
     let base = 2_000;
-    let restarting = SolveOptions {
+    let restarting = RunSettings {
         restart_steps: base,
         ..options("push_kpiece", 1, 60.0)
     };
-    let a = solve(Path::new(scene), &restarting, |_| {}).unwrap();
+    let a = solve(Path::new(scene), &restarting).unwrap();
     assert!(a.exact);
     assert!(a.restarts >= 2, "{} restarts", a.restarts);
     // Each attempt but the last spent its budget (and at most one extension more: OMPL
@@ -284,18 +266,18 @@ fn a_search_without_a_solution_starts_over_with_luby_budgets() {
     let plan = plan_file(scene, "push_kpiece", 1, &a);
     assert!(plan.check(Path::new("plan.json")).unwrap().passed());
     // Counted in steps: the same attempts and plan again.
-    let b = solve(Path::new(scene), &restarting, |_| {}).unwrap();
+    let b = solve(Path::new(scene), &restarting).unwrap();
     assert_eq!(
         (&a.states, &a.controls, a.restarts, a.propagation_steps),
         (&b.states, &b.controls, b.restarts, b.propagation_steps)
     );
     // A budget the search never reaches changes nothing.
-    let never = |restart_steps| SolveOptions {
+    let never = |restart_steps| RunSettings {
         restart_steps,
         ..options("push_kpiece", 1, 60.0)
     };
-    let without = solve(Path::new(scene), &never(0), |_| {}).unwrap();
-    let unreached = solve(Path::new(scene), &never(u64::MAX / 4), |_| {}).unwrap();
+    let without = solve(Path::new(scene), &never(0)).unwrap();
+    let unreached = solve(Path::new(scene), &never(u64::MAX / 4)).unwrap();
     assert_eq!(unreached.restarts, 0);
     assert_eq!(
         (&without.states, without.propagation_steps),
@@ -312,7 +294,7 @@ fn push_kpiece_pushes_the_goal_object_far_more_often_than_kpiece() {
         let scene = Path::new("scenes/herb_fig1_clutter.yaml");
         let shares: Vec<f64> = (1..=3)
             .map(|seed| {
-                let out = solve(scene, &options(planner, seed, 60.0), |_| {}).unwrap();
+                let out = solve(scene, &options(planner, seed, 60.0)).unwrap();
                 assert!(out.exact, "{planner}, seed {seed}: not solved");
                 assert!(out.search.propagations >= 50, "{planner}: {:?}", out.search);
                 out.search.moved_goal_object as f64 / out.search.propagations as f64
@@ -332,17 +314,11 @@ fn push_kpiece_pushes_the_goal_object_far_more_often_than_kpiece() {
 
 #[test]
 fn bad_scenes_and_options_are_errors_not_crashes() {
-    let err = solve(
-        Path::new("scenes/missing.yaml"),
-        &options("pcrrt", 1, 1.0),
-        |_| {},
-    )
-    .unwrap_err();
+    let err = solve(Path::new("scenes/missing.yaml"), &options("pcrrt", 1, 1.0)).unwrap_err();
     assert!(err.contains("scenes/missing.yaml"), "{err}");
     let err = solve(
         Path::new("tests/data/gripper.urdf"),
         &options("pcrrt", 1, 1.0),
-        |_| {},
     )
     .unwrap_err();
     assert!(err.contains("gripper.urdf"), "{err}");
@@ -351,7 +327,6 @@ fn bad_scenes_and_options_are_errors_not_crashes() {
     let err = solve(
         Path::new("scenes/herb_single_object.yaml"),
         &options("pcrrt", 1, -1.0),
-        |_| {},
     )
     .unwrap_err();
     assert!(err.contains("time_limit"), "{err}");
@@ -360,7 +335,7 @@ fn bad_scenes_and_options_are_errors_not_crashes() {
 #[test]
 fn a_tampered_plan_fails_its_check() {
     let scene = "scenes/herb_single_object.yaml";
-    let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0), |_| {}).unwrap();
+    let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0)).unwrap();
     let mut plan = plan_file(scene, "pcrrt", 1, &out);
     plan.controls[0].ee_velocity[0] += 0.01;
     let report = plan.check(Path::new("plan.json")).unwrap();
@@ -378,10 +353,10 @@ fn a_robot_configuration_goal_is_planned_for_too() {
     let scratch = common::Scratch::new("config-goal");
     let path = scratch.join("scene.yaml");
     std::fs::write(&path, text.replace("../robots", "robots")).unwrap();
-    let out = solve(&path, &options("pcrrt", 1, 30.0), |_| {}).unwrap();
+    let out = solve(&path, &options("pcrrt", 1, 30.0)).unwrap();
     assert!(out.exact);
     let scene = Scene::load(&path).unwrap();
-    let controls = PathControl::from_flat(&out.controls, &out.steps, 3).unwrap();
+    let controls = out.controls;
     let plan = PlanFile::build(
         path.to_str().unwrap(),
         scene,
@@ -577,16 +552,11 @@ fn push_kpiece_hands_over_to_pc_rrt_only_where_it_makes_no_progress() {
     // Its closest path is still a path of the model: every state valid, re-simulating its
     // controls reproduces its states.
     let scene = "scenes/dense/scene_17.yaml";
-    let patient = |fallback_steps, planner, time_limit| SolveOptions {
+    let patient = |fallback_steps, planner, time_limit| RunSettings {
         fallback_steps,
         ..options(planner, 3, time_limit)
     };
-    let out = solve(
-        Path::new(scene),
-        &patient(20_000, "push_kpiece", 1.0),
-        |_| {},
-    )
-    .unwrap();
+    let out = solve(Path::new(scene), &patient(20_000, "push_kpiece", 1.0)).unwrap();
     assert_eq!(out.fallbacks, 1);
     assert!(out.approximate && out.propagation_steps > 20_000);
     let report = plan_file(scene, "push_kpiece", 3, &out)
@@ -595,15 +565,10 @@ fn push_kpiece_hands_over_to_pc_rrt_only_where_it_makes_no_progress() {
     assert!(report.all_valid && report.states_match, "{report:?}");
     // The clutter scene: the goal object moves within the patience, no handover.
     let clutter = "scenes/herb_fig1_clutter.yaml";
-    let kept = solve(
-        Path::new(clutter),
-        &patient(2_000, "push_kpiece", 30.0),
-        |_| {},
-    )
-    .unwrap();
+    let kept = solve(Path::new(clutter), &patient(2_000, "push_kpiece", 30.0)).unwrap();
     assert!(kept.exact && kept.fallbacks == 0);
     // Only Push KPIECE falls back: for another planner the option is an error.
-    let err = solve(Path::new(scene), &patient(5, "pcrrt", 1.0), |_| {}).unwrap_err();
+    let err = solve(Path::new(scene), &patient(5, "pcrrt", 1.0)).unwrap_err();
     assert!(
         err.contains("fallback_steps") && err.contains("pcrrt"),
         "{err}"

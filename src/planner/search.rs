@@ -1,0 +1,117 @@
+//! [`Search`]: the search the applications call (OMPL's planners in C++, behind the
+//! bridge), in the model's types. The CLI names only this trait; `main` hands it the
+//! bridge's implementation (`bridge::OmplSearch`), so nothing above the bridge imports it.
+
+use super::SearchStats;
+use crate::planning::path::PathControl;
+use crate::planning::RunSettings;
+use crate::state::State;
+use nalgebra::DVector;
+use std::path::Path;
+
+/// How far a search is: once a second, or an event (C++'s `pushplan::Progress`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SearchProgress {
+    /// Since the search started (s).
+    pub seconds: f64,
+    /// Propagation steps taken so far.
+    pub propagation_steps: u64,
+    /// Propagation steps per second since the last report.
+    pub steps_per_second: f64,
+    /// Share of the time since the last report spent propagating.
+    pub propagating: f64,
+    /// States in all trees; 0 when the planner has none to count.
+    pub tree_states: usize,
+    /// Searches running in parallel.
+    pub searches: u32,
+    /// Smallest goal distance reached (m, or rad for a configuration goal).
+    pub closest_goal_distance: f64,
+    /// Not empty: an event rather than a periodic report.
+    pub note: String,
+}
+
+/// What a search found: its outcome, and the path as found (not finished: the caller
+/// finishes it, `planning::finish`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Found {
+    /// An exact solution.
+    pub exact: bool,
+    /// Not exact, but a path toward the goal.
+    pub approximate: bool,
+    /// The search's wall time (s).
+    pub planning_time: f64,
+    /// States in all trees.
+    pub tree_size: usize,
+    /// Propagation steps taken.
+    pub propagation_steps: u64,
+    /// What the propagations did.
+    pub search: SearchStats,
+    /// Attempts started over for lack of a solution.
+    pub restarts: u64,
+    /// Searches that fell back to PC RRT.
+    pub fallbacks: u64,
+    /// The path's controls with their step counts.
+    pub controls: Vec<PathControl>,
+    /// The states at the start and after each control (none without a path).
+    pub states: Vec<State>,
+}
+
+/// Reaching a grasp with IK-BiRRT: its time limit (s), seed and P_sample (the
+/// probability of sampling the grasp region). Laid out as C++'s
+/// `pushplan::detail::ReachSettings`: the bridge carries it as it is.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReachSettings {
+    /// IK-BiRRT's time limit (s).
+    pub time_limit: f64,
+    /// The seed of every random choice.
+    pub seed: u64,
+    /// The probability of sampling the grasp region (P_sample), in [0, 1].
+    pub sample_probability: f64,
+}
+
+/// A reach of a grasp.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reached {
+    /// Whether a reach was found.
+    pub solved: bool,
+    /// The search's wall time (s).
+    pub planning_time: f64,
+    /// Inverse-kinematics solutions in the grasp regions.
+    pub goal_samples: usize,
+    /// States in both trees.
+    pub tree_size: usize,
+    /// The configurations of the reach, from the start on.
+    pub waypoints: Vec<DVector<f64>>,
+}
+
+/// The search behind the applications.
+pub trait Search {
+    /// Searches the scene file as `settings` say (its shortcut budget is the caller's to
+    /// spend: the path comes back as found), telling `progress` how far it is.
+    fn solve(
+        &self,
+        scene: &Path,
+        settings: &RunSettings,
+        progress: Option<fn(&SearchProgress)>,
+    ) -> Result<Found, String>;
+
+    /// Reaches a grasp of `object` with IK-BiRRT from `from` (`None`: the scene's start).
+    fn reach(
+        &self,
+        scene: &Path,
+        object: &str,
+        from: Option<&State>,
+        settings: &ReachSettings,
+    ) -> Result<Reached, String>;
+
+    /// One run of `settings.planner` on the scene with OMPL's benchmark tooling, seeded
+    /// from `settings.seed` and `run` only; writes OMPL's log to `log`.
+    fn benchmark(
+        &self,
+        scene: &Path,
+        settings: &RunSettings,
+        run: u32,
+        log: &Path,
+    ) -> Result<(), String>;
+}

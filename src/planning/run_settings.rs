@@ -1,0 +1,73 @@
+//! [`RunSettings`]: how one search runs. One type for the CLI's flags, a benchmark
+//! cell, the plan file's record ([`crate::planning::plan_file::PlanSettings`] is made from
+//! it) and the C++ API's `pushplan::Options` (which resolves to it): the bridge carries
+//! it as it is.
+
+use super::PlannerKind;
+use crate::scene::PlannerParams;
+
+/// How one search runs, every value resolved (no "the scene's default" left).
+///
+/// Laid out as C++'s `pushplan::detail::RunSettings` (`cpp/problem/bridge_types.h`
+/// checks the offsets): keep the two in the same order.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunSettings {
+    /// The planner that searches.
+    pub planner: PlannerKind,
+    /// Add every propagation step to the tree (OMPL RRT's intermediate states).
+    pub intermediate_states: bool,
+    /// Control samples per extension (Alg. 1's k).
+    pub k: u32,
+    /// Threads to plan on: one search on all of them (the planners that share one
+    /// search), else one search per thread.
+    pub threads: u32,
+    /// Robust planning: a solution is kept only if at least `robust_rate` of this many
+    /// perturbed re-simulations reach the goal; 0: no such check.
+    pub robust_trials: u32,
+    /// Perturbed worlds every tree state carries in robust planning (0: none).
+    pub robust_particles: u32,
+    /// The time limit of the search (s).
+    pub time_limit: f64,
+    /// The seed of every random choice.
+    pub seed: u64,
+    /// Probability of sampling the goal region.
+    pub goal_bias: f64,
+    /// Shortcutting budget after a solution (s of work, counted in propagation steps).
+    pub shortcut: f64,
+    /// The share of perturbed re-simulations that must reach the goal, in [0, 1].
+    pub robust_rate: f64,
+    /// Shortcutting budget toward robustness for each solution not robust enough (s of
+    /// work).
+    pub robust_shortcut: f64,
+    /// The first restart budget in propagation steps (attempt i gets Luby(i) times as
+    /// many); 0: never.
+    pub restart_steps: u64,
+    /// Push KPIECE's patience before it falls back to PC RRT, in propagation steps; 0:
+    /// never.
+    pub fallback_steps: u64,
+}
+
+impl RunSettings {
+    /// `planner` as the scene's `planner:` parameters say, with the planner's own restart
+    /// and fallback budgets, 3 s of shortcutting, one thread, no robust planning (its
+    /// rate and budget at the C++ API's defaults).
+    pub fn of_scene(planner: PlannerKind, params: &PlannerParams) -> RunSettings {
+        RunSettings {
+            planner,
+            intermediate_states: false,
+            k: params.k,
+            threads: 1,
+            robust_trials: 0,
+            robust_particles: 0,
+            time_limit: params.time_limit,
+            seed: params.seed,
+            goal_bias: params.goal_bias,
+            shortcut: 3.0,
+            robust_rate: 0.95,
+            robust_shortcut: 3.0,
+            restart_steps: planner.restart_steps(),
+            fallback_steps: planner.fallback_steps(),
+        }
+    }
+}
