@@ -5,13 +5,15 @@
 //!
 //! model < planning < planner (the search's side) < bridge < render, benchmark
 //! (the library) < install, cli (the binary).
+//!
+//! Nothing names the bridge but the bridge: the applications call the search through
+//! `planner::Search`, and `main.rs`, which assembles the layers, hands them the bridge's.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 /// The modules each part of `src/` may name through `crate::`, beside the model's and its
-/// own: the layers below it. The CLI still reaches the C++ search through the bridge's
-/// entry points (`bridge::entry`) until it gets a planning-level way in (issue 56).
+/// own: the layers below it, the bridge excepted.
 const LAYERS: &[(&str, &[&str])] = &[
     ("planning", &[]),
     ("planner", &["planning"]),
@@ -21,14 +23,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("install", &[]),
     (
         "cli",
-        &[
-            "planning",
-            "planner",
-            "bridge",
-            "render",
-            "benchmark",
-            "install",
-        ],
+        &["planning", "planner", "render", "benchmark", "install"],
     ),
 ];
 
