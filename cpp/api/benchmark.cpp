@@ -8,6 +8,7 @@
 #include "pushplan/cpp/search/fallback.h"
 #include "pushplan/cpp/search/parallel_kpiece.h"
 #include "pushplan/cpp/api/planner_source.h"
+#include "pushplan/cpp/api/search_builder.h"
 #include "pushplan/cpp/problem/problem.h"
 #include "pushplan/cpp/search/restarts.h"
 #include "pushplan/cpp/search/wrapped_search.h"
@@ -53,12 +54,6 @@ namespace pushplan::bridge
         const std::uint_fast32_t seed = detail::subSeed(settings.seed, 100 + run);
         ompl::RNG::setSeed(seed);
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
-        const auto load = [&] {
-            return detail::asPushplanError([&] { return std::make_shared<detail::ModelHandle>(Problem::load(scene_path)); });
-        };
-        const detail::ModelHandlePtr model = load();
-        const SceneInfo &info = model->info();
-        const detail::Problem problem = detail::makeProblem(model, seed, settings.k);
         // As `plan --threads`: the planners that share one search propagate on lanes of
         // their own models (detail::ParallelKPIECE); the others run on one thread.
         const unsigned threads = detail::checked("threads", settings.threads, settings.threads >= 1 && settings.threads <= 256);
@@ -66,24 +61,20 @@ namespace pushplan::bridge
             throw Error("threads: " + std::string(planner_name(settings.planner)) +
                         " runs one search per thread, which a benchmark's run does not; only push_kpiece "
                         "and kpiece run on several threads there");
-        std::vector<detail::ModelHandlePtr> models{model};
-        std::vector<detail::Lane> lanes;
-        for (unsigned l = 0; threads > 1 && l < detail::lanesFor(threads); ++l)
-        {
-            models.push_back(load());
-            lanes.push_back(detail::makeLane(models.back(), seed, l, settings.k));
-        }
-        // Static RRT shares the problem: the model treats the clutter as obstacles.
-        model->problem().set_static_clutter(settings.planner == PlannerKind::StaticRrt);
+        detail::SearchBuilder builder(
+            [&] { return detail::asPushplanError([&] { return Problem::load(scene_path); }); });
+        const SceneInfo &info = builder.info();
+        detail::BuiltSearch built = builder.search(settings, seed, threads > 1 ? detail::lanesFor(threads) : 0);
+        const detail::Problem &problem = built.problem;
+        const detail::ModelHandlePtr &model = built.models[0];
+        const std::vector<detail::ModelHandlePtr> &models = built.models;
 
         ompl::tools::Benchmark benchmark(*problem.setup, std::string(info.name));
         benchmark.addExperimentParameter("objects", "INTEGER", std::to_string(info.objects));
         benchmark.addExperimentParameter("k", "INTEGER", std::to_string(settings.k));
         // As in Planner::solve: no propagation past the run's time limit, while it runs
         // (not PDST's).
-        ob::PlannerPtr planner =
-            detail::makePlanner(settings.planner, problem, seed, settings.goal_bias, settings.intermediate_states, settings.restart_steps,
-                                settings.fallback_steps, std::move(lanes), threads);
+        ob::PlannerPtr planner = built.planner;
         if (planner_cut_at_time_limit(settings.planner))
             planner = std::make_shared<detail::TimeLimitedSearch>(std::move(planner), models, settings.time_limit);
         benchmark.addPlanner(planner);

@@ -5,6 +5,7 @@
 
 #include "pushplan/cpp/problem/model_handle.h"
 #include "pushplan/cpp/api/planner_source.h"
+#include "pushplan/cpp/api/search_builder.h"
 #include "pushplan/cpp/problem/problem.h"
 #include "pushplan/cpp/problem/state_space.h"
 
@@ -19,13 +20,14 @@ namespace pushplan
     std::shared_ptr<oc::SimpleSetup> makeSetup(const Planner &planner, const SetupOptions &options)
     {
         return detail::asPushplanError([&] {
-            auto model = std::make_shared<detail::ModelHandle>(planner.source().load());
-            model->problem().set_static_clutter(options.static_clutter);
-            const bridge::SceneInfo &info = model->info();
+            const Planner::Source &source = planner.source();
+            detail::SearchBuilder builder([&] { return source.load(); });
+            const bridge::SceneInfo &info = builder.info();
             const unsigned k = options.k.value_or(info.planner.k);
             if (k < 1)
                 throw Error("SetupOptions::k must be at least 1");
-            return detail::makeProblem(model, options.seed.value_or(info.planner.seed), k).setup;
+            return detail::makeProblem(builder.model(options.static_clutter), options.seed.value_or(info.planner.seed), k)
+                .setup;
         });
     }
 

@@ -6,6 +6,7 @@
 #include "pushplan/cpp/problem/model_handle.h"
 #include "pushplan/cpp/search/parallel_kpiece.h"
 #include "pushplan/cpp/api/planner_source.h"
+#include "pushplan/cpp/api/search_builder.h"
 #include "pushplan/cpp/search/portfolio.h"
 #include "pushplan/cpp/problem/problem.h"
 
@@ -193,8 +194,8 @@ namespace pushplan
         // Every failure inside, the model's or OMPL's, leaves as pushplan::Error.
         return detail::asPushplanError([&]() -> Plan {
             using detail::checked;
-            auto first = std::make_shared<detail::ModelHandle>(load());
-            const bridge::SceneInfo &info = first->info();
+            detail::SearchBuilder builder(load);
+            const bridge::SceneInfo &info = builder.info();
             const RunSettings run = settings_of(info);
             check(run);
             // The KPIECE planners run one search whose propagations use every thread
@@ -204,25 +205,9 @@ namespace pushplan
             const bool lanes_per_search = threads > 1 && bridge::planner_shares_one_search(run.planner);
             const unsigned search_count = lanes_per_search ? 1 : threads;
             const unsigned lane_count = lanes_per_search ? detail::lanesFor(threads) : 0;
-            std::vector<detail::ModelHandlePtr> models, lane_models;
-            for (unsigned i = 0; i < search_count + lane_count; ++i)
-            {
-                (i < search_count ? models : lane_models)
-                    .push_back(i == 0 ? first : std::make_shared<detail::ModelHandle>(load()));
-                // Static RRT's problem: the same states, the clutter pinned where it starts.
-                (i < search_count ? models.back() : lane_models.back())
-                    ->problem()
-                    .set_static_clutter(run.planner == PlannerKind::StaticRrt);
-            }
             const double time_limit = run.time_limit;
             const std::uint64_t seed = run.seed;
-            const unsigned k = run.k;
             const std::uint64_t fallback_steps = run.fallback_steps;
-            for (unsigned i = 0; i < search_count; ++i)
-                models[i]->setParticles(run.robust_particles, detail::searchSeed(seed, i));
-            // A lane propagates the states of search 0: the same perturbed worlds.
-            for (const detail::ModelHandlePtr &m : lane_models)
-                m->setParticles(run.robust_particles, detail::searchSeed(seed, 0));
 
             // OMPL's log level is process-wide: quiet below warnings while planning, then put
             // back as the application had it.
@@ -234,19 +219,16 @@ namespace pushplan
             } log_level;
             // Set up on this thread, in order: OMPL's planners draw their seeds as they are made.
             std::vector<detail::Search> searches;
+            // Search i's own model, and every model (each search's, then its lanes').
+            std::vector<detail::ModelHandlePtr> models, every_model;
             for (unsigned i = 0; i < search_count; ++i)
             {
-                const std::uint64_t search_seed = detail::searchSeed(seed, i);
-                detail::Problem problem = detail::makeProblem(models[i], search_seed, k);
-                std::vector<detail::Lane> lanes;
-                for (std::size_t l = 0; l < lane_models.size(); ++l)
-                    lanes.push_back(detail::makeLane(lane_models[l], search_seed, l, k));
-                ob::PlannerPtr planner =
-                    detail::makePlanner(run.planner, problem, search_seed, run.goal_bias, run.intermediate_states,
-                                        run.restart_steps, fallback_steps, std::move(lanes), threads);
-                problem.setup->setPlanner(planner);
-                problem.setup->setup();
-                searches.push_back(detail::Search{std::move(problem), std::move(planner)});
+                detail::BuiltSearch built = builder.search(run, detail::searchSeed(seed, i), lane_count);
+                built.problem.setup->setPlanner(built.planner);
+                built.problem.setup->setup();
+                models.push_back(built.models[0]);
+                every_model.insert(every_model.end(), built.models.begin(), built.models.end());
+                searches.push_back(detail::Search{std::move(built.problem), std::move(built.planner)});
             }
             detail::Portfolio portfolio(std::move(searches));
 
@@ -259,12 +241,8 @@ namespace pushplan
             // The models refuse to propagate past the limit: an extension of k long controls
             // (OMPL checks the limit only between extensions) ends on time. Not PDST's.
             if (bridge::planner_cut_at_time_limit(run.planner))
-            {
-                for (const detail::ModelHandlePtr &m : models)
+                for (const detail::ModelHandlePtr &m : every_model)
                     m->propagator().set_time_limit(time_limit);
-                for (const detail::ModelHandlePtr &m : lane_models)
-                    m->propagator().set_time_limit(time_limit);
-            }
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
@@ -371,8 +349,6 @@ namespace pushplan
 
             plan.planning_time = elapsed();
             plan.propagation_steps = portfolio.propagationSteps();
-            std::vector<detail::ModelHandlePtr> every_model = models;
-            every_model.insert(every_model.end(), lane_models.begin(), lane_models.end());
             plan.search = detail::searchStats(every_model);
             plan.threads = threads;
             plan.restarts = portfolio.restarts();
