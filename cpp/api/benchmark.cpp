@@ -115,9 +115,10 @@ namespace pushplan::bridge
             }
             // Finished the one way (planner::finish): re-simulated, then shortcut in the
             // problem the planner searched (Static RRT's clutter stays put).
-            const auto found = model->readPath(*pdef->getSolutionPath()->as<oc::PathControl>());
+            const auto found = model->view()->readPath(*pdef->getSolutionPath()->as<oc::PathControl>());
             const FinishedPath s =
-                model->finish(found, true, FinishSettings{settings.shortcut, seed, 0, 0.0, std::numeric_limits<double>::infinity()});
+                detail::finish(*model, found, true,
+                               FinishSettings{settings.shortcut, seed, 0, 0.0, std::numeric_limits<double>::infinity()});
             props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
             props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);
             measured(s.before, "");

@@ -37,7 +37,7 @@ namespace pushplan
         if (pushplan_space == nullptr)
             throw Error("StateAccess: '" + (space_ ? space_->getName() : std::string("null")) +
                         "' is not pushplan's state space (make it with pushplan::makeSetup)");
-        const bridge::SceneInfo &info = pushplan_space->model()->info();
+        const bridge::SceneInfo &info = pushplan_space->view()->info();
         dof_ = info.dof;
         objects_ = info.objects;
         for (const auto &n : info.joint_names)

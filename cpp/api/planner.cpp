@@ -295,14 +295,14 @@ namespace pushplan
             };
 
             // The path as found: controls with their step counts, and the states OMPL reached.
-            detail::ModelHandle::FlatPath found;
+            detail::FlatPath found;
             std::optional<std::size_t> winner = search();
             const auto read_path = [&] {
                 found = {};
                 if (const std::optional<std::size_t> best = winner ? winner : portfolio.best())
                 {
                     const oc::SimpleSetup &setup = *portfolio[*best].problem.setup;
-                    found = portfolio[*best].problem.model->readPath(setup.getSolutionPath());
+                    found = portfolio[*best].problem.model->view()->readPath(setup.getSolutionPath());
                 }
             };
 
@@ -315,8 +315,8 @@ namespace pushplan
             // node).
             while (winner && run.robust_trials > 0)
             {
-                const bridge::FinishedPath repaired = models[*winner]->finish(
-                    found, true, bridge::FinishSettings{run.robust_shortcut, seed, run.robust_trials,
+                const bridge::FinishedPath repaired = detail::finish(
+                    *models[*winner], found, true, bridge::FinishSettings{run.robust_shortcut, seed, run.robust_trials,
                                                         run.robust_rate, time_limit - elapsed()});
                 plan.robustness = repaired.robustness;
                 if (plan.robustness >= run.robust_rate)
@@ -374,8 +374,8 @@ namespace pushplan
             // A robust solution was measured in the perturbed worlds as it was kept: without
             // shortcutting the path stays that one, and its robustness stands.
             const bool measured = solved && run.robust_trials > 0 && run.shortcut == 0.0;
-            const bridge::FinishedPath path = model->finish(
-                found, solved,
+            const bridge::FinishedPath path = detail::finish(
+                *model, found, solved,
                 bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate,
                                        time_limit - elapsed()});
             plan.before_shortcut = path.before;
@@ -383,7 +383,7 @@ namespace pushplan
             if (path.robustness >= 0.0)
                 plan.robustness = path.robustness;
 
-            const std::size_t width = model->stateSize();
+            const std::size_t width = model->view()->stateSize();
             for (std::size_t s = 0; s * width < path.states.size(); ++s)
             {
                 const double *x = path.states.data() + s * width;
@@ -394,7 +394,7 @@ namespace pushplan
                     poses.emplace_back(x[flat.object(o)], x[flat.object(o) + 1], x[flat.object(o) + 2]);
                 plan.object_poses.push_back(std::move(poses));
             }
-            const std::size_t cwidth = model->controlSize();
+            const std::size_t cwidth = model->view()->controlSize();
             for (std::size_t i = 0; i < path.steps.size(); ++i)
             {
                 const double *c = path.controls.data() + i * cwidth;
@@ -403,8 +403,9 @@ namespace pushplan
                                                 static_cast<double>(path.steps[i]) * info.planner.step, path.steps[i]});
             }
             const bridge::Trajectory trajectory =
-                model->finisher().trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
-                                   rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
+                bridge::Finisher::make(model->problem())
+                    ->trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
+                                 rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
             plan.trajectory.rate = trajectory.rate;
             for (std::size_t k = 0; k < trajectory.times.size(); ++k)
             {

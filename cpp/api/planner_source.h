@@ -4,6 +4,7 @@
 
 #include "pushplan/pushplan.h"
 #include "pushplan/cpp/problem/bridge_types.h"
+#include "pushplan/cpp/problem/model_handle.h"
 #include "pushplan/src/bridge.rs.h"
 #include "rust/cxx.h"  // rust::Error
 
@@ -44,6 +45,15 @@ namespace pushplan
             {
                 throw Error(std::string("OMPL: ") + e.what());
             }
+        }
+
+        /// Finishes a found path the one way the model does (re-simulated, shortcut, kept
+        /// robust: planning::finish) in `model`'s problem.
+        inline bridge::FinishedPath finish(const ModelHandle &model, const FlatPath &found, bool solved,
+                                           const bridge::FinishSettings &settings)
+        {
+            return bridge::Finisher::make(model.problem())
+                ->finish(slice(found.controls), slice(found.steps), slice(found.states), solved, settings);
         }
 
         /// Options with every unset value taken from the scene (`info`).

@@ -61,9 +61,10 @@ namespace pushplan
                         const std::function<ReachSettings(const bridge::SceneInfo &)> &settings_of, const Plan *after)
     {
         return detail::asPushplanError([&] {
-            auto model = std::make_shared<detail::ModelHandle>(load());
-            const bridge::SceneInfo &info = model->info();
-            const std::size_t index = model->grasping().graspable_object(object);
+            const detail::ModelHandle model(load());
+            const bridge::SceneInfo &info = model.info();
+            const rust::Box<bridge::Grasping> grasping = bridge::Grasping::make(model.problem());
+            const std::size_t index = grasping->graspable_object(object);
             const ReachSettings settings = settings_of(info);
             const double time_limit = settings.time_limit;
             detail::checked("time_limit", time_limit, std::isfinite(time_limit) && time_limit > 0.0);
@@ -106,7 +107,7 @@ namespace pushplan
                 flat.insert(flat.end(), full.begin(), full.begin() + info.dof);
             }
             // Every reach returned is checked by the model, independently of the search.
-            const rust::String problem = model->grasping().check_reach(detail::slice(from), index, detail::slice(flat));
+            const rust::String problem = grasping->check_reach(detail::slice(from), index, detail::slice(flat));
             if (!problem.empty())
                 throw Error("internal error: IK-BiRRT's reach does not check: " + std::string(problem));
             reach.solved = true;

@@ -21,18 +21,22 @@ namespace pushplan::detail
         class ArmValidity : public ob::StateValidityChecker
         {
         public:
-            ArmValidity(const ob::SpaceInformationPtr &si, ModelHandlePtr model, std::shared_ptr<FlatState> context)
-              : ob::StateValidityChecker(si), model_(std::move(model)), context_(std::move(context))
+            ArmValidity(const ob::SpaceInformationPtr &si, const ModelHandle &model, std::shared_ptr<FlatState> context)
+              : ob::StateValidityChecker(si),
+                dof_(model.info().dof),
+                validity_(bridge::ValidityChecker::make(model.problem())),
+                context_(std::move(context))
             {
             }
             bool isValid(const ob::State *state) const override
             {
-                std::copy(joints(state), joints(state) + model_->info().dof, context_->begin());
-                return model_->validityChecker().is_valid(slice(*context_), {});
+                std::copy(joints(state), joints(state) + dof_, context_->begin());
+                return validity_->is_valid(slice(*context_), {});
             }
 
         private:
-            ModelHandlePtr model_;
+            std::size_t dof_;
+            rust::Box<bridge::ValidityChecker> validity_;
             std::shared_ptr<FlatState> context_;
         };
 
@@ -40,18 +44,21 @@ namespace pushplan::detail
         class TransitMotions : public ob::MotionValidator
         {
         public:
-            TransitMotions(const ob::SpaceInformationPtr &si, ModelHandlePtr model, std::shared_ptr<FlatState> context)
-              : ob::MotionValidator(si), model_(std::move(model)), context_(std::move(context))
+            TransitMotions(const ob::SpaceInformationPtr &si, const ModelHandle &model, std::shared_ptr<FlatState> context)
+              : ob::MotionValidator(si),
+                dof_(model.info().dof),
+                darrt_(bridge::Darrt::make(model.problem())),
+                context_(std::move(context))
             {
             }
             bool checkMotion(const ob::State *s1, const ob::State *s2) const override
             {
-                const std::size_t dof = model_->info().dof;
+                const std::size_t dof = dof_;
                 from_ = *context_;
                 to_ = *context_;
                 std::copy(joints(s1), joints(s1) + dof, from_.begin());
                 std::copy(joints(s2), joints(s2) + dof, to_.begin());
-                const bool valid = model_->darrt().transit(slice(from_), slice(to_));
+                const bool valid = darrt_->transit(slice(from_), slice(to_));
                 (valid ? valid_ : invalid_)++;
                 return valid;
             }
@@ -69,7 +76,8 @@ namespace pushplan::detail
             }
 
         private:
-            ModelHandlePtr model_;
+            std::size_t dof_;
+            rust::Box<bridge::Darrt> darrt_;
             std::shared_ptr<FlatState> context_;
             mutable FlatState from_, to_;
         };
@@ -86,10 +94,11 @@ namespace pushplan::detail
         };
     }  // namespace
 
-    ArmSpace::ArmSpace(ModelHandlePtr model)
-      : model_(std::move(model)), context_(std::make_shared<FlatState>(model_->stateSize()))
+    ArmSpace::ArmSpace(const ModelHandle &model)
+      : dof_(model.info().dof),
+        context_(std::make_shared<FlatState>(FlatLayout{model.info().dof, model.info().objects}.size()))
     {
-        const bridge::SceneInfo &info = model_->info();
+        const bridge::SceneInfo &info = model.info();
         auto space = std::make_shared<ob::RealVectorStateSpace>(info.dof);
         ob::RealVectorBounds bounds(info.dof);
         for (std::size_t i = 0; i < info.dof; ++i)
@@ -103,19 +112,19 @@ namespace pushplan::detail
             return std::make_shared<SeededJointSampler>(s, (*counter)++);
         });
         si_ = std::make_shared<ob::SpaceInformation>(space);
-        si_->setStateValidityChecker(std::make_shared<ArmValidity>(si_, model_, context_));
-        si_->setMotionValidator(std::make_shared<TransitMotions>(si_, model_, context_));
+        si_->setStateValidityChecker(std::make_shared<ArmValidity>(si_, model, context_));
+        si_->setMotionValidator(std::make_shared<TransitMotions>(si_, model, context_));
         si_->setup();
     }
 
     void ArmSpace::withJoints(const ob::State *arm, FlatState &full) const
     {
-        std::copy(joints(arm), joints(arm) + model_->info().dof, full.begin());
+        std::copy(joints(arm), joints(arm) + dof_, full.begin());
     }
 
     void ArmSpace::toArm(const FlatState &full, ob::State *arm) const
     {
         double *q = arm->as<ob::RealVectorStateSpace::StateType>()->values;
-        std::copy(full.begin(), full.begin() + model_->info().dof, q);
+        std::copy(full.begin(), full.begin() + dof_, q);
     }
 }  // namespace pushplan::detail

@@ -21,7 +21,9 @@ namespace pushplan::detail
     class ArmSpace
     {
     public:
-        explicit ArmSpace(ModelHandlePtr model);
+        /// The arm space of `model`'s problem (with a validity checker and DARRT's
+        /// Transit of its own).
+        explicit ArmSpace(const ModelHandle &model);
 
         const ompl::base::SpaceInformationPtr &si() const { return si_; }
         /// The full state whose joints the arm space's states replace.
@@ -36,7 +38,7 @@ namespace pushplan::detail
         void toArm(const FlatState &full, ompl::base::State *arm) const;
 
     private:
-        ModelHandlePtr model_;
+        std::size_t dof_;
         std::shared_ptr<FlatState> context_;
         std::shared_ptr<std::uint_fast32_t> sampler_seed_ = std::make_shared<std::uint_fast32_t>(0);
         ompl::base::SpaceInformationPtr si_;

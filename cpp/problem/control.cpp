@@ -59,21 +59,25 @@ namespace pushplan::detail
     }
 
     PushControlSampler::PushControlSampler(const oc::ControlSpace *space, std::uint_fast32_t seed,
-                                           ModelHandlePtr model, PushMix mix)
-      : EeControlSampler(space, seed), model_(std::move(model)), mix_(mix)
+                                           const ModelHandle &model, PushMix mix)
+      : EeControlSampler(space, seed),
+        view_(model.view()),
+        projection_(bridge::Projection::make(model.problem())),
+        mix_(mix)
     {
     }
 
     void PushControlSampler::sample(oc::Control *control, const ob::State *state)
     {
         EeControlSampler::sample(control);
-        const bridge::SceneInfo &info = model_->info();
+        const bridge::SceneInfo &info = view_->info();
         if (info.goal_object < 0 || rng_.uniform01() >= mix_.guided)
             return;
         // A push: a blocker out of the goal object's way, or the goal object toward the goal
         // disc, or (a detour) toward anywhere on the table.
         bridge::PushTarget push{static_cast<std::size_t>(info.goal_object), {}};
-        const rust::Vec<bridge::PushTarget> blockers = model_->pushBlockers(state);
+        view_->read(state, buffer_);
+        const rust::Vec<bridge::PushTarget> blockers = projection_->push_blockers(slice(buffer_));
         if (!blockers.empty() && rng_.uniform01() < mix_.clear)
             push = blockers[rng_.uniformInt(0, static_cast<int>(blockers.size()) - 1)];
         else
@@ -82,16 +86,16 @@ namespace pushplan::detail
                 rng_.uniform01() < mix_.to_goal ? sampleInGoalDisc(info, rng_) : sampleOnTable(info, rng_);
             push.target = {p[0], p[1]};
         }
-        const std::optional<std::array<double, 2>> heading =
-            model_->pushHeading(state, push.object, {push.target[0], push.target[1]});
-        if (!heading)
+        const rust::Vec<double> heading =
+            projection_->push_heading(slice(buffer_), push.object, {push.target.data(), push.target.size()});
+        if (heading.empty())
             return;
         // The end-effector velocity (m/s) along the heading.
         const double max_speed = info.planner.max_ee_speed;
         const double speed = rng_.uniformReal(0.5 * max_speed, max_speed);
         double *values = control->as<oc::RealVectorControlSpace::ControlType>()->values;
-        values[0] = speed * (*heading)[0];
-        values[1] = speed * (*heading)[1];
+        values[0] = speed * heading[0];
+        values[1] = speed * heading[1];
     }
 
     void PushControlSampler::sampleNext(oc::Control *control, const oc::Control *, const ob::State *state)

@@ -44,14 +44,17 @@ namespace pushplan::detail
     class PushControlSampler : public EeControlSampler
     {
     public:
-        PushControlSampler(const ompl::control::ControlSpace *space, std::uint_fast32_t seed, ModelHandlePtr model,
+        /// Steers by the push headings of `model`'s problem (a projection of its own).
+        PushControlSampler(const ompl::control::ControlSpace *space, std::uint_fast32_t seed, const ModelHandle &model,
                            PushMix mix);
         void sample(ompl::control::Control *control, const ompl::base::State *state) override;
         void sampleNext(ompl::control::Control *control, const ompl::control::Control *previous,
                         const ompl::base::State *state) override;
 
     private:
-        ModelHandlePtr model_;
+        std::shared_ptr<const StateView> view_;
+        rust::Box<bridge::Projection> projection_;
         PushMix mix_;
+        std::vector<double> buffer_;
     };
 }  // namespace pushplan::detail

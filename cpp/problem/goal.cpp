@@ -43,8 +43,8 @@ namespace pushplan::detail
         {
             std::copy(info.goal_configuration.begin(), info.goal_configuration.end(), buffer_.begin());
         }
-        model_->pinClutter(buffer_);
-        model_->write(buffer_, state);
+        model_->view()->pinClutter(buffer_);
+        model_->view()->write(buffer_, state);
     }
 
     bool PushGoal::sampleGrasp(ompl::base::State *state) const
@@ -61,7 +61,7 @@ namespace pushplan::detail
             return false;
         buffer_.assign(info.start.begin(), info.start.end());
         std::copy(q.begin(), q.end(), buffer_.begin());
-        model_->write(buffer_, state);
+        model_->view()->write(buffer_, state);
         return true;
     }
 

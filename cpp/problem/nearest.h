@@ -19,8 +19,9 @@ namespace pushplan::detail
     class ModelNearestNeighbors : public ompl::NearestNeighbors<Motion *>
     {
     public:
-        explicit ModelNearestNeighbors(ModelHandlePtr model)
-          : model_(std::move(model)), tree_(model_->metric().nearest_tree())
+        /// An empty structure in the metric of `model`'s problem.
+        explicit ModelNearestNeighbors(const ModelHandle &model)
+          : view_(model.view()), tree_(bridge::Metric::make(model.problem())->nearest_tree())
         {
         }
 
@@ -78,7 +79,7 @@ namespace pushplan::detail
     private:
         rust::Slice<const double> flat(const Motion *motion) const
         {
-            model_->read(motion->state, buffer_);
+            view_->read(motion->state, buffer_);
             return slice(buffer_);
         }
 
@@ -89,7 +90,7 @@ namespace pushplan::detail
                 nbh.push_back(motions_[id]);
         }
 
-        ModelHandlePtr model_;
+        std::shared_ptr<const StateView> view_;
         rust::Box<bridge::NearestTree> tree_;
         std::vector<Motion *> motions_;
         mutable std::vector<double> buffer_;

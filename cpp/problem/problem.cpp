@@ -34,16 +34,16 @@ namespace pushplan::detail
         return static_cast<std::uint_fast32_t>((z ^ (z >> 31)) & 0xFFFFFFFFULL);
     }
 
-    SeededRRT::SeededRRT(const oc::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed,
+    SeededRRT::SeededRRT(const oc::SpaceInformationPtr &si, const ModelHandle &model, std::uint_fast32_t seed,
                          const std::string &name)
       : Seeded<oc::RRT>(si, seed)
     {
         setName(name);
-        nn_ = std::make_shared<ModelNearestNeighbors<Motion>>(std::move(model));
+        nn_ = std::make_shared<ModelNearestNeighbors<Motion>>(model);
     }
 
-    PushProjection::PushProjection(const ob::StateSpace *space, ModelHandlePtr model)
-      : ob::ProjectionEvaluator(space), model_(std::move(model))
+    PushProjection::PushProjection(const ob::StateSpace *space, const ModelHandle &model)
+      : ob::ProjectionEvaluator(space), view_(model.view()), projection_(bridge::Projection::make(model.problem()))
     {
     }
 
@@ -67,7 +67,8 @@ namespace pushplan::detail
 
     void PushProjection::project(const ob::State *state, Eigen::Ref<Eigen::VectorXd> projection) const
     {
-        const std::array<double, 5> p = model_->project(state);
+        view_->read(state, buffer_);
+        const rust::Vec<double> p = projection_->project(slice(buffer_));
         for (int i = 0; i < 5; ++i)
             projection[i] = p[i];
     }
@@ -86,7 +87,7 @@ namespace pushplan::detail
     static void configure(const oc::SpaceInformationPtr &si, const ModelHandlePtr &model, unsigned k)
     {
         const bridge::SceneInfo &info = model->info();
-        si->setStateValidityChecker(std::make_shared<PushValidityChecker>(si, model));
+        si->setStateValidityChecker(std::make_shared<PushValidityChecker>(si, *model));
         si->setStatePropagator(std::make_shared<PushStatePropagator>(si, model));
         si->setPropagationStepSize(info.planner.step);
         const auto min_steps = static_cast<unsigned>(std::max(1.0, std::round(info.planner.min_duration / info.planner.step)));
@@ -101,12 +102,12 @@ namespace pushplan::detail
     {
         const bridge::SceneInfo &info = model->info();
         // Spaces: X = C_R x SE(2)^M; actions (vx, vy, omega_z, null-space sample).
-        auto space = std::make_shared<PushStateSpace>(model);
+        auto space = std::make_shared<PushStateSpace>(*model);
         auto sampler_count = std::make_shared<std::uint64_t>(0);
         space->setStateSamplerAllocator([seed, sampler_count](const ob::StateSpace *s) {
             return std::make_shared<PushStateSampler>(s->as<PushStateSpace>(), subSeed(seed, 10 + (*sampler_count)++));
         });
-        space->registerDefaultProjection(std::make_shared<PushProjection>(space.get(), model));
+        space->registerDefaultProjection(std::make_shared<PushProjection>(space.get(), *model));
         auto controls = makeControlSpace(space, info);
         useUniformControls(controls, seed, 1000);
 
@@ -141,7 +142,7 @@ namespace pushplan::detail
     {
         auto count = std::make_shared<std::uint64_t>(0);
         si->getControlSpace()->setControlSamplerAllocator([seed, count, model](const oc::ControlSpace *c) {
-            return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), model, PushMix{});
+            return std::make_shared<PushControlSampler>(c, subSeed(seed, 2000 + (*count)++), *model, PushMix{});
         });
     }
 
@@ -203,7 +204,7 @@ namespace pushplan::detail
             case PlannerKind::PcRrt:
             case PlannerKind::StaticRrt:
             {
-                auto rrt = std::make_shared<SeededRRT>(si, problem.model, planner_seed,
+                auto rrt = std::make_shared<SeededRRT>(si, *problem.model, planner_seed,
                                                        kind == PlannerKind::StaticRrt ? "StaticRRT" : "PCRRT");
                 rrt->setGoalBias(goal_bias);
                 rrt->setIntermediateStates(intermediate_states);
@@ -265,7 +266,7 @@ namespace pushplan::detail
             return search;
         // PC RRT on the same problem, with its own uniform controls, never restarted; on
         // one thread (the lanes are the first search's).
-        auto pc_rrt = std::make_shared<SeededRRT>(withUniformControls(problem, seed), problem.model,
+        auto pc_rrt = std::make_shared<SeededRRT>(withUniformControls(problem, seed), *problem.model,
                                                   subSeed(seed, 4), "PCRRT");
         pc_rrt->setGoalBias(goal_bias);
         pc_rrt->setIntermediateStates(intermediate_states);

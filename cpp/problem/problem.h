@@ -39,7 +39,7 @@ namespace pushplan::detail
     class SeededRRT : public Seeded<ompl::control::RRT>, public TreeSize
     {
     public:
-        SeededRRT(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed,
+        SeededRRT(const ompl::control::SpaceInformationPtr &si, const ModelHandle &model, std::uint_fast32_t seed,
                   const std::string &name);
         std::size_t treeSize() const override { return nn_ ? nn_->size() : 0; }
     };
@@ -67,13 +67,16 @@ namespace pushplan::detail
         /// object's small moves matter (BENCHMARKS.md, "Finer cells after the first attempt").
         static std::vector<double> pushKpieceCellSizes(std::uint64_t attempt);
 
-        PushProjection(const ompl::base::StateSpace *space, ModelHandlePtr model);
+        /// The projection of `model`'s problem (a part of its own).
+        PushProjection(const ompl::base::StateSpace *space, const ModelHandle &model);
         unsigned int getDimension() const override;
         void defaultCellSizes() override;
         void project(const ompl::base::State *state, Eigen::Ref<Eigen::VectorXd> projection) const override;
 
     private:
-        ModelHandlePtr model_;
+        std::shared_ptr<const StateView> view_;
+        rust::Box<bridge::Projection> projection_;
+        mutable std::vector<double> buffer_;
     };
 
     /// Spaces, samplers, propagator, validity checker, start and goal of one scene.

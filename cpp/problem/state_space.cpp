@@ -22,9 +22,10 @@ namespace pushplan::detail
         }
     }  // namespace
 
-    PushStateSpace::PushStateSpace(ModelHandlePtr model) : model_(std::move(model))
+    PushStateSpace::PushStateSpace(const ModelHandle &model)
+      : view_(model.view()), metric_(bridge::Metric::make(model.problem())), layout_(view_->layout())
     {
-        const auto &info = model_->info();
+        const auto &info = view_->info();
         setName("PushStateSpace");
         auto joints = std::make_shared<ob::RealVectorStateSpace>(info.dof);
         ob::RealVectorBounds joint_bounds(info.dof);
@@ -49,7 +50,6 @@ namespace pushplan::detail
             addSubspace(object, 1.0);
         }
         lock();
-        layout_ = model_->fixLayout();
     }
 
     StateLayout stateLayout(std::size_t dof, std::size_t objects, std::size_t particle_values)
@@ -73,7 +73,7 @@ namespace pushplan::detail
 
     double PushStateSpace::getMaximumExtent() const
     {
-        return model_->metric().max_extent();
+        return metric_->max_extent();
     }
 
     ob::State *PushStateSpace::allocState() const
@@ -120,11 +120,14 @@ namespace pushplan::detail
 
     double PushStateSpace::distance(const ob::State *a, const ob::State *b) const
     {
-        return model_->distance(a, b);
+        // Hot: every distance in a nearest-neighbour query reads two states.
+        view_->read(a, a_);
+        view_->read(b, b_);
+        return metric_->distance(slice(a_), slice(b_));
     }
 
     PushStateSampler::PushStateSampler(const PushStateSpace *space, std::uint_fast32_t seed)
-      : ob::StateSampler(space), model_(space->model())
+      : ob::StateSampler(space), view_(space->view())
     {
         rng_.setLocalSeed(seed);
     }
@@ -145,9 +148,9 @@ namespace pushplan::detail
         // Uniform over the space, valid or not, as the paper's RRT draws its targets: a
         // target only attracts the tree, the propagation keeps every state valid. (Drawing
         // until valid cost 97 % of the time with 20 objects: see BENCHMARKS.md.)
-        sampleRaw(model_->info(), rng_, buffer_);
-        model_->pinClutter(buffer_);
-        model_->write(buffer_, state);
+        sampleRaw(view_->info(), rng_, buffer_);
+        view_->pinClutter(buffer_);
+        view_->write(buffer_, state);
     }
 
     void PushStateSampler::sampleUniformNear(ob::State *state, const ob::State *, double)

@@ -22,7 +22,9 @@ namespace pushplan::detail
     class PushStateSpace : public ompl::base::CompoundStateSpace
     {
     public:
-        explicit PushStateSpace(ModelHandlePtr model);
+        /// The state space of `model`'s problem: fixes its state view, and measures
+        /// distances with a metric of its own.
+        explicit PushStateSpace(const ModelHandle &model);
         double distance(const ompl::base::State *a, const ompl::base::State *b) const override;
         /// The model metric's largest distance within the bounds.
         double getMaximumExtent() const override;
@@ -31,11 +33,14 @@ namespace pushplan::detail
 
         /// Copies the perturbed worlds' poses too (robust planning).
         void copyState(ompl::base::State *destination, const ompl::base::State *source) const override;
-        const ModelHandlePtr &model() const { return model_; }
+        /// The flat-state view of the space's states.
+        const std::shared_ptr<const StateView> &view() const { return view_; }
 
     private:
-        ModelHandlePtr model_;
+        std::shared_ptr<const StateView> view_;
+        rust::Box<bridge::Metric> metric_;
         StateLayout layout_;
+        mutable std::vector<double> a_, b_;
     };
 
     /// Samples the robot and every object uniformly (joint limits, table extent, any
@@ -54,7 +59,7 @@ namespace pushplan::detail
         static void sampleRaw(const bridge::SceneInfo &info, ompl::RNG &rng, std::vector<double> &out);
 
     private:
-        ModelHandlePtr model_;
+        std::shared_ptr<const StateView> view_;
         std::vector<double> buffer_;
     };
 }  // namespace pushplan::detail

@@ -4,8 +4,10 @@
 
 namespace pushplan::detail
 {
-    PushValidityChecker::PushValidityChecker(const ompl::base::SpaceInformationPtr &si, ModelHandlePtr model)
-      : ompl::base::StateValidityChecker(si), model_(std::move(model))
+    PushValidityChecker::PushValidityChecker(const ompl::base::SpaceInformationPtr &si, const ModelHandle &model)
+      : ompl::base::StateValidityChecker(si),
+        view_(model.view()),
+        validity_(bridge::ValidityChecker::make(model.problem()))
     {
     }
 
@@ -15,6 +17,7 @@ namespace pushplan::detail
         // them (joint limits, footprints on the table) and it checks every yaw is within
         // [-pi, pi]. OMPL's satisfiesBounds through the compound space was 4 % of a dense
         // search's time (BENCHMARKS.md).
-        return model_->isValid(state);
+        view_->read(state, buffer_);
+        return validity_->is_valid(slice(buffer_), view_->particles(state));
     }
 }  // namespace pushplan::detail

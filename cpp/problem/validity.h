@@ -11,10 +11,13 @@ namespace pushplan::detail
     class PushValidityChecker : public ompl::base::StateValidityChecker
     {
     public:
-        PushValidityChecker(const ompl::base::SpaceInformationPtr &si, ModelHandlePtr model);
+        /// The checker of `model`'s problem (a part of its own).
+        PushValidityChecker(const ompl::base::SpaceInformationPtr &si, const ModelHandle &model);
         bool isValid(const ompl::base::State *state) const override;
 
     private:
-        ModelHandlePtr model_;
+        std::shared_ptr<const StateView> view_;
+        rust::Box<bridge::ValidityChecker> validity_;
+        mutable std::vector<double> buffer_;
     };
 }  // namespace pushplan::detail

@@ -37,7 +37,7 @@ namespace
         unsigned tree_states = 0;
         /// Tree vertices whose goal object stands elsewhere than at the start.
         unsigned goal_object_moved = 0;
-        pd::ModelHandle::FlatPath path;
+        pd::FlatPath path;
     };
 
     /// Push KPIECE on `scene` with the given patience (0: no fallback) and restart base,
@@ -61,15 +61,15 @@ namespace
         // The goal object's (x, y, yaw) follow the joints in a flat state.
         const std::size_t at = model->info().dof + 3 * static_cast<std::size_t>(model->info().goal_object);
         std::vector<double> start, vertex;
-        model->read(problem.setup->getProblemDefinition()->getStartState(0), start);
+        model->view()->read(problem.setup->getProblemDefinition()->getStartState(0), start);
         for (unsigned v = 0; v < data.numVertices(); ++v)
         {
-            model->read(data.getVertex(v).getState(), vertex);
+            model->view()->read(data.getVertex(v).getState(), vertex);
             if (!std::equal(vertex.begin() + at, vertex.begin() + at + 3, start.begin() + at))
                 ++s.goal_object_moved;
         }
         if (problem.setup->getProblemDefinition()->hasSolution())
-            s.path = model->readPath(problem.setup->getSolutionPath());
+            s.path = model->view()->readPath(problem.setup->getSolutionPath());
         return s;
     }
 

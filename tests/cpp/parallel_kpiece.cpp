@@ -28,7 +28,7 @@ namespace
     struct Search
     {
         bool exact = false;
-        pd::ModelHandle::FlatPath path;
+        pd::FlatPath path;
         unsigned tree_states = 0;
         /// The planner's own count (TreeSize, for progress reports); -1 if it has none.
         long reported_states = -1;
@@ -47,7 +47,7 @@ namespace
         Search s;
         s.exact = problem.setup->haveExactSolutionPath();
         if (problem.setup->getProblemDefinition()->hasSolution())
-            s.path = model->readPath(problem.setup->getSolutionPath());
+            s.path = model->view()->readPath(problem.setup->getSolutionPath());
         ob::PlannerData data(problem.setup->getSpaceInformation());
         planner->getPlannerData(data);
         s.tree_states = data.numVertices();

@@ -52,8 +52,8 @@ namespace test
         return run;
     }
 
-    inline bool samePath(const pushplan::detail::ModelHandle::FlatPath &a,
-                         const pushplan::detail::ModelHandle::FlatPath &b)
+    inline bool samePath(const pushplan::detail::FlatPath &a,
+                         const pushplan::detail::FlatPath &b)
     {
         return a.controls == b.controls && a.steps == b.steps && a.states == b.states;
     }

@@ -8,6 +8,7 @@
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/goals/GoalRegion.h>
 #include <ompl/base/StateValidityChecker.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
@@ -41,12 +42,17 @@ namespace pushplan::detail
         };
     }  // namespace
 
-    PrimitivePath::PrimitivePath(const oc::SpaceInformationPtr &si, ModelHandlePtr model,
+    PrimitivePath::PrimitivePath(const oc::SpaceInformationPtr &si, const ModelHandle &model,
                                  const std::vector<double> &states, const std::vector<std::int64_t> &held,
                                  bridge::PrimitiveCheck report)
-      : oc::PathControl(si), model_(std::move(model)), flat_(states), held_(held), report_(std::move(report))
+      : oc::PathControl(si),
+        darrt_(bridge::Darrt::make(model.problem())),
+        flat_(states),
+        held_(held),
+        report_(std::move(report))
     {
-        const std::size_t n = model_->stateSize();
+        const StateView &view = *model.view();
+        const std::size_t n = view.stateSize();
         ob::State *state = si->allocState();
         oc::Control *control = si->allocControl();
         si->nullControl(control);
@@ -54,7 +60,7 @@ namespace pushplan::detail
         for (std::size_t at = 0; at < flat_.size(); at += n)
         {
             std::copy(flat_.begin() + at, flat_.begin() + at + n, buffer.begin());
-            model_->write(buffer, state);
+            view.write(buffer, state);
             // One propagation step per placeholder control: OMPL's interpolation then
             // keeps the primitive states instead of propagating the placeholders.
             if (at == 0)
@@ -73,11 +79,10 @@ namespace pushplan::detail
 
     bool PrimitivePath::check() const
     {
-        return model_->darrt().check(slice(flat_), slice(held_)).valid;
+        return darrt_->check(slice(flat_), slice(held_)).valid;
     }
 
-    ArmTransit::ArmTransit(ModelHandlePtr model, double time_cap)
-      : model_(model), space_(std::move(model)), time_cap_(time_cap)
+    ArmTransit::ArmTransit(const ModelHandle &model, double time_cap) : space_(model), time_cap_(time_cap)
     {
     }
 
@@ -111,10 +116,15 @@ namespace pushplan::detail
     }
 
     Darrt::Darrt(const oc::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed)
-      : ob::Planner(si, "DARRT"), model_(std::move(model)), transit_(model_, 15.0)
+      : ob::Planner(si, "DARRT"),
+        model_(std::move(model)),
+        view_(model_->view()),
+        darrt_(bridge::Darrt::make(model_->problem())),
+        validity_(bridge::ValidityChecker::make(model_->problem())),
+        transit_(*model_, 15.0)
     {
         rng_.setLocalSeed(seed);
-        goal_bias_ = model_->info().planner.goal_bias;
+        goal_bias_ = view_->info().planner.goal_bias;
         specs_.approximateSolutions = false;
         specs_.directed = true;
         declareParam<double>("goal_bias", this, &Darrt::setGoalBias, &Darrt::getGoalBias, "0.:.05:1.");
@@ -147,7 +157,7 @@ namespace pushplan::detail
         Node node;
         node.state = motion.back();
         node.ompl_state = si_->allocState();
-        model_->write(node.state, node.ompl_state);
+        view_->write(node.state, node.ompl_state);
         node.parent = parent;
         node.motion = std::move(motion);
         node.held = std::move(held);
@@ -164,7 +174,7 @@ namespace pushplan::detail
 
     int Darrt::extendArm(const ob::PlannerTerminationCondition &ptc)
     {
-        const bridge::SceneInfo &info = model_->info();
+        const bridge::SceneInfo &info = view_->info();
         FlatState q(info.dof);
         sampleJoints(info, rng_, q.data());
         int nearest = 0;
@@ -179,11 +189,11 @@ namespace pushplan::detail
         }
         FlatState target = nodes_[nearest].state;
         std::copy(q.begin(), q.end(), target.begin());
-        if (!model_->validityChecker().is_valid(slice(target), {}))
+        if (!validity_->is_valid(slice(target), {}))
             return -1;
         // Transit if the straight line is free, else RRTTransit.
         std::vector<FlatState> motion;
-        if (model_->darrt().transit(slice(nodes_[nearest].state), slice(target)))
+        if (darrt_->transit(slice(nodes_[nearest].state), slice(target)))
             motion.push_back(target);
         else if (!rrtTransit(nearest, target, ptc, motion))
             return -1;
@@ -192,7 +202,7 @@ namespace pushplan::detail
 
     int Darrt::extendObject(int object, const ob::PlannerTerminationCondition &ptc)
     {
-        const bridge::SceneInfo &info = model_->info();
+        const bridge::SceneInfo &info = view_->info();
         const bool toward_goal = object == info.goal_object && rng_.uniform01() < goal_bias_;
         const auto [x, y] = toward_goal ? sampleInGoalDisc(info, rng_) : sampleOnTable(info, rng_);
         const std::array<double, 3> target{x, y, sampleYaw(rng_)};
@@ -218,8 +228,8 @@ namespace pushplan::detail
                 return placed;
         }
         const rust::Slice<const double> target_pose = view(target.data(), 3);
-        FlatState caged(model_->stateSize());
-        if (!model_->darrt().approach(slice(nodes_[nearest].state), object, target_pose,
+        FlatState caged(view_->stateSize());
+        if (!darrt_->approach(slice(nodes_[nearest].state), object, target_pose,
                                             rust::Slice<double>(caged.data(), caged.size())))
             return -1;
         // The paper: "the RRTTransit primitive is first applied to move the manipulator to
@@ -227,10 +237,10 @@ namespace pushplan::detail
         std::vector<FlatState> motion;
         if (caged != nodes_[nearest].state && !rrtTransit(nearest, caged, ptc, motion))
             return -1;
-        const rust::Vec<double> carried = model_->darrt().carry(slice(caged), object, target_pose);
+        const rust::Vec<double> carried = darrt_->carry(slice(caged), object, target_pose);
         if (carried.empty())
             return -1;
-        const std::size_t n = model_->stateSize();
+        const std::size_t n = view_->stateSize();
         for (std::size_t k = 0; k < carried.size(); k += n)
             motion.emplace_back(carried.begin() + k, carried.begin() + k + n);
         return addNode(nearest, std::move(motion));
@@ -240,10 +250,10 @@ namespace pushplan::detail
     {
         const auto seed = static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()));
         const bridge::HeldStates placed =
-            model_->darrt().pick_place(slice(nodes_[from].state), object, view(target.data(), 3), seed);
+            darrt_->pick_place(slice(nodes_[from].state), object, view(target.data(), 3), seed);
         if (placed.held.empty())
             return -1;
-        const std::size_t n = model_->stateSize();
+        const std::size_t n = view_->stateSize();
         std::vector<FlatState> motion;
         for (std::size_t k = 0; k < placed.states.size(); k += n)
             motion.emplace_back(placed.states.begin() + k, placed.states.begin() + k + n);
@@ -253,16 +263,16 @@ namespace pushplan::detail
     ob::PlannerStatus Darrt::solve(const ob::PlannerTerminationCondition &ptc)
     {
         checkValidity();
-        const bridge::SceneInfo &info = model_->info();
+        const bridge::SceneInfo &info = view_->info();
         if (nodes_.empty())
         {
             const ob::State *start = pis_.nextStart();
             if (start == nullptr)
                 return ob::PlannerStatus::INVALID_START;
             FlatState flat;
-            model_->read(start, flat);
+            view_->read(start, flat);
             addNode(-1, {flat});
-            if (model_->goalDistance(start) <= 0.0)
+            if (reachesGoal(start))
                 return report(0);
         }
         // The kinds of sample: the arm, the goal object, another object (if any).
@@ -283,7 +293,7 @@ namespace pushplan::detail
                 added = extendObject(static_cast<int>(info.goal_object), ptc);
             else
                 added = extendObject(others[rng_.uniformInt(0, static_cast<int>(others.size()) - 1)], ptc);
-            if (added >= 0 && model_->goalDistance(nodes_[added].ompl_state) <= 0.0)
+            if (added >= 0 && reachesGoal(nodes_[added].ompl_state))
                 return report(added);
         }
         return ob::PlannerStatus::TIMEOUT;
@@ -302,7 +312,7 @@ namespace pushplan::detail
                 states.insert(states.end(), s.begin(), s.end());
             held.insert(held.end(), nodes_[*it].held.begin(), nodes_[*it].held.end());
         }
-        bridge::PrimitiveCheck check = model_->darrt().check(slice(states), slice(held));
+        bridge::PrimitiveCheck check = darrt_->check(slice(states), slice(held));
         if (!check.valid || !check.goal_reached)
         {
             // A primitive the model accepted fails its own check: a bug, never a plan.
@@ -310,10 +320,16 @@ namespace pushplan::detail
                        check.valid ? "the goal is not reached" : std::string(check.message).c_str());
             return ob::PlannerStatus::CRASH;
         }
-        auto path = std::make_shared<PrimitivePath>(std::static_pointer_cast<oc::SpaceInformation>(si_), model_,
+        auto path = std::make_shared<PrimitivePath>(std::static_pointer_cast<oc::SpaceInformation>(si_), *model_,
                                                     states, held, std::move(check));
         pdef_->addSolutionPath(path, false, 0.0, getName());
         return ob::PlannerStatus::EXACT_SOLUTION;
+    }
+
+    bool Darrt::reachesGoal(const ob::State *state) const
+    {
+        // The goal's signed distance (PushGoal: the model's), zero or negative inside.
+        return pdef_->getGoal()->as<ob::GoalRegion>()->distanceGoal(state) <= 0.0;
     }
 
     void Darrt::getPlannerData(ob::PlannerData &data) const

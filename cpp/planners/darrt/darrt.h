@@ -27,7 +27,7 @@ namespace pushplan::detail
     public:
         /// `states` (flat, one after another) must have been checked: `report.valid`.
         /// `held[k]` is what the hand holds in state k (an object index, or -1).
-        PrimitivePath(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model,
+        PrimitivePath(const ompl::control::SpaceInformationPtr &si, const ModelHandle &model,
                       const std::vector<double> &states, const std::vector<std::int64_t> &held,
                       bridge::PrimitiveCheck report);
         double length() const override;
@@ -35,7 +35,7 @@ namespace pushplan::detail
         const bridge::PrimitiveCheck &report() const { return report_; }
 
     private:
-        ModelHandlePtr model_;
+        rust::Box<bridge::Darrt> darrt_;
         std::vector<double> flat_;
         std::vector<std::int64_t> held_;
         bridge::PrimitiveCheck report_;
@@ -46,7 +46,7 @@ namespace pushplan::detail
     class ArmTransit
     {
     public:
-        ArmTransit(ModelHandlePtr model, double time_cap);
+        ArmTransit(const ModelHandle &model, double time_cap);
         /// Plans from `from` to the configuration of `to` (same objects); appends the
         /// waypoints after `from` (the last is `to`) to `motion`. Stops at `ptc` or the
         /// time cap.
@@ -56,7 +56,6 @@ namespace pushplan::detail
         double timeCap() const { return time_cap_; }
 
     private:
-        ModelHandlePtr model_;
         ArmSpace space_;
         double time_cap_;
     };
@@ -69,6 +68,8 @@ namespace pushplan::detail
     class Darrt : public ompl::base::Planner
     {
     public:
+        /// DARRT on `model`'s problem (its primitives, validity checker and state view);
+        /// `model` is kept for the paths it returns.
         Darrt(const ompl::control::SpaceInformationPtr &si, ModelHandlePtr model, std::uint_fast32_t seed);
         ~Darrt() override;
 
@@ -114,8 +115,13 @@ namespace pushplan::detail
         bool rrtTransit(int from, const FlatState &to, const ompl::base::PlannerTerminationCondition &ptc,
                         std::vector<FlatState> &motion);
         ompl::base::PlannerStatus report(int goal_node);
+        /// Is the tree state `state` in the goal region (the problem definition's goal)?
+        bool reachesGoal(const ompl::base::State *state) const;
 
         ModelHandlePtr model_;
+        std::shared_ptr<const StateView> view_;
+        rust::Box<bridge::Darrt> darrt_;
+        rust::Box<bridge::ValidityChecker> validity_;
         ArmTransit transit_;
         ompl::RNG rng_;
         double goal_bias_;

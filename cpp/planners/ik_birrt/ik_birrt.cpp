@@ -16,9 +16,9 @@ namespace og = ompl::geometric;
 
 namespace pushplan::detail
 {
-    GraspGoal::GraspGoal(const ArmSpace &space, ModelHandlePtr model, const FlatState &from, std::size_t object,
+    GraspGoal::GraspGoal(const ArmSpace &space, const ModelHandle &model, const FlatState &from, std::size_t object,
                          std::uint64_t seed)
-      : ob::GoalSampleableRegion(space.si()), space_(space), model_(std::move(model)), from_(from),
+      : ob::GoalSampleableRegion(space.si()), space_(space), grasping_(bridge::Grasping::make(model.problem())), from_(from),
         object_(object), seed_(seed), scratch_(from)
     {
         // Inside a region within the model's tolerance (robot::wgr::GRASP_TOLERANCE).
@@ -27,7 +27,7 @@ namespace pushplan::detail
 
     bool GraspGoal::trySample(ob::State *state) const
     {
-        const rust::Vec<double> q = model_->grasping().sample(slice(from_), object_, seed_++);
+        const rust::Vec<double> q = grasping_->sample(slice(from_), object_, seed_++);
         if (q.empty())
             return false;
         std::copy(q.begin(), q.end(), scratch_.begin());
@@ -52,7 +52,7 @@ namespace pushplan::detail
     {
         scratch_ = from_;
         space_.withJoints(state, scratch_);
-        return model_->grasping().distance(slice(scratch_), object_);
+        return grasping_->distance(slice(scratch_), object_);
     }
 
     IkBiRrt::IkBiRrt(const ob::SpaceInformationPtr &si, std::uint_fast32_t seed) : ob::Planner(si, "IK-BiRRT")

@@ -25,7 +25,7 @@ namespace pushplan::detail
     public:
         /// `from`: the full state the reach starts from (objects where they stay; its
         /// configuration seeds the inverse kinematics).
-        GraspGoal(const ArmSpace &space, ModelHandlePtr model, const FlatState &from, std::size_t object,
+        GraspGoal(const ArmSpace &space, const ModelHandle &model, const FlatState &from, std::size_t object,
                   std::uint64_t seed);
         /// One try (a region, a displacement, inverse kinematics): false if it found no
         /// valid configuration.
@@ -37,7 +37,7 @@ namespace pushplan::detail
 
     private:
         const ArmSpace &space_;
-        ModelHandlePtr model_;
+        rust::Box<bridge::Grasping> grasping_;
         FlatState from_;
         std::size_t object_;
         mutable std::uint64_t seed_;
