@@ -53,30 +53,30 @@ use convert::{
 };
 use metric::{tree_add, tree_nearest, tree_nearest_k, tree_nearest_r};
 
-// SAFETY (the five impls): each Rust type is `#[repr(..)]` with the layout of its C++
-// twin, a trivial type. `PlannerKind`: the values of `enum class PlannerKind :
-// std::uint8_t` (tests/cpp/api_contract.cpp sends every kind through the bridge and
-// back); `PathMetrics` (include/pushplan/pushplan.h), `RunSettings`, `ReachSettings` and
-// `PlannerParams` (cpp/problem/bridge_types.h): the same fields in the same order,
-// checked there by static_assert on their offsets.
-unsafe impl cxx::ExternType for PlannerKind {
-    type Id = cxx::type_id!("pushplan::PlannerKind");
-    type Kind = cxx::kind::Trivial;
+/// Binds Rust types to their C++ twins, which the bridge passes by value.
+macro_rules! trivial_twins {
+    ($($rust:ty => $cpp:literal),* $(,)?) => {$(
+        // SAFETY: see the call.
+        unsafe impl cxx::ExternType for $rust {
+            type Id = cxx::type_id!($cpp);
+            type Kind = cxx::kind::Trivial;
+        }
+    )*};
 }
 
-unsafe impl cxx::ExternType for crate::planning::RunSettings {
-    type Id = cxx::type_id!("pushplan::detail::RunSettings");
-    type Kind = cxx::kind::Trivial;
-}
-
-unsafe impl cxx::ExternType for crate::planner::ReachSettings {
-    type Id = cxx::type_id!("pushplan::detail::ReachSettings");
-    type Kind = cxx::kind::Trivial;
-}
-
-unsafe impl cxx::ExternType for crate::planning::path::PathMetrics {
-    type Id = cxx::type_id!("pushplan::PathMetrics");
-    type Kind = cxx::kind::Trivial;
+// SAFETY: each Rust type is `#[repr(..)]` with the layout of its C++ twin, a trivial
+// type. `PlannerKind`: the values of `enum class PlannerKind : std::uint8_t`
+// (tests/cpp/api_contract.cpp sends every kind through the bridge and back);
+// `PathMetrics` (include/pushplan/pushplan.h) and the rest (cpp/problem/bridge_types.h):
+// the same fields in the same order, checked there by static_assert on their offsets.
+trivial_twins! {
+    PlannerKind => "pushplan::PlannerKind",
+    crate::planning::path::PathMetrics => "pushplan::PathMetrics",
+    crate::planning::RunSettings => "pushplan::detail::RunSettings",
+    crate::planner::SearchProgress => "pushplan::detail::SearchProgress",
+    crate::planner::SearchSummary => "pushplan::detail::SearchSummary",
+    crate::planner::ReachSettings => "pushplan::detail::ReachSettings",
+    PlannerParams => "pushplan::detail::PlannerParams",
 }
 
 /// The scene's planner parameters as the bridge carries them: the model's type, whose
@@ -84,11 +84,6 @@ unsafe impl cxx::ExternType for crate::planning::path::PathMetrics {
 #[repr(transparent)]
 #[derive(Clone, Copy, Debug)]
 pub struct PlannerParams(pub crate::scene::PlannerParams);
-
-unsafe impl cxx::ExternType for PlannerParams {
-    type Id = cxx::type_id!("pushplan::detail::PlannerParams");
-    type Kind = cxx::kind::Trivial;
-}
 
 /// The declarations cxx generates both sides from (`pushplan/src/bridge.rs.h`).
 #[allow(missing_docs)]

@@ -397,24 +397,31 @@ fn run(command: Command) -> Result<ExitCode, String> {
             sample_probability,
         } => {
             let scene = scene_or_default(scene)?;
+            let threads = threads.unwrap_or_else(cli::cores);
             let options = PlanOptions {
+                settings: Box::new(move |params| {
+                    let own = RunSettings::of_scene(planner, params);
+                    RunSettings {
+                        intermediate_states,
+                        k: k.unwrap_or(own.k),
+                        threads,
+                        robust_trials: robust,
+                        robust_particles: particles,
+                        time_limit: time.unwrap_or(own.time_limit),
+                        seed: seed.unwrap_or(own.seed),
+                        shortcut,
+                        robust_rate,
+                        robust_shortcut,
+                        restart_steps: restart.unwrap_or(own.restart_steps),
+                        fallback_steps: fallback.unwrap_or(own.fallback_steps),
+                        ..own
+                    }
+                }),
+                k_given: k.is_some(),
+                quiet,
                 grasp_goal: goal.map(|g| cli::grasp_goal(&g)).transpose()?,
                 grasp_after: grasp,
                 sample_probability,
-                robust,
-                robust_rate,
-                robust_shortcut,
-                particles,
-                threads: threads.unwrap_or_else(cli::cores),
-                restart,
-                fallback,
-                time,
-                seed,
-                k,
-                planner,
-                shortcut,
-                intermediate_states,
-                quiet,
             };
             plan(&OmplSearch, &scene, &options, &out).and_then(|code| match render {
                 Some(dir) => draw(&out, &dir, &[]).map(|_| code),

@@ -7,7 +7,7 @@
 namespace pushplan::bridge
 {
     SolveOutput solve(rust::Str scene_path, const detail::RunSettings &settings, bool report,
-                      rust::Fn<void(const SearchProgress &)> progress)
+                      rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress)
     {
         const std::string path(scene_path);
         // The caller finishes the path itself (planning::finish), to report on it.
@@ -16,19 +16,17 @@ namespace pushplan::bridge
         std::function<void(const Progress &)> tell;
         if (report)
             tell = [progress](const Progress &p) {
-                progress(SearchProgress{p.seconds, p.propagation_steps, p.steps_per_second, p.propagating,
-                                        p.tree_states.value_or(0), p.searches, p.closest_goal_distance, p.note});
+                progress(detail::SearchProgress{p.seconds, p.propagation_steps, p.steps_per_second, p.propagating,
+                                                p.tree_states.value_or(0), p.closest_goal_distance, p.searches},
+                         p.note);
             };
         const Plan plan = detail::solve([&] { return Problem::load(path); },
                                         [&](const SceneInfo &) { return run; }, tell);
         SolveOutput out;
-        out.exact = plan.solved;
-        out.approximate = !plan.solved && !plan.controls.empty();
-        out.planning_time = plan.planning_time;
-        out.tree_size = plan.tree_size;
-        out.propagation_steps = plan.propagation_steps;
-        out.restarts = plan.restarts;
-        out.fallbacks = plan.fallbacks;
+        out.summary = detail::SearchSummary{plan.solved,          !plan.solved && !plan.controls.empty(),
+                                            plan.planning_time,   plan.tree_size,
+                                            plan.propagation_steps, plan.restarts,
+                                            plan.fallbacks};
         out.search.propagations = plan.search.propagations;
         out.search.steps = plan.search.steps;
         out.search.moved_goal_object = plan.search.moved_goal_object;

@@ -8,14 +8,13 @@
 namespace pushplan::bridge
 {
     struct SolveOutput;
-    struct SearchProgress;
     struct ReachOutput;
 
-    /// Searches a scene file as `settings` say, telling `progress` how far it is when
-    /// `report` is set; the path comes back as found (not shortcut). Throws (a Rust Err)
+    /// Searches a scene file as `settings` say, telling `progress` how far it is (a note:
+    /// an event) when `report` is set; the path comes back as found (not shortcut). Throws (a Rust Err)
     /// on bad input.
     SolveOutput solve(rust::Str scene_path, const detail::RunSettings &settings, bool report,
-                      rust::Fn<void(const SearchProgress &)> progress);
+                      rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress);
 
     /// Reaches a grasp of `object` from the arm at `from_q` with the objects at
     /// `from_objects` (x, y, yaw each); from the scene's start if `from_q` is empty.

@@ -74,4 +74,35 @@ namespace pushplan::detail
     static_assert(offsetof(ReachSettings, seed) == 8 && offsetof(ReachSettings, sample_probability) == 16 &&
                       sizeof(ReachSettings) == 24,
                   "ReachSettings must have the layout of Rust's #[repr(C)] planner::ReachSettings");
+
+    /// How far a search is: Rust's planner::SearchProgress (pushplan::Progress without its
+    /// note, which crosses beside it).
+    struct SearchProgress
+    {
+        double seconds;
+        std::uint64_t propagation_steps;
+        double steps_per_second;
+        double propagating;  ///< share of the time since the last report
+        std::size_t tree_states;
+        double closest_goal_distance;
+        std::uint32_t searches;
+    };
+    static_assert(offsetof(SearchProgress, tree_states) == 32 && offsetof(SearchProgress, searches) == 48 &&
+                      sizeof(SearchProgress) == 56,
+                  "SearchProgress must have the layout of Rust's #[repr(C)] planner::SearchProgress");
+
+    /// How a search went: Rust's planner::SearchSummary.
+    struct SearchSummary
+    {
+        bool exact;
+        bool approximate;
+        double planning_time;  ///< s
+        std::size_t tree_size;
+        std::uint64_t propagation_steps;
+        std::uint64_t restarts;
+        std::uint64_t fallbacks;
+    };
+    static_assert(offsetof(SearchSummary, approximate) == 1 && offsetof(SearchSummary, planning_time) == 8 &&
+                      offsetof(SearchSummary, fallbacks) == 40 && sizeof(SearchSummary) == 48,
+                  "SearchSummary must have the layout of Rust's #[repr(C)] planner::SearchSummary");
 }  // namespace pushplan::detail

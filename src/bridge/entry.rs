@@ -14,36 +14,17 @@ use std::path::Path;
 #[allow(missing_docs)]
 #[cxx::bridge(namespace = "pushplan::bridge")]
 pub mod ffi {
-    /// The outcome of one search and the path found: controls, their step counts and the
-    /// states at the start and after each control, flat (`dof` joints, `objects` poses).
+    /// `planner::Found` with the path flat: controls, their step counts and the states
+    /// at the start and after each control (`dof` joints, `objects` poses each).
     #[derive(Debug, Clone)]
     pub struct SolveOutput {
-        pub exact: bool,
-        pub approximate: bool,
-        pub planning_time: f64,
-        pub tree_size: usize,
-        pub propagation_steps: u64,
+        pub summary: SearchSummary,
         pub search: SearchStats,
-        pub restarts: u64,
-        pub fallbacks: u64,
         pub dof: usize,
         pub objects: usize,
         pub controls: Vec<f64>,
         pub steps: Vec<usize>,
         pub states: Vec<f64>,
-    }
-
-    /// `planner::SearchProgress`.
-    #[derive(Debug, Clone)]
-    pub struct SearchProgress {
-        pub seconds: f64,
-        pub propagation_steps: u64,
-        pub steps_per_second: f64,
-        pub propagating: f64,
-        pub tree_states: usize,
-        pub searches: u32,
-        pub closest_goal_distance: f64,
-        pub note: String,
     }
 
     /// A reach (pushplan::Reach): waypoints flat, one configuration of `dof` joints
@@ -66,6 +47,10 @@ pub mod ffi {
         type RunSettings = crate::planning::RunSettings;
         #[namespace = "pushplan::detail"]
         type ReachSettings = crate::planner::ReachSettings;
+        #[namespace = "pushplan::detail"]
+        type SearchProgress = crate::planner::SearchProgress;
+        #[namespace = "pushplan::detail"]
+        type SearchSummary = crate::planner::SearchSummary;
         include!("pushplan/cpp/api/solve.h");
         /// Searches the scene file with OMPL, telling `progress` how far it is when
         /// `report` is set; the path comes back as found (not shortcut).
@@ -73,7 +58,7 @@ pub mod ffi {
             scene_path: &str,
             settings: &RunSettings,
             report: bool,
-            progress: fn(report: &SearchProgress),
+            progress: fn(report: &SearchProgress, note: &str),
         ) -> Result<SolveOutput>;
         /// Reaches a grasp of `object` with IK-BiRRT from the arm at `from_q` with the
         /// objects at `from_objects` (x, y, yaw each); from the scene's start if `from_q`
@@ -100,25 +85,19 @@ pub mod ffi {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct OmplSearch;
 
+/// Where a search's reports go: a report, or an event's note.
+type Progress = fn(&SearchProgress, &str);
+
 thread_local! {
     /// Where this thread's search reports go: C++ calls back on the thread that called
     /// `solve`, through a plain function pointer.
-    static PROGRESS: Cell<Option<fn(&SearchProgress)>> = const { Cell::new(None) };
+    static PROGRESS: Cell<Option<Progress>> = const { Cell::new(None) };
 }
 
 /// The C++ search's report, passed on to this thread's progress function.
-fn tell(report: &ffi::SearchProgress) {
+fn tell(report: &SearchProgress, note: &str) {
     if let Some(progress) = PROGRESS.with(Cell::get) {
-        progress(&SearchProgress {
-            seconds: report.seconds,
-            propagation_steps: report.propagation_steps,
-            steps_per_second: report.steps_per_second,
-            propagating: report.propagating,
-            tree_states: report.tree_states,
-            searches: report.searches,
-            closest_goal_distance: report.closest_goal_distance,
-            note: report.note.clone(),
-        });
+        progress(report, note);
     }
 }
 
@@ -127,21 +106,15 @@ impl Search for OmplSearch {
         &self,
         scene: &Path,
         settings: &RunSettings,
-        progress: Option<fn(&SearchProgress)>,
+        progress: Option<Progress>,
     ) -> Result<Found, String> {
         PROGRESS.with(|p| p.set(progress));
         let out = ffi::solve(&scene.to_string_lossy(), settings, progress.is_some(), tell);
         PROGRESS.with(|p| p.set(None));
         let out = out.map_err(|e| e.what().to_string())?;
         Ok(Found {
-            exact: out.exact,
-            approximate: out.approximate,
-            planning_time: out.planning_time,
-            tree_size: out.tree_size,
-            propagation_steps: out.propagation_steps,
+            summary: out.summary,
             search: SearchStats::from(&out.search),
-            restarts: out.restarts,
-            fallbacks: out.fallbacks,
             controls: PathControl::from_flat(&out.controls, &out.steps, out.dof)?,
             states: State::many_from_flat(&out.states, out.dof, out.objects)?,
         })

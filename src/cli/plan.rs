@@ -11,57 +11,22 @@ use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 
-/// The `plan` command's options: the search's settings as the flags set them (`None`:
-/// the scene's, see [`PlanOptions::settings`]) and what the command does around it.
+/// The `plan` command's options: the search's settings as the flags set them, and what
+/// the command does around the search.
 pub struct PlanOptions {
-    pub robust: u32,
-    pub robust_rate: f64,
-    /// Shortcutting toward robustness per solution not robust enough (s of work).
-    pub robust_shortcut: f64,
-    /// Perturbed worlds carried along the search in robust planning.
-    pub particles: u32,
-    pub time: Option<f64>,
-    pub seed: Option<u64>,
-    pub k: Option<u32>,
-    pub planner: PlannerKind,
-    pub shortcut: f64,
-    pub intermediate_states: bool,
+    /// The search's settings for a scene's `planner:` parameters: the flags' values where
+    /// they are given, the scene's otherwise.
+    pub settings: Box<dyn Fn(&PlannerParams) -> RunSettings>,
+    /// Whether `--k` was given (a note says when the planner does not use it).
+    pub k_given: bool,
+    /// No progress output.
     pub quiet: bool,
-    /// Threads to plan on (`pushplan::Options::threads`).
-    pub threads: u32,
-    /// First restart budget (propagation steps; 0: never); default: the planner's.
-    pub restart: Option<u64>,
-    /// Push KPIECE's patience before it falls back to PC RRT (propagation steps; 0:
-    /// never); default: the planner's.
-    pub fallback: Option<u64>,
     /// `--goal grasp:OBJECT`: reach a grasp of this object instead of pushing.
     pub grasp_goal: Option<String>,
     /// `--grasp`: after pushing, reach a grasp of the goal object.
     pub grasp_after: bool,
     /// IK-BiRRT's P_sample.
     pub sample_probability: f64,
-}
-
-impl PlanOptions {
-    /// The search's settings: the scene's `planner:` parameters, overridden by the flags.
-    pub fn settings(&self, params: &PlannerParams) -> RunSettings {
-        let scene = RunSettings::of_scene(self.planner, params);
-        RunSettings {
-            intermediate_states: self.intermediate_states,
-            k: self.k.unwrap_or(scene.k),
-            threads: self.threads,
-            robust_trials: self.robust,
-            robust_particles: self.particles,
-            time_limit: self.time.unwrap_or(scene.time_limit),
-            seed: self.seed.unwrap_or(scene.seed),
-            shortcut: self.shortcut,
-            robust_rate: self.robust_rate,
-            robust_shortcut: self.robust_shortcut,
-            restart_steps: self.restart.unwrap_or(scene.restart_steps),
-            fallback_steps: self.fallback.unwrap_or(scene.fallback_steps),
-            ..scene
-        }
-    }
 }
 
 /// The object of a `--goal` value `grasp:OBJECT`.
@@ -134,8 +99,8 @@ pub fn plan(
         std::fs::create_dir_all(folder)
             .map_err(|e| format!("{}: cannot make the plan's folder: {e}", folder.display()))?;
     }
-    let (planner, quiet) = (run.planner, run.quiet);
-    let options = run.settings(&scene.planner);
+    let options = (run.settings)(&scene.planner);
+    let (planner, quiet) = (options.planner, run.quiet);
     let seed = options.seed;
     if options.fallback_steps > 0 && planner.fallback_steps() == 0 {
         return Err(format!(
@@ -146,10 +111,10 @@ pub fn plan(
             planner.name()
         ));
     }
-    if !(0.0..=1.0).contains(&run.robust_rate) {
+    if !(0.0..=1.0).contains(&options.robust_rate) {
         return Err(format!(
             "--robust-rate must be in [0, 1], got {}",
-            run.robust_rate
+            options.robust_rate
         ));
     }
     if !(options.time_limit.is_finite() && options.time_limit > 0.0) {
@@ -165,7 +130,7 @@ pub fn plan(
             options.k
         ));
     }
-    if run.k.is_some() && !planner.takes_best_of_k() {
+    if run.k_given && !planner.takes_best_of_k() {
         let takers: Vec<&str> = PlannerKind::ALL
             .into_iter()
             .filter(|kind| kind.takes_best_of_k())
@@ -177,16 +142,18 @@ pub fn plan(
             takers.join(" and ")
         );
     }
-    if run.particles > 0 && (run.robust == 0 || planner == PlannerKind::StaticRrt) {
+    if options.robust_particles > 0
+        && (options.robust_trials == 0 || planner == PlannerKind::StaticRrt)
+    {
         return Err(format!(
             "--particles {} needs --robust, and a planner that pushes (not {})",
-            run.particles,
+            options.robust_particles,
             PlannerKind::StaticRrt.name()
         ));
     }
     for (flag, seconds) in [
-        ("--shortcut", run.shortcut),
-        ("--robust-shortcut", run.robust_shortcut),
+        ("--shortcut", options.shortcut),
+        ("--robust-shortcut", options.robust_shortcut),
     ] {
         if !(seconds.is_finite() && seconds >= 0.0) {
             return Err(format!("{flag} must be zero or positive, got {seconds}"));
@@ -246,16 +213,21 @@ pub fn plan(
     let dof = scene.robot.dof();
     let found = &solution.controls;
     let finish_settings = FinishSettings {
-        shortcut: run.shortcut,
+        shortcut: options.shortcut,
         seed,
-        robust: (run.robust > 0).then_some(RobustRequirement {
-            trials: run.robust as usize,
-            rate: run.robust_rate,
+        robust: (options.robust_trials > 0).then_some(RobustRequirement {
+            trials: options.robust_trials as usize,
+            rate: options.robust_rate,
         }),
         deadline: pushplan::planning::deadline(started, options.time_limit),
         progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
     };
-    let path = problem.finish(found, &solution.states, solution.exact, &finish_settings);
+    let path = problem.finish(
+        found,
+        &solution.states,
+        solution.summary.exact,
+        &finish_settings,
+    );
     progress::finish();
     let path = path?;
     if !quiet && path.shortcut.attempts > 0 {
@@ -278,13 +250,13 @@ pub fn plan(
         Some(path.before),
     )?;
     file.robustness = path.robustness.map(|success_rate| RobustnessRecord {
-        trials: run.robust as usize,
-        required_rate: run.robust_rate,
+        trials: options.robust_trials as usize,
+        required_rate: options.robust_rate,
         success_rate,
-        particles: run.particles,
+        particles: options.robust_particles,
     });
-    let mut solved = solution.exact;
-    if run.grasp_after && solution.exact {
+    let mut solved = solution.summary.exact;
+    if run.grasp_after && solution.summary.exact {
         let goal_object = problem.scene().goal.object().expect("checked above");
         let name = problem.scene().objects[goal_object].name.clone();
         let end = file.end_state();
@@ -299,36 +271,36 @@ pub fn plan(
     std::fs::write(out, file.to_json())
         .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
 
-    let status = if solution.exact {
+    let status = if solution.summary.exact {
         "solved"
-    } else if solution.approximate {
+    } else if solution.summary.approximate {
         "not solved (approximate path written)"
     } else {
         "not solved"
     };
     println!(
         "{status} in {:.3} s: tree of {} states, {} propagation steps ({:.0} steps/s){}{}",
-        solution.planning_time,
-        solution.tree_size,
-        solution.propagation_steps,
-        solution.propagation_steps as f64 / solution.planning_time.max(1e-9),
-        match solution.restarts {
+        solution.summary.planning_time,
+        solution.summary.tree_size,
+        solution.summary.propagation_steps,
+        solution.summary.propagation_steps as f64 / solution.summary.planning_time.max(1e-9),
+        match solution.summary.restarts {
             0 => String::new(),
             1 => ", 1 restart".to_string(),
             n => format!(", {n} restarts"),
         },
-        match solution.fallbacks {
+        match solution.summary.fallbacks {
             0 => "",
             _ => ", then PC RRT (the goal object had not moved)",
         }
     );
-    if !solution.exact && !found.is_empty() {
+    if !solution.summary.exact && !found.is_empty() {
         let goal = &problem.scene().goal;
         let left = goal.distance(path.simulation.final_state());
         println!(
             "closest: {}",
             match goal {
-                pushplan::scene::Goal::ObjectInDisc { .. } if left <= 0.0 && run.particles > 0 => format!(
+                pushplan::scene::Goal::ObjectInDisc { .. } if left <= 0.0 && options.robust_particles > 0 => format!(
                     "the goal object ends {:.0} mm inside the goal region, but not in every perturbed world the search carried",
                     -1e3 * left
                 ),
@@ -414,7 +386,7 @@ pub fn plan(
             r.object,
             r.waypoints.len()
         );
-    } else if run.grasp_after && solution.exact {
+    } else if run.grasp_after && solution.summary.exact {
         println!("then a grasp of the goal object: not found (the plan is not solved)");
     }
     println!("plan written to {}", out.display());

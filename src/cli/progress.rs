@@ -50,12 +50,13 @@ pub fn finish() {
     }
 }
 
-/// The search's report (passed to the C++ search as a function pointer: must not panic).
-pub fn search(report: &SearchProgress) {
+/// The search's report, or an event's `note` (passed to the C++ search as a function
+/// pointer: must not panic).
+pub fn search(report: &SearchProgress, note: &str) {
     let Ok(mut guard) = LINE.lock() else { return };
     let Some(line) = guard.as_mut() else { return };
-    if !report.note.is_empty() {
-        line.event(&report.note);
+    if !note.is_empty() {
+        line.event(note);
         return;
     }
     let mut text = format!(

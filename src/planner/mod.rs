@@ -14,5 +14,5 @@ pub use heading::{PushHeading, PushTarget};
 pub use nearest::NearestTree;
 pub use particles::ParticleWorlds;
 pub use recent_tools::RecentTools;
-pub use search::{Found, ReachSettings, Reached, Search, SearchProgress};
+pub use search::{Found, ReachSettings, Reached, Search, SearchProgress, SearchSummary};
 pub use stats::{SearchCounter, SearchStats};

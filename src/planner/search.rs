@@ -9,8 +9,11 @@ use crate::state::State;
 use nalgebra::DVector;
 use std::path::Path;
 
-/// How far a search is: once a second, or an event (C++'s `pushplan::Progress`).
-#[derive(Clone, Debug, Default, PartialEq)]
+/// How far a search is (C++'s `pushplan::Progress`), once a second; an event comes with
+/// a note of its own ([`Search::solve`]). Laid out as C++'s `pushplan::detail::SearchProgress`:
+/// the bridge carries it as it is.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SearchProgress {
     /// Since the search started (s).
     pub seconds: f64,
@@ -22,18 +25,17 @@ pub struct SearchProgress {
     pub propagating: f64,
     /// States in all trees; 0 when the planner has none to count.
     pub tree_states: usize,
-    /// Searches running in parallel.
-    pub searches: u32,
     /// Smallest goal distance reached (m, or rad for a configuration goal).
     pub closest_goal_distance: f64,
-    /// Not empty: an event rather than a periodic report.
-    pub note: String,
+    /// Searches running in parallel.
+    pub searches: u32,
 }
 
-/// What a search found: its outcome, and the path as found (not finished: the caller
-/// finishes it, `planning::finish`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Found {
+/// How a search went. Laid out as C++'s `pushplan::detail::SearchSummary`: the bridge
+/// carries it as it is.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SearchSummary {
     /// An exact solution.
     pub exact: bool,
     /// Not exact, but a path toward the goal.
@@ -44,12 +46,20 @@ pub struct Found {
     pub tree_size: usize,
     /// Propagation steps taken.
     pub propagation_steps: u64,
-    /// What the propagations did.
-    pub search: SearchStats,
     /// Attempts started over for lack of a solution.
     pub restarts: u64,
     /// Searches that fell back to PC RRT.
     pub fallbacks: u64,
+}
+
+/// What a search found: how it went, and the path as found (not finished: the caller
+/// finishes it, `planning::finish`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Found {
+    /// How the search went.
+    pub summary: SearchSummary,
+    /// What its propagations did.
+    pub search: SearchStats,
     /// The path's controls with their step counts.
     pub controls: Vec<PathControl>,
     /// The states at the start and after each control (none without a path).
@@ -88,12 +98,13 @@ pub struct Reached {
 /// The search behind the applications.
 pub trait Search {
     /// Searches the scene file as `settings` say (its shortcut budget is the caller's to
-    /// spend: the path comes back as found), telling `progress` how far it is.
+    /// spend: the path comes back as found), telling `progress` how far it is: a report
+    /// once a second with an empty note, or an event (a note, with the totals so far).
     fn solve(
         &self,
         scene: &Path,
         settings: &RunSettings,
-        progress: Option<fn(&SearchProgress)>,
+        progress: Option<fn(&SearchProgress, &str)>,
     ) -> Result<Found, String>;
 
     /// Reaches a grasp of `object` with IK-BiRRT from `from` (`None`: the scene's start).

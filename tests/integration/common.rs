@@ -28,7 +28,10 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::planning::path::Pa
     let out = pushplan::bridge::OmplSearch
         .solve(Path::new(scene_file), &settings, None)
         .unwrap();
-    assert!(out.exact, "seed {seed} should solve the default scene");
+    assert!(
+        out.summary.exact,
+        "seed {seed} should solve the default scene"
+    );
     let scene = Scene::load(scene_file).unwrap();
     let controls = out.controls;
     (scene, controls)

@@ -38,8 +38,8 @@ fn plan_file(scene: &str, planner: &str, seed: u64, out: &Found) -> PlanFile {
 fn pc_rrt_solves_the_single_object_scene_and_its_plan_checks() {
     let scene = "scenes/herb_single_object.yaml";
     let out = solve(Path::new(scene), &options("pcrrt", 1, 30.0)).unwrap();
-    assert!(out.exact, "no exact solution");
-    assert!(out.tree_size > 1 && out.propagation_steps > 0);
+    assert!(out.summary.exact, "no exact solution");
+    assert!(out.summary.tree_size > 1 && out.summary.propagation_steps > 0);
     let plan = plan_file(scene, "pcrrt", 1, &out);
     assert!(plan.solved);
     let report = plan.check(Path::new("plan.json")).unwrap();
@@ -62,7 +62,7 @@ fn pc_rrt_solves_the_single_object_scene_and_its_plan_checks() {
 fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_away() {
     let scene = "tests/data/clutter_on_goal.yaml";
     let out = solve(Path::new(scene), &options("pcrrt", 5, 30.0)).unwrap();
-    assert!(out.exact);
+    assert!(out.summary.exact);
     let plan = plan_file(scene, "pcrrt", 5, &out);
     assert!(plan.check(Path::new("plan.json")).unwrap().passed());
     let start = plan.start.objects[1];
@@ -77,7 +77,7 @@ fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_awa
 
     // Static RRT treats the clutter as an obstacle: that goal is unreachable for it.
     let stuck = solve(Path::new(scene), &options("static", 5, 1.0)).unwrap();
-    assert!(!stuck.exact);
+    assert!(!stuck.summary.exact);
     let static_plan = plan_file(scene, "static", 5, &stuck);
     // Its plan holds the whole scene, the clutter pinned where it starts.
     assert_eq!(static_plan.objects, ["goal_box", "clutter"]);
@@ -97,7 +97,7 @@ fn the_goal_object_reaches_a_goal_occupied_by_clutter_by_pushing_the_clutter_awa
 fn static_rrt_solves_when_no_clutter_is_in_the_way() {
     let scene = "scenes/herb_single_object.yaml";
     let out = solve(Path::new(scene), &options("static", 2, 30.0)).unwrap();
-    assert!(out.exact);
+    assert!(out.summary.exact);
     assert!(plan_file(scene, "static", 2, &out)
         .check(Path::new("plan.json"))
         .unwrap()
@@ -113,7 +113,7 @@ fn the_same_seed_gives_the_same_plan() {
         (a.states.clone(), a.controls.clone()),
         (b.states, b.controls)
     );
-    assert_eq!(a.tree_size, b.tree_size);
+    assert_eq!(a.summary.tree_size, b.summary.tree_size);
     let c = solve(Path::new(scene), &options("pcrrt", 4, 30.0)).unwrap();
     assert_ne!(
         a.controls, c.controls,
@@ -132,12 +132,12 @@ fn the_same_plan_under_load(scene: &str, parallel: &RunSettings, noise: &RunSett
         competing.join().unwrap().unwrap();
         b
     });
-    assert!(a.exact);
+    assert!(a.summary.exact);
     assert_eq!(
-        (&a.states, &a.controls, a.tree_size),
-        (&b.states, &b.controls, b.tree_size)
+        (&a.states, &a.controls, a.summary.tree_size),
+        (&b.states, &b.controls, b.summary.tree_size)
     );
-    assert_eq!(a.propagation_steps, b.propagation_steps);
+    assert_eq!(a.summary.propagation_steps, b.summary.propagation_steps);
     a
 }
 
@@ -158,7 +158,7 @@ fn pdst_out_of_time_returns_an_approximate_path_that_re_simulates() {
             },
         )
         .unwrap_or_else(|e| panic!("{threads} thread(s): {e}"));
-        assert!(!out.exact);
+        assert!(!out.summary.exact);
         assert!(
             !out.controls.is_empty(),
             "an approximate path of some controls"
@@ -195,7 +195,7 @@ fn push_kpiece_on_two_threads_gives_the_same_plan_whatever_the_timing() {
     };
     let a = the_same_plan_under_load(scene, &two, &options("kpiece", 9, 3.0));
     // Every propagation of both lanes is in the search's statistics.
-    assert!(a.search.steps >= a.propagation_steps);
+    assert!(a.search.steps >= a.summary.propagation_steps);
     assert!(plan_file(scene, "push_kpiece", 2, &a)
         .check(Path::new("plan.json"))
         .unwrap()
@@ -206,7 +206,7 @@ fn push_kpiece_on_two_threads_gives_the_same_plan_whatever_the_timing() {
 fn push_kpiece_solves_the_clutter_scene_the_same_way_for_the_same_seed() {
     let scene = "scenes/herb_fig1_clutter.yaml";
     let a = solve(Path::new(scene), &options("push_kpiece", 2, 60.0)).unwrap();
-    assert!(a.exact);
+    assert!(a.summary.exact);
     let plan = plan_file(scene, "push_kpiece", 2, &a);
     assert!(plan.check(Path::new("plan.json")).unwrap().passed());
     assert!(plan
@@ -219,10 +219,10 @@ fn push_kpiece_solves_the_clutter_scene_the_same_way_for_the_same_seed() {
     for planner in ["push_kpiece", "kpiece"] {
         let once = solve(Path::new(scene), &options(planner, 2, 60.0)).unwrap();
         let again = solve(Path::new(scene), &options(planner, 2, 60.0)).unwrap();
-        assert!(once.exact, "{planner}");
+        assert!(once.summary.exact, "{planner}");
         assert_eq!(
-            (&once.states, &once.controls, once.tree_size),
-            (&again.states, &again.controls, again.tree_size),
+            (&once.states, &once.controls, once.summary.tree_size),
+            (&again.states, &again.controls, again.summary.tree_size),
             "{planner}"
         );
     }
@@ -249,27 +249,38 @@ fn a_search_without_a_solution_starts_over_with_luby_budgets() {
         ..options("push_kpiece", 1, 60.0)
     };
     let a = solve(Path::new(scene), &restarting).unwrap();
-    assert!(a.exact);
-    assert!(a.restarts >= 2, "{} restarts", a.restarts);
+    assert!(a.summary.exact);
+    assert!(a.summary.restarts >= 2, "{} restarts", a.summary.restarts);
     // Each attempt but the last spent its budget (and at most one extension more: OMPL
     // asks whether to stop between extensions); the last solved within its own.
     let budgets = |attempts: u64| (1..=attempts).map(|i| base * luby(i)).sum::<u64>();
     // Steps of one extension at most: k = 3 controls of up to 0.5 s in 0.01 s steps.
     let longest_extension = 3 * 50;
-    assert!(a.propagation_steps >= budgets(a.restarts));
+    assert!(a.summary.propagation_steps >= budgets(a.summary.restarts));
     assert!(
-        a.propagation_steps < budgets(a.restarts + 1) + (a.restarts + 1) * longest_extension,
+        a.summary.propagation_steps
+            < budgets(a.summary.restarts + 1) + (a.summary.restarts + 1) * longest_extension,
         "{} steps in {} attempts",
-        a.propagation_steps,
-        a.restarts + 1
+        a.summary.propagation_steps,
+        a.summary.restarts + 1
     );
     let plan = plan_file(scene, "push_kpiece", 1, &a);
     assert!(plan.check(Path::new("plan.json")).unwrap().passed());
     // Counted in steps: the same attempts and plan again.
     let b = solve(Path::new(scene), &restarting).unwrap();
     assert_eq!(
-        (&a.states, &a.controls, a.restarts, a.propagation_steps),
-        (&b.states, &b.controls, b.restarts, b.propagation_steps)
+        (
+            &a.states,
+            &a.controls,
+            a.summary.restarts,
+            a.summary.propagation_steps
+        ),
+        (
+            &b.states,
+            &b.controls,
+            b.summary.restarts,
+            b.summary.propagation_steps
+        )
     );
     // A budget the search never reaches changes nothing.
     let never = |restart_steps| RunSettings {
@@ -278,10 +289,10 @@ fn a_search_without_a_solution_starts_over_with_luby_budgets() {
     };
     let without = solve(Path::new(scene), &never(0)).unwrap();
     let unreached = solve(Path::new(scene), &never(u64::MAX / 4)).unwrap();
-    assert_eq!(unreached.restarts, 0);
+    assert_eq!(unreached.summary.restarts, 0);
     assert_eq!(
-        (&without.states, without.propagation_steps),
-        (&unreached.states, unreached.propagation_steps)
+        (&without.states, without.summary.propagation_steps),
+        (&unreached.states, unreached.summary.propagation_steps)
     );
 }
 
@@ -295,7 +306,7 @@ fn push_kpiece_pushes_the_goal_object_far_more_often_than_kpiece() {
         let shares: Vec<f64> = (1..=3)
             .map(|seed| {
                 let out = solve(scene, &options(planner, seed, 60.0)).unwrap();
-                assert!(out.exact, "{planner}, seed {seed}: not solved");
+                assert!(out.summary.exact, "{planner}, seed {seed}: not solved");
                 assert!(out.search.propagations >= 50, "{planner}: {:?}", out.search);
                 out.search.moved_goal_object as f64 / out.search.propagations as f64
             })
@@ -354,7 +365,7 @@ fn a_robot_configuration_goal_is_planned_for_too() {
     let path = scratch.join("scene.yaml");
     std::fs::write(&path, text.replace("../robots", "robots")).unwrap();
     let out = solve(&path, &options("pcrrt", 1, 30.0)).unwrap();
-    assert!(out.exact);
+    assert!(out.summary.exact);
     let scene = Scene::load(&path).unwrap();
     let controls = out.controls;
     let plan = PlanFile::build(
@@ -557,8 +568,8 @@ fn push_kpiece_hands_over_to_pc_rrt_only_where_it_makes_no_progress() {
         ..options(planner, 3, time_limit)
     };
     let out = solve(Path::new(scene), &patient(20_000, "push_kpiece", 1.0)).unwrap();
-    assert_eq!(out.fallbacks, 1);
-    assert!(out.approximate && out.propagation_steps > 20_000);
+    assert_eq!(out.summary.fallbacks, 1);
+    assert!(out.summary.approximate && out.summary.propagation_steps > 20_000);
     let report = plan_file(scene, "push_kpiece", 3, &out)
         .check(Path::new("plan.json"))
         .unwrap();
@@ -566,7 +577,7 @@ fn push_kpiece_hands_over_to_pc_rrt_only_where_it_makes_no_progress() {
     // The clutter scene: the goal object moves within the patience, no handover.
     let clutter = "scenes/herb_fig1_clutter.yaml";
     let kept = solve(Path::new(clutter), &patient(2_000, "push_kpiece", 30.0)).unwrap();
-    assert!(kept.exact && kept.fallbacks == 0);
+    assert!(kept.summary.exact && kept.summary.fallbacks == 0);
     // Only Push KPIECE falls back: for another planner the option is an error.
     let err = solve(Path::new(scene), &patient(5, "pcrrt", 1.0)).unwrap_err();
     assert!(
