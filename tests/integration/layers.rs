@@ -216,3 +216,64 @@ fn the_test_build_reuses_the_release_builds_dependencies() {
         "features the dev-dependencies change (add them to [dependencies]): {changed:?}"
     );
 }
+
+/// The functions of each type the bridge declares (`extern "Rust"` in `src/bridge.rs`): a
+/// method's type, an associated function's `#[Self]`, or a free function's first
+/// argument's type.
+fn bridge_functions() -> std::collections::BTreeMap<String, Vec<String>> {
+    let text = std::fs::read_to_string(root().join("src/bridge.rs")).unwrap();
+    let block = &text[text.find("extern \"Rust\" {").expect("the bridge's Rust side")..];
+    let block = &block[..block.find("\n    }\n").expect("its end")];
+    let mut owners = std::collections::BTreeMap::<String, Vec<String>>::new();
+    let mut self_type: Option<String> = None;
+    for declaration in block.split(';') {
+        for line in declaration.lines().map(str::trim) {
+            if let Some(name) = line
+                .strip_prefix("#[Self = \"")
+                .and_then(|l| l.strip_suffix("\"]"))
+            {
+                self_type = Some(name.to_string());
+            }
+        }
+        let Some(at) = declaration.find("fn ") else {
+            continue;
+        };
+        let signature: String = declaration[at + 3..].split_whitespace().collect();
+        let (name, rest) = signature.split_once('(').unwrap();
+        let first = rest.split([',', ')']).next().unwrap_or("");
+        let owner = self_type.take().unwrap_or_else(|| {
+            let ty = first.split(':').nth(1).unwrap_or("free");
+            ty.trim_start_matches('&')
+                .trim_start_matches("mut")
+                .to_string()
+        });
+        owners.entry(owner).or_default().push(name.to_string());
+    }
+    owners
+}
+
+#[test]
+fn no_type_of_the_bridge_has_more_than_ten_functions() {
+    let owners = bridge_functions();
+    for ty in [
+        "Problem",
+        "Propagator",
+        "ValidityChecker",
+        "Metric",
+        "NearestTree",
+        "Goal",
+        "Projection",
+        "Finisher",
+        "Darrt",
+        "Grasping",
+    ] {
+        assert!(owners.contains_key(ty), "{ty} is not in {owners:?}");
+    }
+    let wide: Vec<_> = owners.iter().filter(|(_, fns)| fns.len() > 10).collect();
+    assert!(wide.is_empty(), "types with more than ten functions: {wide:?}");
+    // The scan counts what is there: the propagator's calls are all found.
+    assert_eq!(
+        owners["Propagator"],
+        ["new", "propagate", "set_time_limit", "steps", "seconds", "search_stats"]
+    );
+}
