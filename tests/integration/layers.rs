@@ -222,7 +222,9 @@ fn the_test_build_reuses_the_release_builds_dependencies() {
 /// argument's type.
 fn bridge_functions() -> std::collections::BTreeMap<String, Vec<String>> {
     let text = std::fs::read_to_string(root().join("src/bridge.rs")).unwrap();
-    let block = &text[text.find("extern \"Rust\" {").expect("the bridge's Rust side")..];
+    let block = &text[text
+        .find("extern \"Rust\" {")
+        .expect("the bridge's Rust side")..];
     let block = &block[..block.find("\n    }\n").expect("its end")];
     let mut owners = std::collections::BTreeMap::<String, Vec<String>>::new();
     let mut self_type: Option<String> = None;
@@ -270,10 +272,20 @@ fn no_type_of_the_bridge_has_more_than_ten_functions() {
         assert!(owners.contains_key(ty), "{ty} is not in {owners:?}");
     }
     let wide: Vec<_> = owners.iter().filter(|(_, fns)| fns.len() > 10).collect();
-    assert!(wide.is_empty(), "types with more than ten functions: {wide:?}");
+    assert!(
+        wide.is_empty(),
+        "types with more than ten functions: {wide:?}"
+    );
     // The scan counts what is there: the propagator's calls are all found.
     assert_eq!(
         owners["Propagator"],
-        ["new", "propagate", "set_time_limit", "steps", "seconds", "search_stats"]
+        [
+            "new",
+            "propagate",
+            "set_time_limit",
+            "steps",
+            "seconds",
+            "search_stats"
+        ]
     );
 }

@@ -125,6 +125,16 @@ namespace pushplan::detail
     {
         rng_.setLocalSeed(seed);
         goal_bias_ = view_->info().planner.goal_bias;
+        const std::size_t dof = view_->info().dof;
+        arms_.setDistanceFunction([this, dof](int a, int b) {
+            const FlatState &x = a < 0 ? arm_query_ : nodes_[a].state;
+            const FlatState &y = b < 0 ? arm_query_ : nodes_[b].state;
+            double d = 0.0;
+            for (std::size_t i = 0; i < dof; ++i)
+                d += (x[i] - y[i]) * (x[i] - y[i]);
+            return std::sqrt(d);
+        });
+
         specs_.approximateSolutions = false;
         specs_.directed = true;
         declareParam<double>("goal_bias", this, &Darrt::setGoalBias, &Darrt::getGoalBias, "0.:.05:1.");
@@ -148,6 +158,7 @@ namespace pushplan::detail
         for (Node &node : nodes_)
             si_->freeState(node.ompl_state);
         nodes_.clear();
+        arms_.clear();
     }
 
     int Darrt::addNode(int parent, std::vector<FlatState> motion, std::vector<std::int64_t> held)
@@ -162,7 +173,9 @@ namespace pushplan::detail
         node.motion = std::move(motion);
         node.held = std::move(held);
         nodes_.push_back(std::move(node));
-        return static_cast<int>(nodes_.size()) - 1;
+        const int index = static_cast<int>(nodes_.size()) - 1;
+        arms_.add(index);
+        return index;
     }
 
     bool Darrt::rrtTransit(int from, const FlatState &to, const ob::PlannerTerminationCondition &ptc,
@@ -177,16 +190,7 @@ namespace pushplan::detail
         const bridge::SceneInfo &info = view_->info();
         FlatState q(info.dof);
         sampleJoints(info, rng_, q.data());
-        int nearest = 0;
-        double best = std::numeric_limits<double>::infinity();
-        for (std::size_t n = 0; n < nodes_.size(); ++n)
-        {
-            double d = 0.0;
-            for (std::size_t i = 0; i < info.dof; ++i)
-                d += std::pow(nodes_[n].state[i] - q[i], 2);
-            if (d < best)
-                best = d, nearest = static_cast<int>(n);
-        }
+        const int nearest = nearestArm(q);
         FlatState target = nodes_[nearest].state;
         std::copy(q.begin(), q.end(), target.begin());
         if (!validity_->is_valid(slice(target), {}))
@@ -207,20 +211,7 @@ namespace pushplan::detail
         const auto [x, y] = toward_goal ? sampleInGoalDisc(info, rng_) : sampleOnTable(info, rng_);
         const std::array<double, 3> target{x, y, sampleYaw(rng_)};
 
-        // The node whose copy of the object is nearest (centre distance). Many nodes share
-        // an object pose (every arm motion keeps it); ties are broken uniformly, so that
-        // the arm configurations the tree has reached serve as starts of a Push.
-        const std::size_t at = FlatLayout{info.dof, info.objects}.object(static_cast<std::size_t>(object));
-        int nearest = 0, ties = 0;
-        double best = std::numeric_limits<double>::infinity();
-        for (std::size_t n = 0; n < nodes_.size(); ++n)
-        {
-            const double d = std::hypot(nodes_[n].state[at] - target[0], nodes_[n].state[at + 1] - target[1]);
-            if (d < best)
-                best = d, nearest = static_cast<int>(n), ties = 1;
-            else if (d == best && rng_.uniformInt(0, ties++) == 0)
-                nearest = static_cast<int>(n);
-        }
+        const int nearest = nearestObject(object, {target[0], target[1]});
         if (pick_place_ > 0.0 && rng_.uniform01() < pick_place_)
         {
             const int placed = pickPlace(nearest, object, target);
@@ -258,6 +249,34 @@ namespace pushplan::detail
         for (std::size_t k = 0; k < placed.states.size(); k += n)
             motion.emplace_back(placed.states.begin() + k, placed.states.begin() + k + n);
         return addNode(from, std::move(motion), std::vector<std::int64_t>(placed.held.begin(), placed.held.end()));
+    }
+
+    int Darrt::nearestArm(const FlatState &q) const
+    {
+        arm_query_ = q;
+        return arms_.nearest(-1);
+    }
+
+    int Darrt::nearestObject(int object, const std::array<double, 2> &xy)
+    {
+        // A scan of every node: many nodes share an object's place (every arm motion keeps
+        // it), and ties are broken uniformly as they come (a reservoir of one), so that the
+        // arm configurations the tree has reached serve as starts of a Push. The draws
+        // depend on the order of the scan; a nearest-neighbour structure would draw
+        // differently (docs/notes: DARRT's nearest neighbours).
+        const std::size_t at =
+            FlatLayout{view_->info().dof, view_->info().objects}.object(static_cast<std::size_t>(object));
+        int nearest = 0, ties = 0;
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t n = 0; n < nodes_.size(); ++n)
+        {
+            const double d = std::hypot(nodes_[n].state[at] - xy[0], nodes_[n].state[at + 1] - xy[1]);
+            if (d < best)
+                best = d, nearest = static_cast<int>(n), ties = 1;
+            else if (d == best && rng_.uniformInt(0, ties++) == 0)
+                nearest = static_cast<int>(n);
+        }
+        return nearest;
     }
 
     ob::PlannerStatus Darrt::solve(const ob::PlannerTerminationCondition &ptc)

@@ -12,6 +12,9 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <array>
+#include <ompl/datastructures/NearestNeighborsGNATNoThreadSafety.h>
+
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -115,6 +118,11 @@ namespace pushplan::detail
         bool rrtTransit(int from, const FlatState &to, const ompl::base::PlannerTerminationCondition &ptc,
                         std::vector<FlatState> &motion);
         ompl::base::PlannerStatus report(int goal_node);
+        /// The node whose arm configuration is nearest `q` (joint space, Euclidean).
+        int nearestArm(const FlatState &q) const;
+        /// The node whose copy of `object` is nearest `xy` (centre distance), ties broken
+        /// uniformly.
+        int nearestObject(int object, const std::array<double, 2> &xy);
         /// Is the tree state `state` in the goal region (the problem definition's goal)?
         bool reachesGoal(const ompl::base::State *state) const;
 
@@ -128,5 +136,10 @@ namespace pushplan::detail
         double pick_place_ = 0.0;
         std::vector<Node> nodes_;
         std::uint64_t transit_calls_ = 0;
+
+        /// The tree's nodes by arm configuration (OMPL's GNAT; -1 stands for the query).
+        ompl::NearestNeighborsGNATNoThreadSafety<int> arms_;
+        mutable FlatState arm_query_;
+
     };
 }  // namespace pushplan::detail
