@@ -9,7 +9,7 @@ use cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
     plan, plots, robot, PickPlaceOptions, PlanOptions, RobotQuery,
 };
-use pushplan::benchmark::grid::{Grid, Shard};
+use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
 use pushplan::planning::{PlannerKind, RunSettings};
 use pushplan::scene::builtin;
@@ -214,23 +214,15 @@ enum Command {
     /// One run of one planner on one scene, in its own process (used by `bench`).
     #[command(hide = true)]
     BenchScene {
-        scene: PathBuf,
+        /// The benchmark folder: its manifest holds the grid.
+        out: PathBuf,
+        /// The cell: indices into the grid's scenes and planners, and the run.
         #[arg(long)]
-        planner: PlannerKind,
+        scene: usize,
+        #[arg(long)]
+        planner: usize,
         #[arg(long)]
         run: u32,
-        #[arg(long)]
-        time: f64,
-        #[arg(long)]
-        shortcut: f64,
-        #[arg(long)]
-        seed: u64,
-        #[arg(long)]
-        restart: Option<u64>,
-        #[arg(long)]
-        fallback: Option<u64>,
-        #[arg(long, default_value_t = 1)]
-        threads: u32,
         #[arg(long)]
         log: PathBuf,
     },
@@ -528,35 +520,20 @@ fn run(command: Command) -> Result<ExitCode, String> {
         Command::Plots { dir } => plots(&dir),
         Command::Install { prefix } => install(&prefix),
         Command::BenchScene {
+            out,
             scene,
             planner,
             run,
-            time,
-            shortcut,
-            seed,
-            restart,
-            fallback,
-            threads,
             log,
-        } => {
-            let params = pushplan::Scene::load(&scene)
-                .map_err(|e| e.to_string())?
-                .planner;
-            let own = RunSettings::of_scene(planner, &params);
-            let settings = RunSettings {
-                time_limit: time,
-                seed,
-                shortcut,
-                threads,
-                restart_steps: restart.unwrap_or(own.restart_steps),
-                // The grid's patience is push_kpiece's: the others never fall back.
-                fallback_steps: match own.fallback_steps {
-                    0 => 0,
-                    own => fallback.unwrap_or(own),
-                },
-                ..own
-            };
-            bench_scene(&OmplSearch, &scene, &settings, run, &log)
-        }
+        } => bench_scene(
+            &OmplSearch,
+            &out,
+            Cell {
+                scene,
+                planner,
+                run,
+            },
+            &log,
+        ),
     }
 }

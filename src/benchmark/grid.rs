@@ -2,7 +2,8 @@
 //! of it a shard runs. Each cell runs in a process of its own, seeded from the grid's seed
 //! and its run index only, so a cell is the same run whichever shard or machine runs it.
 
-use crate::planning::PlannerKind;
+use crate::planning::{PlannerKind, RunSettings};
+use crate::scene::PlannerParams;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -122,6 +123,47 @@ impl Grid {
             self.threads
         } else {
             1
+        }
+    }
+
+    /// The settings of `cell`'s run, for its scene's `planner:` parameters: the grid's
+    /// time limit, shortcut budget, seed (the run's own seeds derive from it and the run's
+    /// index) and threads ([`Grid::threads_of`]), its restart budget instead of the
+    /// planner's own, and its patience for push_kpiece (the others never fall back).
+    pub fn run_settings(&self, cell: Cell, params: &PlannerParams) -> RunSettings {
+        let planner = self.planners[cell.planner];
+        let own = RunSettings::of_scene(planner, params);
+        RunSettings {
+            time_limit: self.time,
+            seed: self.seed,
+            shortcut: self.shortcut,
+            threads: self.threads_of(planner),
+            restart_steps: self.restart.unwrap_or(own.restart_steps),
+            fallback_steps: match own.fallback_steps {
+                0 => 0,
+                patience => self.fallback.unwrap_or(patience),
+            },
+            ..own
+        }
+    }
+
+    /// `cell` if it is a cell of this grid, else why not.
+    pub fn checked(&self, cell: Cell) -> Result<Cell, String> {
+        if cell.scene < self.scenes.len()
+            && cell.planner < self.planners.len()
+            && cell.run < self.runs
+        {
+            Ok(cell)
+        } else {
+            Err(format!(
+                "cell (scene {}, planner {}, run {}) is outside the grid of {} scenes, {} planners and {} runs",
+                cell.scene,
+                cell.planner,
+                cell.run,
+                self.scenes.len(),
+                self.planners.len(),
+                self.runs
+            ))
         }
     }
 

@@ -117,26 +117,11 @@ fn spawn_cell(exe: &Path, grid: &Grid, cell: Cell, out: &Path) -> Result<Child, 
         .map_err(|e| format!("{}: {e}", log.with_extension("err").display()))?;
     Command::new(exe)
         .arg("bench-scene")
-        .arg(&grid.scenes[cell.scene])
-        .args(["--planner", grid.planners[cell.planner].name()])
+        // The cell's settings are the grid's, read from the manifest in `out`.
+        .arg(out)
+        .args(["--scene", &cell.scene.to_string()])
+        .args(["--planner", &cell.planner.to_string()])
         .args(["--run", &cell.run.to_string()])
-        .args(["--time", &grid.time.to_string()])
-        .args(["--shortcut", &grid.shortcut.to_string()])
-        .args(["--seed", &grid.seed.to_string()])
-        .args(
-            grid.restart
-                .into_iter()
-                .flat_map(|steps| ["--restart".to_string(), steps.to_string()]),
-        )
-        .args(
-            grid.fallback
-                .into_iter()
-                .flat_map(|steps| ["--fallback".to_string(), steps.to_string()]),
-        )
-        .args([
-            "--threads",
-            &grid.threads_of(grid.planners[cell.planner]).to_string(),
-        ])
         .arg("--log")
         .arg(partial_log(&log))
         .stdout(Stdio::null())

@@ -2,10 +2,9 @@
 //! a cell per process (a shard of it, if asked), merged into a Planner Arena database, and
 //! the paper's plots drawn from the logs.
 
-use pushplan::benchmark::grid::{Grid, Shard};
+use pushplan::benchmark::grid::{Cell, Grid, Manifest, Shard};
 use pushplan::benchmark::run::{merge, run_shard};
 use pushplan::planner::Search;
-use pushplan::planning::RunSettings;
 use pushplan::Scene;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -57,18 +56,20 @@ pub fn bench(
     })
 }
 
-/// `bench-scene`: one cell of the grid, run in a process of its own by [`bench`]: run
-/// `run` of one planner on one scene with OMPL's benchmark tooling, its log written to
-/// `log`.
+/// `bench-scene`: one cell of the grid whose manifest is in `out`, run in a process of
+/// its own by [`bench`] with OMPL's benchmark tooling, its log written to `log`.
 pub fn bench_scene(
     search: &dyn Search,
-    scene: &Path,
-    settings: &RunSettings,
-    run: u32,
+    out: &Path,
+    cell: Cell,
     log: &Path,
 ) -> Result<ExitCode, String> {
+    let grid = Manifest::read(out)?.grid;
+    let cell = grid.checked(cell)?;
+    let scene = &grid.scenes[cell.scene];
+    let params = Scene::load(scene).map_err(|e| e.to_string())?.planner;
     search
-        .benchmark(scene, settings, run, log)
+        .benchmark(scene, &grid.run_settings(cell, &params), cell.run, log)
         .map(|_| ExitCode::SUCCESS)
 }
 

@@ -408,34 +408,30 @@ for name, threads, counted, credited, solved in c.execute("""select p.name, r.th
         "threads, every lane's steps counted, solved"
     );
 
+    // A cell runs with its grid's settings, read from the folder's manifest (the threads
+    // above: two for the KPIECE planners, one for PC RRT). A cell outside the grid, or a
+    // folder without a manifest, is refused with the reason.
     let log = out.join("refused.log");
-    let refused = Command::new(env!("CARGO_BIN_EXE_pushplan"))
-        .args([
-            "bench-scene",
-            "scenes/benchmark/scene_10.yaml",
-            "--planner",
-            "pcrrt",
-            "--run",
-            "0",
-            "--time",
-            "1",
-            "--shortcut",
-            "0",
-            "--seed",
-            "1",
-            "--threads",
-            "2",
-            "--log",
-        ])
-        .arg(&log)
-        .output()
-        .unwrap();
-    let messages = String::from_utf8_lossy(&refused.stderr);
-    assert_eq!(refused.status.code(), Some(2), "{messages}");
+    let cell = |folder: &std::path::Path, planner: &str| {
+        Command::new(env!("CARGO_BIN_EXE_pushplan"))
+            .arg("bench-scene")
+            .arg(folder)
+            .args(["--scene", "0", "--planner", planner, "--run", "0", "--log"])
+            .arg(&log)
+            .output()
+            .unwrap()
+    };
+    let outside = cell(&out, "3");
+    let messages = String::from_utf8_lossy(&outside.stderr);
+    assert_eq!(outside.status.code(), Some(2), "{messages}");
     assert!(
-        messages.contains("threads") && messages.contains("only push_kpiece and kpiece"),
+        messages.contains("outside the grid of 1 scenes, 3 planners and 1 runs"),
         "{messages}"
     );
+    let elsewhere = cell(&out.join("cells"), "0");
+    let messages = String::from_utf8_lossy(&elsewhere.stderr);
+    assert_eq!(elsewhere.status.code(), Some(2), "{messages}");
+    assert!(messages.contains("grid.json"), "{messages}");
     assert!(!log.exists());
     let zero = pushplan(
         &[
