@@ -14,7 +14,7 @@
 //! | [`Darrt`]           | DARRT's primitives                   | `Darrt`                        |
 //! | [`Grasping`]        | grasp regions                        | `IkBiRrt`, `Planner::reach`    |
 //!
-//! The parts of one problem share its [`core`] state (the mode, the perturbed worlds,
+//! The parts of one problem share its core state (the mode, the perturbed worlds,
 //! the last propagation's result). Declarations and one-line delegations only here; the
 //! types are in their files. States and controls cross in the flat layouts of
 //! [`crate::state::State::to_flat`] and [`crate::robot::EeAction::from_flat`]. Failures

@@ -160,7 +160,7 @@ impl PushHeading {
     /// The objects in the goal object's way, each with a place out of it. An object the
     /// goal object could touch anywhere in the goal disc goes radially out of the disc's
     /// reach, or sideways off the corridor below when radially out is in it
-    /// ([`Self::sideways_out_of_the_way`]). An object the goal object would touch on the
+    /// (`sideways_out_of_the_way`). An object the goal object would touch on the
     /// straight line to the goal centre (that corridor) goes sideways off the line, to the
     /// side it stands on unless the hand could not stand behind it for that push (beyond
     /// the table's edge, farther from the arm's base than the object): then across the

@@ -34,7 +34,7 @@ pub enum PlannerKind {
     Sst = 6,
     /// DARRT with the PickPlace primitive beside Push (the paper's suggestion, Sec. V-A).
     DarrtPickPlace = 7,
-    /// KPIECE1 whose controls mostly follow push headings ([`super::PushHeading`]):
+    /// KPIECE1 whose controls mostly follow push headings (the planner's `PushHeading`):
     /// pushplan's own planner.
     PushKpiece = 8,
 }

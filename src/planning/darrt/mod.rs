@@ -5,11 +5,11 @@
 //! - **Transit** ([`crate::planning::transit`]): the arm moves along a straight line in configuration
 //!   space, the objects stay where they are; every configuration on the line is a valid
 //!   state. RRTTransit chains Transit motions found by OMPL's RRT-Connect.
-//! - **Push** ([`cage`], [`carry`]): the hand cages one object, which then moves rigidly
+//! - **Push** ([`cage`], [`carry()`]): the hand cages one object, which then moves rigidly
 //!   with the tool along a straight line in SE(2) while the tool stays on its pushing
 //!   plane. Nothing but the hand may touch the carried object beyond the usual contact,
 //!   and the carried object must stay clear of the other objects and the obstacles.
-//! - **PickPlace** ([`pick_place`]): the hand grasps one object, carries it through the
+//! - **PickPlace** ([`pick_place()`]): the hand grasps one object, carries it through the
 //!   air and sets it down elsewhere, by the manipulation graph (the paper's suggestion,
 //!   Sec. V-A; the planner `darrt_pick`, measured beside DARRT without it).
 //!
