@@ -316,7 +316,7 @@ namespace pushplan
             while (winner && run.robust_trials > 0)
             {
                 const bridge::FinishedPath repaired = detail::finish(
-                    *models[*winner], found, true, bridge::FinishSettings{run.robust_shortcut, seed, run.robust_trials,
+                    *bridge::Finisher::make(models[*winner]->problem()), found, true, bridge::FinishSettings{run.robust_shortcut, seed, run.robust_trials,
                                                         run.robust_rate, time_limit - elapsed()});
                 plan.robustness = repaired.robustness;
                 if (plan.robustness >= run.robust_rate)
@@ -374,8 +374,9 @@ namespace pushplan
             // A robust solution was measured in the perturbed worlds as it was kept: without
             // shortcutting the path stays that one, and its robustness stands.
             const bool measured = solved && run.robust_trials > 0 && run.shortcut == 0.0;
+            const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(model->problem());
             const bridge::FinishedPath path = detail::finish(
-                *model, found, solved,
+                *finisher, found, solved,
                 bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate,
                                        time_limit - elapsed()});
             plan.before_shortcut = path.before;
@@ -403,8 +404,7 @@ namespace pushplan
                                                 static_cast<double>(path.steps[i]) * info.planner.step, path.steps[i]});
             }
             const bridge::Trajectory trajectory =
-                bridge::Finisher::make(model->problem())
-                    ->trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
+                finisher->trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
                                  rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
             plan.trajectory.rate = trajectory.rate;
             for (std::size_t k = 0; k < trajectory.times.size(); ++k)

@@ -48,12 +48,11 @@ namespace pushplan
         }
 
         /// Finishes a found path the one way the model does (re-simulated, shortcut, kept
-        /// robust: planning::finish) in `model`'s problem.
-        inline bridge::FinishedPath finish(const ModelHandle &model, const FlatPath &found, bool solved,
+        /// robust: planning::finish).
+        inline bridge::FinishedPath finish(const bridge::Finisher &finisher, const FlatPath &found, bool solved,
                                            const bridge::FinishSettings &settings)
         {
-            return bridge::Finisher::make(model.problem())
-                ->finish(slice(found.controls), slice(found.steps), slice(found.states), solved, settings);
+            return finisher.finish(slice(found.controls), slice(found.steps), slice(found.states), solved, settings);
         }
 
         /// Options with every unset value taken from the scene (`info`).
@@ -67,10 +66,11 @@ namespace pushplan
                    const std::function<void(const Progress &)> &tell);
 
         /// Reaches a grasp of `object` in the scene `load` reads as the settings
-        /// `settings_of` gives for it (checked here), from the end of `after` or the scene's
-        /// start: what Planner::reach and the CLI's reach do. Throws pushplan::Error.
+        /// `settings_of` gives for it (checked here), from the flat state `start_of` gives
+        /// for it: what Planner::reach and the CLI's reach do. Throws pushplan::Error.
         Reach reach(const std::function<rust::Box<bridge::Problem>()> &load, const std::string &object,
-                    const std::function<ReachSettings(const bridge::SceneInfo &)> &settings_of, const Plan *after);
+                    const std::function<ReachSettings(const bridge::SceneInfo &)> &settings_of,
+                    const std::function<std::vector<double>(const bridge::SceneInfo &)> &start_of);
     }  // namespace detail
 
     struct Planner::Source

@@ -54,11 +54,12 @@ namespace pushplan
                                                               options.seed.value_or(info.planner.seed),
                                                               options.sample_probability};
                              },
-                             after);
+                             [&](const bridge::SceneInfo &info) { return detail::reachStart(info, after); });
     }
 
     Reach detail::reach(const std::function<rust::Box<bridge::Problem>()> &load, const std::string &object,
-                        const std::function<ReachSettings(const bridge::SceneInfo &)> &settings_of, const Plan *after)
+                        const std::function<ReachSettings(const bridge::SceneInfo &)> &settings_of,
+                        const std::function<std::vector<double>(const bridge::SceneInfo &)> &start_of)
     {
         return detail::asPushplanError([&] {
             const detail::ModelHandle model(load());
@@ -71,7 +72,7 @@ namespace pushplan
             detail::checked("sample_probability", settings.sample_probability,
                             settings.sample_probability >= 0.0 && settings.sample_probability <= 1.0);
             const std::uint64_t seed = settings.seed;
-            const detail::FlatState from = detail::reachStart(info, after);
+            const detail::FlatState from = start_of(info);
 
             ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
             detail::ArmSpace space(model);

@@ -57,23 +57,24 @@ namespace pushplan::bridge
         return out;
     }
 
-    ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from_q,
-                      rust::Slice<const double> from_objects, const detail::ReachSettings &settings)
+    ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from,
+                      const detail::ReachSettings &settings)
     {
         const std::string path(scene_path);
-        // A state to reach from is passed as the one state of a plan.
-        Plan after;
-        after.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(from_q.data(), from_q.size()));
-        after.object_poses.emplace_back();
-        for (std::size_t at = 0; at + 3 <= from_objects.size(); at += 3)
-            after.object_poses.back().emplace_back(from_objects[at], from_objects[at + 1], from_objects[at + 2]);
         std::size_t dof = 0;
-        const Reach r = detail::reach([&] { return Problem::load(path); }, std::string(object),
-                                      [&](const SceneInfo &info) {
-                                          dof = info.dof;
-                                          return settings;
-                                      },
-                                      from_q.empty() ? nullptr : &after);
+        const Reach r = detail::reach(
+            [&] { return Problem::load(path); }, std::string(object),
+            [&](const SceneInfo &info) {
+                dof = info.dof;
+                return settings;
+            },
+            [&](const SceneInfo &info) {
+                if (from.empty())
+                    return std::vector<double>(info.start.begin(), info.start.end());
+                if (from.size() != detail::FlatLayout{info.dof, info.objects}.size())
+                    throw Error("reach: the state to reach from is not of this scene");
+                return std::vector<double>(from.begin(), from.end());
+            });
         ReachOutput out;
         out.solved = r.solved;
         out.planning_time = r.planning_time;

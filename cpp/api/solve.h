@@ -16,8 +16,7 @@ namespace pushplan::bridge
     SolveOutput solve(rust::Str scene_path, const detail::RunSettings &settings, bool report,
                       rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress);
 
-    /// Reaches a grasp of `object` from the arm at `from_q` with the objects at
-    /// `from_objects` (x, y, yaw each); from the scene's start if `from_q` is empty.
-    ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from_q,
-                      rust::Slice<const double> from_objects, const detail::ReachSettings &settings);
+    /// Reaches a grasp of `object` from the flat state `from` (the scene's start if empty).
+    ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from,
+                      const detail::ReachSettings &settings);
 }  // namespace pushplan::bridge

@@ -20,13 +20,13 @@ namespace pushplan::detail
         if (view_)
             throw std::logic_error("perturbed worlds must be set before the state space is made");
         problem_->set_particles(count, seed);
-        particle_values_ = problem_->start_particles().size();
     }
 
     const std::shared_ptr<const StateView> &ModelHandle::view() const
     {
         if (!view_)
-            view_ = std::make_shared<const StateView>(info_, particle_values_, problem_->static_clutter());
+            view_ = std::make_shared<const StateView>(info_, problem_->start_particles().size(),
+                                                      problem_->static_clutter());
         return view_;
     }
 

@@ -76,7 +76,6 @@ namespace pushplan::detail
         std::shared_ptr<const bridge::SceneInfo> info_;
         mutable rust::Box<bridge::Propagator> propagator_;
         rust::Box<bridge::Goal> goal_;
-        std::size_t particle_values_ = 0;
         /// Null until fixed.
         mutable std::shared_ptr<const StateView> view_;
         std::uint64_t credited_steps_ = 0;

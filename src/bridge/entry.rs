@@ -60,14 +60,12 @@ pub mod ffi {
             report: bool,
             progress: fn(report: &SearchProgress, note: &str),
         ) -> Result<SolveOutput>;
-        /// Reaches a grasp of `object` with IK-BiRRT from the arm at `from_q` with the
-        /// objects at `from_objects` (x, y, yaw each); from the scene's start if `from_q`
-        /// is empty.
+        /// Reaches a grasp of `object` with IK-BiRRT from the flat state `from`; from the
+        /// scene's start if `from` is empty.
         fn reach(
             scene_path: &str,
             object: &str,
-            from_q: &[f64],
-            from_objects: &[f64],
+            from: &[f64],
             settings: &ReachSettings,
         ) -> Result<ReachOutput>;
         include!("pushplan/cpp/api/benchmark.h");
@@ -127,14 +125,8 @@ impl Search for OmplSearch {
         from: Option<&State>,
         settings: &ReachSettings,
     ) -> Result<Reached, String> {
-        let (q, objects): (Vec<f64>, Vec<f64>) = match from {
-            Some(s) => (
-                s.q.as_slice().to_vec(),
-                s.objects.iter().flat_map(|p| [p.x, p.y, p.theta]).collect(),
-            ),
-            None => (Vec::new(), Vec::new()),
-        };
-        let out = ffi::reach(&scene.to_string_lossy(), object, &q, &objects, settings)
+        let from = from.map(State::to_flat).unwrap_or_default();
+        let out = ffi::reach(&scene.to_string_lossy(), object, &from, settings)
             .map_err(|e| e.what().to_string())?;
         Ok(Reached {
             solved: out.solved,

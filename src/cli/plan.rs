@@ -49,7 +49,6 @@ fn reach(
     from: Option<&State>,
     run: &PlanOptions,
     search_settings: &RunSettings,
-    dof: usize,
 ) -> Result<Option<ReachRecord>, String> {
     if !(0.0..=1.0).contains(&run.sample_probability) {
         return Err(format!(
@@ -78,7 +77,7 @@ fn reach(
         waypoints: found
             .waypoints
             .iter()
-            .map(|q| q.as_slice()[..dof].to_vec())
+            .map(|q| q.as_slice().to_vec())
             .collect(),
     }))
 }
@@ -164,8 +163,7 @@ pub fn plan(
     if let Some(object) = &run.grasp_goal {
         // Reaching a grasp only: no controls, the reach from the start.
         pushplan::planning::reach::graspable_object(&scene, object)?;
-        let dof = scene.robot.dof();
-        let found = reach(search, scene_path, object, None, run, &options, dof)?;
+        let found = reach(search, scene_path, object, None, run, &options)?;
         let solved = found.is_some();
         let mut file = PlanFile::build(&reference, scene.clone(), &settings, &[], None)?;
         if let Some(record) = found {
@@ -260,7 +258,7 @@ pub fn plan(
         let goal_object = problem.scene().goal.object().expect("checked above");
         let name = problem.scene().objects[goal_object].name.clone();
         let end = file.end_state();
-        match reach(search, scene_path, &name, Some(&end), run, &options, dof)? {
+        match reach(search, scene_path, &name, Some(&end), run, &options)? {
             Some(record) => file = file.with_reach(problem.scene(), record)?,
             None => {
                 file.solved = false;

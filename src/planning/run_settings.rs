@@ -50,8 +50,8 @@ pub struct RunSettings {
 
 impl RunSettings {
     /// `planner` as the scene's `planner:` parameters say, with the planner's own restart
-    /// and fallback budgets, 3 s of shortcutting, one thread, no robust planning (its
-    /// rate and budget at the C++ API's defaults).
+    /// and fallback budgets, on one thread, with no shortcutting and no robust planning:
+    /// the callers (the CLI's flags, a benchmark grid) set the rest.
     pub fn of_scene(planner: PlannerKind, params: &PlannerParams) -> RunSettings {
         RunSettings {
             planner,
@@ -63,9 +63,9 @@ impl RunSettings {
             time_limit: params.time_limit,
             seed: params.seed,
             goal_bias: params.goal_bias,
-            shortcut: 3.0,
-            robust_rate: 0.95,
-            robust_shortcut: 3.0,
+            shortcut: 0.0,
+            robust_rate: 0.0,
+            robust_shortcut: 0.0,
             restart_steps: planner.restart_steps(),
             fallback_steps: planner.fallback_steps(),
         }
