@@ -47,9 +47,8 @@ pub use validity::ValidityChecker;
 use crate::planner::NearestTree;
 use crate::planning::PlannerKind;
 use convert::{
-    add_search_stats, planner_cut_at_time_limit, planner_fallback_steps, planner_kind,
-    planner_name, planner_restart_steps, planner_shares_one_search, planner_yields_controls,
-    search_stats,
+    add_search_stats, planner_cut_at_time_limit, planner_kind, planner_name,
+    planner_shares_one_search, planner_yields_controls, run_settings_of_scene, search_stats,
 };
 use metric::{tree_add, tree_nearest, tree_nearest_k, tree_nearest_r};
 
@@ -67,8 +66,10 @@ macro_rules! trivial_twins {
 // SAFETY: each Rust type is `#[repr(..)]` with the layout of its C++ twin, a trivial
 // type. `PlannerKind`: the values of `enum class PlannerKind : std::uint8_t`
 // (tests/cpp/api_contract.cpp sends every kind through the bridge and back);
-// `PathMetrics` (include/pushplan/pushplan.h) and the rest (cpp/problem/bridge_types.h):
-// the same fields in the same order, checked there by static_assert on their offsets.
+// `PathMetrics` (include/pushplan/pushplan.h): the same fields in the same order, checked
+// by static_assert in cpp/problem/bridge_types.h. The rest: build.rs generates the C++
+// twins from these declarations, and both compilers check the offsets it computed (the
+// Rust side: twin_layout.rs, below).
 trivial_twins! {
     PlannerKind => "pushplan::PlannerKind",
     crate::planning::path::PathMetrics => "pushplan::PathMetrics",
@@ -78,6 +79,7 @@ trivial_twins! {
     crate::planner::ReachSettings => "pushplan::detail::ReachSettings",
     PlannerParams => "pushplan::detail::PlannerParams",
 }
+include!(concat!(env!("OUT_DIR"), "/twin_layout.rs"));
 
 /// The scene's planner parameters as the bridge carries them: the model's type, whose
 /// layout C++ shares (a wrapper because the model crate does not know cxx).
@@ -322,8 +324,8 @@ pub mod ffi {
 
         fn planner_name(kind: PlannerKind) -> &'static str;
         fn planner_yields_controls(kind: PlannerKind) -> bool;
-        fn planner_restart_steps(kind: PlannerKind) -> u64;
-        fn planner_fallback_steps(kind: PlannerKind) -> u64;
+        /// `planning::RunSettings::of_scene`: the settings no option changes.
+        fn run_settings_of_scene(kind: PlannerKind, params: &PlannerParams) -> RunSettings;
         fn planner_shares_one_search(kind: PlannerKind) -> bool;
         fn planner_cut_at_time_limit(kind: PlannerKind) -> bool;
         fn planner_kind(name: &str) -> Result<PlannerKind>;
@@ -338,5 +340,7 @@ pub mod ffi {
         include!("pushplan/cpp/problem/bridge_types.h");
         #[namespace = "pushplan::detail"]
         type PlannerParams = crate::bridge::PlannerParams;
+        #[namespace = "pushplan::detail"]
+        type RunSettings = crate::planning::RunSettings;
     }
 }

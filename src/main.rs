@@ -7,11 +7,11 @@ mod install;
 use clap::{Parser, Subcommand};
 use cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
-    plan, plots, robot, PickPlaceOptions, PlanOptions, RobotQuery,
+    plan, plots, robot, PickPlaceOptions, PlanOptions, RobotQuery, SearchFlags,
 };
 use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
-use pushplan::planning::{PlannerKind, RunSettings};
+use pushplan::planning::PlannerKind;
 use pushplan::scene::builtin;
 use pushplan::scene::generate::Design;
 use std::path::PathBuf;
@@ -34,71 +34,17 @@ enum Command {
     Plan {
         /// Scene file (YAML).
         scene: Option<PathBuf>,
-        /// Search time limit (s); default: the scene's planner.time_limit.
-        #[arg(long)]
-        time: Option<f64>,
-        /// Random seed; default: the scene's planner.seed.
-        #[arg(long)]
-        seed: Option<u64>,
-        /// Control samples per extension; default: the scene's planner.k.
-        #[arg(long)]
-        k: Option<u32>,
-        /// push_kpiece (KPIECE1 guided by push headings), pcrrt (the paper's RRT), static
-        /// (only the goal object moves), or one of OMPL's control planners on the same
-        /// problem: kpiece, est, pdst, sst.
-        #[arg(long, default_value_t = PlannerKind::PushKpiece)]
-        planner: PlannerKind,
+        #[command(flatten)]
+        search: SearchFlags,
         /// Where to write the plan.
         #[arg(long, default_value = "plan.json")]
         out: PathBuf,
         /// Also render the plan's pictures into this folder.
         #[arg(long)]
         render: Option<PathBuf>,
-        /// Shortcutting budget in seconds of work (0 turns it off).
-        #[arg(long, default_value_t = 3.0)]
-        shortcut: f64,
-        /// Add every propagation step to the tree (OMPL RRT's intermediate_states; off by
-        /// default, see BENCHMARKS.md).
-        #[arg(long)]
-        intermediate_states: bool,
         /// No progress output.
         #[arg(long)]
         quiet: bool,
-        /// Keep a solution only if at least --robust-rate of this many re-simulations from
-        /// perturbed scenes (as `check --noise`) reach the goal; search on otherwise.
-        #[arg(long, default_value_t = 0)]
-        robust: u32,
-        /// The fraction of --robust re-simulations that must reach the goal (0.95: one
-        /// perturbed world in 20 may miss; BENCHMARKS.md, "19 of 20 perturbed worlds").
-        #[arg(long, default_value_t = 0.95)]
-        robust_rate: f64,
-        /// Shortcutting budget (seconds of work) spent on each solution that is not robust
-        /// enough, toward the path that reaches the goal in the most perturbed scenes, before
-        /// it is dropped.
-        #[arg(long, default_value_t = 3.0)]
-        robust_shortcut: f64,
-        /// With --robust: perturbed worlds every tree state carries; an extension is kept
-        /// only if it is valid in each, and the goal is reached only when it is reached in
-        /// each (0: none, only the check of each solution).
-        #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
-        particles: u32,
-        /// Threads to plan on: the KPIECE planners extend one search on all of them, the
-        /// others run a search on each, in rounds of propagation steps (the same seed and
-        /// thread count give the same plan); default: one per core.
-        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
-        threads: Option<u32>,
-        /// A search that finds no solution within this many propagation steps starts over
-        /// with a new tree, later attempts with Luby multiples (1, 1, 2, 1, 1, 2, 4, ...);
-        /// 0: never. Default: the planner's (push_kpiece: 400000, about 2 s; the others
-        /// never).
-        #[arg(long, value_name = "STEPS")]
-        restart: Option<u64>,
-        /// push_kpiece only: when this many propagation steps have not moved the goal
-        /// object (the arm cannot get to it), PC RRT searches on from the start for the rest
-        /// of the time, on one thread; 0: never. Default: 1000000 (about 3 s in dense
-        /// clutter).
-        #[arg(long, value_name = "STEPS")]
-        fallback: Option<u64>,
         /// The goal instead of the scene's: `grasp:OBJECT` reaches a grasp of OBJECT (its
         /// scene `grasps`) with IK-BiRRT, every object a static obstacle, no pushing.
         #[arg(long, value_name = "grasp:OBJECT")]
@@ -368,48 +314,17 @@ fn run(command: Command) -> Result<ExitCode, String> {
     match command {
         Command::Plan {
             scene,
-            time,
-            seed,
-            k,
-            planner,
+            search,
             out,
             render,
-            shortcut,
-            intermediate_states,
             quiet,
-            robust,
-            robust_rate,
-            robust_shortcut,
-            particles,
-            threads,
-            restart,
-            fallback,
             goal,
             grasp,
             sample_probability,
         } => {
             let scene = scene_or_default(scene)?;
-            let threads = threads.unwrap_or_else(cli::cores);
             let options = PlanOptions {
-                settings: Box::new(move |params| {
-                    let own = RunSettings::of_scene(planner, params);
-                    RunSettings {
-                        intermediate_states,
-                        k: k.unwrap_or(own.k),
-                        threads,
-                        robust_trials: robust,
-                        robust_particles: particles,
-                        time_limit: time.unwrap_or(own.time_limit),
-                        seed: seed.unwrap_or(own.seed),
-                        shortcut,
-                        robust_rate,
-                        robust_shortcut,
-                        restart_steps: restart.unwrap_or(own.restart_steps),
-                        fallback_steps: fallback.unwrap_or(own.fallback_steps),
-                        ..own
-                    }
-                }),
-                k_given: k.is_some(),
+                search,
                 quiet,
                 grasp_goal: goal.map(|g| cli::grasp_goal(&g)).transpose()?,
                 grasp_after: grasp,

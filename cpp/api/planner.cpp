@@ -134,24 +134,28 @@ namespace pushplan
 
     namespace detail
     {
+        /// `to` = `from`: an option given, or one that is always given (the planner).
+        template <class T, class U>
+        void given(T &to, const std::optional<U> &from)
+        {
+            if (from)
+                to = static_cast<T>(*from);
+        }
+        template <class T>
+        void given(T &to, const T &from)
+        {
+            to = from;
+        }
+
         RunSettings resolve(const Options &options, const bridge::SceneInfo &info)
         {
-            RunSettings run{};
-            run.planner = options.planner;
-            run.intermediate_states = options.intermediate_states;
-            run.k = options.k.value_or(info.planner.k);
-            run.threads = options.threads.value_or(defaultThreads());
-            run.robust_trials = options.robust_trials;
-            run.robust_particles = options.robust_particles;
-            run.time_limit = options.time_limit.value_or(info.planner.time_limit);
-            run.seed = options.seed.value_or(info.planner.seed);
-            run.goal_bias = options.goal_bias.value_or(info.planner.goal_bias);
-            run.shortcut = options.shortcut;
-            run.robust_rate = options.robust_rate;
-            run.robust_shortcut = options.robust_shortcut;
-            const PlannerKind kind = checkedKind(options.planner);
-            run.restart_steps = options.restart_steps.value_or(bridge::planner_restart_steps(kind));
-            run.fallback_steps = options.fallback_steps.value_or(bridge::planner_fallback_steps(kind));
+            // The settings no option changes (Rust's, as the CLI's), on every core; then
+            // each option given. Options has a field of each name RunSettings has.
+            RunSettings run = bridge::run_settings_of_scene(checkedKind(options.planner), info.planner);
+            run.threads = defaultThreads();
+#define PUSHPLAN_GIVEN(field) given(run.field, options.field);
+            PUSHPLAN_RUN_SETTINGS_FIELDS(PUSHPLAN_GIVEN)
+#undef PUSHPLAN_GIVEN
             return run;
         }
 

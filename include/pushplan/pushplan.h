@@ -91,39 +91,36 @@ namespace pushplan
         std::string note;
     };
 
-    /// Planner options. Unset values take the scene file's `planner:` values.
+    /// Planner options. Unset values take the scene file's `planner:` values, or the
+    /// library's defaults (the same as the CLI's: Rust's `planning::RunSettings::of_scene`).
     struct Options
     {
+        PlannerKind planner = PlannerKind::PushKpiece;
         std::optional<double> time_limit;     ///< search time (s)
         std::optional<std::uint64_t> seed;    ///< random seed
         std::optional<unsigned> k;            ///< control samples per extension
         std::optional<double> goal_bias;      ///< probability of sampling the goal
-        PlannerKind planner = PlannerKind::PushKpiece;
         /// Shortcutting budget after an exact solution, in seconds of work (counted in
-        /// propagation steps, so the result is deterministic); 0 turns it off.
-        double shortcut = 3.0;
+        /// propagation steps, so the result is deterministic); 0 turns it off. Default 3.
+        std::optional<double> shortcut;
         /// Add every propagation step to the tree (OMPL RRT's intermediate_states).
-        bool intermediate_states = false;
-        /// Print progress to stderr once a second.
-        bool progress = false;
-        /// Called with the progress once a second and at events instead of printing it
-        /// (whatever `progress` says), on the thread that called solve().
-        std::function<void(const Progress &)> on_progress;
+        /// Default false.
+        std::optional<bool> intermediate_states;
         /// Keep a solution only if at least `robust_rate` of this many re-simulations from
         /// perturbed scenes (object start poses +-5 mm / +-0.05 rad; mass, frictions and
-        /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on. 0: no check.
-        /// The default rate lets one perturbed world in 20 miss (BENCHMARKS.md).
-        unsigned robust_trials = 0;
-        double robust_rate = 0.95;
+        /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on. Default 0: no check.
+        std::optional<unsigned> robust_trials;
+        /// Default 0.95: one perturbed world in 20 may miss (BENCHMARKS.md).
+        std::optional<double> robust_rate;
         /// Shortcutting budget (seconds of work) spent on each solution that is not robust
         /// enough, toward the path that reaches the goal in the most perturbed scenes (drawn
-        /// apart from the check's), before it is dropped.
-        double robust_shortcut = 3.0;
+        /// apart from the check's), before it is dropped. Default 3.
+        std::optional<double> robust_shortcut;
         /// Perturbed worlds (drawn as the check's) every tree state carries in robust
         /// planning: an extension is kept only if it is valid in each, and the goal is
-        /// reached only when each world's goal object is in the disc. 0: none (the check
-        /// alone). Only with robust_trials > 0, in the pushing problem (not Static RRT).
-        unsigned robust_particles = 0;
+        /// reached only when each world's goal object is in the disc. Default 0: none (the
+        /// check alone). Only with robust_trials > 0, in the pushing problem (not Static RRT).
+        std::optional<unsigned> robust_particles;
         /// Threads to plan on; default: one per core. The KPIECE planners run one search
         /// whose extensions run in parallel on threads + 1 lanes (a model each) and join the
         /// tree in a fixed order; the others one search per thread, in lock-step rounds
@@ -140,6 +137,12 @@ namespace pushplan
         /// targets sweep the arm's postures). 0: never. Default: the planner's (Push
         /// KPIECE 1 000 000, the others 0; another planner with a value > 0 is an error).
         std::optional<std::uint64_t> fallback_steps;
+
+        /// Print progress to stderr once a second.
+        bool progress = false;
+        /// Called with the progress once a second and at events instead of printing it
+        /// (whatever `progress` says), on the thread that called solve().
+        std::function<void(const Progress &)> on_progress;
     };
 
     /// A link pushing an object during one propagation step.

@@ -6,20 +6,19 @@ use super::Propagator;
 use crate::planner::SearchStats;
 use crate::planning::darrt::PrimitivePath;
 use crate::planning::path::{PathControl, PathMetrics};
-use crate::planning::PlannerKind;
 use crate::planning::{FinishSettings, FinishedPath, RobustRequirement};
+use crate::planning::{PlannerKind, RunSettings};
 use crate::scene::{Goal, Scene};
 
 pub(super) fn planner_name(kind: PlannerKind) -> &'static str {
     kind.name()
 }
 
-pub(super) fn planner_restart_steps(kind: PlannerKind) -> u64 {
-    kind.restart_steps()
-}
-
-pub(super) fn planner_fallback_steps(kind: PlannerKind) -> u64 {
-    kind.fallback_steps()
+pub(super) fn run_settings_of_scene(
+    kind: PlannerKind,
+    params: &super::PlannerParams,
+) -> RunSettings {
+    RunSettings::of_scene(kind, &params.0)
 }
 
 pub(super) fn planner_shares_one_search(kind: PlannerKind) -> bool {

@@ -10,6 +10,7 @@ mod pick_place;
 mod plan;
 mod progress;
 mod robot;
+mod search_flags;
 
 pub use bench::{bench, bench_merge, bench_scene, plots};
 pub use check::check;
@@ -18,6 +19,7 @@ pub use files::{draw, generate_scenes, install};
 pub use pick_place::{check_pick_place, pick_place, PickPlaceOptions, PICK_PLACE_FORMAT};
 pub use plan::{grasp_goal, plan, PlanOptions};
 pub use robot::{robot, RobotQuery};
+pub use search_flags::SearchFlags;
 
 /// The cores this process may use (at least 1): the default of `plan --threads` and
 /// `bench --jobs`.

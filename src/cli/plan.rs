@@ -1,11 +1,11 @@
 //! `pushplan plan`: search a scene with OMPL, finish the path, write the plan file.
 
 use super::progress;
+use super::SearchFlags;
 use pushplan::planner::{ReachSettings, Search};
 use pushplan::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
 use pushplan::planning::shortcut::ShortcutProgress;
 use pushplan::planning::{FinishSettings, PlannerKind, Problem, RobustRequirement, RunSettings};
-use pushplan::scene::PlannerParams;
 use pushplan::state::State;
 use pushplan::Scene;
 use std::path::Path;
@@ -14,11 +14,8 @@ use std::process::ExitCode;
 /// The `plan` command's options: the search's settings as the flags set them, and what
 /// the command does around the search.
 pub struct PlanOptions {
-    /// The search's settings for a scene's `planner:` parameters: the flags' values where
-    /// they are given, the scene's otherwise.
-    pub settings: Box<dyn Fn(&PlannerParams) -> RunSettings>,
-    /// Whether `--k` was given (a note says when the planner does not use it).
-    pub k_given: bool,
+    /// The search's flags (the scene's `planner:` values where they are not given).
+    pub search: SearchFlags,
     /// No progress output.
     pub quiet: bool,
     /// `--goal grasp:OBJECT`: reach a grasp of this object instead of pushing.
@@ -98,7 +95,7 @@ pub fn plan(
         std::fs::create_dir_all(folder)
             .map_err(|e| format!("{}: cannot make the plan's folder: {e}", folder.display()))?;
     }
-    let options = (run.settings)(&scene.planner);
+    let options = run.search.settings(&scene.planner);
     let (planner, quiet) = (options.planner, run.quiet);
     let seed = options.seed;
     if options.fallback_steps > 0 && planner.fallback_steps() == 0 {
@@ -129,7 +126,7 @@ pub fn plan(
             options.k
         ));
     }
-    if run.k_given && !planner.takes_best_of_k() {
+    if run.search.k.is_some() && !planner.takes_best_of_k() {
         let takers: Vec<&str> = PlannerKind::ALL
             .into_iter()
             .filter(|kind| kind.takes_best_of_k())

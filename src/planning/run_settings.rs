@@ -8,8 +8,10 @@ use crate::scene::PlannerParams;
 
 /// How one search runs, every value resolved (no "the scene's default" left).
 ///
-/// Laid out as C++'s `pushplan::detail::RunSettings` (`cpp/problem/bridge_types.h`
-/// checks the offsets): keep the two in the same order.
+/// C++'s `pushplan::detail::RunSettings` is generated from this declaration (build.rs),
+/// and C++'s `pushplan::Options` must have a field of each name: a new setting is a field
+/// here, its default in [`RunSettings::of_scene`], a flag (`cli::SearchFlags`) and an
+/// option (`include/pushplan/pushplan.h`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunSettings {
@@ -50,8 +52,10 @@ pub struct RunSettings {
 
 impl RunSettings {
     /// `planner` as the scene's `planner:` parameters say, with the planner's own restart
-    /// and fallback budgets, on one thread, with no shortcutting and no robust planning:
-    /// the callers (the CLI's flags, a benchmark grid) set the rest.
+    /// and fallback budgets, on one thread, with the defaults of what no scene sets (3 s of
+    /// shortcutting; no robust planning, and when it is asked for, 19 of 20 perturbed
+    /// worlds with 3 s of shortcutting toward them): the front doors (the CLI's flags,
+    /// C++'s `Options`, a benchmark grid) set the rest. The one place of these defaults.
     pub fn of_scene(planner: PlannerKind, params: &PlannerParams) -> RunSettings {
         RunSettings {
             planner,
@@ -63,9 +67,9 @@ impl RunSettings {
             time_limit: params.time_limit,
             seed: params.seed,
             goal_bias: params.goal_bias,
-            shortcut: 0.0,
-            robust_rate: 0.0,
-            robust_shortcut: 0.0,
+            shortcut: 3.0,
+            robust_rate: 0.95,
+            robust_shortcut: 3.0,
             restart_steps: planner.restart_steps(),
             fallback_steps: planner.fallback_steps(),
         }

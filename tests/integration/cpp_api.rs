@@ -235,11 +235,12 @@ fn run_internal_checks(source: &str, name: &str, checks: usize) {
     run_checks(&compile_with(source, name, &internal_includes()), checks);
 }
 
-/// The library's internal headers: cxx's generated ones and the crate's, which the build
-/// script put under OUT_DIR.
-fn internal_includes() -> [String; 2] {
-    let bridge = PathBuf::from(env!("OUT_DIR")).join("cxxbridge");
-    ["include", "crate"].map(|d| format!("-I{}", bridge.join(d).display()))
+/// The library's internal headers: cxx's generated ones, the crate's, and the C++ twins
+/// of the bridge's Rust types, which the build script put under OUT_DIR.
+fn internal_includes() -> [String; 3] {
+    let out = PathBuf::from(env!("OUT_DIR"));
+    ["cxxbridge/include", "cxxbridge/crate", "twins"]
+        .map(|d| format!("-I{}", out.join(d).display()))
 }
 
 #[test]
