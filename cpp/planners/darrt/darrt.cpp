@@ -134,6 +134,17 @@ namespace pushplan::detail
                 d += (x[i] - y[i]) * (x[i] - y[i]);
             return std::sqrt(d);
         });
+        for (std::size_t i = 0; i < view_->info().objects; ++i)
+        {
+            auto places = std::make_unique<ObjectPlaces>();
+            ObjectPlaces *p = places.get();
+            p->tree.setDistanceFunction([p](int a, int b) {
+                const std::array<double, 2> &x = a < 0 ? p->query : p->xy[a];
+                const std::array<double, 2> &y = b < 0 ? p->query : p->xy[b];
+                return std::hypot(x[0] - y[0], x[1] - y[1]);
+            });
+            places_.push_back(std::move(places));
+        }
 
         specs_.approximateSolutions = false;
         specs_.directed = true;
@@ -159,6 +170,13 @@ namespace pushplan::detail
             si_->freeState(node.ompl_state);
         nodes_.clear();
         arms_.clear();
+        for (auto &places : places_)
+        {
+            places->tree.clear();
+            places->xy.clear();
+            places->nodes.clear();
+            places->id.clear();
+        }
     }
 
     int Darrt::addNode(int parent, std::vector<FlatState> motion, std::vector<std::int64_t> held)
@@ -175,6 +193,22 @@ namespace pushplan::detail
         nodes_.push_back(std::move(node));
         const int index = static_cast<int>(nodes_.size()) - 1;
         arms_.add(index);
+        const FlatState &state = nodes_.back().state;
+        const FlatLayout layout = view_->flat();
+        for (std::size_t i = 0; i < places_.size(); ++i)
+        {
+            ObjectPlaces &places = *places_[i];
+            const std::size_t at = layout.object(i);
+            const std::array<double, 2> xy{state[at], state[at + 1]};
+            const auto [it, is_new] = places.id.emplace(xy, static_cast<int>(places.xy.size()));
+            if (is_new)
+            {
+                places.xy.push_back(xy);
+                places.nodes.emplace_back();
+                places.tree.add(it->second);
+            }
+            places.nodes[it->second].push_back(index);
+        }
         return index;
     }
 
@@ -259,24 +293,14 @@ namespace pushplan::detail
 
     int Darrt::nearestObject(int object, const std::array<double, 2> &xy)
     {
-        // A scan of every node: many nodes share an object's place (every arm motion keeps
-        // it), and ties are broken uniformly as they come (a reservoir of one), so that the
-        // arm configurations the tree has reached serve as starts of a Push. The draws
-        // depend on the order of the scan; a nearest-neighbour structure would draw
-        // differently (docs/notes: DARRT's nearest neighbours).
-        const std::size_t at =
-            FlatLayout{view_->info().dof, view_->info().objects}.object(static_cast<std::size_t>(object));
-        int nearest = 0, ties = 0;
-        double best = std::numeric_limits<double>::infinity();
-        for (std::size_t n = 0; n < nodes_.size(); ++n)
-        {
-            const double d = std::hypot(nodes_[n].state[at] - xy[0], nodes_[n].state[at + 1] - xy[1]);
-            if (d < best)
-                best = d, nearest = static_cast<int>(n), ties = 1;
-            else if (d == best && rng_.uniformInt(0, ties++) == 0)
-                nearest = static_cast<int>(n);
-        }
-        return nearest;
+        // The nearest place, then one of its nodes drawn uniformly: the arm configurations
+        // the tree has reached with the object there all serve as starts of a Push.
+        ObjectPlaces &places = *places_[static_cast<std::size_t>(object)];
+        places.query = xy;
+        const std::vector<int> &there = places.nodes[places.tree.nearest(-1)];
+        if (there.size() == 1)
+            return there.front();
+        return there[rng_.uniformInt(0, static_cast<int>(there.size()) - 1)];
     }
 
     ob::PlannerStatus Darrt::solve(const ob::PlannerTerminationCondition &ptc)

@@ -10,13 +10,13 @@
 #include <ompl/control/PathControl.h>
 #include <ompl/control/SpaceInformation.h>
 #include <ompl/util/RandomNumbers.h>
-
-#include <array>
 #include <ompl/datastructures/NearestNeighborsGNATNoThreadSafety.h>
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace pushplan::detail
@@ -120,8 +120,8 @@ namespace pushplan::detail
         ompl::base::PlannerStatus report(int goal_node);
         /// The node whose arm configuration is nearest `q` (joint space, Euclidean).
         int nearestArm(const FlatState &q) const;
-        /// The node whose copy of `object` is nearest `xy` (centre distance), ties broken
-        /// uniformly.
+        /// The node whose copy of `object` is nearest `xy` (centre distance), one drawn
+        /// uniformly among the nodes that share the nearest place.
         int nearestObject(int object, const std::array<double, 2> &xy);
         /// Is the tree state `state` in the goal region (the problem definition's goal)?
         bool reachesGoal(const ompl::base::State *state) const;
@@ -141,5 +141,18 @@ namespace pushplan::detail
         ompl::NearestNeighborsGNATNoThreadSafety<int> arms_;
         mutable FlatState arm_query_;
 
+        /// The distinct places (x, y) one object takes in the tree's nodes, in OMPL's GNAT.
+        /// Most nodes share an object's place (every arm motion keeps it), so the structure
+        /// holds places, each with its nodes in the order they joined the tree.
+        struct ObjectPlaces
+        {
+            std::vector<std::array<double, 2>> xy;  ///< place id -> (x, y), m, world frame
+            std::vector<std::vector<int>> nodes;    ///< place id -> nodes there
+            std::map<std::array<double, 2>, int> id;
+            ompl::NearestNeighborsGNATNoThreadSafety<int> tree;  ///< place ids; -1: the query
+            std::array<double, 2> query{};
+        };
+        /// One per object.
+        std::vector<std::unique_ptr<ObjectPlaces>> places_;
     };
 }  // namespace pushplan::detail
