@@ -7,7 +7,8 @@ mod install;
 use clap::{Parser, Subcommand};
 use cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
-    plan, plots, robot, PickPlaceOptions, PlanOptions, RobotQuery, SearchFlags,
+    plan, plots, replan, robot, PickPlaceOptions, PlanOptions, ReplanOptions, RobotQuery,
+    SearchFlags,
 };
 use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
@@ -57,6 +58,28 @@ enum Command {
         /// solutions of the grasp regions to the goal tree.
         #[arg(long, default_value_t = 0.1)]
         sample_probability: f64,
+    },
+    /// The rest of a plan from a state observed while it ran (a JSON file of joint values
+    /// and object poses by name, docs/commands.md): the plan's remaining controls if they
+    /// still reach the goal from there, else a new search from it.
+    Replan {
+        /// Plan file (JSON, written by `plan` or `replan`).
+        plan: PathBuf,
+        /// The observed state (JSON, format pushplan-observed/1).
+        #[arg(long)]
+        observed: PathBuf,
+        /// The control at whose start the state was observed; default: the one after the
+        /// plan's recorded state nearest the observation.
+        #[arg(long, value_name = "CONTROL")]
+        at: Option<usize>,
+        /// Where to write the new plan.
+        #[arg(long, default_value = "replanned.json")]
+        out: PathBuf,
+        /// No progress output.
+        #[arg(long)]
+        quiet: bool,
+        #[command(flatten)]
+        search: SearchFlags,
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is
     /// reached; with --noise, also how often perturbed re-simulations still reach it.
@@ -329,12 +352,27 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 grasp_goal: goal.map(|g| cli::grasp_goal(&g)).transpose()?,
                 grasp_after: grasp,
                 sample_probability,
+                from: None,
             };
             plan(&OmplSearch, &scene, &options, &out).and_then(|code| match render {
                 Some(dir) => draw(&out, &dir, &[]).map(|_| code),
                 None => Ok(code),
             })
         }
+        Command::Replan {
+            plan,
+            observed,
+            at,
+            out,
+            quiet,
+            search,
+        } => replan(
+            &OmplSearch,
+            &plan,
+            &observed,
+            ReplanOptions { at, search, quiet },
+            &out,
+        ),
         Command::Check { plan, noise, seed } => check(&plan, noise, seed),
         Command::Execute {
             plan,

@@ -6,8 +6,8 @@
 
 namespace pushplan::bridge
 {
-    SolveOutput solve(rust::Str scene_path, const detail::RunSettings &settings, bool report,
-                      rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress)
+    SolveOutput solve(rust::Str scene_path, rust::Slice<const double> start, const detail::RunSettings &settings,
+                      bool report, rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress)
     {
         const std::string path(scene_path);
         // The caller finishes the path itself (planning::finish), to report on it.
@@ -20,7 +20,13 @@ namespace pushplan::bridge
                                                 p.tree_states.value_or(0), p.closest_goal_distance, p.searches},
                          p.note);
             };
-        const Plan plan = detail::solve([&] { return Problem::load(path); },
+        const auto load = [&] {
+            rust::Box<Problem> problem = Problem::load(path);
+            if (!start.empty())
+                problem->set_start(start);
+            return problem;
+        };
+        const Plan plan = detail::solve(load,
                                         [&](const SceneInfo &) { return run; }, tell);
         SolveOutput out;
         out.summary = detail::SearchSummary{plan.solved,          !plan.solved && !plan.controls.empty(),

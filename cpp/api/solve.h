@@ -10,11 +10,12 @@ namespace pushplan::bridge
     struct SolveOutput;
     struct ReachOutput;
 
-    /// Searches a scene file as `settings` say, telling `progress` how far it is (a note:
-    /// an event) when `report` is set; the path comes back as found (not shortcut). Throws (a Rust Err)
-    /// on bad input.
-    SolveOutput solve(rust::Str scene_path, const detail::RunSettings &settings, bool report,
-                      rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress);
+    /// Searches a scene file as `settings` say, from the flat state `start` (the scene's
+    /// start if empty), telling `progress` how far it is (a note: an event) when `report`
+    /// is set; the path comes back as found (not shortcut). Throws (a Rust Err) on bad
+    /// input.
+    SolveOutput solve(rust::Str scene_path, rust::Slice<const double> start, const detail::RunSettings &settings,
+                      bool report, rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress);
 
     /// Reaches a grasp of `object` from the flat state `from` (the scene's start if empty).
     ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from,

@@ -52,10 +52,12 @@ pub mod ffi {
         #[namespace = "pushplan::detail"]
         type SearchSummary = crate::planner::SearchSummary;
         include!("pushplan/cpp/api/solve.h");
-        /// Searches the scene file with OMPL, telling `progress` how far it is when
-        /// `report` is set; the path comes back as found (not shortcut).
+        /// Searches the scene file with OMPL from the flat state `start` (the scene's
+        /// start if empty), telling `progress` how far it is when `report` is set; the
+        /// path comes back as found (not shortcut).
         fn solve(
             scene_path: &str,
+            start: &[f64],
             settings: &RunSettings,
             report: bool,
             progress: fn(report: &SearchProgress, note: &str),
@@ -103,11 +105,19 @@ impl Search for OmplSearch {
     fn solve(
         &self,
         scene: &Path,
+        start: Option<&State>,
         settings: &RunSettings,
         progress: Option<Progress>,
     ) -> Result<Found, String> {
+        let start = start.map(State::to_flat).unwrap_or_default();
         PROGRESS.with(|p| p.set(progress));
-        let out = ffi::solve(&scene.to_string_lossy(), settings, progress.is_some(), tell);
+        let out = ffi::solve(
+            &scene.to_string_lossy(),
+            &start,
+            settings,
+            progress.is_some(),
+            tell,
+        );
         PROGRESS.with(|p| p.set(None));
         let out = out.map_err(|e| e.what().to_string())?;
         Ok(Found {

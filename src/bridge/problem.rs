@@ -7,6 +7,7 @@ use super::ffi::SceneInfo;
 use crate::planner::ParticleWorlds;
 use crate::planning::static_clutter::StaticClutter;
 use crate::scene::Scene;
+use crate::state::State;
 use std::sync::Arc;
 
 /// A scene loaded for OMPL (OMPL's problem definition and space information, as far as
@@ -40,6 +41,30 @@ impl Problem {
             let scene =
                 Scene::from_yaml(yaml, std::path::Path::new(source)).map_err(|e| e.to_string())?;
             Ok(Box::new(Problem::new(scene)))
+        })
+    }
+
+    /// Plans from `flat` (a state in the flat layout, such as one observed while a plan
+    /// runs) instead of the scene's start, checked as a scene's start is
+    /// ([`Scene::with_start`]). Call it before any part is made from this problem: they
+    /// would keep the old start.
+    pub fn set_start(&mut self, flat: &[f64]) -> Result<(), String> {
+        guarded("set_start", || {
+            let (dof, objects) = (self.scene.robot.dof(), self.scene.objects.len());
+            if flat.len() != State::flat_len(dof, objects) {
+                return Err(format!(
+                    "a start of {} values for a state of {} ({dof} joints, {objects} objects)",
+                    flat.len(),
+                    State::flat_len(dof, objects)
+                ));
+            }
+            let start = State::from_flat(flat, dof);
+            let scene = self
+                .scene
+                .with_start(&start, std::path::Path::new("the observed start"))
+                .map_err(|e| e.to_string())?;
+            *self = Problem::new(scene);
+            Ok(())
         })
     }
 

@@ -9,6 +9,7 @@ mod files;
 mod pick_place;
 mod plan;
 mod progress;
+mod replan;
 mod robot;
 mod search_flags;
 
@@ -18,6 +19,7 @@ pub use execute::execute;
 pub use files::{draw, generate_scenes, install};
 pub use pick_place::{check_pick_place, pick_place, PickPlaceOptions, PICK_PLACE_FORMAT};
 pub use plan::{grasp_goal, plan, PlanOptions};
+pub use replan::{replan, ReplanOptions};
 pub use robot::{robot, RobotQuery};
 pub use search_flags::SearchFlags;
 

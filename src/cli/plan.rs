@@ -3,7 +3,9 @@
 use super::progress;
 use super::SearchFlags;
 use pushplan::planner::{ReachSettings, Search};
-use pushplan::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
+use pushplan::planning::plan_file::{
+    PlanFile, PlanSettings, ReachRecord, ReplanRecord, RobustnessRecord,
+};
 use pushplan::planning::shortcut::ShortcutProgress;
 use pushplan::planning::{FinishSettings, PlannerKind, Problem, RobustRequirement, RunSettings};
 use pushplan::state::State;
@@ -24,6 +26,18 @@ pub struct PlanOptions {
     pub grasp_after: bool,
     /// IK-BiRRT's P_sample.
     pub sample_probability: f64,
+    /// Search from this observed state instead of the scene's start (`replan`).
+    pub from: Option<ObservedStart>,
+}
+
+/// A start observed while a plan ran, and what the new plan records of it.
+pub struct ObservedStart {
+    /// The observed state (checked by [`Scene::with_start`] before the search).
+    pub state: State,
+    /// The file it came from, named in errors.
+    pub source: std::path::PathBuf,
+    /// The new plan's record of where it comes from.
+    pub record: ReplanRecord,
 }
 
 /// The object of a `--goal` value `grasp:OBJECT`.
@@ -90,6 +104,12 @@ pub fn plan(
     // --time bounds the whole command: loading, search, shortcutting and writing.
     let started = std::time::Instant::now();
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
+    let scene = match &run.from {
+        Some(from) => scene
+            .with_start(&from.state, &from.source)
+            .map_err(|e| e.to_string())?,
+        None => scene,
+    };
     // The plan's folder is made before the search, not found missing after it.
     if let Some(folder) = out.parent().filter(|f| !f.as_os_str().is_empty()) {
         std::fs::create_dir_all(folder)
@@ -200,6 +220,7 @@ pub fn plan(
     let solution = search
         .solve(
             scene_path,
+            run.from.as_ref().map(|_| &scene.start),
             &options,
             (!quiet).then_some(progress::search as _),
         )
@@ -244,6 +265,7 @@ pub fn plan(
         &path.controls,
         Some(path.before),
     )?;
+    file.replanned = run.from.as_ref().map(|from| from.record.clone());
     file.robustness = path.robustness.map(|success_rate| RobustnessRecord {
         trials: options.robust_trials as usize,
         required_rate: options.robust_rate,

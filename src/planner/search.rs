@@ -97,12 +97,15 @@ pub struct Reached {
 
 /// The search behind the applications.
 pub trait Search {
-    /// Searches the scene file as `settings` say (its shortcut budget is the caller's to
-    /// spend: the path comes back as found), telling `progress` how far it is: a report
-    /// once a second with an empty note, or an event (a note, with the totals so far).
+    /// Searches the scene file as `settings` say, from `start` (`None`: the scene's start;
+    /// another, such as one observed while a plan runs, is checked as a scene's start is:
+    /// `Scene::with_start`). Its shortcut budget is the caller's to spend: the path comes
+    /// back as found. Tells `progress` how far it is: a report once a second with an empty
+    /// note, or an event (a note, with the totals so far).
     fn solve(
         &self,
         scene: &Path,
+        start: Option<&State>,
         settings: &RunSettings,
         progress: Option<fn(&SearchProgress, &str)>,
     ) -> Result<Found, String>;

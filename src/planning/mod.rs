@@ -19,6 +19,7 @@ pub mod execute;
 mod finish;
 mod kind;
 pub mod manipulation;
+pub mod observed;
 pub mod path;
 pub mod plan_file;
 mod problem;

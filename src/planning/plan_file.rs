@@ -121,6 +121,10 @@ pub struct PlanFile {
     /// after pushing).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reach: Option<ReachRecord>,
+    /// A plan for the rest of another, from a state observed while it ran (`replan`):
+    /// its `start` is that state, not the scene's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replanned: Option<ReplanRecord>,
     /// Fields this format does not have (an error when read).
     #[serde(flatten, skip_serializing)]
     unknown: std::collections::BTreeMap<String, serde::de::IgnoredAny>,
@@ -138,6 +142,21 @@ pub struct ReachRecord {
     /// Joint values, joined by straight lines: the first where the controls end, the
     /// last in a grasp region.
     pub waypoints: Vec<Vec<f64>>,
+}
+
+/// Where a re-planned plan comes from (`pushplan replan`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReplanRecord {
+    /// The plan whose rest this plan is, as given to `replan`.
+    pub plan: String,
+    /// The control of that plan at whose start the world was observed.
+    pub at: usize,
+    /// The observation file, as given to `replan`.
+    pub observed: String,
+    /// True: that plan's remaining controls still reach the goal from the observed state,
+    /// and are this plan's; false: this plan was searched anew from it.
+    pub kept: bool,
 }
 
 /// The reserves of the validity rules a plan keeps (see the scene's `goal.margin`,
@@ -239,6 +258,11 @@ impl StateRecord {
         let mut out = self.q.clone();
         out.extend(self.objects.iter().flatten());
         out
+    }
+
+    /// The state recorded.
+    pub fn state(&self) -> State {
+        State::from_flat(&self.flat(), self.q.len())
     }
 }
 
@@ -386,7 +410,8 @@ impl PlanFile {
     }
 
     /// Loads the scene the plan names (relative to the plan file's folder) and checks
-    /// that the plan's joints and objects are the scene's, by name and in order.
+    /// that the plan's joints and objects are the scene's, by name and in order. A
+    /// re-planned plan's scene starts where the plan does ([`Scene::with_start`]).
     pub fn load_scene(&self, plan_path: &Path) -> Result<Scene, String> {
         let path = self.scene_path(plan_path);
         let is_yaml = path
@@ -419,7 +444,12 @@ impl PlanFile {
                 self.objects
             ));
         }
-        Ok(scene)
+        match self.replanned {
+            Some(_) => scene
+                .with_start(&self.start.state(), plan_path)
+                .map_err(|e| format!("{e} (the plan's start)")),
+            None => Ok(scene),
+        }
     }
 
     /// The plan file's text (pretty JSON, one trailing newline).
@@ -529,6 +559,7 @@ impl PlanFile {
             trajectory: executable(scene, controls, &path.step_states)?,
             robustness: None,
             reach: None,
+            replanned: None,
             unknown: Default::default(),
         })
     }
@@ -557,6 +588,7 @@ impl PlanFile {
             Some(self.metrics.before_shortcut),
         )?;
         rebuilt.robustness.clone_from(&self.robustness);
+        rebuilt.replanned.clone_from(&self.replanned);
         match &self.reach {
             Some(reach) => rebuilt.with_reach(&scene, reach.clone()),
             None => Ok(rebuilt),
@@ -565,8 +597,10 @@ impl PlanFile {
 
     /// The state the controls end in.
     pub fn end_state(&self) -> State {
-        let end = self.controls.last().map_or(&self.start, |c| &c.state);
-        State::from_flat(&end.flat(), self.joints.len())
+        self.controls
+            .last()
+            .map_or(&self.start, |c| &c.state)
+            .state()
     }
 
     /// The reach's waypoints (none without a reach).

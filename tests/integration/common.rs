@@ -26,7 +26,7 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::planning::path::Pa
     };
     let scene_file = "scenes/herb_fig1_clutter.yaml";
     let out = pushplan::bridge::OmplSearch
-        .solve(Path::new(scene_file), &settings, None)
+        .solve(Path::new(scene_file), None, &settings, None)
         .unwrap();
     assert!(
         out.summary.exact,

@@ -22,6 +22,7 @@ mod particles;
 mod planner;
 mod reach;
 mod render;
+mod replan;
 mod robustness;
 mod semi_dynamic;
 mod shortcut;

@@ -22,7 +22,7 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> RunSettings {
 
 /// The search the CLI runs (OMPL's, through the bridge), without progress reports.
 fn solve(scene: &Path, settings: &RunSettings) -> Result<Found, String> {
-    OmplSearch.solve(scene, settings, None)
+    OmplSearch.solve(scene, None, settings, None)
 }
 
 fn settings(planner: &str, seed: u64) -> PlanSettings {

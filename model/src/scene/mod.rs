@@ -8,6 +8,7 @@ mod clearances;
 pub mod file;
 pub mod generate;
 mod load;
+mod start;
 
 pub use clearances::Clearances;
 pub use load::{MAX_CONTROL_STEPS, MAX_FRICTION, MAX_K, MAX_MASS, MAX_OBJECTS, MAX_STEP, MIN_STEP};
