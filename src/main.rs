@@ -7,8 +7,8 @@ mod install;
 use clap::{Parser, Subcommand};
 use cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
-    plan, plots, replan, robot, PickPlaceOptions, PlanOptions, ReplanOptions, RobotQuery,
-    SearchFlags,
+    plan, plots, replan, robot, ClosedLoopFlags, ExecuteOptions, PickPlaceOptions, PlanOptions,
+    ReplanOptions, RobotQuery, SearchFlags,
 };
 use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
@@ -117,6 +117,17 @@ enum Command {
         /// objects drawn over it.
         #[arg(long)]
         render: Option<PathBuf>,
+        /// Closed loop: after each control (or when an object leaves its predicted pose
+        /// by 2 cm), read the world's object poses and joints; re-simulate the rest of the
+        /// plan from there, and re-plan from there when it no longer reaches the goal.
+        #[arg(long)]
+        closed_loop: bool,
+        /// With --closed-loop: each re-planning search's time limit (s).
+        #[arg(long, default_value_t = 2.0, value_name = "SECONDS")]
+        replan_time: f64,
+        /// With --closed-loop: shortcutting of each re-planned path (s of work).
+        #[arg(long, default_value_t = 0.5, value_name = "SECONDS")]
+        replan_shortcut: f64,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,
     /// run) in a process of its own, the logs merged into DIR/results.db (Planner Arena's
@@ -381,13 +392,25 @@ fn run(command: Command) -> Result<ExitCode, String> {
             seed,
             json,
             render,
+            closed_loop,
+            replan_time,
+            replan_shortcut,
         } => execute(
             &plan,
-            trials,
-            speed,
-            seed,
-            json.as_deref(),
-            render.as_deref(),
+            ExecuteOptions {
+                trials,
+                speed,
+                seed,
+                json: json.as_deref(),
+                render: render.as_deref(),
+                closed_loop: closed_loop.then_some((
+                    &OmplSearch as &dyn pushplan::planner::Search,
+                    ClosedLoopFlags {
+                        replan_time,
+                        replan_shortcut,
+                    },
+                )),
+            },
         ),
         Command::Render { plan, out, times } => draw(&plan, &out, &times),
         Command::PickPlace {

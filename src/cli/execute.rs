@@ -1,19 +1,49 @@
-//! `pushplan execute`: play a plan in the 3D engine and report what happened.
+//! `pushplan execute`: play a plan in the 3D engine, open loop or closed loop, and report
+//! what happened.
 
-use pushplan::planning::execute::{ExecuteSettings, ExecutionReport};
+use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopReport, ClosedLoopSettings};
+use pushplan::planner::Search;
+use pushplan::planning::execute::world::SolverSettings;
+use pushplan::planning::execute::{ExecuteSettings, ExecutionReport, DRIFT};
 use pushplan::planning::plan_file::PlanFile;
+use pushplan::planning::robustness::Noise;
 use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 
-pub fn execute(
-    path: &Path,
-    trials: usize,
-    speed: f64,
-    seed: u64,
-    json: Option<&Path>,
-    render: Option<&Path>,
-) -> Result<ExitCode, String> {
+/// How `execute` re-plans in closed loop.
+pub struct ClosedLoopFlags {
+    /// Each re-planning search's time limit (s).
+    pub replan_time: f64,
+    /// Shortcutting of each re-planned path (s of work).
+    pub replan_shortcut: f64,
+}
+
+/// What `execute` is asked.
+pub struct ExecuteOptions<'a> {
+    /// Trials; the first is unperturbed.
+    pub trials: usize,
+    /// Pace relative to the plan's trajectory.
+    pub speed: f64,
+    /// Seed of the perturbations.
+    pub seed: u64,
+    /// Also write the report as JSON here.
+    pub json: Option<&'a Path>,
+    /// Write the nominal execution's animation into this folder (open loop).
+    pub render: Option<&'a Path>,
+    /// Closed loop, re-planning with this search, as the flags say.
+    pub closed_loop: Option<(&'a dyn Search, ClosedLoopFlags)>,
+}
+
+pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String> {
+    let ExecuteOptions {
+        trials,
+        speed,
+        seed,
+        json,
+        render,
+        closed_loop,
+    } = options;
     if !(speed.is_finite() && speed > 0.0) {
         return Err(format!("--speed: must be positive and finite, got {speed}"));
     }
@@ -24,6 +54,52 @@ pub fn execute(
     let scene = plan.load_scene(path)?;
     plan.check_trajectory(&scene)
         .map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some((search, flags)) = closed_loop {
+        if render.is_some() {
+            return Err("--render draws open-loop executions only".into());
+        }
+        for (flag, value) in [
+            ("--replan-time", flags.replan_time),
+            ("--replan-shortcut", flags.replan_shortcut),
+        ] {
+            if !(value.is_finite() && value >= 0.0) || (flag == "--replan-time" && value == 0.0) {
+                return Err(format!("{flag}: must be positive and finite, got {value}"));
+            }
+        }
+        let settings = ClosedLoopSettings {
+            planner: plan.settings.planner,
+            replan_time: flags.replan_time,
+            replan_shortcut: flags.replan_shortcut,
+            seed: plan.settings.seed,
+            max_replans: 20,
+            tolerance: DRIFT,
+            speed,
+            solver: SolverSettings::default(),
+        };
+        if !plan.settings.planner.yields_controls() {
+            return Err(format!(
+                "{}: closed loop re-plans with the plan's planner, {}, which yields no controls",
+                path.display(),
+                plan.settings.planner.name()
+            ));
+        }
+        let closed = ClosedLoop {
+            search,
+            scene_path: &plan.scene_path(path),
+            settings,
+        };
+        let report = closed.trials(&scene, &plan.path_controls(), trials, &Noise::world(), seed)?;
+        print_closed_loop(path, &report, speed);
+        if let Some(json) = json {
+            let text = serde_json::to_string_pretty(&report).expect("reports serialise") + "\n";
+            std::fs::write(json, text).map_err(|e| format!("{}: {e}", json.display()))?;
+        }
+        return Ok(if report.success_rate > 0.0 {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::FAILURE
+        });
+    }
     let settings = ExecuteSettings {
         trials,
         speed,
@@ -46,6 +122,35 @@ pub fn execute(
     } else {
         ExitCode::FAILURE
     })
+}
+
+fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64) {
+    let n = report.trials.len();
+    println!(
+        "{}: executed {n} times closed loop in 3D (rapier) at {speed}x speed: {} reach the goal ({:.0} %); {} tip an object; {:.1} re-plans per trial; re-planning latency median {:.3} s, 95th percentile {:.3} s",
+        path.display(),
+        report.trials.iter().filter(|t| t.reached).count(),
+        100.0 * report.success_rate,
+        report.tipped_trials,
+        report.replans_per_trial,
+        report.latency_median,
+        report.latency_p95,
+    );
+    for (i, t) in report.trials.iter().enumerate() {
+        println!(
+            "  trial {i}{}: {}, goal object {:.0} mm {} the disc's edge; {} controls played ({} cut short), rest kept {} times, {} re-plans{}{}",
+            if i == 0 && n > 1 { " (nominal)" } else { "" },
+            if t.reached { "reached" } else { "missed" },
+            1e3 * t.goal_distance.abs(),
+            if t.goal_distance <= 0.0 { "inside" } else { "outside" },
+            t.controls_played,
+            t.cut_short,
+            t.kept,
+            t.replans,
+            if t.tipped.is_empty() { String::new() } else { format!("; tipped: {}", t.tipped.join(", ")) },
+            t.stopped.as_ref().map(|why| format!("; stopped: {why}")).unwrap_or_default(),
+        );
+    }
 }
 
 fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {

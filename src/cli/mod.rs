@@ -15,7 +15,7 @@ mod search_flags;
 
 pub use bench::{bench, bench_merge, bench_scene, plots};
 pub use check::check;
-pub use execute::execute;
+pub use execute::{execute, ClosedLoopFlags, ExecuteOptions};
 pub use files::{draw, generate_scenes, install};
 pub use pick_place::{check_pick_place, pick_place, PickPlaceOptions, PICK_PLACE_FORMAT};
 pub use plan::{grasp_goal, plan, PlanOptions};

@@ -3,6 +3,7 @@
 //! propagations and search statistics, which the bridge hands to C++; and the search
 //! the applications call ([`Search`]), which the bridge implements.
 
+pub mod closed_loop;
 mod heading;
 mod nearest;
 mod particles;

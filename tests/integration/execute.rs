@@ -382,3 +382,102 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
         );
     }
 }
+
+/// Closed loop against a world that is not the model: the box stands 6 cm to the side of
+/// where the scene says and grips the table twice as hard. Played open loop, the plan
+/// pushes past it and misses; closed loop, the first observation finds the box where it
+/// is, the rest of the plan is re-simulated from there and misses, and the plan searched
+/// from the observed state brings the box into the goal disc.
+#[test]
+fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
+    use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
+    use pushplan::planning::execute::{execute_in_world, ExecuteSettings, DRIFT};
+    use pushplan::planning::plan_file::PlanFile;
+    let scratch = common::Scratch::new("closed-loop");
+    let plan_path = scratch.join("plan.json");
+    let scene_path = "scenes/planar_hand_single_object.yaml";
+    common::plan_solved(scene_path, &plan_path, &["--threads", "1"]);
+    let plan = PlanFile::read(&plan_path).unwrap();
+    let scene = plan.load_scene(&plan_path).unwrap();
+    let mut world = scene.clone();
+    // Sideways of the push (the hand starts at y = 0 behind the box, the goal lies at +y).
+    world.start.objects[0].y -= 0.06;
+    world.objects[0].mu_g *= 2.0;
+
+    let open = execute_in_world(&world, &scene, &plan, &ExecuteSettings::default()).unwrap();
+    assert!(!open.reached, "open loop misses: {open:?}");
+
+    let closed_loop = ClosedLoop {
+        search: &pushplan::bridge::OmplSearch,
+        scene_path: Path::new(scene_path),
+        settings: ClosedLoopSettings {
+            planner: plan.settings.planner,
+            replan_time: 10.0,
+            replan_shortcut: 0.5,
+            seed: 1,
+            max_replans: 10,
+            tolerance: DRIFT,
+            speed: 1.0,
+            solver: SolverSettings::default(),
+        },
+    };
+    let closed = closed_loop.execute(&scene, &plan.path_controls(), &world);
+    assert!(closed.reached, "closed loop reaches the goal: {closed:?}");
+    assert!(closed.replans >= 1, "it re-planned: {closed:?}");
+    assert!(
+        closed.tipped.is_empty() && closed.stopped.is_none(),
+        "{closed:?}"
+    );
+}
+
+/// `execute --closed-loop` through the command line: every trial reported, with its
+/// re-plans and the latency figures, in the text and in the JSON report.
+#[test]
+fn execute_closed_loop_reports_trials_replans_and_latency() {
+    let scratch = common::Scratch::new("closed-loop-cli");
+    let plan = scratch.join("plan.json");
+    common::plan_solved(
+        "scenes/planar_hand_single_object.yaml",
+        &plan,
+        &["--threads", "1"],
+    );
+    let json = scratch.join("report.json");
+    let (code, stdout, stderr) = common::pushplan_in(
+        Path::new("."),
+        &[
+            "execute",
+            plan.to_str().unwrap(),
+            "--closed-loop",
+            "--trials",
+            "2",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("executed 2 times closed loop"), "{stdout}");
+    assert!(stdout.contains("re-planning latency median"), "{stdout}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["trials"].as_array().unwrap().len(), 2);
+    for field in [
+        "success_rate",
+        "replans_per_trial",
+        "latency_median",
+        "latency_p95",
+    ] {
+        assert!(report[field].is_number(), "{field}: {report}");
+    }
+    // Rendering is for open-loop executions.
+    let (code, _, stderr) = common::pushplan_in(
+        Path::new("."),
+        &[
+            "execute",
+            plan.to_str().unwrap(),
+            "--closed-loop",
+            "--render",
+            "x",
+        ],
+    );
+    assert_eq!(code, 2, "{stderr}");
+}

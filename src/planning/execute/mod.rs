@@ -165,6 +165,18 @@ pub fn execute(
     })
 }
 
+/// One open-loop execution of `plan` in a world built from `world_scene` (the same scene,
+/// its objects and parameters changed), judged against `scene`'s goal and the plan.
+pub fn execute_in_world(
+    world_scene: &Scene,
+    scene: &Scene,
+    plan: &PlanFile,
+    settings: &ExecuteSettings,
+) -> Result<ExecutionTrial, String> {
+    let predicted = predicted_poses(scene, plan)?;
+    Ok(run(world_scene, scene, plan, &predicted, settings))
+}
+
 /// The plan's predicted object poses at each trajectory sample, in `scene`'s object
 /// order (objects the plan does not move, such as Static RRT's clutter, stay at their
 /// start).

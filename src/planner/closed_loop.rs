@@ -1,0 +1,339 @@
+//! Closed-loop execution: a plan played in the 3D engine (rapier) one control at a time.
+//! After each control the world's object poses and the arm's joints are read, as a robot's
+//! perception and encoders would; the rest of the plan is re-simulated from there in the
+//! planning model and kept if it still reaches the goal, else the scene is searched anew
+//! from the observed state ([`Search::solve`] with a start). A control whose objects leave
+//! their predicted poses by more than a tolerance is cut short and the world observed
+//! there. The planner never sees the world's own parameters (its masses and frictions may
+//! differ from the scene's): only what it observes.
+
+use super::search::Search;
+use crate::planning::execute::world::{SolverSettings, World, STEP};
+use crate::planning::execute::TIPPED_TILT;
+use crate::planning::path::PathControl;
+use crate::planning::{FinishSettings, PlannerKind, Problem, RunSettings};
+use crate::scene::Scene;
+use crate::state::State;
+use nalgebra::DVector;
+use serde::Serialize;
+use std::path::Path;
+use std::time::Instant;
+
+/// How a closed-loop execution plays and re-plans.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClosedLoopSettings {
+    /// The planner of every re-plan (the plan's).
+    pub planner: PlannerKind,
+    /// Time limit of each re-planning search (s).
+    pub replan_time: f64,
+    /// Shortcutting budget of each re-planned path (s of work).
+    pub replan_shortcut: f64,
+    /// Seed of the first re-plan; the next ones count up from it.
+    pub seed: u64,
+    /// Re-planning searches at most; then the execution stops.
+    pub max_replans: usize,
+    /// An object this far from its predicted position cuts its control short (m).
+    pub tolerance: f64,
+    /// Pace relative to the plan's trajectory (0.25: four times slower).
+    pub speed: f64,
+    /// The engine's solver effort.
+    pub solver: SolverSettings,
+}
+
+/// Time the world gets after each control (or a control cut short) before it is observed:
+/// the objects come to rest, as a robot would pause to look (s).
+pub const OBSERVE_AFTER: f64 = 0.05;
+
+/// One closed-loop execution.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ClosedLoopTrial {
+    /// The goal object ended upright with its centre inside the goal disc.
+    pub reached: bool,
+    /// Distance of the goal object's final centre from the disc's edge (m; negative inside).
+    pub goal_distance: f64,
+    /// Objects that tilted beyond [`TIPPED_TILT`] at some time.
+    pub tipped: Vec<String>,
+    /// Controls played (whole or cut short).
+    pub controls_played: usize,
+    /// Controls cut short because an object left its predicted pose.
+    pub cut_short: usize,
+    /// Observations after which the rest of the plan still reached the goal.
+    pub kept: usize,
+    /// Re-planning searches.
+    pub replans: usize,
+    /// Time from each observation to the plan played next: re-simulation, and the search
+    /// and finishing when it re-planned (s).
+    pub latencies: Vec<f64>,
+    /// Why the execution stopped before the plan's end, if it did.
+    pub stopped: Option<String>,
+}
+
+/// A closed-loop executor: it re-plans in the scene file at `scene_path` with `search`, as
+/// `settings` say.
+pub struct ClosedLoop<'a> {
+    /// The search of every re-plan.
+    pub search: &'a dyn Search,
+    /// The scene file the search loads (the scene the plans are made in).
+    pub scene_path: &'a Path,
+    /// How it plays and re-plans.
+    pub settings: ClosedLoopSettings,
+}
+
+impl ClosedLoop<'_> {
+    /// Plays `plan` (from `scene`'s start) closed loop in a world built from `world_scene`
+    /// (the same scene, its objects and parameters perturbed or changed), re-planning in
+    /// `scene`.
+    pub fn execute(
+        &self,
+        scene: &Scene,
+        plan: &[PathControl],
+        world_scene: &Scene,
+    ) -> ClosedLoopTrial {
+        let settings = &self.settings;
+        let robot = &scene.robot;
+        let objects = scene.objects.len();
+        let mut poses = Vec::new();
+        robot.chain.forward_kinematics(&scene.start.q, &mut poses);
+        let mut world = World::with_solver(
+            world_scene,
+            &world_scene.start.objects,
+            &poses,
+            &settings.solver,
+        );
+        let mut trial = ClosedLoopTrial {
+            reached: false,
+            goal_distance: f64::INFINITY,
+            tipped: Vec::new(),
+            controls_played: 0,
+            cut_short: 0,
+            kept: 0,
+            replans: 0,
+            latencies: Vec::new(),
+            stopped: None,
+        };
+        let mut tipped = vec![false; objects];
+        let mut q = scene.start.q.clone();
+        let mut rest = plan.to_vec();
+        // Every control played is followed by an observation; this bounds a loop that
+        // re-plans without end.
+        let most_controls = 10 * plan.len() + 100;
+        loop {
+            // Observe: the arm where it was driven, the objects where the world has them.
+            let observed = State {
+                q: q.clone(),
+                objects: (0..objects).map(|i| world.object_pose2(i)).collect(),
+            };
+            let started = Instant::now();
+            let from = match scene.with_start(&observed, Path::new("the observed world")) {
+                Ok(from) => from,
+                Err(e) => {
+                    trial.stopped = Some(format!("the observed state is no valid start: {e}"));
+                    break;
+                }
+            };
+            q.clone_from(&from.start.q);
+            let problem = Problem::new(from.clone(), settings.planner);
+            let simulated = problem.simulate(&rest, false);
+            if simulated.stopped_by.is_none() && from.goal.is_satisfied(simulated.final_state()) {
+                trial.kept += 1;
+            } else {
+                if trial.replans == settings.max_replans {
+                    trial.stopped = Some(format!(
+                        "the rest of the plan misses the goal after {} re-plans",
+                        trial.replans
+                    ));
+                    break;
+                }
+                match self.replan(&problem, trial.replans) {
+                    Ok(controls) => rest = controls,
+                    Err(why) => {
+                        trial.stopped = Some(why);
+                        break;
+                    }
+                }
+                trial.replans += 1;
+            }
+            trial.latencies.push(started.elapsed().as_secs_f64());
+            if rest.is_empty() {
+                break;
+            }
+            if trial.controls_played == most_controls {
+                trial.stopped = Some(format!("{most_controls} controls played"));
+                break;
+            }
+            // Play the next control: its executable trajectory from the observed state.
+            let trajectory = match problem.trajectory(&rest[..1]) {
+                Ok(trajectory) => trajectory,
+                Err(e) => {
+                    trial.stopped = Some(format!("internal error: {e}"));
+                    break;
+                }
+            };
+            let samples: Vec<DVector<f64>> = trajectory
+                .q
+                .iter()
+                .map(|q| DVector::from_column_slice(q))
+                .collect();
+            let end = trajectory.times.last().copied().unwrap_or(0.0);
+            let mut t = 0.0;
+            let mut segment = 0;
+            let mut cut = false;
+            while t < end && !cut {
+                t = (t + STEP * settings.speed).min(end);
+                while segment + 2 < samples.len() && trajectory.times[segment + 1] <= t {
+                    segment += 1;
+                }
+                if samples.len() > 1 {
+                    let (t0, t1) = (trajectory.times[segment], trajectory.times[segment + 1]);
+                    let s = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
+                    q = &samples[segment] * (1.0 - s) + &samples[segment + 1] * s;
+                }
+                robot.chain.forward_kinematics(&q, &mut poses);
+                world.move_arm(&poses);
+                world.step();
+                note_tipping(&world, &mut tipped);
+                // Against the prediction at the sample just passed.
+                let predicted = &trajectory.objects[segment];
+                cut = (0..objects).any(|i| {
+                    let p = world.object_pose2(i);
+                    let [x, y, _] = predicted[i];
+                    (p.x - x).hypot(p.y - y) > settings.tolerance
+                });
+            }
+            trial.controls_played += 1;
+            if cut {
+                trial.cut_short += 1;
+            }
+            rest.remove(0);
+            settle(&mut world, &mut tipped, OBSERVE_AFTER);
+        }
+        settle(&mut world, &mut tipped, crate::planning::execute::SETTLE);
+        let mut end_state = scene.start.clone();
+        end_state.q = q;
+        end_state.objects = (0..objects).map(|i| world.object_pose2(i)).collect();
+        trial.goal_distance = scene.goal.task_distance(&end_state);
+        let upright = scene
+            .goal
+            .object()
+            .is_none_or(|object| world.object_tilt(object) < TIPPED_TILT);
+        trial.reached = trial.goal_distance <= 0.0 && upright;
+        trial.tipped = (0..objects)
+            .filter(|&i| tipped[i] && !world.object_fell_off(i))
+            .map(|i| scene.objects[i].name.clone())
+            .collect();
+        trial
+    }
+
+    /// A new plan from `problem`'s start (the observed state): searched, then finished
+    /// (checked by re-simulation, shortcut). The `index`-th re-plan of the execution.
+    fn replan(&self, problem: &Problem, index: usize) -> Result<Vec<PathControl>, String> {
+        let settings = &self.settings;
+        let from = problem.scene();
+        let run = RunSettings {
+            time_limit: settings.replan_time,
+            seed: settings.seed.wrapping_add(index as u64),
+            shortcut: 0.0,
+            ..RunSettings::of_scene(settings.planner, &from.planner)
+        };
+        let found = self
+            .search
+            .solve(self.scene_path, Some(&from.start), &run, None)
+            .map_err(|e| format!("re-planning failed: {e}"))?;
+        if !found.summary.exact {
+            return Err(format!(
+                "no plan from the observed state within {} s",
+                settings.replan_time
+            ));
+        }
+        let finish = FinishSettings {
+            shortcut: settings.replan_shortcut,
+            seed: run.seed,
+            robust: None,
+            deadline: None,
+            progress: None,
+        };
+        Ok(problem
+            .finish(&found.controls, &found.states, true, &finish)?
+            .controls)
+    }
+}
+
+/// Steps the world `seconds` with the arm still.
+fn settle(world: &mut World, tipped: &mut [bool], seconds: f64) {
+    for _ in 0..(seconds / STEP).round() as usize {
+        world.step();
+        note_tipping(world, tipped);
+    }
+}
+
+fn note_tipping(world: &World, tipped: &mut [bool]) {
+    for (i, flag) in tipped.iter_mut().enumerate() {
+        *flag |= world.object_tilt(i) > TIPPED_TILT;
+    }
+}
+
+/// What closed-loop trials found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ClosedLoopReport {
+    /// Every trial, the nominal one first.
+    pub trials: Vec<ClosedLoopTrial>,
+    /// Fraction of trials that reached the goal.
+    pub success_rate: f64,
+    /// Trials in which some object tipped.
+    pub tipped_trials: usize,
+    /// Re-planning searches per trial, on average.
+    pub replans_per_trial: f64,
+    /// Median time from an observation to the plan played next (s), over every trial.
+    pub latency_median: f64,
+    /// Its 95th percentile (s).
+    pub latency_p95: f64,
+}
+
+impl ClosedLoop<'_> {
+    /// `trials` closed-loop executions of `plan`: the first in the scene as it is, the
+    /// others in worlds perturbed by `noise` (drawn from `seed`), which the planner does
+    /// not know.
+    pub fn trials(
+        &self,
+        scene: &Scene,
+        plan: &[PathControl],
+        trials: usize,
+        noise: &crate::planning::robustness::Noise,
+        seed: u64,
+    ) -> Result<ClosedLoopReport, String> {
+        let mut rng = crate::random::SplitMix64::new(seed);
+        let mut done = Vec::with_capacity(trials);
+        for trial in 0..trials {
+            let world = if trial == 0 {
+                scene.clone()
+            } else {
+                noise
+                    .perturb(scene, &mut rng)
+                    .map_err(|e| format!("no valid perturbed start: {e}"))?
+            };
+            let each = ClosedLoop {
+                settings: ClosedLoopSettings {
+                    seed: self.settings.seed.wrapping_add(1000 * trial as u64),
+                    ..self.settings.clone()
+                },
+                ..*self
+            };
+            done.push(each.execute(scene, plan, &world));
+        }
+        let mut latencies: Vec<f64> = done.iter().flat_map(|t| t.latencies.clone()).collect();
+        latencies.sort_by(f64::total_cmp);
+        let quantile = |q: f64| match latencies.len() {
+            0 => 0.0,
+            n => latencies[((q * n as f64).ceil() as usize).clamp(1, n) - 1],
+        };
+        let n = done.len().max(1) as f64;
+        Ok(ClosedLoopReport {
+            success_rate: done.iter().filter(|t| t.reached).count() as f64 / n,
+            tipped_trials: done.iter().filter(|t| !t.tipped.is_empty()).count(),
+            replans_per_trial: done.iter().map(|t| t.replans).sum::<usize>() as f64 / n,
+            latency_median: quantile(0.5),
+            latency_p95: quantile(0.95),
+            trials: done,
+        })
+    }
+}
