@@ -5,7 +5,9 @@
 # (e.g. PLAN_ARGS="--robust 20"); TIME sets the search time (default 10 s); SCENES the
 # scenes, folders (their scene_*.yaml) or files, separated by spaces (default
 # scenes/benchmark; e.g. SCENES="scenes/dense/scene_17.yaml scenes/benchmark"); TRIALS the
-# 3D trials and perturbed re-simulations per plan (default 10).
+# 3D trials and perturbed re-simulations per plan (default 10). CLOSED_LOOP=1 also plays
+# each plan closed loop (`execute --closed-loop`, the same trials and worlds), into
+# OUT_DIR/*.closed.{json,txt}.
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -33,9 +35,28 @@ for scene in "${scenes[@]}"; do
     "$bin" execute "$out/$n.json" --trials "$trials" --json "$out/$n.exec.json" > "$out/$n.exec.txt" 2>&1
     "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1
     echo "$n: $(head -1 "$out/$n.exec.txt" | sed 's/.*speed: //') | $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
+    if [ -n "${CLOSED_LOOP:-}" ]; then
+      "$bin" execute "$out/$n.json" --closed-loop --trials "$trials" --json "$out/$n.closed.json" > "$out/$n.closed.txt" 2>&1
+      echo "$n closed loop: $(head -1 "$out/$n.closed.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
+    fi
   else
     echo "$n: not solved" >> "$out/summary.txt"
   fi
 done
 reached=$(cat "$out"/*.exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
 echo "trials reaching the goal: $reached of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
+if [ -n "${CLOSED_LOOP:-}" ]; then
+  closed=$(cat "$out"/*.closed.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
+  echo "closed loop, trials reaching the goal: $closed of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
+  python3 - "$out" <<'PY' | tee -a "$out/summary.txt"
+import glob, json, math, sys
+lat, replans, trials = [], 0, 0
+for f in glob.glob(sys.argv[1] + "/*.closed.json"):
+    for t in json.load(open(f))["trials"]:
+        lat += t["latencies"]; replans += t["replans"]; trials += 1
+lat.sort()
+q = lambda p: lat[min(len(lat) - 1, max(0, math.ceil(p * len(lat)) - 1))] if lat else 0.0
+print(f"closed loop over {trials} trials: {replans / max(trials, 1):.2f} re-plans per trial; "
+      f"latency median {q(0.5):.3f} s, 95th percentile {q(0.95):.3f} s")
+PY
+fi

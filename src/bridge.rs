@@ -286,6 +286,7 @@ pub mod ffi {
             settings: &FinishSettings,
         ) -> Result<FinishedPath>;
         fn trajectory(self: &Finisher, u: &[f64], steps: &[usize]) -> Result<Trajectory>;
+        fn resimulate(self: &Finisher, u: &[f64], steps: &[usize]) -> Result<Vec<f64>>;
 
         type Darrt;
         #[Self = "Darrt"]

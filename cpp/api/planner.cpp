@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <string>
 #include <thread>
 #include <utility>
@@ -180,15 +181,95 @@ namespace pushplan
         }
     }  // namespace detail
 
+    namespace detail
+    {
+        /// Where `options` send progress reports: on_progress, or stderr with `progress`.
+        std::function<void(const Progress &)> reportsOf(const Options &options)
+        {
+            if (!options.on_progress && options.progress)
+                return printProgress;
+            return options.on_progress;
+        }
+
+        /// `observed` in the flat layout, its sizes checked against the scene's.
+        std::vector<double> flatObservation(const Observation &observed, const bridge::SceneInfo &info)
+        {
+            if (static_cast<std::size_t>(observed.q.size()) != info.dof)
+                throw Error("Observation::q has " + std::to_string(observed.q.size()) + " values, the robot " +
+                            std::to_string(info.dof) + " joints");
+            if (observed.objects.size() != info.objects)
+                throw Error("Observation::objects has " + std::to_string(observed.objects.size()) +
+                            " poses, the scene " + std::to_string(info.objects) + " objects");
+            std::vector<double> flat(observed.q.data(), observed.q.data() + observed.q.size());
+            for (const Eigen::Vector3d &pose : observed.objects)
+                flat.insert(flat.end(), pose.data(), pose.data() + 3);
+            return flat;
+        }
+    }  // namespace detail
+
     Plan Planner::solve(const Options &options) const
     {
-        // Reports go to options.on_progress, or are printed with options.progress.
-        std::function<void(const Progress &)> tell = options.on_progress;
-        if (!tell && options.progress)
-            tell = detail::printProgress;
         const Source &source = this->source();
         return detail::solve([&] { return source.load(); },
-                             [&](const bridge::SceneInfo &info) { return detail::resolve(options, info); }, tell);
+                             [&](const bridge::SceneInfo &info) { return detail::resolve(options, info); },
+                             detail::reportsOf(options));
+    }
+
+    Plan Planner::solveFrom(const Observation &start, const Options &options) const
+    {
+        const Source &source = this->source();
+        const auto load = [&] {
+            rust::Box<bridge::Problem> problem = source.load();
+            problem->set_start(detail::slice(detail::flatObservation(start, problem->info())));
+            return problem;
+        };
+        return detail::solve(load, [&](const bridge::SceneInfo &info) { return detail::resolve(options, info); },
+                             detail::reportsOf(options));
+    }
+
+    Plan Planner::replan(const Plan &plan, std::size_t at, const Observation &observed, const Options &options) const
+    {
+        const Source &source = this->source();
+        Plan rest = detail::asPushplanError([&]() -> Plan {
+            if (at > plan.controls.size())
+                throw Error("replan: at = " + std::to_string(at) + ", but the plan has " +
+                            std::to_string(plan.controls.size()) + " controls");
+            const auto started = std::chrono::steady_clock::now();
+            rust::Box<bridge::Problem> problem = source.load();
+            const bridge::SceneInfo info = problem->info();
+            problem->set_start(detail::slice(detail::flatObservation(observed, info)));
+            // The rest of the plan, re-simulated from the observed state.
+            detail::FlatPath kept;
+            for (std::size_t i = at; i < plan.controls.size(); ++i)
+            {
+                const Control &c = plan.controls[i];
+                kept.controls.insert(kept.controls.end(), c.ee_velocity.data(), c.ee_velocity.data() + 3);
+                kept.controls.insert(kept.controls.end(), c.nullspace.data(), c.nullspace.data() + c.nullspace.size());
+                kept.steps.push_back(c.steps);
+            }
+            const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(*problem);
+            const rust::Vec<double> states = finisher->resimulate(detail::slice(kept.controls), detail::slice(kept.steps));
+            if (states.empty())
+                return solveFrom(observed, options);
+            kept.states.assign(states.begin(), states.end());
+            // Checked and described as every plan is; not shortcut (it is the old plan's rest).
+            const bridge::FinishedPath path = detail::finish(
+                *finisher, kept, true, bridge::FinishSettings{0.0, 0, 0, 0.0, std::numeric_limits<double>::infinity()});
+            Plan out;
+            out.solved = true;
+            out.step = info.planner.step;
+            for (const auto &n : info.joint_names)
+                out.joint_names.emplace_back(n);
+            for (const auto &n : info.object_names)
+                out.object_names.emplace_back(n);
+            detail::describe(out, *finisher, info, path);
+            out.planning_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            out.replanned = Replanned{at, true};
+            return out;
+        });
+        if (!rest.replanned)
+            rest.replanned = Replanned{at, false};
+        return rest;
     }
 
     Plan detail::solve(const std::function<rust::Box<bridge::Problem>()> &load,
@@ -383,51 +464,57 @@ namespace pushplan
                 *finisher, found, solved,
                 bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate,
                                        time_limit - elapsed()});
-            plan.before_shortcut = path.before;
-            plan.after_shortcut = path.after;
-            if (path.robustness >= 0.0)
-                plan.robustness = path.robustness;
-
-            const std::size_t width = model->view()->stateSize();
-            for (std::size_t s = 0; s * width < path.states.size(); ++s)
-            {
-                const double *x = path.states.data() + s * width;
-                plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
-                std::vector<Eigen::Vector3d> poses;
-                const detail::FlatLayout flat{info.dof, info.objects};
-                for (std::size_t o = 0; o < info.objects; ++o)
-                    poses.emplace_back(x[flat.object(o)], x[flat.object(o) + 1], x[flat.object(o) + 2]);
-                plan.object_poses.push_back(std::move(poses));
-            }
-            const std::size_t cwidth = model->view()->controlSize();
-            for (std::size_t i = 0; i < path.steps.size(); ++i)
-            {
-                const double *c = path.controls.data() + i * cwidth;
-                plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
-                                                Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
-                                                static_cast<double>(path.steps[i]) * info.planner.step, path.steps[i]});
-            }
-            const bridge::Trajectory trajectory =
-                finisher->trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
-                                 rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
-            plan.trajectory.rate = trajectory.rate;
-            for (std::size_t k = 0; k < trajectory.times.size(); ++k)
-            {
-                plan.trajectory.times.push_back(trajectory.times[k]);
-                plan.trajectory.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(trajectory.q.data() + k * info.dof, info.dof));
-                std::vector<Eigen::Vector3d> poses;
-                for (std::size_t o = 0; o < info.objects; ++o)
-                {
-                    const double *p = trajectory.objects.data() + (k * info.objects + o) * 3;
-                    poses.emplace_back(p[0], p[1], p[2]);
-                }
-                plan.trajectory.objects.push_back(std::move(poses));
-            }
-            plan.contacts.resize(path.steps.size());
-            for (const auto &c : path.contacts)
-                plan.contacts[c.control].push_back(
-                    Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
+            describe(plan, *finisher, info, path);
             return plan;
             });
+    }
+
+    void detail::describe(Plan &plan, const bridge::Finisher &finisher, const bridge::SceneInfo &info,
+                          const bridge::FinishedPath &path)
+    {
+        plan.before_shortcut = path.before;
+        plan.after_shortcut = path.after;
+        if (path.robustness >= 0.0)
+            plan.robustness = path.robustness;
+
+        const std::size_t width = info.dof + 3 * info.objects;
+        for (std::size_t s = 0; s * width < path.states.size(); ++s)
+        {
+            const double *x = path.states.data() + s * width;
+            plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
+            std::vector<Eigen::Vector3d> poses;
+            const detail::FlatLayout flat{info.dof, info.objects};
+            for (std::size_t o = 0; o < info.objects; ++o)
+                poses.emplace_back(x[flat.object(o)], x[flat.object(o) + 1], x[flat.object(o) + 2]);
+            plan.object_poses.push_back(std::move(poses));
+        }
+        const std::size_t cwidth = 3 + info.dof;
+        for (std::size_t i = 0; i < path.steps.size(); ++i)
+        {
+            const double *c = path.controls.data() + i * cwidth;
+            plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
+                                            Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
+                                            static_cast<double>(path.steps[i]) * info.planner.step, path.steps[i]});
+        }
+        const bridge::Trajectory trajectory =
+            finisher.trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
+                             rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
+        plan.trajectory.rate = trajectory.rate;
+        for (std::size_t k = 0; k < trajectory.times.size(); ++k)
+        {
+            plan.trajectory.times.push_back(trajectory.times[k]);
+            plan.trajectory.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(trajectory.q.data() + k * info.dof, info.dof));
+            std::vector<Eigen::Vector3d> poses;
+            for (std::size_t o = 0; o < info.objects; ++o)
+            {
+                const double *p = trajectory.objects.data() + (k * info.objects + o) * 3;
+                poses.emplace_back(p[0], p[1], p[2]);
+            }
+            plan.trajectory.objects.push_back(std::move(poses));
+        }
+        plan.contacts.resize(path.steps.size());
+        for (const auto &c : path.contacts)
+            plan.contacts[c.control].push_back(
+                Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
     }
 }  // namespace pushplan

@@ -55,6 +55,11 @@ namespace pushplan
             return finisher.finish(slice(found.controls), slice(found.steps), slice(found.states), solved, settings);
         }
 
+        /// `plan` given the finished `path` (`finisher`'s, in the scene `info` describes):
+        /// its states, controls, metrics, robustness, trajectory and contacts.
+        void describe(Plan &plan, const bridge::Finisher &finisher, const bridge::SceneInfo &info,
+                      const bridge::FinishedPath &path);
+
         /// Options with every unset value taken from the scene (`info`).
         RunSettings resolve(const Options &options, const bridge::SceneInfo &info);
 

@@ -199,6 +199,23 @@ namespace pushplan
         std::vector<std::pair<std::string, std::uint64_t>> stopped;
     };
 
+    /// A state observed while a plan runs, as a robot's joint encoders and perception
+    /// report it: in the scene's orders (Plan::joint_names, Plan::object_names).
+    struct Observation
+    {
+        Eigen::VectorXd q;                     ///< joint values (rad, or m)
+        std::vector<Eigen::Vector3d> objects;  ///< (x, y, yaw) per object: m, m, rad; world frame
+    };
+
+    /// Where a re-planned plan (Planner::replan) comes from.
+    struct Replanned
+    {
+        std::size_t at = 0;  ///< the control of the old plan at whose start the world was observed
+        /// The old plan's remaining controls still reached the goal from the observed state
+        /// and are this plan's (no search); false: this plan was searched anew from it.
+        bool kept = false;
+    };
+
     struct Plan
     {
         bool solved = false;          ///< an exact solution: the goal is reached
@@ -230,6 +247,8 @@ namespace pushplan
         /// Fraction of the perturbed re-simulations that reached the goal (-1: not checked,
         /// Options::robust_trials was 0).
         double robustness = -1.0;
+        /// Set by Planner::replan: the plan starts at the observed state, not the scene's start.
+        std::optional<Replanned> replanned;
         /// Total duration of the controls (s).
         double duration() const;
     };
@@ -291,6 +310,21 @@ namespace pushplan
         /// finds no exact solution returns a Plan with solved == false (and the closest
         /// path found, if any).
         Plan solve(const Options &options = Options()) const;
+
+        /// Plans from `start` (a state observed while a plan runs) instead of the scene's
+        /// start. The state is checked as a scene's start is: an arm's tool is brought onto
+        /// its pushing plane, then joint limits and every validity rule; pushplan::Error if
+        /// it fails (an object inside the arm, two objects pressed together).
+        Plan solveFrom(const Observation &start, const Options &options = Options()) const;
+
+        /// Closing the loop: the rest of `plan` (of this planner) from a state observed at
+        /// the start of its control `at`. The remaining controls are re-simulated from the
+        /// observed state first and returned as they are if they still reach the goal
+        /// (Plan::replanned->kept); otherwise the scene is searched anew from the observed
+        /// state as `options` say (solveFrom). The CLI's `replan` and `execute
+        /// --closed-loop` do the same.
+        Plan replan(const Plan &plan, std::size_t at, const Observation &observed,
+                    const Options &options = Options()) const;
 
         /// Reaches a grasp of `object` with IK-BiRRT (the manipulation-planning lecture):
         /// from the scene's start, or from the end of `after` (a plan of this planner:

@@ -55,4 +55,19 @@ impl Finisher {
                 .map(ffi::Trajectory::from)
         })
     }
+
+    /// Re-simulates a path from the problem's start (such as an observed state): the state
+    /// at the start and after each control, flat, if every step is valid and the goal is
+    /// reached at the end; nothing if not (the path no longer does its work from there).
+    pub fn resimulate(&self, controls: &[f64], steps: &[usize]) -> Result<Vec<f64>, String> {
+        guarded("resimulate", || {
+            let controls = Flat(self.problem.scene()).path_controls(controls, steps)?;
+            let path = self.problem.simulate(&controls, false);
+            let scene = self.problem.scene();
+            if !(path.valid() && scene.goal.is_satisfied(path.final_state())) {
+                return Ok(Vec::new());
+            }
+            Ok(path.states.iter().flat_map(|s| s.to_flat()).collect())
+        })
+    }
 }

@@ -4,6 +4,9 @@
 //   as robust as the default rate asks;
 // - Planner::reach reaches a grasp behind a wall with IK-BiRRT, and after a pushing plan;
 //   a grasp goal's samples (inverse kinematics of its regions) satisfy it;
+// - closing the loop: Planner::replan keeps the rest of a plan when the world is where the
+//   plan said, searches anew from an observed state where a box was moved (and the new
+//   plan starts there), and refuses an observation of the wrong size or an invalid one;
 // - OMPL's process-wide log level is as the application left it after solve();
 // - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
 //   whose paths are not controls, a bad scene, the model failing inside solve() and
@@ -328,6 +331,38 @@ int main()
         }
         grasping->getStateSpace()->freeState(sample);
         expect(inside >= 10, "a grasp goal's samples (IK of its regions) satisfy it: " + std::to_string(inside) + " of 20");
+    }
+    {
+        // Closing the loop through the API (Planner::replan).
+        const pushplan::Planner hand("scenes/planar_hand_single_object.yaml");
+        pushplan::Options o;
+        o.seed = 2;
+        o.threads = 1;
+        o.shortcut = 0.0;
+        const pushplan::Plan plan = hand.solve(o);
+        const std::size_t k = plan.controls.size() / 2;
+        pushplan::Observation observed{plan.joint_trajectory[k], plan.object_poses[k]};
+        const pushplan::Plan same = hand.replan(plan, k, observed, o);
+        expect(same.solved && same.replanned && same.replanned->kept && same.replanned->at == k &&
+                   same.controls.size() == plan.controls.size() - k,
+               "replan keeps the rest of a plan when the world is where the plan said");
+        // The box found 5 cm further from the hand and 10 cm to the side.
+        Eigen::Vector3d &box = observed.objects[0];
+        const Eigen::VectorXd &q = plan.joint_trajectory[k];
+        const Eigen::Vector2d away = (box.head<2>() - q.head<2>()).normalized();
+        const Eigen::Vector2d side(-away.y(), away.x());
+        box.head<2>() += 0.05 * away + ((0.85 - box.x()) * side.x() + (0.1 - box.y()) * side.y() > 0 ? -0.1 : 0.1) * side;
+        const pushplan::Plan moved = hand.replan(plan, k, observed, o);
+        expect(moved.solved && moved.replanned && !moved.replanned->kept &&
+                   moved.object_poses.front()[0].isApprox(box, 1e-12),
+               "replan searches anew from an observed state where the box was moved, and starts there");
+        pushplan::Observation short_q{plan.joint_trajectory[k].head(2), plan.object_poses[k]};
+        expect(throwsError([&] { hand.replan(plan, k, short_q, o); }, "Observation::q"),
+               "an observation of the wrong size is refused as pushplan::Error");
+        pushplan::Observation inside{plan.joint_trajectory[k], plan.object_poses[k]};
+        inside.objects[0].head<2>() = plan.joint_trajectory[k].head<2>();
+        expect(throwsError([&] { hand.solveFrom(inside, o); }, "start state is invalid"),
+               "an observed box inside the hand is no valid start");
     }
     return failures == 0 ? 0 : 1;
 }
