@@ -138,17 +138,21 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64) {
     );
     for (i, t) in report.trials.iter().enumerate() {
         println!(
-            "  trial {i}{}: {}, goal object {:.0} mm {} the disc's edge; {} controls played ({} cut short), rest kept {} times, {} re-plans{}{}",
-            if i == 0 && n > 1 { " (nominal)" } else { "" },
-            if t.reached { "reached" } else { "missed" },
-            1e3 * t.goal_distance.abs(),
-            if t.goal_distance <= 0.0 { "inside" } else { "outside" },
+            "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans{}{}",
+            trial_outcome(i, n, t.reached, t.goal_distance),
             t.controls_played,
             t.cut_short,
             t.kept,
             t.replans,
-            if t.tipped.is_empty() { String::new() } else { format!("; tipped: {}", t.tipped.join(", ")) },
-            t.stopped.as_ref().map(|why| format!("; stopped: {why}")).unwrap_or_default(),
+            if t.tipped.is_empty() {
+                String::new()
+            } else {
+                format!("; tipped: {}", t.tipped.join(", "))
+            },
+            t.stopped
+                .as_ref()
+                .map(|why| format!("; stopped: {why}"))
+                .unwrap_or_default(),
         );
     }
 }
@@ -199,12 +203,24 @@ fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {
             upsets += &format!("; off the table: {}", t.fell_off.join(", "));
         }
         println!(
-            "  trial {i}{}: {}, goal object {:.0} mm {} the disc's edge; final errors: {}{upsets}; first divergence: {divergence}",
-            if i == 0 && n > 1 { " (nominal)" } else { "" },
-            if t.reached { "reached" } else { "missed" },
-            1e3 * t.goal_distance.abs(),
-            if t.goal_distance <= 0.0 { "inside" } else { "outside" },
+            "  {}; final errors: {}{upsets}; first divergence: {divergence}",
+            trial_outcome(i, n, t.reached, t.goal_distance),
             errors.join(", "),
         );
     }
+}
+
+/// "trial I (nominal): reached, goal object D mm inside the disc's edge" of trial `i` of `n`.
+fn trial_outcome(i: usize, n: usize, reached: bool, goal_distance: f64) -> String {
+    format!(
+        "trial {i}{}: {}, goal object {:.0} mm {} the disc's edge",
+        if i == 0 && n > 1 { " (nominal)" } else { "" },
+        if reached { "reached" } else { "missed" },
+        1e3 * goal_distance.abs(),
+        if goal_distance <= 0.0 {
+            "inside"
+        } else {
+            "outside"
+        },
+    )
 }
