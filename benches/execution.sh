@@ -7,7 +7,7 @@
 # scenes/benchmark; e.g. SCENES="scenes/dense/scene_17.yaml scenes/benchmark"); TRIALS the
 # 3D trials and perturbed re-simulations per plan (default 10). CLOSED_LOOP=1 also plays
 # each plan closed loop (`execute --closed-loop`, the same trials and worlds), into
-# OUT_DIR/*.closed.{json,txt}.
+# OUT_DIR/*.closed.{json,txt}, with CLOSED_LOOP_ARGS (e.g. "--replan-shortcut 0.1").
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -36,7 +36,8 @@ for scene in "${scenes[@]}"; do
     "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1
     echo "$n: $(head -1 "$out/$n.exec.txt" | sed 's/.*speed: //') | $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
     if [ -n "${CLOSED_LOOP:-}" ]; then
-      "$bin" execute "$out/$n.json" --closed-loop --trials "$trials" --json "$out/$n.closed.json" > "$out/$n.closed.txt" 2>&1
+      # shellcheck disable=SC2086
+      "$bin" execute "$out/$n.json" --closed-loop --trials "$trials" ${CLOSED_LOOP_ARGS:-} --json "$out/$n.closed.json" > "$out/$n.closed.txt" 2>&1
       echo "$n closed loop: $(head -1 "$out/$n.closed.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
     fi
   else
@@ -53,10 +54,10 @@ import glob, json, math, sys
 lat, replans, trials = [], 0, 0
 for f in glob.glob(sys.argv[1] + "/*.closed.json"):
     for t in json.load(open(f))["trials"]:
-        lat += t["latencies"]; replans += t["replans"]; trials += 1
+        lat += t["replan_latencies"]; replans += t["replans"]; trials += 1
 lat.sort()
 q = lambda p: lat[min(len(lat) - 1, max(0, math.ceil(p * len(lat)) - 1))] if lat else 0.0
 print(f"closed loop over {trials} trials: {replans / max(trials, 1):.2f} re-plans per trial; "
-      f"latency median {q(0.5):.3f} s, 95th percentile {q(0.95):.3f} s")
+      f"re-planning latency median {q(0.5):.3f} s, 95th percentile {q(0.95):.3f} s ({len(lat)} re-plans)")
 PY
 fi

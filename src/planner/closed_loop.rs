@@ -61,9 +61,11 @@ pub struct ClosedLoopTrial {
     pub kept: usize,
     /// Re-planning searches.
     pub replans: usize,
-    /// Time from each observation to the plan played next: re-simulation, and the search
-    /// and finishing when it re-planned (s).
+    /// Time from each observation to the plan played next: the rest re-simulated, and the
+    /// search and shortcutting when it re-planned (s).
     pub latencies: Vec<f64>,
+    /// The same, of the observations that re-planned only (s).
+    pub replan_latencies: Vec<f64>,
     /// Why the execution stopped before the plan's end, if it did.
     pub stopped: Option<String>,
 }
@@ -109,6 +111,7 @@ impl ClosedLoop<'_> {
             kept: 0,
             replans: 0,
             latencies: Vec::new(),
+            replan_latencies: Vec::new(),
             stopped: None,
         };
         let mut tipped = vec![false; objects];
@@ -152,6 +155,7 @@ impl ClosedLoop<'_> {
                     }
                 }
                 trial.replans += 1;
+                trial.replan_latencies.push(started.elapsed().as_secs_f64());
             }
             trial.latencies.push(started.elapsed().as_secs_f64());
             if rest.is_empty() {
@@ -284,9 +288,12 @@ pub struct ClosedLoopReport {
     /// Re-planning searches per trial, on average.
     pub replans_per_trial: f64,
     /// Median time from an observation to the plan played next (s), over every trial.
-    pub latency_median: f64,
+    pub decision_latency_median: f64,
+    /// Median time of a re-plan: from the observation to the new plan, searched and
+    /// shortcut (s), over every trial's re-plans.
+    pub replan_latency_median: f64,
     /// Its 95th percentile (s).
-    pub latency_p95: f64,
+    pub replan_latency_p95: f64,
 }
 
 impl ClosedLoop<'_> {
@@ -320,20 +327,32 @@ impl ClosedLoop<'_> {
             };
             done.push(each.execute(scene, plan, &world));
         }
-        let mut latencies: Vec<f64> = done.iter().flat_map(|t| t.latencies.clone()).collect();
-        latencies.sort_by(f64::total_cmp);
-        let quantile = |q: f64| match latencies.len() {
-            0 => 0.0,
-            n => latencies[((q * n as f64).ceil() as usize).clamp(1, n) - 1],
-        };
+        let decisions = sorted(done.iter().flat_map(|t| t.latencies.iter().copied()));
+        let replans = sorted(done.iter().flat_map(|t| t.replan_latencies.iter().copied()));
         let n = done.len().max(1) as f64;
         Ok(ClosedLoopReport {
             success_rate: done.iter().filter(|t| t.reached).count() as f64 / n,
             tipped_trials: done.iter().filter(|t| !t.tipped.is_empty()).count(),
             replans_per_trial: done.iter().map(|t| t.replans).sum::<usize>() as f64 / n,
-            latency_median: quantile(0.5),
-            latency_p95: quantile(0.95),
+            decision_latency_median: quantile(&decisions, 0.5),
+            replan_latency_median: quantile(&replans, 0.5),
+            replan_latency_p95: quantile(&replans, 0.95),
             trials: done,
         })
+    }
+}
+
+fn sorted(values: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut values: Vec<f64> = values.collect();
+    values.sort_by(f64::total_cmp);
+    values
+}
+
+/// The `q`-quantile of `sorted` (the smallest value with at least `q` of them at or below
+/// it); 0 for none.
+fn quantile(sorted: &[f64], q: f64) -> f64 {
+    match sorted.len() {
+        0 => 0.0,
+        n => sorted[((q * n as f64).ceil() as usize).clamp(1, n) - 1],
     }
 }

@@ -463,8 +463,9 @@ fn execute_closed_loop_reports_trials_replans_and_latency() {
     for field in [
         "success_rate",
         "replans_per_trial",
-        "latency_median",
-        "latency_p95",
+        "decision_latency_median",
+        "replan_latency_median",
+        "replan_latency_p95",
     ] {
         assert!(report[field].is_number(), "{field}: {report}");
     }
