@@ -139,12 +139,16 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64) {
     );
     for (i, t) in report.trials.iter().enumerate() {
         println!(
-            "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans{}{}",
+            "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans{}{}{}",
             trial_outcome(i, n, t.reached, t.goal_distance),
             t.controls_played,
             t.cut_short,
             t.kept,
             t.replans,
+            match t.failed_replans {
+                0 => String::new(),
+                f => format!(" ({f} more found nothing in time)"),
+            },
             if t.tipped.is_empty() {
                 String::new()
             } else {
