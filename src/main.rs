@@ -125,8 +125,9 @@ enum Command {
         /// With --closed-loop: each re-planning search's time limit (s).
         #[arg(long, default_value_t = 2.0, value_name = "SECONDS")]
         replan_time: f64,
-        /// With --closed-loop: shortcutting of each re-planned path (s of work).
-        #[arg(long, default_value_t = 0.5, value_name = "SECONDS")]
+        /// With --closed-loop: shortcutting of each re-planned path (s of work; 0.1 keeps
+        /// the median re-plan under 0.2 s, BENCHMARKS.md).
+        #[arg(long, default_value_t = 0.1, value_name = "SECONDS")]
         replan_shortcut: f64,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,

@@ -227,6 +227,10 @@ impl ClosedLoop<'_> {
             trial.controls_played += 1;
             if cut {
                 trial.cut_short += 1;
+            } else {
+                // The arm is where the model's control ends (the trajectory's samples are
+                // interpolated; its end is the control's last step state).
+                q.clone_from(&problem.simulate(&rest[..1], false).final_state().q);
             }
             rest.remove(0);
             settle(&mut world, &mut tipped, OBSERVE_AFTER);
