@@ -1,5 +1,5 @@
 //! Scenes: the robot, the table, static obstacles, movable objects, the goal and the
-//! planner parameters, loaded from YAML ([`file`]) and validated ([`load`]).
+//! planner parameters, loaded from YAML ([`file`](mod@file)) and validated ([`Scene::load`]).
 //!
 //! World frame: z up, the table top horizontal at `table.top`.
 
