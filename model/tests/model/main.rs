@@ -8,6 +8,7 @@ mod distance;
 mod footprint;
 mod generate;
 mod kinematics;
+mod observed_start;
 mod physics;
 mod pushing;
 mod scene_errors;
