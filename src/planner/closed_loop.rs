@@ -186,44 +186,20 @@ impl ClosedLoop<'_> {
                 break;
             }
             // Play the next control: its executable trajectory from the observed state.
-            let trajectory = match problem.trajectory(&rest[..1]) {
-                Ok(trajectory) => trajectory,
+            let cut = match problem.trajectory(&rest[..1]) {
+                Ok(trajectory) => play(
+                    &mut world,
+                    robot,
+                    &trajectory,
+                    settings,
+                    &mut q,
+                    &mut tipped,
+                ),
                 Err(e) => {
                     trial.stopped = Some(format!("internal error: {e}"));
                     break;
                 }
             };
-            let samples: Vec<DVector<f64>> = trajectory
-                .q
-                .iter()
-                .map(|q| DVector::from_column_slice(q))
-                .collect();
-            let end = trajectory.times.last().copied().unwrap_or(0.0);
-            let mut t = 0.0;
-            let mut segment = 0;
-            let mut cut = false;
-            while t < end && !cut {
-                t = (t + STEP * settings.speed).min(end);
-                while segment + 2 < samples.len() && trajectory.times[segment + 1] <= t {
-                    segment += 1;
-                }
-                if samples.len() > 1 {
-                    let (t0, t1) = (trajectory.times[segment], trajectory.times[segment + 1]);
-                    let s = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
-                    q = &samples[segment] * (1.0 - s) + &samples[segment + 1] * s;
-                }
-                robot.chain.forward_kinematics(&q, &mut poses);
-                world.move_arm(&poses);
-                world.step();
-                note_tipping(&world, &mut tipped);
-                // Against the prediction at the sample just passed.
-                let predicted = &trajectory.objects[segment];
-                cut = (0..objects).any(|i| {
-                    let p = world.object_pose2(i);
-                    let [x, y, _] = predicted[i];
-                    (p.x - x).hypot(p.y - y) > settings.tolerance
-                });
-            }
             trial.controls_played += 1;
             if cut {
                 trial.cut_short += 1;
@@ -299,6 +275,52 @@ fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
         crate::scene::Goal::ObjectInDisc { margin, .. } => goal.distance(state) <= 0.5 * margin,
         _ => goal.is_satisfied(state),
     }
+}
+
+/// Drives the arm along `trajectory` (one control's, at the settings' speed) in `world`,
+/// from its first sample; `q` ends where the arm is. Stops early, and says so, when an
+/// object is further than the settings' tolerance from its predicted position at the last
+/// sample passed.
+fn play(
+    world: &mut World,
+    robot: &crate::robot::Robot,
+    trajectory: &crate::planning::trajectory::Trajectory,
+    settings: &ClosedLoopSettings,
+    q: &mut DVector<f64>,
+    tipped: &mut [bool],
+) -> bool {
+    let samples: Vec<DVector<f64>> = trajectory
+        .q
+        .iter()
+        .map(|q| DVector::from_column_slice(q))
+        .collect();
+    let end = trajectory.times.last().copied().unwrap_or(0.0);
+    let mut poses = Vec::new();
+    let (mut t, mut segment) = (0.0, 0);
+    while t < end {
+        t = (t + STEP * settings.speed).min(end);
+        while segment + 2 < samples.len() && trajectory.times[segment + 1] <= t {
+            segment += 1;
+        }
+        if samples.len() > 1 {
+            let (t0, t1) = (trajectory.times[segment], trajectory.times[segment + 1]);
+            let s = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
+            *q = &samples[segment] * (1.0 - s) + &samples[segment + 1] * s;
+        }
+        robot.chain.forward_kinematics(q, &mut poses);
+        world.move_arm(&poses);
+        world.step();
+        note_tipping(world, tipped);
+        let predicted = &trajectory.objects[segment];
+        let off = predicted.iter().enumerate().any(|(i, &[x, y, _])| {
+            let p = world.object_pose2(i);
+            (p.x - x).hypot(p.y - y) > settings.tolerance
+        });
+        if off {
+            return true;
+        }
+    }
+    false
 }
 
 /// Steps the world `seconds` with the arm still.
