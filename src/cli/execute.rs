@@ -3,10 +3,8 @@
 
 use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopReport, ClosedLoopSettings};
 use pushplan::planner::Search;
-use pushplan::planning::execute::world::SolverSettings;
 use pushplan::planning::execute::{ExecuteSettings, ExecutionReport, DRIFT};
 use pushplan::planning::plan_file::PlanFile;
-use pushplan::planning::robustness::Noise;
 use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
@@ -54,70 +52,70 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
     let scene = plan.load_scene(path)?;
     plan.check_trajectory(&scene)
         .map_err(|e| format!("{}: {e}", path.display()))?;
-    if let Some((search, flags)) = closed_loop {
-        if render.is_some() {
-            return Err("--render draws open-loop executions only".into());
-        }
-        for (flag, value) in [
-            ("--replan-time", flags.replan_time),
-            ("--replan-shortcut", flags.replan_shortcut),
-        ] {
-            if !(value.is_finite() && value >= 0.0) || (flag == "--replan-time" && value == 0.0) {
-                return Err(format!("{flag}: must be positive and finite, got {value}"));
-            }
-        }
-        let settings = ClosedLoopSettings {
-            planner: plan.settings.planner,
-            replan_time: flags.replan_time,
-            replan_shortcut: flags.replan_shortcut,
-            seed: plan.settings.seed,
-            max_replans: 20,
-            tolerance: DRIFT,
-            speed,
-            solver: SolverSettings::default(),
-        };
-        if !plan.settings.planner.yields_controls() {
-            return Err(format!(
-                "{}: closed loop re-plans with the plan's planner, {}, which yields no controls",
-                path.display(),
-                plan.settings.planner.name()
-            ));
-        }
-        let closed = ClosedLoop {
-            search,
-            scene_path: &plan.scene_path(path),
-            settings,
-        };
-        let report = closed.trials(&scene, &plan.path_controls(), trials, &Noise::world(), seed)?;
-        print_closed_loop(path, &report, speed);
-        if let Some(json) = json {
-            let text = serde_json::to_string_pretty(&report).expect("reports serialise") + "\n";
-            std::fs::write(json, text).map_err(|e| format!("{}: {e}", json.display()))?;
-        }
-        return Ok(if report.success_rate > 0.0 {
-            ExitCode::SUCCESS
-        } else {
-            ExitCode::FAILURE
-        });
-    }
-    let settings = ExecuteSettings {
+    let execution = ExecuteSettings {
         trials,
         speed,
         seed,
         record: render.is_some(),
         ..ExecuteSettings::default()
     };
-    let report = pushplan::planning::execute::execute(&scene, &plan, &settings)?;
-    print_execution(path, &scene, &report);
-    if let Some(dir) = render {
-        let page = pushplan::render::render_execution(&plan, path, &report.trials[0].frames, dir)?;
-        println!("animation written to {}", page.display());
-    }
+    let (report, success_rate) = match closed_loop {
+        Some((search, flags)) => {
+            if render.is_some() {
+                return Err("--render draws open-loop executions only".into());
+            }
+            if !(flags.replan_time.is_finite() && flags.replan_time > 0.0) {
+                return Err(format!(
+                    "--replan-time: must be positive and finite, got {}",
+                    flags.replan_time
+                ));
+            }
+            if !(flags.replan_shortcut.is_finite() && flags.replan_shortcut >= 0.0) {
+                return Err(format!(
+                    "--replan-shortcut: must be zero or positive and finite, got {}",
+                    flags.replan_shortcut
+                ));
+            }
+            if !plan.settings.planner.yields_controls() {
+                return Err(format!(
+                    "{}: closed loop re-plans with the plan's planner, {}, which yields no controls",
+                    path.display(),
+                    plan.settings.planner.name()
+                ));
+            }
+            let closed = ClosedLoop {
+                search,
+                scene_path: &plan.scene_path(path),
+                settings: ClosedLoopSettings {
+                    planner: plan.settings.planner,
+                    replan_time: flags.replan_time,
+                    replan_shortcut: flags.replan_shortcut,
+                    seed: plan.settings.seed,
+                    max_replans: 20,
+                    tolerance: DRIFT,
+                },
+                execution,
+            };
+            let report = closed.trials(&scene, &plan.path_controls())?;
+            print_closed_loop(path, &report, speed);
+            (serde_json::to_string_pretty(&report), report.success_rate)
+        }
+        None => {
+            let report = pushplan::planning::execute::execute(&scene, &plan, &execution)?;
+            print_execution(path, &scene, &report);
+            if let Some(dir) = render {
+                let page =
+                    pushplan::render::render_execution(&plan, path, &report.trials[0].frames, dir)?;
+                println!("animation written to {}", page.display());
+            }
+            (serde_json::to_string_pretty(&report), report.success_rate)
+        }
+    };
     if let Some(json) = json {
-        let text = serde_json::to_string_pretty(&report).expect("reports serialise") + "\n";
+        let text = report.expect("reports serialise") + "\n";
         std::fs::write(json, text).map_err(|e| format!("{}: {e}", json.display()))?;
     }
-    Ok(if report.success_rate > 0.0 {
+    Ok(if success_rate > 0.0 {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE

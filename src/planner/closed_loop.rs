@@ -8,9 +8,10 @@
 //! differ from the scene's): only what it observes.
 
 use super::search::Search;
-use crate::planning::execute::world::{SolverSettings, World, STEP};
-use crate::planning::execute::TIPPED_TILT;
+use crate::planning::execute::world::{World, STEP};
+use crate::planning::execute::{trial_worlds, ExecuteSettings, TIPPED_TILT};
 use crate::planning::path::PathControl;
+use crate::planning::trajectory::{Playback, Trajectory};
 use crate::planning::{FinishSettings, PlannerKind, Problem, RunSettings};
 use crate::scene::Scene;
 use crate::state::State;
@@ -34,10 +35,6 @@ pub struct ClosedLoopSettings {
     pub max_replans: usize,
     /// An object this far from its predicted position cuts its control short (m).
     pub tolerance: f64,
-    /// Pace relative to the plan's trajectory (0.25: four times slower).
-    pub speed: f64,
-    /// The engine's solver effort.
-    pub solver: SolverSettings,
 }
 
 /// Time the world gets after each control (or a control cut short) before it is observed:
@@ -74,15 +71,18 @@ pub struct ClosedLoopTrial {
     pub stopped: Option<String>,
 }
 
-/// A closed-loop executor: it re-plans in the scene file at `scene_path` with `search`, as
-/// `settings` say.
+/// A closed-loop executor: it plays trials as `execution` says (their count, worlds, pace
+/// and the engine's effort) and re-plans in the scene file at `scene_path` with `search`,
+/// as `settings` say.
 pub struct ClosedLoop<'a> {
     /// The search of every re-plan.
     pub search: &'a dyn Search,
     /// The scene file the search loads (the scene the plans are made in).
     pub scene_path: &'a Path,
-    /// How it plays and re-plans.
+    /// How it re-plans.
     pub settings: ClosedLoopSettings,
+    /// How it plays, as open-loop execution does.
+    pub execution: ExecuteSettings,
 }
 
 impl ClosedLoop<'_> {
@@ -104,7 +104,7 @@ impl ClosedLoop<'_> {
             world_scene,
             &world_scene.start.objects,
             &poses,
-            &settings.solver,
+            &self.execution.solver,
         );
         let mut trial = ClosedLoopTrial {
             reached: false,
@@ -185,28 +185,22 @@ impl ClosedLoop<'_> {
                 trial.stopped = Some(format!("{most_controls} controls played"));
                 break;
             }
-            // Play the next control: its executable trajectory from the observed state.
-            let cut = match problem.trajectory(&rest[..1]) {
-                Ok(trajectory) => play(
-                    &mut world,
-                    robot,
-                    &trajectory,
-                    settings,
-                    &mut q,
-                    &mut tipped,
-                ),
+            // Play the next control: its executable trajectory from the observed state. After
+            // a whole control the arm is where the model's control ends (the trajectory's
+            // last sample is interpolated onto it).
+            let (next, trajectory) = match problem.timed(&rest[..1]) {
+                Ok(timed) => timed,
                 Err(e) => {
                     trial.stopped = Some(format!("internal error: {e}"));
                     break;
                 }
             };
+            let cut = self.play(&mut world, robot, &trajectory, &mut q, &mut tipped);
             trial.controls_played += 1;
             if cut {
                 trial.cut_short += 1;
             } else {
-                // The arm is where the model's control ends (the trajectory's samples are
-                // interpolated; its end is the control's last step state).
-                q.clone_from(&problem.simulate(&rest[..1], false).final_state().q);
+                q.clone_from(&next.final_state().q);
             }
             rest.remove(0);
             settle(&mut world, &mut tipped, OBSERVE_AFTER);
@@ -226,6 +220,40 @@ impl ClosedLoop<'_> {
             .map(|i| scene.objects[i].name.clone())
             .collect();
         trial
+    }
+
+    /// Drives the arm along `trajectory` (one control's, at the execution's pace) in
+    /// `world`; `q` ends where the arm is. Stops early, and says so, when an object is
+    /// further than the tolerance from its predicted position at the last sample passed.
+    fn play(
+        &self,
+        world: &mut World,
+        robot: &crate::robot::Robot,
+        trajectory: &Trajectory,
+        q: &mut DVector<f64>,
+        tipped: &mut [bool],
+    ) -> bool {
+        let mut playback = Playback::new(trajectory);
+        let end = playback.end();
+        let mut poses = Vec::new();
+        let mut t = 0.0;
+        while t < end {
+            t = (t + STEP * self.execution.speed).min(end);
+            *q = playback.at(t);
+            robot.chain.forward_kinematics(q, &mut poses);
+            world.move_arm(&poses);
+            world.step();
+            note_tipping(world, tipped);
+            let predicted = &trajectory.objects[playback.segment()];
+            let off = predicted.iter().enumerate().any(|(i, &[x, y, _])| {
+                let p = world.object_pose2(i);
+                (p.x - x).hypot(p.y - y) > self.settings.tolerance
+            });
+            if off {
+                return true;
+            }
+        }
+        false
     }
 
     /// A new plan from `problem`'s start (the observed state): searched for `time` seconds
@@ -277,52 +305,6 @@ fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
     }
 }
 
-/// Drives the arm along `trajectory` (one control's, at the settings' speed) in `world`,
-/// from its first sample; `q` ends where the arm is. Stops early, and says so, when an
-/// object is further than the settings' tolerance from its predicted position at the last
-/// sample passed.
-fn play(
-    world: &mut World,
-    robot: &crate::robot::Robot,
-    trajectory: &crate::planning::trajectory::Trajectory,
-    settings: &ClosedLoopSettings,
-    q: &mut DVector<f64>,
-    tipped: &mut [bool],
-) -> bool {
-    let samples: Vec<DVector<f64>> = trajectory
-        .q
-        .iter()
-        .map(|q| DVector::from_column_slice(q))
-        .collect();
-    let end = trajectory.times.last().copied().unwrap_or(0.0);
-    let mut poses = Vec::new();
-    let (mut t, mut segment) = (0.0, 0);
-    while t < end {
-        t = (t + STEP * settings.speed).min(end);
-        while segment + 2 < samples.len() && trajectory.times[segment + 1] <= t {
-            segment += 1;
-        }
-        if samples.len() > 1 {
-            let (t0, t1) = (trajectory.times[segment], trajectory.times[segment + 1]);
-            let s = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
-            *q = &samples[segment] * (1.0 - s) + &samples[segment + 1] * s;
-        }
-        robot.chain.forward_kinematics(q, &mut poses);
-        world.move_arm(&poses);
-        world.step();
-        note_tipping(world, tipped);
-        let predicted = &trajectory.objects[segment];
-        let off = predicted.iter().enumerate().any(|(i, &[x, y, _])| {
-            let p = world.object_pose2(i);
-            (p.x - x).hypot(p.y - y) > settings.tolerance
-        });
-        if off {
-            return true;
-        }
-    }
-    false
-}
-
 /// Steps the world `seconds` with the arm still.
 fn settle(world: &mut World, tipped: &mut [bool], seconds: f64) {
     for _ in 0..(seconds / STEP).round() as usize {
@@ -358,35 +340,20 @@ pub struct ClosedLoopReport {
 }
 
 impl ClosedLoop<'_> {
-    /// `trials` closed-loop executions of `plan`: the first in the scene as it is, the
-    /// others in worlds perturbed by `noise` (drawn from `seed`), which the planner does
-    /// not know.
-    pub fn trials(
-        &self,
-        scene: &Scene,
-        plan: &[PathControl],
-        trials: usize,
-        noise: &crate::planning::robustness::Noise,
-        seed: u64,
-    ) -> Result<ClosedLoopReport, String> {
-        let mut rng = crate::random::SplitMix64::new(seed);
-        let mut done = Vec::with_capacity(trials);
-        for trial in 0..trials {
-            let world = if trial == 0 {
-                scene.clone()
-            } else {
-                noise
-                    .perturb(scene, &mut rng)
-                    .map_err(|e| format!("no valid perturbed start: {e}"))?
-            };
+    /// The execution's trials of `plan`, closed loop: the first in the scene as it is, the
+    /// others in worlds perturbed by its noise, which the planner does not know.
+    pub fn trials(&self, scene: &Scene, plan: &[PathControl]) -> Result<ClosedLoopReport, String> {
+        let mut done = Vec::with_capacity(self.execution.trials);
+        for (trial, world) in trial_worlds(scene, &self.execution).enumerate() {
             let each = ClosedLoop {
                 settings: ClosedLoopSettings {
                     seed: self.settings.seed.wrapping_add(1000 * trial as u64),
                     ..self.settings.clone()
                 },
+                execution: self.execution.clone(),
                 ..*self
             };
-            done.push(each.execute(scene, plan, &world));
+            done.push(each.execute(scene, plan, &world?));
         }
         let decisions = sorted(done.iter().flat_map(|t| t.latencies.iter().copied()));
         let replans = sorted(done.iter().flat_map(|t| t.replan_latencies.iter().copied()));

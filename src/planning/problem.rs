@@ -115,10 +115,17 @@ impl Problem {
 
     /// The executable trajectory of `controls` (every object of the scene).
     pub fn trajectory(&self, controls: &[PathControl]) -> Result<Trajectory, String> {
+        self.timed(controls).map(|(_, trajectory)| trajectory)
+    }
+
+    /// `controls` simulated (every step's state recorded) and timed into their executable
+    /// trajectory; an error if they do not simulate.
+    pub fn timed(&self, controls: &[PathControl]) -> Result<(SimulatedPath, Trajectory), String> {
         let path = self.simulate(controls, true);
         if let Some((i, reason)) = &path.stopped_by {
             return Err(format!("the plan does not simulate: control {i}: {reason}"));
         }
-        executable(&self.scene, controls, &path.step_states)
+        let trajectory = executable(&self.scene, controls, &path.step_states)?;
+        Ok((path, trajectory))
     }
 }

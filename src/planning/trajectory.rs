@@ -28,6 +28,53 @@ pub struct Trajectory {
     pub objects: Vec<Vec<[f64; 3]>>,
 }
 
+/// A trajectory played as a controller plays it: the joint values at increasing times,
+/// linearly interpolated between its samples and held at its end.
+pub struct Playback<'a> {
+    trajectory: &'a Trajectory,
+    samples: Vec<DVector<f64>>,
+    segment: usize,
+}
+
+impl<'a> Playback<'a> {
+    /// `trajectory` (at least one sample) from its start.
+    pub fn new(trajectory: &'a Trajectory) -> Playback<'a> {
+        Playback {
+            samples: trajectory
+                .q
+                .iter()
+                .map(|q| DVector::from_column_slice(q))
+                .collect(),
+            trajectory,
+            segment: 0,
+        }
+    }
+
+    /// The joint values at `tau` (s into the trajectory; never earlier than the last call's).
+    pub fn at(&mut self, tau: f64) -> DVector<f64> {
+        let times = &self.trajectory.times;
+        while self.segment + 2 < self.samples.len() && times[self.segment + 1] <= tau {
+            self.segment += 1;
+        }
+        let k = self.segment;
+        if self.samples.len() == 1 {
+            return self.samples[0].clone();
+        }
+        let s = ((tau - times[k]) / (times[k + 1] - times[k])).clamp(0.0, 1.0);
+        &self.samples[k] * (1.0 - s) + &self.samples[k + 1] * s
+    }
+
+    /// The sample at or before the last time asked for (its index).
+    pub fn segment(&self) -> usize {
+        self.segment
+    }
+
+    /// The trajectory's duration (s).
+    pub fn end(&self) -> f64 {
+        self.trajectory.times.last().copied().unwrap_or(0.0)
+    }
+}
+
 /// The shortest time (s) in which the straight joint motion `from -> to` keeps every joint
 /// within its URDF velocity limit.
 pub fn joint_motion_time(robot: &Robot, from: &DVector<f64>, to: &DVector<f64>) -> f64 {

@@ -417,9 +417,8 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
             seed: 1,
             max_replans: 10,
             tolerance: DRIFT,
-            speed: 1.0,
-            solver: SolverSettings::default(),
         },
+        execution: ExecuteSettings::default(),
     };
     let closed = closed_loop.execute(&scene, &plan.path_controls(), &world);
     assert!(closed.reached, "closed loop reaches the goal: {closed:?}");

@@ -13,6 +13,7 @@ pub mod world;
 use crate::math::Pose2;
 use crate::planning::plan_file::PlanFile;
 use crate::planning::robustness::Noise;
+use crate::planning::trajectory::Playback;
 use crate::random::SplitMix64;
 use crate::scene::Scene;
 use nalgebra::DVector;
@@ -141,18 +142,9 @@ pub fn execute(
     settings: &ExecuteSettings,
 ) -> Result<ExecutionReport, String> {
     let predicted = predicted_poses(scene, plan)?;
-    let mut rng = SplitMix64::new(settings.seed);
     let mut trials = Vec::with_capacity(settings.trials);
-    for trial in 0..settings.trials {
-        let perturbed = if trial == 0 {
-            scene.clone()
-        } else {
-            settings
-                .noise
-                .perturb(scene, &mut rng)
-                .map_err(|e| format!("no valid perturbed start: {e}"))?
-        };
-        trials.push(run(&perturbed, scene, plan, &predicted, settings));
+    for world in trial_worlds(scene, settings) {
+        trials.push(run(&world?, scene, plan, &predicted, settings));
     }
     let n = trials.len().max(1) as f64;
     Ok(ExecutionReport {
@@ -162,6 +154,22 @@ pub fn execute(
         object_contact_trials: trials.iter().filter(|t| t.objects_touched).count(),
         speed: settings.speed,
         trials,
+    })
+}
+
+/// The worlds of `settings.trials` trials in `scene`: the scene as it is first, then
+/// scenes perturbed by `settings.noise`, drawn from `settings.seed`.
+pub fn trial_worlds<'a>(
+    scene: &'a Scene,
+    settings: &'a ExecuteSettings,
+) -> impl Iterator<Item = Result<Scene, String>> + 'a {
+    let mut rng = SplitMix64::new(settings.seed);
+    (0..settings.trials).map(move |trial| match trial {
+        0 => Ok(scene.clone()),
+        _ => settings
+            .noise
+            .perturb(scene, &mut rng)
+            .map_err(|e| format!("no valid perturbed start: {e}")),
     })
 }
 
@@ -223,9 +231,11 @@ fn run(
 ) -> ExecutionTrial {
     let robot = &world_scene.robot;
     let trajectory = &plan.trajectory;
-    let q_at = |k: usize| DVector::from_column_slice(&trajectory.q[k]);
+    let mut playback = Playback::new(trajectory);
     let mut poses = Vec::new();
-    robot.chain.forward_kinematics(&q_at(0), &mut poses);
+    robot
+        .chain
+        .forward_kinematics(&playback.at(0.0), &mut poses);
     let mut world = World::with_solver(
         world_scene,
         &world_scene.start.objects,
@@ -244,22 +254,12 @@ fn run(
     let mut first_divergence = None;
     let mut frames = Vec::new();
     let mut next_sample = 0;
-    let mut segment = 0;
     for n in 1..=total_steps {
         let t = n as f64 * STEP;
         // Plan time of the arm at the end of this step: the trajectory, linearly
         // interpolated, then held at its end.
         let tau = (t * settings.speed).min(plan_end);
-        while segment + 2 < samples && trajectory.times[segment + 1] <= tau {
-            segment += 1;
-        }
-        let q = if samples == 1 {
-            q_at(0)
-        } else {
-            let (t0, t1) = (trajectory.times[segment], trajectory.times[segment + 1]);
-            let s = ((tau - t0) / (t1 - t0)).clamp(0.0, 1.0);
-            q_at(segment) * (1.0 - s) + q_at(segment + 1) * s
-        };
+        let q = playback.at(tau);
         robot.chain.forward_kinematics(&q, &mut poses);
         world.move_arm(&poses);
         world.step();
@@ -322,7 +322,7 @@ fn run(
         .map(|(a, b)| (a.translation() - b.translation()).norm())
         .collect();
     let mut end_state = scene.start.clone();
-    end_state.q = q_at(samples - 1);
+    end_state.q = DVector::from_column_slice(&trajectory.q[samples - 1]);
     end_state.objects.clone_from(&final_poses);
     let goal_distance = scene.goal.task_distance(&end_state);
     let upright = scene
