@@ -145,6 +145,18 @@ impl Default for ProjectionSettings {
     }
 }
 
+impl ProjectionSettings {
+    /// These settings with the tolerances a start state is held to: a thousandth of the
+    /// propagation's, so that drift is measured from (almost) zero.
+    pub fn for_start(&self) -> ProjectionSettings {
+        ProjectionSettings {
+            height_tolerance: self.height_tolerance * 1e-3,
+            tilt_tolerance: self.tilt_tolerance * 1e-3,
+            ..self.clone()
+        }
+    }
+}
+
 /// Why a projected step was refused.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ProjectionFailure {
@@ -254,6 +266,13 @@ impl Robot {
         self.chain.forward_kinematics(q_new, poses_new);
         self.restore_plane(q_new, poses_new, settings)?;
         self.check_step(q, q_new, settings)
+    }
+
+    /// Brings the tool of `q` onto its pushing plane as a start state's is held
+    /// ([`ProjectionSettings::for_start`]).
+    pub fn start_on_plane(&self, q: &mut DVector<f64>) -> Result<(), ProjectionFailure> {
+        let mut poses = self.link_poses(q);
+        self.restore_plane(q, &mut poses, &self.projection.for_start())
     }
 
     /// Newton corrections back onto the plane, if the tool has drifted beyond tolerance.

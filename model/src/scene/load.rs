@@ -770,15 +770,8 @@ impl Loader<'_> {
                     settings.clone(),
                 );
                 let mut q = DVector::from_column_slice(start_joints);
-                let mut poses = robot.link_poses(&q);
-                // Start exactly on the plane, so drift is measured from zero.
-                let tight = ProjectionSettings {
-                    height_tolerance: settings.height_tolerance * 1e-3,
-                    tilt_tolerance: settings.tilt_tolerance * 1e-3,
-                    ..settings.clone()
-                };
                 let written = q.clone();
-                if let Err(failure) = robot.restore_plane(&mut q, &mut poses, &tight) {
+                if let Err(failure) = robot.start_on_plane(&mut q) {
                     self.start_problem(self.invalid("robot.start_joints", format!("the tool cannot be brought onto its pushing plane from here: {failure}")))?;
                     q = written.clone();
                 }

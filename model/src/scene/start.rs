@@ -3,7 +3,6 @@
 
 use super::{Clearances, Scene};
 use crate::error::{Error, Result};
-use crate::robot::projection::ProjectionSettings;
 use crate::robot::RobotKind;
 use crate::state::State;
 use std::path::Path;
@@ -55,20 +54,14 @@ impl Scene {
         }
         let mut q = start.q.clone();
         if self.robot.kind == RobotKind::Arm {
-            let tight = ProjectionSettings {
-                height_tolerance: self.robot.projection.height_tolerance * 1e-3,
-                tilt_tolerance: self.robot.projection.tilt_tolerance * 1e-3,
-                ..self.robot.projection.clone()
-            };
-            let mut poses = self.robot.link_poses(&q);
-            self.robot
-                .restore_plane(&mut q, &mut poses, &tight)
-                .map_err(|failure| {
-                    invalid(
-                        "q".into(),
-                        format!("the tool cannot be brought onto its pushing plane from here: {failure}"),
-                    )
-                })?;
+            self.robot.start_on_plane(&mut q).map_err(|failure| {
+                invalid(
+                    "q".into(),
+                    format!(
+                        "the tool cannot be brought onto its pushing plane from here: {failure}"
+                    ),
+                )
+            })?;
         }
         if let Err(i) = self.robot.chain.within_limits(&q) {
             let joint = self.robot.chain.dof_joint(i);
