@@ -14,6 +14,7 @@
 //! hand's are `x`, `y`, `yaw`). `objects`: every movable object's `[x, y, yaw]` on the
 //! table (m, m, rad; world frame). Nothing may be missing or unknown.
 
+use crate::planning::plan_file::read_json;
 use crate::scene::Scene;
 use crate::state::State;
 use crate::Pose2;
@@ -58,15 +59,7 @@ impl ObservedState {
 
     /// Reads an observed-state file; errors name the file and the field.
     pub fn read(path: &Path) -> Result<ObservedState, String> {
-        let text = crate::input::read_text(path, MAX_OBSERVED_BYTES)
-            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-        let observed: ObservedState = serde_json::from_str(&text).map_err(|e| {
-            format!(
-                "{}: {}",
-                path.display(),
-                crate::input::shorten_quoted(&e.to_string())
-            )
-        })?;
+        let observed: ObservedState = read_json(path, MAX_OBSERVED_BYTES)?;
         if observed.format != OBSERVED_FORMAT {
             return Err(format!(
                 "{}: format is '{}', expected '{OBSERVED_FORMAT}'",

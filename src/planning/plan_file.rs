@@ -328,20 +328,26 @@ fn finite<'a>(field: &str, values: impl IntoIterator<Item = &'a f64>) -> Result<
     }
 }
 
+/// The JSON file at `path` (at most `max_bytes`, a regular file), parsed; errors name the
+/// file, and the field where serde can say.
+pub fn read_json<T: serde::de::DeserializeOwned>(path: &Path, max_bytes: u64) -> Result<T, String> {
+    let text = crate::input::read_text(path, max_bytes)
+        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| {
+        format!(
+            "{}: {}",
+            path.display(),
+            crate::input::shorten_quoted(&e.to_string())
+        )
+    })
+}
+
 impl PlanFile {
     /// Reads a plan file and checks its shape: the format, no unknown fields, step counts
     /// within [`MAX_PLAN_STEPS`], one value per joint and object everywhere, finite
     /// numbers. Errors name the file and the field.
     pub fn read(path: &Path) -> Result<PlanFile, String> {
-        let text = crate::input::read_text(path, crate::input::MAX_PLAN_BYTES)
-            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-        let plan: PlanFile = serde_json::from_str(&text).map_err(|e| {
-            format!(
-                "{}: {}",
-                path.display(),
-                crate::input::shorten_quoted(&e.to_string())
-            )
-        })?;
+        let plan: PlanFile = read_json(path, crate::input::MAX_PLAN_BYTES)?;
         if let Some(field) = plan.unknown.keys().next() {
             return Err(format!("{}: unknown field `{field}`", path.display()));
         }
