@@ -191,6 +191,16 @@ namespace pushplan
             return options.on_progress;
         }
 
+        /// The plan's propagation step and the names of its joints and objects, the scene's.
+        void nameParts(Plan &plan, const bridge::SceneInfo &info)
+        {
+            plan.step = info.planner.step;
+            for (const auto &n : info.joint_names)
+                plan.joint_names.emplace_back(n);
+            for (const auto &n : info.object_names)
+                plan.object_names.emplace_back(n);
+        }
+
         /// `observed` in the flat layout, its sizes checked against the scene's.
         std::vector<double> flatObservation(const Observation &observed, const bridge::SceneInfo &info)
         {
@@ -205,6 +215,13 @@ namespace pushplan
                 flat.insert(flat.end(), pose.data(), pose.data() + 3);
             return flat;
         }
+
+        /// `problem` starting at `observed` (checked as a scene's start is).
+        rust::Box<bridge::Problem> startingAt(rust::Box<bridge::Problem> problem, const Observation &observed)
+        {
+            problem->set_start(slice(flatObservation(observed, problem->info())));
+            return problem;
+        }
     }  // namespace detail
 
     Plan Planner::solve(const Options &options) const
@@ -218,12 +235,7 @@ namespace pushplan
     Plan Planner::solveFrom(const Observation &start, const Options &options) const
     {
         const Source &source = this->source();
-        const auto load = [&] {
-            rust::Box<bridge::Problem> problem = source.load();
-            problem->set_start(detail::slice(detail::flatObservation(start, problem->info())));
-            return problem;
-        };
-        return detail::solve(load, [&](const bridge::SceneInfo &info) { return detail::resolve(options, info); },
+        return detail::solve([&] { return detail::startingAt(source.load(), start); }, [&](const bridge::SceneInfo &info) { return detail::resolve(options, info); },
                              detail::reportsOf(options));
     }
 
@@ -235,9 +247,8 @@ namespace pushplan
                 throw Error("replan: at = " + std::to_string(at) + ", but the plan has " +
                             std::to_string(plan.controls.size()) + " controls");
             const auto started = std::chrono::steady_clock::now();
-            rust::Box<bridge::Problem> problem = source.load();
+            const rust::Box<bridge::Problem> problem = detail::startingAt(source.load(), observed);
             const bridge::SceneInfo info = problem->info();
-            problem->set_start(detail::slice(detail::flatObservation(observed, info)));
             // The rest of the plan, re-simulated from the observed state.
             detail::FlatPath kept;
             for (std::size_t i = at; i < plan.controls.size(); ++i)
@@ -257,11 +268,7 @@ namespace pushplan
                 *finisher, kept, true, bridge::FinishSettings{0.0, 0, 0, 0.0, std::numeric_limits<double>::infinity()});
             Plan out;
             out.solved = true;
-            out.step = info.planner.step;
-            for (const auto &n : info.joint_names)
-                out.joint_names.emplace_back(n);
-            for (const auto &n : info.object_names)
-                out.object_names.emplace_back(n);
+            detail::nameParts(out, info);
             detail::describe(out, *finisher, info, path);
             out.planning_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             out.replanned = Replanned{at, true};
@@ -438,7 +445,7 @@ namespace pushplan
             plan.threads = threads;
             plan.restarts = portfolio.restarts();
             plan.fallbacks = portfolio.fallbacks();
-            plan.step = info.planner.step;
+            detail::nameParts(plan, info);
             for (std::size_t i = 0; i < portfolio.size(); ++i)
             {
                 const detail::Search &s = portfolio[i];
@@ -447,10 +454,6 @@ namespace pushplan
                 plan.tree_size += data.numVertices();
             }
             plan.solved = solved;
-            for (const auto &n : info.joint_names)
-                plan.joint_names.emplace_back(n);
-            for (const auto &n : info.object_names)
-                plan.object_names.emplace_back(n);
             if (found.states.empty())
                 return plan;
 
