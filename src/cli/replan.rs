@@ -33,10 +33,10 @@ pub fn replan(
     out: &Path,
 ) -> Result<ExitCode, String> {
     let old = PlanFile::read(plan_path)?;
-    // Checks the plan against its scene (names, and a re-planned plan's own start).
-    old.load_scene(plan_path)?;
+    // The plan's scene, checked against the plan (names, and a re-planned plan's own
+    // start); where it starts does not matter: the observed state replaces its start.
+    let scene = old.load_scene(plan_path)?;
     let scene_path = old.scene_path(plan_path);
-    let scene = Scene::load(&scene_path).map_err(|e| e.to_string())?;
     let observed = ObservedState::read(observed_path)?.state(&scene, observed_path)?;
     let from = scene
         .with_start(&observed, observed_path)
