@@ -1,5 +1,5 @@
 //! Builds the OMPL side (`cpp/`, public headers in `include/`) with cxx against the
-//! system's OMPL and Eigen, and writes `pushplan.pc` (pkg-config) next to the built
+//! system's OMPL and Eigen (and MuJoCo's world, `cpp/engines/`, against MuJoCo), and writes `pushplan.pc` (pkg-config) next to the built
 //! library so C++ applications can link `libpushplan.a` from the build tree.
 //!
 //! OMPL and Eigen are found, in this order, from the environment
@@ -11,7 +11,14 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const INSTALL: &str = "sudo apt-get install -y libompl-dev libeigen3-dev libfcl-dev ompl-demos";
+const INSTALL: &str =
+    "sudo apt-get install -y libompl-dev libeigen3-dev libmujoco-dev libfcl-dev ompl-demos";
+/// The cxx bridges: the OMPL side's two halves, and MuJoCo's world.
+const BRIDGES: [&str; 3] = [
+    "src/bridge.rs",
+    "src/bridge/entry.rs",
+    "src/planning/execute/mujoco/bridge.rs",
+];
 const ENV_OMPL_INCLUDE: &str = "PUSHPLAN_OMPL_INCLUDE_DIR";
 const ENV_OMPL_LIB: &str = "PUSHPLAN_OMPL_LIB_DIR";
 const ENV_EIGEN_INCLUDE: &str = "PUSHPLAN_EIGEN_INCLUDE_DIR";
@@ -66,7 +73,7 @@ fn main() {
     }
     sources.sort();
     let twins = write_twins();
-    let mut build = cxx_build::bridges(["src/bridge.rs", "src/bridge/entry.rs"]);
+    let mut build = cxx_build::bridges(BRIDGES);
     build.files(&sources);
     build
         .include("include")
@@ -81,11 +88,14 @@ fn main() {
         println!("cargo:rustc-link-search=native={}", deps.ompl_lib.display());
     }
     println!("cargo:rustc-link-lib=ompl");
+    // MuJoCo, the second engine of `pushplan execute` (Debian: libmujoco-dev).
+    println!("cargo:rustc-link-lib=mujoco");
     for dir in ["cpp", "include"] {
         println!("cargo:rerun-if-changed={dir}");
     }
-    println!("cargo:rerun-if-changed=src/bridge.rs");
-    println!("cargo:rerun-if-changed=src/bridge/entry.rs");
+    for bridge in BRIDGES {
+        println!("cargo:rerun-if-changed={bridge}");
+    }
     write_pkg_config(&deps);
     write_install_manifest(&deps);
     // Debian's OMPL 1.5.2 defines OMPL_VERSION as "": benchmark logs take the version
@@ -122,6 +132,13 @@ fn find_dependencies() -> Result<Dependencies, Vec<&'static str>> {
     }
     if ompl_include.is_some() && ompl_lib.is_none() {
         missing.push("the OMPL library");
+    }
+    // MuJoCo from Debian's libmujoco-dev (the headers and libmujoco.so on the usual paths).
+    if !["/usr/include", "/usr/local/include"]
+        .iter()
+        .any(|dir| Path::new(dir).join("mujoco/mujoco.h").exists())
+    {
+        missing.push("MuJoCo (mujoco/mujoco.h)");
     }
     match (ompl_include, eigen_include, ompl_lib) {
         (Some(ompl_include), Some(eigen_include), Some(ompl_lib)) if missing.is_empty() => {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The execution benchmark of BENCHMARKS.md ("Plans that work in the world"): for every
-# benchmark scene, plan once (seed 1), play the plan 10 times in the 3D engine and
+# benchmark scene, plan once (seed 1), play the plan 10 times in each 3D engine (ENGINES,
+# default "rapier mujoco": the same plan, trials and perturbed worlds in each) and
 # re-simulate it 10 times with parameter noise. Extra `plan` options go in PLAN_ARGS
 # (e.g. PLAN_ARGS="--robust 20"); TIME sets the search time (default 10 s); SCENES the
 # scenes, folders (their scene_*.yaml) or files, separated by spaces (default
@@ -11,14 +12,15 @@
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
-# Writes OUT_DIR/FOLDER_scene_NN.{json,plan.txt,exec.json,exec.txt,check.txt} and a summary line
-# per scene in OUT_DIR/summary.txt.
+# Writes OUT_DIR/FOLDER_scene_NN.{json,plan.txt,check.txt}, FOLDER_scene_NN.ENGINE.{exec,closed}.{json,txt}
+# and summary lines per scene and engine in OUT_DIR/summary.txt.
 set -u
 out=${1:?usage: benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]}
 bin=${2:-target/release/pushplan}
 mkdir -p "$out"
 : > "$out/summary.txt"
 trials=${TRIALS:-10}
+engines=(${ENGINES:-rapier mujoco})
 scenes=()
 for s in ${SCENES:-scenes/benchmark}; do
   if [ -d "$s" ]; then scenes+=("$s"/scene_*.yaml); else scenes+=("$s"); fi
@@ -32,32 +34,38 @@ for scene in "${scenes[@]}"; do
   # shellcheck disable=SC2086
   "$bin" plan "$scene" --seed 1 --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
   if head -1 "$out/$n.plan.txt" | grep -q '^solved'; then
-    "$bin" execute "$out/$n.json" --trials "$trials" --json "$out/$n.exec.json" > "$out/$n.exec.txt" 2>&1
     "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1
-    echo "$n: $(head -1 "$out/$n.exec.txt" | sed 's/.*speed: //') | $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
-    if [ -n "${CLOSED_LOOP:-}" ]; then
-      # shellcheck disable=SC2086
-      "$bin" execute "$out/$n.json" --closed-loop --trials "$trials" ${CLOSED_LOOP_ARGS:-} --json "$out/$n.closed.json" > "$out/$n.closed.txt" 2>&1
-      echo "$n closed loop: $(head -1 "$out/$n.closed.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
-    fi
+    echo "$n: $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
+    for e in "${engines[@]}"; do
+      "$bin" execute "$out/$n.json" --engine "$e" --trials "$trials" --json "$out/$n.$e.exec.json" > "$out/$n.$e.exec.txt" 2>&1
+      echo "$n $e: $(head -1 "$out/$n.$e.exec.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
+      if [ -n "${CLOSED_LOOP:-}" ]; then
+        # shellcheck disable=SC2086
+        "$bin" execute "$out/$n.json" --engine "$e" --closed-loop --trials "$trials" ${CLOSED_LOOP_ARGS:-} --json "$out/$n.$e.closed.json" > "$out/$n.$e.closed.txt" 2>&1
+        echo "$n $e closed loop: $(head -1 "$out/$n.$e.closed.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
+      fi
+    done
   else
     echo "$n: not solved" >> "$out/summary.txt"
   fi
 done
-reached=$(cat "$out"/*.exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
-echo "trials reaching the goal: $reached of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
-if [ -n "${CLOSED_LOOP:-}" ]; then
-  closed=$(cat "$out"/*.closed.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
-  echo "closed loop, trials reaching the goal: $closed of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
-  python3 - "$out" <<'PY' | tee -a "$out/summary.txt"
+for e in "${engines[@]}"; do
+  reached=$(cat "$out"/*."$e".exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
+  echo "$e: trials reaching the goal: $reached of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
+  if [ -n "${CLOSED_LOOP:-}" ]; then
+    closed=$(cat "$out"/*."$e".closed.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
+    echo "$e closed loop: trials reaching the goal: $closed of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
+    python3 - "$out" "$e" <<'PY' | tee -a "$out/summary.txt"
 import glob, json, math, sys
-lat, replans, trials = [], 0, 0
-for f in glob.glob(sys.argv[1] + "/*.closed.json"):
+lat, replans, trials, tipped = [], 0, 0, 0
+for f in glob.glob(f"{sys.argv[1]}/*.{sys.argv[2]}.closed.json"):
     for t in json.load(open(f))["trials"]:
-        lat += t["replan_latencies"]; replans += t["replans"]; trials += 1
+        lat += t["replan_latencies"]; replans += t["replans"]; trials += 1; tipped += bool(t["tipped"])
 lat.sort()
 q = lambda p: lat[min(len(lat) - 1, max(0, math.ceil(p * len(lat)) - 1))] if lat else 0.0
-print(f"closed loop over {trials} trials: {replans / max(trials, 1):.2f} re-plans per trial; "
-      f"re-planning latency median {q(0.5):.3f} s, 95th percentile {q(0.95):.3f} s ({len(lat)} re-plans)")
+print(f"{sys.argv[2]} closed loop over {trials} trials: {replans / max(trials, 1):.2f} re-plans per trial; "
+      f"re-planning latency median {q(0.5):.3f} s, 95th percentile {q(0.95):.3f} s ({len(lat)} re-plans); "
+      f"{tipped} trials tip an object")
 PY
-fi
+  fi
+done

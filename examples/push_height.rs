@@ -11,7 +11,8 @@
 //! TRAVEL_M: how far the pusher moves, at 0.1 m/s (default 0.03 m).
 
 use nalgebra::DVector;
-use pushplan::planning::execute::world::World;
+use pushplan::planning::execute::rapier::RapierWorld;
+use pushplan::planning::execute::Engine;
 use pushplan::planning::path::{simulate, PathControl};
 use pushplan::{EeAction, Pose2, Propagator, Scene};
 use std::path::Path;
@@ -69,7 +70,7 @@ fn main() {
         let scene = scene(height, offset, true);
         let mut poses = Vec::new();
         scene.robot.chain.forward_kinematics(&path[0], &mut poses);
-        let mut world = World::new(&scene, &scene.start.objects, &poses);
+        let mut world = RapierWorld::new(&scene, &scene.start.objects, &poses);
         world.follow(&scene.robot.chain, &path, scene.planner.step);
         let engine = world.object_pose2(0);
         let off = |p: &Pose2| 1e3 * (p.translation() - engine.translation()).norm();

@@ -12,6 +12,7 @@ use cli::{
 };
 use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
+use pushplan::planning::execute::EngineKind;
 use pushplan::planning::PlannerKind;
 use pushplan::scene::builtin;
 use pushplan::scene::generate::Design;
@@ -95,7 +96,7 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
-    /// Play a plan's trajectory open loop in a 3D rigid-body engine (rapier): the arm's
+    /// Play a plan's trajectory open loop in a 3D rigid-body engine (rapier or MuJoCo): the arm's
     /// links follow the trajectory, the objects slide, turn and tip freely. Reports how
     /// often the goal is reached, each object's final error and the first divergence.
     Execute {
@@ -110,6 +111,10 @@ enum Command {
         /// Seed of the perturbations.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// The 3D engine: rapier (rigid contacts, objects on evenly spread feet) or
+        /// mujoco (soft contacts, objects on their own faces and rims).
+        #[arg(long, default_value_t = EngineKind::Rapier)]
+        engine: EngineKind,
         /// Also write the report as JSON.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -391,6 +396,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             trials,
             speed,
             seed,
+            engine,
             json,
             render,
             closed_loop,
@@ -402,6 +408,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 trials,
                 speed,
                 seed,
+                engine,
                 json: json.as_deref(),
                 render: render.as_deref(),
                 closed_loop: closed_loop.then_some((

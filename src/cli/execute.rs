@@ -3,7 +3,7 @@
 
 use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopReport, ClosedLoopSettings};
 use pushplan::planner::Search;
-use pushplan::planning::execute::{ExecuteSettings, ExecutionReport, DRIFT};
+use pushplan::planning::execute::{EngineKind, ExecuteSettings, ExecutionReport, DRIFT};
 use pushplan::planning::plan_file::PlanFile;
 use pushplan::Scene;
 use std::path::Path;
@@ -25,6 +25,8 @@ pub struct ExecuteOptions<'a> {
     pub speed: f64,
     /// Seed of the perturbations.
     pub seed: u64,
+    /// The 3D engine.
+    pub engine: EngineKind,
     /// Also write the report as JSON here.
     pub json: Option<&'a Path>,
     /// Write the nominal execution's animation into this folder (open loop).
@@ -38,6 +40,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
         trials,
         speed,
         seed,
+        engine,
         json,
         render,
         closed_loop,
@@ -56,6 +59,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
         trials,
         speed,
         seed,
+        engine,
         record: render.is_some(),
         ..ExecuteSettings::default()
     };
@@ -97,7 +101,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                 execution,
             };
             let report = closed.trials(&scene, &plan.path_controls())?;
-            print_closed_loop(path, &report, speed);
+            print_closed_loop(path, &report, speed, engine);
             (serde_json::to_string_pretty(&report), report.success_rate)
         }
         None => {
@@ -122,10 +126,10 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
     })
 }
 
-fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64) {
+fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine: EngineKind) {
     let n = report.trials.len();
     println!(
-        "{}: executed {n} times closed loop in 3D (rapier) at {speed}x speed: {} reach the goal ({:.0} %); {} tip an object; {:.1} re-plans per trial; re-planning latency median {:.3} s, 95th percentile {:.3} s (from any observation to the plan played next: median {:.4} s)",
+        "{}: executed {n} times closed loop in 3D ({engine}) at {speed}x speed: {} reach the goal ({:.0} %); {} tip an object; {:.1} re-plans per trial; re-planning latency median {:.3} s, 95th percentile {:.3} s (from any observation to the plan played next: median {:.4} s)",
         path.display(),
         report.trials.iter().filter(|t| t.reached).count(),
         100.0 * report.success_rate,
@@ -163,8 +167,9 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64) {
 fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {
     let n = report.trials.len();
     println!(
-        "{}: executed {n} times in 3D (rapier) at {}x speed: {} reach the goal ({:.0} %); {} tip an object; {} push one off the table; {} bring two objects into contact",
+        "{}: executed {n} times in 3D ({}) at {}x speed: {} reach the goal ({:.0} %); {} tip an object; {} push one off the table; {} bring two objects into contact",
         path.display(),
+        report.engine,
         report.speed,
         report.trials.iter().filter(|t| t.reached).count(),
         100.0 * report.success_rate,

@@ -8,8 +8,8 @@
 //! differ from the scene's): only what it observes.
 
 use super::search::Search;
-use crate::planning::execute::world::{World, STEP};
 use crate::planning::execute::{trial_worlds, ExecuteSettings, TIPPED_TILT};
+use crate::planning::execute::{Engine, EngineKind, STEP};
 use crate::planning::path::PathControl;
 use crate::planning::trajectory::{Playback, Trajectory};
 use crate::planning::{FinishSettings, PlannerKind, Problem, RunSettings};
@@ -94,18 +94,18 @@ impl ClosedLoop<'_> {
         scene: &Scene,
         plan: &[PathControl],
         world_scene: &Scene,
-    ) -> ClosedLoopTrial {
+    ) -> Result<ClosedLoopTrial, String> {
         let settings = &self.settings;
         let robot = &scene.robot;
         let objects = scene.objects.len();
         let mut poses = Vec::new();
         robot.chain.forward_kinematics(&scene.start.q, &mut poses);
-        let mut world = World::with_solver(
+        let mut world = self.execution.engine.world(
             world_scene,
             &world_scene.start.objects,
             &poses,
             &self.execution.solver,
-        );
+        )?;
         let mut trial = ClosedLoopTrial {
             reached: false,
             goal_distance: f64::INFINITY,
@@ -195,7 +195,7 @@ impl ClosedLoop<'_> {
                     break;
                 }
             };
-            let cut = self.play(&mut world, robot, &trajectory, &mut q, &mut tipped);
+            let cut = self.play(world.as_mut(), robot, &trajectory, &mut q, &mut tipped);
             trial.controls_played += 1;
             if cut {
                 trial.cut_short += 1;
@@ -203,9 +203,13 @@ impl ClosedLoop<'_> {
                 q.clone_from(&next.final_state().q);
             }
             rest.remove(0);
-            settle(&mut world, &mut tipped, OBSERVE_AFTER);
+            settle(world.as_mut(), &mut tipped, OBSERVE_AFTER);
         }
-        settle(&mut world, &mut tipped, crate::planning::execute::SETTLE);
+        settle(
+            world.as_mut(),
+            &mut tipped,
+            crate::planning::execute::SETTLE,
+        );
         let mut end_state = scene.start.clone();
         end_state.q = q;
         end_state.objects = (0..objects).map(|i| world.object_pose2(i)).collect();
@@ -219,7 +223,7 @@ impl ClosedLoop<'_> {
             .filter(|&i| tipped[i] && !world.object_fell_off(i))
             .map(|i| scene.objects[i].name.clone())
             .collect();
-        trial
+        Ok(trial)
     }
 
     /// Drives the arm along `trajectory` (one control's, at the execution's pace) in
@@ -227,7 +231,7 @@ impl ClosedLoop<'_> {
     /// further than the tolerance from its predicted position at the last sample passed.
     fn play(
         &self,
-        world: &mut World,
+        world: &mut dyn Engine,
         robot: &crate::robot::Robot,
         trajectory: &Trajectory,
         q: &mut DVector<f64>,
@@ -306,14 +310,14 @@ fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
 }
 
 /// Steps the world `seconds` with the arm still.
-fn settle(world: &mut World, tipped: &mut [bool], seconds: f64) {
+fn settle(world: &mut dyn Engine, tipped: &mut [bool], seconds: f64) {
     for _ in 0..(seconds / STEP).round() as usize {
         world.step();
         note_tipping(world, tipped);
     }
 }
 
-fn note_tipping(world: &World, tipped: &mut [bool]) {
+fn note_tipping(world: &dyn Engine, tipped: &mut [bool]) {
     for (i, flag) in tipped.iter_mut().enumerate() {
         *flag |= world.object_tilt(i) > TIPPED_TILT;
     }
@@ -322,6 +326,8 @@ fn note_tipping(world: &World, tipped: &mut [bool]) {
 /// What closed-loop trials found.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ClosedLoopReport {
+    /// The engine the trials ran in.
+    pub engine: EngineKind,
     /// Every trial, the nominal one first.
     pub trials: Vec<ClosedLoopTrial>,
     /// Fraction of trials that reached the goal.
@@ -353,12 +359,13 @@ impl ClosedLoop<'_> {
                 execution: self.execution.clone(),
                 ..*self
             };
-            done.push(each.execute(scene, plan, &world?));
+            done.push(each.execute(scene, plan, &world?)?);
         }
         let decisions = sorted(done.iter().flat_map(|t| t.latencies.iter().copied()));
         let replans = sorted(done.iter().flat_map(|t| t.replan_latencies.iter().copied()));
         let n = done.len().max(1) as f64;
         Ok(ClosedLoopReport {
+            engine: self.execution.engine,
             success_rate: done.iter().filter(|t| t.reached).count() as f64 / n,
             tipped_trials: done.iter().filter(|t| !t.tipped.is_empty()).count(),
             replans_per_trial: done.iter().map(|t| t.replans).sum::<usize>() as f64 / n,

@@ -168,7 +168,8 @@ fn a_box_squeezed_between_opposing_pushes_jams() {
 #[test]
 fn a_box_pushed_into_another_moves_both_as_the_3d_engine_does() {
     use nalgebra::DVector;
-    use pushplan::planning::execute::world::World;
+    use pushplan::planning::execute::rapier::RapierWorld;
+    use pushplan::planning::execute::Engine;
     use pushplan::planning::path::{simulate, PathControl};
     use pushplan::{EeAction, Propagator, Scene};
     use std::path::Path;
@@ -219,7 +220,7 @@ physics: {{object_pushing: {object_pushing}}}"
         .robot
         .chain
         .forward_kinematics(&joints[0], &mut poses);
-    let mut world = World::new(&pushing, &pushing.start.objects, &poses);
+    let mut world = RapierWorld::new(&pushing, &pushing.start.objects, &poses);
     world.follow(&pushing.robot.chain, &joints, pushing.planner.step);
     for i in 0..2 {
         let (model, engine) = (end.objects[i], world.object_pose2(i));

@@ -261,7 +261,8 @@ fn the_shipped_mesh_robot_matches_the_primitive_one() {
     }
 }
 
-/// The mesh robot plans the one-object scene, and the plan checks.
+/// The mesh robot plans the one-object scene, the plan checks, and both engines play it to
+/// the goal.
 #[test]
 fn a_mesh_robot_plans() {
     let scratch = common::Scratch::new("test-mesh-robot");
@@ -280,4 +281,21 @@ fn a_mesh_robot_plans() {
     let (code, stdout, stderr) =
         common::pushplan_in(scratch.path(), &["check", plan.to_str().unwrap()]);
     assert_eq!(code, 0, "{stdout}{stderr}");
+    // MuJoCo takes the links' hulls as meshes (placed back from the centroid frame it
+    // moves them to) and plays the plan to the goal as rapier does.
+    for engine in ["rapier", "mujoco"] {
+        let (code, stdout, stderr) = common::pushplan_in(
+            scratch.path(),
+            &[
+                "execute",
+                plan.to_str().unwrap(),
+                "--trials",
+                "1",
+                "--engine",
+                engine,
+            ],
+        );
+        assert_eq!(code, 0, "{engine}: {stdout}{stderr}");
+        assert!(stdout.contains("1 reach the goal"), "{engine}: {stdout}");
+    }
 }

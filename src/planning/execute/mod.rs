@@ -7,8 +7,10 @@
 //! trajectory at `speed` times its planned pace, lets the objects settle, and compares
 //! with the plan's predicted object poses.
 
+pub mod engine;
 mod fresh_contacts;
-pub mod world;
+pub mod mujoco;
+pub mod rapier;
 
 use crate::math::Pose2;
 use crate::planning::plan_file::PlanFile;
@@ -16,9 +18,10 @@ use crate::planning::robustness::Noise;
 use crate::planning::trajectory::Playback;
 use crate::random::SplitMix64;
 use crate::scene::Scene;
+pub use engine::{Engine, EngineKind, STEP};
 use nalgebra::DVector;
+use rapier::SolverSettings;
 use serde::Serialize;
-use world::{SolverSettings, World, STEP};
 
 /// How to execute.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,7 +36,9 @@ pub struct ExecuteSettings {
     pub noise: Noise,
     /// Keep each trial's object poses at the trajectory's rate (for pictures).
     pub record: bool,
-    /// The engine's solver effort.
+    /// The engine the trials run in.
+    pub engine: EngineKind,
+    /// rapier's solver effort.
     pub solver: SolverSettings,
 }
 
@@ -45,6 +50,7 @@ impl Default for ExecuteSettings {
             seed: 1,
             noise: Noise::world(),
             record: false,
+            engine: EngineKind::Rapier,
             solver: SolverSettings::default(),
         }
     }
@@ -121,6 +127,8 @@ pub struct ExecutionTrial {
 /// What the trials found.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ExecutionReport {
+    /// The engine the trials ran in.
+    pub engine: EngineKind,
     /// Every trial, the nominal one first.
     pub trials: Vec<ExecutionTrial>,
     /// Execution pace relative to the plan's trajectory.
@@ -144,7 +152,7 @@ pub fn execute(
     let predicted = predicted_poses(scene, plan)?;
     let mut trials = Vec::with_capacity(settings.trials);
     for world in trial_worlds(scene, settings) {
-        trials.push(run(&world?, scene, plan, &predicted, settings));
+        trials.push(run(&world?, scene, plan, &predicted, settings)?);
     }
     let n = trials.len().max(1) as f64;
     Ok(ExecutionReport {
@@ -153,6 +161,7 @@ pub fn execute(
         fell_off_trials: trials.iter().filter(|t| !t.fell_off.is_empty()).count(),
         object_contact_trials: trials.iter().filter(|t| t.objects_touched).count(),
         speed: settings.speed,
+        engine: settings.engine,
         trials,
     })
 }
@@ -182,7 +191,7 @@ pub fn execute_in_world(
     settings: &ExecuteSettings,
 ) -> Result<ExecutionTrial, String> {
     let predicted = predicted_poses(scene, plan)?;
-    Ok(run(world_scene, scene, plan, &predicted, settings))
+    run(world_scene, scene, plan, &predicted, settings)
 }
 
 /// The plan's predicted object poses at each trajectory sample, in `scene`'s object
@@ -228,7 +237,7 @@ fn run(
     plan: &PlanFile,
     predicted: &[Vec<Pose2>],
     settings: &ExecuteSettings,
-) -> ExecutionTrial {
+) -> Result<ExecutionTrial, String> {
     let robot = &world_scene.robot;
     let trajectory = &plan.trajectory;
     let mut playback = Playback::new(trajectory);
@@ -236,12 +245,12 @@ fn run(
     robot
         .chain
         .forward_kinematics(&playback.at(0.0), &mut poses);
-    let mut world = World::with_solver(
+    let mut world = settings.engine.world(
         world_scene,
         &world_scene.start.objects,
         &poses,
         &settings.solver,
-    );
+    )?;
     let objects = scene.objects.len();
     let names = |i: usize| scene.objects[i].name.clone();
 
@@ -330,7 +339,7 @@ fn run(
         .object()
         .is_none_or(|object| world.object_tilt(object) < TIPPED_TILT);
     let fell_off: Vec<bool> = (0..objects).map(|i| world.object_fell_off(i)).collect();
-    ExecutionTrial {
+    Ok(ExecutionTrial {
         reached: goal_distance <= 0.0 && upright,
         goal_distance,
         tipped: (0..objects)
@@ -343,5 +352,5 @@ fn run(
         final_tilts: (0..objects).map(|i| world.object_tilt(i)).collect(),
         first_divergence,
         frames,
-    }
+    })
 }

@@ -1,4 +1,4 @@
-//! The 3D rigid-body world of an execution: rapier, with the arm's links as kinematic
+//! rapier as the 3D world of an execution, with the arm's links as kinematic
 //! bodies, the objects as free dynamic bodies (mass, support friction `mu_g` against the
 //! table, contact friction `mu_c` against the arm) and the table and obstacles fixed.
 //!
@@ -6,17 +6,14 @@
 //! the table top (`Pose2::to_isometry`), so its planar pose is read straight back. The
 //! prism stands on small feet spread over its footprint ([`support_points`]).
 
+use super::engine::{Engine, STEP};
 use super::fresh_contacts::FreshContacts;
 use super::FALLEN_DROP;
 use crate::math::Pose2;
 use crate::physics::Footprint;
-use crate::robot::KinematicChain;
 use crate::scene::Scene;
-use nalgebra::{DVector, Isometry3, Vector2, Vector3};
+use nalgebra::{Isometry3, Vector2, Vector3};
 use rapier3d_f64::prelude::*;
-
-/// Simulation step (s): 1 kHz keeps a link from moving more than a millimetre per step.
-pub const STEP: f64 = 0.001;
 
 /// How hard rapier's solver works per step. Pushes with several contacts at once (a
 /// face against a face, a box squeezed between two links) need more than one
@@ -170,7 +167,7 @@ impl PhysicsHooks for Friction {
 }
 
 /// The rapier world of one execution.
-pub struct World {
+pub struct RapierWorld {
     pipeline: PhysicsPipeline,
     params: IntegrationParameters,
     islands: IslandManager,
@@ -190,20 +187,20 @@ pub struct World {
     table_top: f64,
 }
 
-impl World {
+impl RapierWorld {
     /// The scene's table, obstacles and objects (at `objects`, the start poses), and the
     /// arm's links at `link_poses` (`X_WL`, one per chain link).
-    pub fn new(scene: &Scene, objects: &[Pose2], link_poses: &[Isometry3<f64>]) -> World {
-        World::with_solver(scene, objects, link_poses, &SolverSettings::default())
+    pub fn new(scene: &Scene, objects: &[Pose2], link_poses: &[Isometry3<f64>]) -> RapierWorld {
+        RapierWorld::with_solver(scene, objects, link_poses, &SolverSettings::default())
     }
 
-    /// As [`World::new`], with the given solver effort.
+    /// As [`RapierWorld::new`], with the given solver effort.
     pub fn with_solver(
         scene: &Scene,
         objects: &[Pose2],
         link_poses: &[Isometry3<f64>],
         solver: &SolverSettings,
-    ) -> World {
+    ) -> RapierWorld {
         let mut bodies = RigidBodySet::new();
         let mut colliders = ColliderSet::new();
         let fixed = bodies.insert(RigidBodyBuilder::fixed());
@@ -260,7 +257,7 @@ impl World {
             num_internal_pgs_iterations: solver.pgs_iterations,
             ..IntegrationParameters::default()
         };
-        World {
+        RapierWorld {
             pipeline: PhysicsPipeline::new(),
             params,
             islands: IslandManager::new(),
@@ -280,31 +277,16 @@ impl World {
             table_top: scene.table.top,
         }
     }
+}
 
-    /// Where the arm's links are at the end of the next step (`X_WL` per chain link).
-    pub fn move_arm(&mut self, link_poses: &[Isometry3<f64>]) {
+impl Engine for RapierWorld {
+    fn move_arm(&mut self, link_poses: &[Isometry3<f64>]) {
         for (link, body) in &self.links {
             self.bodies[*body].set_next_kinematic_position(link_poses[*link]);
         }
     }
 
-    /// Drives the arm of `chain` through joint configurations `dt` seconds apart,
-    /// interpolated linearly at the engine's rate.
-    pub fn follow(&mut self, chain: &KinematicChain, path: &[DVector<f64>], dt: f64) {
-        let per_step = (dt / STEP).round().max(1.0) as usize;
-        let mut poses = Vec::new();
-        for pair in path.windows(2) {
-            for j in 1..=per_step {
-                let f = j as f64 / per_step as f64;
-                chain.forward_kinematics(&(&pair[0] * (1.0 - f) + &pair[1] * f), &mut poses);
-                self.move_arm(&poses);
-                self.step();
-            }
-        }
-    }
-
-    /// Advances the world by [`STEP`] seconds.
-    pub fn step(&mut self) {
+    fn step(&mut self) {
         self.pipeline.step(
             &Vector3::new(0.0, 0.0, -crate::physics::limit_surface::GRAVITY),
             &self.params,
@@ -321,40 +303,26 @@ impl World {
         );
     }
 
-    /// Object `i`'s body pose `X_WO`.
-    pub fn object_pose(&self, i: usize) -> Isometry3<f64> {
+    fn object_pose(&self, i: usize) -> Isometry3<f64> {
         *self.bodies[self.objects[i].0].position()
     }
 
-    /// Object `i` was pushed off the table: its base is more than [`FALLEN_DROP`] below
-    /// the table top.
-    pub fn object_fell_off(&self, i: usize) -> bool {
+    /// Its base is more than [`FALLEN_DROP`] below the table top.
+    fn object_fell_off(&self, i: usize) -> bool {
         self.object_pose(i).translation.z < self.table_top - FALLEN_DROP
     }
 
-    /// Object `i`'s planar pose (x, y and yaw of its body frame).
-    pub fn object_pose2(&self, i: usize) -> Pose2 {
-        Pose2::from_isometry(&self.object_pose(i))
+    fn set_object_velocity(&mut self, i: usize, v: Vector3<f64>) {
+        let body = &mut self.bodies[self.objects[i].0];
+        body.set_linvel(v, true);
+        body.set_angvel(Vector3::zeros(), true);
     }
 
-    /// Object `i`'s tilt: the angle between its body z axis and the world's (rad).
-    pub fn object_tilt(&self, i: usize) -> f64 {
-        let up = self.object_pose(i).rotation * Vector3::z();
-        up.z.clamp(-1.0, 1.0).acos()
-    }
-
-    /// Sets object `i`'s linear velocity (m/s, world frame).
-    pub fn set_object_velocity(&mut self, i: usize, v: Vector3<f64>) {
-        self.bodies[self.objects[i].0].set_linvel(v, true);
-    }
-
-    /// Object `i`'s linear velocity (m/s, world frame).
-    pub fn object_velocity(&self, i: usize) -> Vector3<f64> {
+    fn object_velocity(&self, i: usize) -> Vector3<f64> {
         *self.bodies[self.objects[i].0].linvel()
     }
 
-    /// A pair of objects in contact, if any.
-    pub fn touching_objects(&self) -> Option<(usize, usize)> {
+    fn touching_objects(&self) -> Option<(usize, usize)> {
         for (i, (_, a)) in self.objects.iter().enumerate() {
             for (j, (_, b)) in self.objects.iter().enumerate().skip(i + 1) {
                 if self

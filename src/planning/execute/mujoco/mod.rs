@@ -1,0 +1,177 @@
+//! MuJoCo as the 3D world of an execution: the second judge, whose contact model differs
+//! from rapier's (soft contacts from a convex optimisation per step, objects standing on
+//! their own faces and rims rather than on evenly spread feet).
+//!
+//! The arm's links are free bodies far heavier than the objects ([`mjcf::LINK_MASS`]),
+//! held up against gravity by a constant force: before each step the execution sets each
+//! link's pose and its velocity towards the next pose, so the link moves exactly along the
+//! plan while its contacts see its true velocity (MuJoCo's moving "mocap" bodies have
+//! none, which would lose the friction of a link sliding past an object).
+
+mod bridge;
+pub mod mjcf;
+
+use super::engine::{Engine, STEP};
+use crate::math::Pose2;
+use crate::physics::limit_surface::GRAVITY;
+use crate::scene::{Scene, Table};
+use cxx::UniquePtr;
+use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector2, Vector3};
+use std::cell::RefCell;
+
+/// Contacts read back per step at most (triples of the buffer).
+const MAX_CONTACTS: usize = 4096;
+
+/// The MuJoCo world of one execution.
+pub struct MujocoWorld {
+    world: UniquePtr<bridge::ffi::MujocoWorld>,
+    /// (chain link, body id, pose `X_WL` now) of every solid link.
+    links: Vec<(usize, i32, Isometry3<f64>)>,
+    /// Whether the links were given their next poses since the last step.
+    arm_moved: bool,
+    /// Body ids of the objects, scene order.
+    objects: Vec<i32>,
+    table: Table,
+    /// Scratch for the contacts read back.
+    contacts: RefCell<Vec<f64>>,
+}
+
+impl MujocoWorld {
+    /// The scene's table, obstacles and objects (at `objects`, the start poses), and the
+    /// arm's links at `link_poses` (`X_WL`, one per chain link).
+    pub fn new(
+        scene: &Scene,
+        objects: &[Pose2],
+        link_poses: &[Isometry3<f64>],
+    ) -> Result<MujocoWorld, String> {
+        let text = mjcf::mjcf(scene, objects, link_poses)?;
+        let mut world = bridge::ffi::load(&text).map_err(|e| e.what().to_string())?;
+        let id = |world: &bridge::ffi::MujocoWorld, name: &str| match world.body(name) {
+            -1 => Err(format!(
+                "internal error: the MuJoCo model has no body '{name}'"
+            )),
+            id => Ok(id),
+        };
+        let mut links = Vec::new();
+        for link in scene.robot.solid_links() {
+            let body = id(&world, &mjcf::link_body(link))?;
+            // Held up: gravity's pull on the link, cancelled at its centre of mass.
+            world
+                .pin_mut()
+                .set_force(body, &[0.0, 0.0, mjcf::LINK_MASS * GRAVITY])
+                .map_err(|e| e.what().to_string())?;
+            links.push((link, body, link_poses[link]));
+        }
+        let objects = (0..scene.objects.len())
+            .map(|i| id(&world, &mjcf::object_body(i)))
+            .collect::<Result<_, _>>()?;
+        Ok(MujocoWorld {
+            world,
+            links,
+            arm_moved: false,
+            objects,
+            table: scene.table.clone(),
+            contacts: RefCell::new(vec![0.0; 3 * MAX_CONTACTS]),
+        })
+    }
+
+    /// MuJoCo's version, as `2.2.2`.
+    pub fn version() -> String {
+        let v = bridge::ffi::version();
+        format!("{}.{}.{}", v / 100, v / 10 % 10, v % 10)
+    }
+
+    /// Sets link `body` at `pose` moving to `next` within one step.
+    fn drive(&mut self, body: i32, pose: &Isometry3<f64>, next: &Isometry3<f64>) {
+        let v = (next.translation.vector - pose.translation.vector) / STEP;
+        // Angular velocity: world frame from the turn between the poses, then into the
+        // body frame (MuJoCo's free joints take it there).
+        let w_world = (next.rotation * pose.rotation.inverse()).scaled_axis() / STEP;
+        let w_body = pose.rotation.inverse() * w_world;
+        let t = pose.translation.vector;
+        let q = pose.rotation.quaternion();
+        self.world
+            .pin_mut()
+            .set_free_joint(
+                body,
+                &[t.x, t.y, t.z, q.w, q.i, q.j, q.k],
+                &[v.x, v.y, v.z, w_body.x, w_body.y, w_body.z],
+            )
+            .expect("link bodies have free joints");
+    }
+}
+
+impl Engine for MujocoWorld {
+    fn move_arm(&mut self, link_poses: &[Isometry3<f64>]) {
+        for k in 0..self.links.len() {
+            let (link, body, pose) = self.links[k];
+            self.drive(body, &pose, &link_poses[link]);
+            self.links[k].2 = link_poses[link];
+        }
+        self.arm_moved = true;
+    }
+
+    fn step(&mut self) {
+        if !self.arm_moved {
+            // Not driven this step: the links stay where they are.
+            for k in 0..self.links.len() {
+                let (_, body, pose) = self.links[k];
+                self.drive(body, &pose, &pose);
+            }
+        }
+        self.world.pin_mut().step();
+        self.arm_moved = false;
+    }
+
+    fn object_pose(&self, i: usize) -> Isometry3<f64> {
+        let mut p = [0.0; 7];
+        self.world
+            .free_joint_pose(self.objects[i], &mut p)
+            .expect("object bodies have free joints");
+        Isometry3::from_parts(
+            Translation3::new(p[0], p[1], p[2]),
+            UnitQuaternion::from_quaternion(Quaternion::new(p[3], p[4], p[5], p[6])),
+        )
+    }
+
+    /// Its centre has left the table (the table top is an unbounded plane here, so an
+    /// object past the edge does not fall by itself).
+    fn object_fell_off(&self, i: usize) -> bool {
+        let t = self.object_pose(i).translation;
+        !self.table.contains(Vector2::new(t.x, t.y))
+    }
+
+    fn set_object_velocity(&mut self, i: usize, v: Vector3<f64>) {
+        let pose = self.object_pose(i);
+        let t = pose.translation.vector;
+        let q = pose.rotation.quaternion();
+        self.world
+            .pin_mut()
+            .set_free_joint(
+                self.objects[i],
+                &[t.x, t.y, t.z, q.w, q.i, q.j, q.k],
+                &[v.x, v.y, v.z, 0.0, 0.0, 0.0],
+            )
+            .expect("object bodies have free joints");
+    }
+
+    fn object_velocity(&self, i: usize) -> Vector3<f64> {
+        let mut v = [0.0; 6];
+        self.world
+            .free_joint_velocity(self.objects[i], &mut v)
+            .expect("object bodies have free joints");
+        Vector3::new(v[0], v[1], v[2])
+    }
+
+    fn touching_objects(&self) -> Option<(usize, usize)> {
+        let mut buffer = self.contacts.borrow_mut();
+        let n = self.world.contacts(&mut buffer);
+        let object = |body: f64| self.objects.iter().position(|&b| f64::from(b) == body);
+        buffer[..3 * n]
+            .chunks_exact(3)
+            .find_map(|c| match (object(c[0]), object(c[1])) {
+                (Some(a), Some(b)) if c[2] < 0.0 => Some((a.min(b), a.max(b))),
+                _ => None,
+            })
+    }
+}
