@@ -293,7 +293,7 @@ fn write_pkg_config(deps: &Dependencies) {
         "prefix={root}\nlibdir={}\nincludedir=${{prefix}}/include\n\nName: pushplan\n\
          Description: Whole-arm rearrangement planning by quasistatic pushing (OMPL)\n\
          Version: {}\nCflags: -I${{includedir}} -I{} -I{}\n\
-         Libs: -L${{libdir}} -lpushplan {ompl_libdir}-lompl -lpthread -ldl -lm\n",
+         Libs: -L${{libdir}} -lpushplan {ompl_libdir}-lompl -lmujoco -lpthread -ldl -lm\n",
         profile_dir.display(),
         std::env::var("CARGO_PKG_VERSION").unwrap_or_default(),
         deps.eigen_include.display(),

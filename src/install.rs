@@ -110,7 +110,7 @@ fn pkg_config() -> String {
          Description: Whole-arm rearrangement planning by quasistatic pushing (OMPL)\n\
          Version: {VERSION}\n\
          Cflags: -I${{includedir}} -I{EIGEN_INCLUDE_DIR} -I{OMPL_INCLUDE_DIR}\n\
-         Libs: -L${{libdir}} -lpushplan -L{ompl_dir} -lompl -lpthread -ldl -lm\n"
+         Libs: -L${{libdir}} -lpushplan -L{ompl_dir} -lompl -lmujoco -lpthread -ldl -lm\n"
     )
 }
 

@@ -41,6 +41,10 @@ pub struct ClosedLoopSettings {
 /// the objects come to rest, as a robot would pause to look (s).
 pub const OBSERVE_AFTER: f64 = 0.05;
 
+/// Searches in a row that may find nothing while the arm waits, with nothing valid to
+/// play (2, 4, 8 and 8 times `replan_time`: 42 s with the default 2 s).
+const WAITING_SEARCHES: u32 = 4;
+
 /// One closed-loop execution.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ClosedLoopTrial {
@@ -126,7 +130,7 @@ impl ClosedLoop<'_> {
         // Every control played is followed by an observation; this bounds a loop that
         // re-plans without end.
         let most_controls = 10 * plan.len() + 100;
-        let mut failures_in_a_row = 0;
+        let mut failures_in_a_row: u32 = 0;
         loop {
             // Observe: the arm where it was driven, the objects where the world has them.
             let observed = State {
@@ -158,6 +162,8 @@ impl ClosedLoop<'_> {
                 // A search that found nothing is tried again at the next observation with
                 // twice the time (up to 8 times), while the old rest is played on if it
                 // can be: the world may have moved to where a plan is easier to find.
+                // With nothing valid to play the arm waits (the objects are at rest) and
+                // searches again from the same state, up to WAITING_SEARCHES times.
                 let time = settings.replan_time * f64::from(1 << failures_in_a_row.min(3));
                 match self.replan(&problem, time, trial.replans + trial.failed_replans) {
                     Ok(controls) => {
@@ -166,14 +172,22 @@ impl ClosedLoop<'_> {
                         trial.replan_latencies.push(started.elapsed().as_secs_f64());
                         failures_in_a_row = 0;
                     }
-                    Err(why) if rest_valid && !rest.is_empty() => {
+                    Err(why) => {
                         trial.failed_replans += 1;
                         failures_in_a_row += 1;
+                        let playable = rest_valid && !rest.is_empty();
+                        if !playable && failures_in_a_row == WAITING_SEARCHES {
+                            trial.stopped = Some(format!(
+                                "{why} ({WAITING_SEARCHES} searches in a row found nothing, the \
+                                 longest {time} s, and the rest of the plan is no longer valid)"
+                            ));
+                            break;
+                        }
                         trial.last_failure = Some(why);
-                    }
-                    Err(why) => {
-                        trial.stopped = Some(why);
-                        break;
+                        if !playable {
+                            trial.latencies.push(started.elapsed().as_secs_f64());
+                            continue;
+                        }
                     }
                 }
             }

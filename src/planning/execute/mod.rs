@@ -115,6 +115,8 @@ pub struct ExecutionTrial {
     pub objects_touched: bool,
     /// Each object's final position error against the plan's prediction (m), scene order.
     pub final_errors: Vec<f64>,
+    /// Each object's final planar pose `[x, y, yaw]` (m, m, rad; world frame), scene order.
+    pub final_poses: Vec<[f64; 3]>,
     /// Each object's final tilt from upright (rad), scene order.
     pub final_tilts: Vec<f64>,
     /// The first way the trial parted from the plan, if it did.
@@ -129,6 +131,10 @@ pub struct ExecutionTrial {
 pub struct ExecutionReport {
     /// The engine the trials ran in.
     pub engine: EngineKind,
+    /// The objects' names, in scene order: the order of every per-object list.
+    pub objects: Vec<String>,
+    /// The goal object's name.
+    pub goal_object: Option<String>,
     /// Every trial, the nominal one first.
     pub trials: Vec<ExecutionTrial>,
     /// Execution pace relative to the plan's trajectory.
@@ -162,6 +168,8 @@ pub fn execute(
         object_contact_trials: trials.iter().filter(|t| t.objects_touched).count(),
         speed: settings.speed,
         engine: settings.engine,
+        objects: scene.objects.iter().map(|o| o.name.clone()).collect(),
+        goal_object: scene.goal.object().map(|i| scene.objects[i].name.clone()),
         trials,
     })
 }
@@ -349,6 +357,7 @@ fn run(
         fell_off: (0..objects).filter(|&i| fell_off[i]).map(names).collect(),
         objects_touched,
         final_errors,
+        final_poses: final_poses.iter().map(|p| [p.x, p.y, p.theta]).collect(),
         final_tilts: (0..objects).map(|i| world.object_tilt(i)).collect(),
         first_divergence,
         frames,

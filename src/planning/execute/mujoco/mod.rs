@@ -175,3 +175,51 @@ impl Engine for MujocoWorld {
             })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::DVector;
+    use std::path::Path;
+
+    /// A driven link ends each step where it was sent, however it is turned: the
+    /// velocities handed to MuJoCo follow its free-joint convention (linear in the world
+    /// frame, angular in the body's).
+    #[test]
+    fn a_driven_link_ends_the_step_where_it_was_sent() {
+        // A hand turned 0.7 rad about z, so that the body and world frames differ.
+        let yaml = "robot: {type: planar_hand, shape: {type: box, size: [0.04, 0.12, 0.01]}, \
+                    start: [0.4, 0.0, 0.7], height: 0.05}
+table: {height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}
+objects:
+  - {name: box, shape: {type: box, size: [0.1, 0.1, 0.1]}, pose: [0.8, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}
+goal: {object: box, center: [0.9, 0.3], radius: 0.1}
+";
+        let scene = Scene::from_yaml(yaml, Path::new("mujoco-link-test.yaml")).unwrap();
+        let mut poses = Vec::new();
+        let q = DVector::from_vec(vec![0.4, 0.0, 0.7]);
+        scene.robot.chain.forward_kinematics(&q, &mut poses);
+        let mut world = MujocoWorld::new(&scene, &scene.start.objects, &poses).unwrap();
+        let (link, body, pose) = world.links[world.links.len() - 1];
+        // A turn of 0.5 mrad about a slanted world axis and a 0.3 mm move in one step:
+        // 0.5 rad/s and 0.3 m/s.
+        let turn = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, -0.2, 0.4) * 1e-3);
+        let next = Isometry3::from_parts(
+            Translation3::from(pose.translation.vector + Vector3::new(2e-4, -1e-4, 2e-4)),
+            turn * pose.rotation,
+        );
+        let mut target = poses.clone();
+        target[link] = next;
+        world.move_arm(&target);
+        world.step();
+        let mut p = [0.0; 7];
+        world.world.free_joint_pose(body, &mut p).unwrap();
+        let reached = Isometry3::from_parts(
+            Translation3::new(p[0], p[1], p[2]),
+            UnitQuaternion::from_quaternion(Quaternion::new(p[3], p[4], p[5], p[6])),
+        );
+        let moved = (reached.translation.vector - next.translation.vector).norm();
+        let turned = reached.rotation.angle_to(&next.rotation);
+        assert!(moved < 1e-6 && turned < 1e-6, "{moved} m, {turned} rad off");
+    }
+}

@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""How far the planning model and the two 3D engines disagree on final object poses.
+
+Reads the output folder of benches/execution.sh (run with ENGINES="rapier mujoco"): each
+solved plan FOLDER_scene_NN.json and its executions FOLDER_scene_NN.{rapier,mujoco}.exec.json
+(the same trials, in the same perturbed worlds). For every scene class (the scenes'
+folder: benchmark, dense, ...) it prints, in mm, the median, 90th percentile and largest
+distance between final object positions:
+
+  model-rapier, model-mujoco   the plan's predicted final pose against each engine's
+  rapier-mujoco                the two engines, trial by trial (same world)
+
+for the goal object and for every object the plan moves (by more than 1 cm), in the
+nominal trial (the scene as it is: model error alone) and in all trials (with the
+perturbations), and how many trials' goal-object error stays within the plan's goal
+margin.
+
+    benches/disagreement.py OUT_DIR
+"""
+import glob
+import json
+import math
+import os
+import sys
+from collections import defaultdict
+
+
+def quantile(values, p):
+    values = sorted(values)
+    if not values:
+        return float("nan")
+    return values[min(len(values) - 1, max(0, math.ceil(p * len(values)) - 1))]
+
+
+def main(out):
+    # stats[class][(which objects, which trials, pair)] = distances (m)
+    stats = defaultdict(lambda: defaultdict(list))
+    margins = defaultdict(list)
+    within = defaultdict(lambda: defaultdict(lambda: [0, 0]))
+    for plan_path in sorted(glob.glob(os.path.join(out, "*_scene_*.json"))):
+        name = os.path.basename(plan_path)[: -len(".json")]
+        if name.count(".") or not os.path.exists(os.path.join(out, f"{name}.rapier.exec.json")):
+            continue
+        cls = name.rsplit("_scene_", 1)[0]
+        plan = json.load(open(plan_path))
+        runs, report = {}, None
+        for engine in ("rapier", "mujoco"):
+            path = os.path.join(out, f"{name}.{engine}.exec.json")
+            if os.path.exists(path):
+                report = json.load(open(path))
+                runs[engine] = report["trials"]
+        if len(runs) < 2:
+            continue
+        # The reports list objects in scene order, the plan in its own.
+        scene_objects = report["objects"]
+        plan_index = {o: k for k, o in enumerate(plan["objects"])}
+        start = [plan["start"]["objects"][plan_index[o]] for o in scene_objects if o in plan_index]
+        predicted = [plan["trajectory"]["objects"][-1][plan_index[o]] for o in scene_objects if o in plan_index]
+        if len(predicted) != len(scene_objects):
+            continue  # a plan that does not move every object (Static RRT's clutter)
+        goal_index = scene_objects.index(report["goal_object"])
+        margin = plan["margins"]["goal"]
+        margins[cls].append(margin)
+        moved = [i for i in range(len(scene_objects))
+                 if math.dist(predicted[i][:2], start[i][:2]) > 0.01]
+        n = min(len(runs["rapier"]), len(runs["mujoco"]))
+        for t in range(n):
+            r = runs["rapier"][t]["final_poses"]
+            m = runs["mujoco"][t]["final_poses"]
+            for label, objects in (("goal object", [goal_index]), ("moved objects", moved)):
+                for i in objects:
+                    pairs = {
+                        "model-rapier": math.dist(predicted[i][:2], r[i][:2]),
+                        "model-mujoco": math.dist(predicted[i][:2], m[i][:2]),
+                        "rapier-mujoco": math.dist(r[i][:2], m[i][:2]),
+                    }
+                    for pair, d in pairs.items():
+                        if t == 0:
+                            stats[cls][(label, "nominal", pair)].append(d)
+                        stats[cls][(label, "all trials", pair)].append(d)
+                        if label == "goal object" and pair != "rapier-mujoco":
+                            within[cls][pair][0] += d <= margin
+                            within[cls][pair][1] += 1
+    for cls in sorted(stats):
+        print(f"## {cls} (goal margin {1e3 * max(margins[cls]):.0f} mm)")
+        print("| objects | trials | pair | n | median mm | p90 mm | max mm |")
+        print("|---|---|---|---|---|---|---|")
+        for (label, trials, pair), values in sorted(stats[cls].items()):
+            print(f"| {label} | {trials} | {pair} | {len(values)} | {1e3 * quantile(values, 0.5):.0f} "
+                  f"| {1e3 * quantile(values, 0.9):.0f} | {1e3 * max(values):.0f} |")
+        for pair, (ok, total) in sorted(within[cls].items()):
+            print(f"{pair}: goal object within the goal margin of its predicted pose in {ok} of {total} trials")
+        print()
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
