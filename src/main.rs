@@ -134,6 +134,10 @@ enum Command {
         /// the median re-plan under 0.2 s, BENCHMARKS.md).
         #[arg(long, default_value_t = 0.1, value_name = "SECONDS")]
         replan_shortcut: f64,
+        /// With --closed-loop: searches per trial at most (found or not); a trial that
+        /// needs more stops with a report.
+        #[arg(long, default_value_t = 50, value_name = "N")]
+        max_replans: usize,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,
     /// run) in a process of its own, the logs merged into DIR/results.db (Planner Arena's
@@ -402,6 +406,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             closed_loop,
             replan_time,
             replan_shortcut,
+            max_replans,
         } => execute(
             &plan,
             ExecuteOptions {
@@ -416,6 +421,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                     ClosedLoopFlags {
                         replan_time,
                         replan_shortcut,
+                        max_replans,
                     },
                 )),
             },

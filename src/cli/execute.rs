@@ -15,6 +15,8 @@ pub struct ClosedLoopFlags {
     pub replan_time: f64,
     /// Shortcutting of each re-planned path (s of work).
     pub replan_shortcut: f64,
+    /// Searches per trial at most.
+    pub max_replans: usize,
 }
 
 /// What `execute` is asked.
@@ -95,7 +97,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                     replan_time: flags.replan_time,
                     replan_shortcut: flags.replan_shortcut,
                     seed: plan.settings.seed,
-                    max_replans: 20,
+                    max_replans: flags.max_replans,
                     tolerance: DRIFT,
                 },
                 execution,
