@@ -156,13 +156,14 @@ fn placement(pose: &Isometry3<f64>) -> String {
 }
 
 /// The `<geom>` element of `shape` placed at `local` in its body (the world for a static
-/// geom); a hull's vertices go into a mesh asset, already placed in the body frame.
+/// geom), with `extra` attributes; a hull's vertices go into a mesh asset, already placed
+/// in the body frame.
 fn geom(
     name: &str,
     shape: &SharedShape,
     local: &Isometry3<f64>,
     assets: &mut String,
-    indent: &str,
+    extra: &str,
 ) -> Result<String, String> {
     let element = if let Some(cuboid) = shape.as_cuboid() {
         let h = cuboid.half_extents;
@@ -214,5 +215,5 @@ fn geom(
     } else {
         return Err(format!("MuJoCo has no geom for a {:?}", shape.shape_type()));
     };
-    Ok(format!(r#"{indent}    <geom name="{name}" {element}/>"#) + "\n")
+    Ok(format!(r#"      <geom name="{name}" {element} {extra}/>"#) + "\n")
 }
