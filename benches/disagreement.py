@@ -15,7 +15,7 @@ nominal trial (the scene as it is: model error alone) and in all trials (with th
 perturbations), and how many trials' goal-object error stays within the plan's goal
 margin.
 
-    benches/disagreement.py OUT_DIR
+    benches/disagreement.py OUT_DIR [OUT_DIR ...]
 """
 import glob
 import json
@@ -32,12 +32,14 @@ def quantile(values, p):
     return values[min(len(values) - 1, max(0, math.ceil(p * len(values)) - 1))]
 
 
-def main(out):
+def main(outs):
     # stats[class][(which objects, which trials, pair)] = distances (m)
     stats = defaultdict(lambda: defaultdict(list))
     margins = defaultdict(list)
     within = defaultdict(lambda: defaultdict(lambda: [0, 0]))
-    for plan_path in sorted(glob.glob(os.path.join(out, "*_scene_*.json"))):
+    plan_paths = sorted(p for out in outs for p in glob.glob(os.path.join(out, "*_scene_*.json")))
+    for plan_path in plan_paths:
+        out = os.path.dirname(plan_path)
         name = os.path.basename(plan_path)[: -len(".json")]
         if name.count(".") or not os.path.exists(os.path.join(out, f"{name}.rapier.exec.json")):
             continue
@@ -94,6 +96,6 @@ def main(out):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
+    if len(sys.argv) < 2:
         sys.exit(__doc__)
-    main(sys.argv[1])
+    main(sys.argv[1:])

@@ -8,7 +8,8 @@
 # scenes/benchmark; e.g. SCENES="scenes/dense/scene_17.yaml scenes/benchmark"); TRIALS the
 # 3D trials and perturbed re-simulations per plan (default 10). CLOSED_LOOP=1 also plays
 # each plan closed loop (`execute --closed-loop`, the same trials and worlds), into
-# OUT_DIR/*.closed.{json,txt}, with CLOSED_LOOP_ARGS (e.g. "--replan-shortcut 0.1").
+# OUT_DIR/*.closed.{json,txt}, with CLOSED_LOOP_ARGS (e.g. "--replan-shortcut 0.1");
+# OPEN_LOOP=0 then skips the open-loop plays.
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -37,8 +38,10 @@ for scene in "${scenes[@]}"; do
     "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1
     echo "$n: $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
     for e in "${engines[@]}"; do
-      "$bin" execute "$out/$n.json" --engine "$e" --trials "$trials" --json "$out/$n.$e.exec.json" > "$out/$n.$e.exec.txt" 2>&1
-      echo "$n $e: $(head -1 "$out/$n.$e.exec.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
+      if [ "${OPEN_LOOP:-1}" != 0 ]; then
+        "$bin" execute "$out/$n.json" --engine "$e" --trials "$trials" --json "$out/$n.$e.exec.json" > "$out/$n.$e.exec.txt" 2>&1
+        echo "$n $e: $(head -1 "$out/$n.$e.exec.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
+      fi
       if [ -n "${CLOSED_LOOP:-}" ]; then
         # shellcheck disable=SC2086
         "$bin" execute "$out/$n.json" --engine "$e" --closed-loop --trials "$trials" ${CLOSED_LOOP_ARGS:-} --json "$out/$n.$e.closed.json" > "$out/$n.$e.closed.txt" 2>&1

@@ -574,3 +574,52 @@ fn a_prism_off_its_frame_stands_where_the_scene_puts_it_in_both_engines() {
         );
     }
 }
+
+#[test]
+fn a_push_at_45_degrees_slides_along_the_friction_cone_in_rapier_and_less_in_mujoco() {
+    // A wide hand moves at 45 degrees into a box's face, (0.05, 0.05) m/s for 2 s. With
+    // mu_c < 1 the contact slides, the hand's force lies on the cone's edge, (1, mu_c), and
+    // the box (translating on isotropic table friction) moves along it: 0.1 m in x,
+    // 0.1 mu_c in y (closed form). MuJoCo's soft contacts slide at low slip speeds with
+    // less than Coulomb's force: there the box is dragged less far sideways (0.79 and 0.56
+    // of it when this was written); the planning model is Coulomb's. (With MuJoCo's
+    // default pyramidal cones the drag hardly depended on mu_c: 44 and 49 mm.)
+    for mu_c in [0.3, 0.8] {
+        let yaml = format!(
+            "robot:
+  type: planar_hand
+  shape: {{type: box, size: [0.04, 0.3, 0.01]}}
+  start: [0.4, 0.0, 0.0]
+  height: 0.04
+table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}
+objects:
+  - {{name: box, shape: {{type: box, size: [0.1, 0.1, 0.1]}}, pose: [0.4705, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: {mu_c}}}
+goal: {{object: box, center: [0.9, 0.3], radius: 0.1}}
+"
+        );
+        let scene = Scene::from_yaml(&yaml, Path::new("scenes/drag-test.yaml")).unwrap();
+        let hand = |t: f64| DVector::from_vec(vec![0.4 + 0.05 * t, 0.05 * t, 0.0]);
+        let dragged = |engine: EngineKind| {
+            let mut poses = Vec::new();
+            scene.robot.chain.forward_kinematics(&hand(0.0), &mut poses);
+            let mut world = world(engine, &scene, &poses);
+            for n in 1..=(2.0 / STEP) as usize {
+                scene.robot.chain.forward_kinematics(&hand(n as f64 * STEP), &mut poses);
+                world.move_arm(&poses);
+                world.step();
+            }
+            world.object_pose2(0)
+        };
+        let expected = 0.1 * mu_c;
+        let rapier = dragged(EngineKind::Rapier);
+        assert!(
+            (rapier.y - expected).abs() < 0.05 * expected && (rapier.x - 0.5695).abs() < 0.002,
+            "rapier, mu_c {mu_c}: {rapier:?}, y expected {expected}"
+        );
+        let mujoco = dragged(EngineKind::Mujoco);
+        assert!(
+            mujoco.y > 0.4 * expected && mujoco.y < 0.9 * expected && (mujoco.x - 0.5695).abs() < 0.002,
+            "MuJoCo, mu_c {mu_c}: {mujoco:?}, Coulomb's y {expected}"
+        );
+    }
+}
