@@ -34,27 +34,43 @@ fn scene_with(height: f64, mu_g: f64, shape: &str) -> Scene {
     common::thin_hand_scene("box", shape, 0.4705, height, mu_g, "")
 }
 
+/// Drives the planar hand of `scene` through `hand(t)` (its joints at t s) for `duration`
+/// seconds in `engine`; returns the world and the first object's largest tilt (rad).
+fn drive(
+    engine: EngineKind,
+    scene: &Scene,
+    hand: impl Fn(f64) -> DVector<f64>,
+    duration: f64,
+) -> (Box<dyn Engine>, f64) {
+    let mut poses = Vec::new();
+    scene.robot.chain.forward_kinematics(&hand(0.0), &mut poses);
+    let mut world = world(engine, scene, &poses);
+    let mut tilt: f64 = 0.0;
+    for n in 1..=(duration / STEP).round() as usize {
+        scene
+            .robot
+            .chain
+            .forward_kinematics(&hand(n as f64 * STEP), &mut poses);
+        world.move_arm(&poses);
+        world.step();
+        tilt = tilt.max(world.object_tilt(0));
+    }
+    (world, tilt)
+}
+
 /// Pushes along +x: the hand speeds up to 0.1 m/s over 0.5 s, then holds that speed for
 /// 1.5 s. Returns the box's largest tilt (rad) and its final x (m).
 fn push(engine: EngineKind, scene: &Scene) -> (f64, f64) {
-    let mut poses = Vec::new();
-    let hand = |x: f64| DVector::from_vec(vec![x, 0.0, 0.0]);
-    scene.robot.chain.forward_kinematics(&hand(0.4), &mut poses);
-    let mut world = world(engine, scene, &poses);
     let (ramp, speed) = (0.5, 0.1);
-    let mut tilt: f64 = 0.0;
-    for n in 1..=(2.0 / STEP) as usize {
-        let t = n as f64 * STEP;
+    let hand = |t: f64| {
         let x = if t < ramp {
             0.4 + 0.5 * speed / ramp * t * t
         } else {
             0.4 + 0.5 * speed * ramp + speed * (t - ramp)
         };
-        scene.robot.chain.forward_kinematics(&hand(x), &mut poses);
-        world.move_arm(&poses);
-        world.step();
-        tilt = tilt.max(world.object_tilt(0));
-    }
+        DVector::from_vec(vec![x, 0.0, 0.0])
+    };
+    let (world, tilt) = drive(engine, scene, hand, 2.0);
     (tilt, world.object_pose2(0).x)
 }
 
@@ -226,20 +242,9 @@ goal: {object: box, center: [0.9, 0.3], radius: 0.1}
     assert!(run.stopped_by.is_none(), "{:?}", run.stopped_by);
     let model = run.state.objects[0];
 
-    let hand = |x: f64| DVector::from_vec(vec![x, 0.03, 0.0]);
     let pushed = |kind: EngineKind| {
-        let mut poses = Vec::new();
-        scene.robot.chain.forward_kinematics(&hand(0.4), &mut poses);
-        let mut world = world(kind, &scene, &poses);
-        for n in 1..=(duration / STEP) as usize {
-            scene
-                .robot
-                .chain
-                .forward_kinematics(&hand(0.4 + speed * n as f64 * STEP), &mut poses);
-            world.move_arm(&poses);
-            world.step();
-        }
-        world.object_pose2(0)
+        let hand = |t: f64| DVector::from_vec(vec![0.4 + speed * t, 0.03, 0.0]);
+        drive(kind, &scene, hand, duration).0.object_pose2(0)
     };
     assert!(model.theta < -0.1, "the model turns it: {model:?}");
     // MuJoCo stands the box on its four corners, 71 mm from its centre, where the uniform
@@ -599,17 +604,7 @@ goal: {{object: box, center: [0.9, 0.3], radius: 0.1}}
         );
         let scene = Scene::from_yaml(&yaml, Path::new("scenes/drag-test.yaml")).unwrap();
         let hand = |t: f64| DVector::from_vec(vec![0.4 + 0.05 * t, 0.05 * t, 0.0]);
-        let dragged = |engine: EngineKind| {
-            let mut poses = Vec::new();
-            scene.robot.chain.forward_kinematics(&hand(0.0), &mut poses);
-            let mut world = world(engine, &scene, &poses);
-            for n in 1..=(2.0 / STEP) as usize {
-                scene.robot.chain.forward_kinematics(&hand(n as f64 * STEP), &mut poses);
-                world.move_arm(&poses);
-                world.step();
-            }
-            world.object_pose2(0)
-        };
+        let dragged = |engine: EngineKind| drive(engine, &scene, hand, 2.0).0.object_pose2(0);
         let expected = 0.1 * mu_c;
         let rapier = dragged(EngineKind::Rapier);
         assert!(
@@ -618,7 +613,9 @@ goal: {{object: box, center: [0.9, 0.3], radius: 0.1}}
         );
         let mujoco = dragged(EngineKind::Mujoco);
         assert!(
-            mujoco.y > 0.4 * expected && mujoco.y < 0.9 * expected && (mujoco.x - 0.5695).abs() < 0.002,
+            mujoco.y > 0.4 * expected
+                && mujoco.y < 0.9 * expected
+                && (mujoco.x - 0.5695).abs() < 0.002,
             "MuJoCo, mu_c {mu_c}: {mujoco:?}, Coulomb's y {expected}"
         );
     }
