@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -82,18 +83,26 @@ namespace pushplan::mujoco
 
     void MujocoWorld::step() { mj_step(model_, data_); }
 
-    std::size_t MujocoWorld::contacts(rust::Slice<double> out) const
+    bool MujocoWorld::touching(rust::Slice<const std::int32_t> bodies,
+                               rust::Slice<std::int32_t> pair) const
     {
-        std::size_t n = 0;
-        for (int i = 0; i < data_->ncon && 3 * (n + 1) <= out.size(); ++i)
+        if (pair.size() != 2)
+            throw std::invalid_argument("a pair has two bodies");
+        auto listed = [&](int body) {
+            return std::find(bodies.begin(), bodies.end(), body) != bodies.end();
+        };
+        for (int i = 0; i < data_->ncon; ++i)
         {
             const mjContact &c = data_->contact[i];
-            out[3 * n] = model_->geom_bodyid[c.geom1];
-            out[3 * n + 1] = model_->geom_bodyid[c.geom2];
-            out[3 * n + 2] = c.dist;
-            ++n;
+            const int a = model_->geom_bodyid[c.geom1], b = model_->geom_bodyid[c.geom2];
+            if (c.dist < 0.0 && listed(a) && listed(b))
+            {
+                pair[0] = a;
+                pair[1] = b;
+                return true;
+            }
         }
-        return n;
+        return false;
     }
 
     std::unique_ptr<MujocoWorld> load(rust::Str mjcf)

@@ -7,6 +7,7 @@
 #include "rust/cxx.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 
 struct mjModel_;
@@ -38,9 +39,9 @@ namespace pushplan::mujoco
         void setForce(int body, rust::Slice<const double> force);
         /// One step of the model's time step.
         void step();
-        /// Contacts found in the last step: bodies of the two geoms and the signed distance
-        /// (m; negative: penetration), in `out` as triples; returns how many.
-        std::size_t contacts(rust::Slice<double> out) const;
+        /// The first contact of the last step in which the geoms of two of `bodies`
+        /// penetrate: their body ids in `pair`; false when there is none.
+        bool touching(rust::Slice<const std::int32_t> bodies, rust::Slice<std::int32_t> pair) const;
 
     private:
         int freeJointAddress(int body, bool velocity) const;

@@ -25,6 +25,6 @@ pub mod ffi {
         #[cxx_name = "setForce"]
         fn set_force(self: Pin<&mut MujocoWorld>, body: i32, force: &[f64]) -> Result<()>;
         fn step(self: Pin<&mut MujocoWorld>);
-        fn contacts(self: &MujocoWorld, out: &mut [f64]) -> usize;
+        fn touching(self: &MujocoWorld, bodies: &[i32], pair: &mut [i32]) -> Result<bool>;
     }
 }

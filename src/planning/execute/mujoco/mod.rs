@@ -17,10 +17,6 @@ use crate::physics::limit_surface::GRAVITY;
 use crate::scene::{Scene, Table};
 use cxx::UniquePtr;
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector2, Vector3};
-use std::cell::RefCell;
-
-/// Contacts read back per step at most (triples of the buffer).
-const MAX_CONTACTS: usize = 4096;
 
 /// The MuJoCo world of one execution.
 pub struct MujocoWorld {
@@ -32,8 +28,6 @@ pub struct MujocoWorld {
     /// Body ids of the objects, scene order.
     objects: Vec<i32>,
     table: Table,
-    /// Scratch for the contacts read back.
-    contacts: RefCell<Vec<f64>>,
 }
 
 impl MujocoWorld {
@@ -71,7 +65,6 @@ impl MujocoWorld {
             arm_moved: false,
             objects,
             table: scene.table.clone(),
-            contacts: RefCell::new(vec![0.0; 3 * MAX_CONTACTS]),
         })
     }
 
@@ -164,15 +157,16 @@ impl Engine for MujocoWorld {
     }
 
     fn touching_objects(&self) -> Option<(usize, usize)> {
-        let mut buffer = self.contacts.borrow_mut();
-        let n = self.world.contacts(&mut buffer);
-        let object = |body: f64| self.objects.iter().position(|&b| f64::from(b) == body);
-        buffer[..3 * n]
-            .chunks_exact(3)
-            .find_map(|c| match (object(c[0]), object(c[1])) {
-                (Some(a), Some(b)) if c[2] < 0.0 => Some((a.min(b), a.max(b))),
-                _ => None,
-            })
+        let mut pair = [0; 2];
+        let touching = self
+            .world
+            .touching(&self.objects, &mut pair)
+            .expect("a pair has two bodies");
+        let object = |body: i32| self.objects.iter().position(|&b| b == body);
+        match (touching, object(pair[0]), object(pair[1])) {
+            (true, Some(a), Some(b)) => Some((a.min(b), a.max(b))),
+            _ => None,
+        }
     }
 }
 
