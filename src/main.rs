@@ -134,6 +134,11 @@ enum Command {
         /// the median re-plan under 0.2 s, BENCHMARKS.md).
         #[arg(long, default_value_t = 0.1, value_name = "SECONDS")]
         replan_shortcut: f64,
+        /// With --closed-loop: shortcutting of each re-planned path while the arm plays it
+        /// (s of work, as much per control as the control lasts, until this is spent; it
+        /// does not delay the arm).
+        #[arg(long, default_value_t = 2.0, value_name = "SECONDS")]
+        replan_polish: f64,
         /// With --closed-loop: searches per trial at most (found or not); a trial that
         /// needs more stops with a report.
         #[arg(long, default_value_t = 50, value_name = "N")]
@@ -406,6 +411,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             closed_loop,
             replan_time,
             replan_shortcut,
+            replan_polish,
             max_replans,
         } => execute(
             &plan,
@@ -421,6 +427,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                     ClosedLoopFlags {
                         replan_time,
                         replan_shortcut,
+                        replan_polish,
                         max_replans,
                     },
                 )),

@@ -90,7 +90,8 @@ pub enum Invalid {
         /// The obstacle.
         obstacle: String,
     },
-    /// An object's footprint is not wholly on the table.
+    /// An object's footprint is not wholly on the table (or, from a start observed with it
+    /// hanging over the edge, hangs further over than it did there).
     ObjectOffTable {
         /// The object.
         object: String,
@@ -398,7 +399,7 @@ pub fn check_objects(
             continue;
         }
         let object = &scene.objects[i];
-        if !scene.table.holds(&object.footprint, pose) {
+        if scene.table.overhang(&object.footprint, pose) > scene.clearances.overhang(i) {
             return Err(Invalid::ObjectOffTable {
                 object: object.name.clone(),
             });

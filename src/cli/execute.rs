@@ -15,6 +15,8 @@ pub struct ClosedLoopFlags {
     pub replan_time: f64,
     /// Shortcutting of each re-planned path (s of work).
     pub replan_shortcut: f64,
+    /// Shortcutting of each re-planned path while the arm plays it (s of work).
+    pub replan_polish: f64,
     /// Searches per trial at most.
     pub max_replans: usize,
 }
@@ -76,11 +78,15 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                     flags.replan_time
                 ));
             }
-            if !(flags.replan_shortcut.is_finite() && flags.replan_shortcut >= 0.0) {
-                return Err(format!(
-                    "--replan-shortcut: must be zero or positive and finite, got {}",
-                    flags.replan_shortcut
-                ));
+            for (flag, value) in [
+                ("--replan-shortcut", flags.replan_shortcut),
+                ("--replan-polish", flags.replan_polish),
+            ] {
+                if !(value.is_finite() && value >= 0.0) {
+                    return Err(format!(
+                        "{flag}: must be zero or positive and finite, got {value}"
+                    ));
+                }
             }
             if !plan.settings.planner.yields_controls() {
                 return Err(format!(
@@ -96,6 +102,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                     planner: plan.settings.planner,
                     replan_time: flags.replan_time,
                     replan_shortcut: flags.replan_shortcut,
+                    polish: flags.replan_polish,
                     seed: plan.settings.seed,
                     max_replans: flags.max_replans,
                     tolerance: DRIFT,
@@ -143,15 +150,20 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
     );
     for (i, t) in report.trials.iter().enumerate() {
         println!(
-            "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans{}{}{}",
+            "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans ({} repairs){}{}{}{}",
             trial_outcome(i, n, t.reached, t.goal_distance),
             t.controls_played,
             t.cut_short,
             t.kept,
             t.replans,
+            t.repairs,
             match t.failed_replans {
                 0 => String::new(),
-                f => format!(" ({f} more found nothing in time)"),
+                f => format!(", {f} more found nothing in time"),
+            },
+            match t.separations {
+                0 => String::new(),
+                s => format!("; {s} observations had an object inside the arm"),
             },
             if t.tipped.is_empty() {
                 String::new()

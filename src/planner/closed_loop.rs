@@ -11,9 +11,11 @@ use super::search::Search;
 use crate::planning::execute::{trial_worlds, ExecuteSettings, TIPPED_TILT};
 use crate::planning::execute::{Engine, EngineKind, STEP};
 use crate::planning::path::PathControl;
+use crate::planning::shortcut::{shortcut, ShortcutSettings};
 use crate::planning::trajectory::{Playback, Trajectory};
 use crate::planning::{FinishSettings, PlannerKind, Problem, RunSettings};
-use crate::scene::Scene;
+use crate::propagate::Propagator;
+use crate::scene::{Clearances, Scene};
 use crate::state::State;
 use nalgebra::DVector;
 use serde::Serialize;
@@ -27,8 +29,14 @@ pub struct ClosedLoopSettings {
     pub planner: PlannerKind,
     /// Time limit of each re-planning search (s).
     pub replan_time: f64,
-    /// Shortcutting budget of each re-planned path (s of work).
+    /// Shortcutting budget of each re-planned path before its first control is played
+    /// (s of work).
     pub replan_shortcut: f64,
+    /// Shortcutting budget of each re-planned path while the arm plays it (s of work):
+    /// the rest after the control being played is shortened from where that control is
+    /// predicted to end, as much work per control as the control lasts (a robot's planner
+    /// works while its arm moves), until this much is spent.
+    pub polish: f64,
     /// Seed of the first re-plan; the next ones count up from it.
     pub seed: u64,
     /// Re-planning searches at most; then the execution stops.
@@ -60,8 +68,14 @@ pub struct ClosedLoopTrial {
     pub cut_short: usize,
     /// Observations after which the rest of the plan still reached the goal.
     pub kept: usize,
+    /// Observations with an object inside the arm, taken to touch it instead
+    /// ([`Scene::with_start`]: a soft contact's depth).
+    pub separations: usize,
     /// Re-planning searches that found a plan.
     pub replans: usize,
+    /// Of those, the searches from the end of a rest that was still valid but ended short
+    /// of the goal: the rest kept, an ending added.
+    pub repairs: usize,
     /// Re-planning searches that found none in their time (the old rest played on).
     pub failed_replans: usize,
     /// Why the last of those found none.
@@ -117,7 +131,9 @@ impl ClosedLoop<'_> {
             controls_played: 0,
             cut_short: 0,
             kept: 0,
+            separations: 0,
             replans: 0,
+            repairs: 0,
             failed_replans: 0,
             last_failure: None,
             latencies: Vec::new(),
@@ -131,6 +147,8 @@ impl ClosedLoop<'_> {
         // re-plans without end.
         let most_controls = 10 * plan.len() + 100;
         let mut failures_in_a_row: u32 = 0;
+        // The plan given was shortcut when it was made: only re-plans are polished.
+        let mut polish_left = 0.0;
         loop {
             // Observe: the arm where it was driven, the objects where the world has them.
             let observed = State {
@@ -146,8 +164,14 @@ impl ClosedLoop<'_> {
                 }
             };
             q.clone_from(&from.start.q);
+            let moved = |(a, b): (&crate::Pose2, &crate::Pose2)| a.x != b.x || a.y != b.y;
+            if from.start.objects.iter().zip(&observed.objects).any(moved) {
+                trial.separations += 1;
+            }
             let problem = Problem::new(from.clone(), settings.planner);
-            let simulated = problem.simulate(&rest, false);
+            // The rest is re-simulated, and played, with half the margins spent.
+            let playing = Problem::new(margins_half_spent(&from), settings.planner);
+            let simulated = playing.simulate(&rest, false);
             let rest_valid = simulated.stopped_by.is_none();
             if rest_valid && still_reaches(&from.goal, simulated.final_state()) {
                 trial.kept += 1;
@@ -165,9 +189,22 @@ impl ClosedLoop<'_> {
                 // With nothing valid to play the arm waits (the objects are at rest) and
                 // searches again from the same state, up to WAITING_SEARCHES times.
                 let time = settings.replan_time * f64::from(1 << failures_in_a_row.min(3));
-                match self.replan(&problem, time, trial.replans + trial.failed_replans) {
+                let index = trial.replans + trial.failed_replans;
+                // A rest that is still valid but ends short is kept and its end corrected
+                // (a warm start: the search begins where the rest ends, close to the
+                // goal, and finds a short ending fast); failing that, a new plan from the
+                // observed state.
+                let repaired = match rest_valid && !rest.is_empty() {
+                    true => self.repair(&from, &rest, simulated.final_state(), time, index),
+                    false => Err(String::new()),
+                };
+                if repaired.is_ok() {
+                    trial.repairs += 1;
+                }
+                match repaired.or_else(|_| self.replan(&problem, time, index)) {
                     Ok(controls) => {
                         rest = controls;
+                        polish_left = settings.polish;
                         trial.replans += 1;
                         trial.replan_latencies.push(started.elapsed().as_secs_f64());
                         failures_in_a_row = 0;
@@ -202,13 +239,31 @@ impl ClosedLoop<'_> {
             // Play the next control: its executable trajectory from the observed state. After
             // a whole control the arm is where the model's control ends (the trajectory's
             // last sample is interpolated onto it).
-            let (next, trajectory) = match problem.timed(&rest[..1]) {
+            let (next, trajectory) = match playing.timed(&rest[..1]) {
                 Ok(timed) => timed,
                 Err(e) => {
                     trial.stopped = Some(format!("internal error: {e}"));
                     break;
                 }
             };
+            if polish_left > 0.0 && rest.len() > 2 {
+                let seconds = (trajectory.times.last().copied().unwrap_or(0.0)
+                    / self.execution.speed)
+                    .min(polish_left);
+                polish_left -= seconds;
+                let polish = ShortcutSettings::from_seconds(
+                    seconds,
+                    settings.seed ^ trial.controls_played as u64,
+                );
+                let polished = shortcut(
+                    &mut Propagator::new(from.clone()),
+                    next.final_state(),
+                    &rest[1..],
+                    &polish,
+                );
+                rest.truncate(1);
+                rest.extend(polished.controls);
+            }
             let cut = self.play(world.as_mut(), robot, &trajectory, &mut q, &mut tipped);
             trial.controls_played += 1;
             if cut {
@@ -274,6 +329,27 @@ impl ClosedLoop<'_> {
         false
     }
 
+    /// `rest` (valid from `from`'s start, ending in `end` short of the goal) with an
+    /// ending searched from `end`, with a quarter of `time` ([`ClosedLoop::replan`]).
+    fn repair(
+        &self,
+        from: &Scene,
+        rest: &[PathControl],
+        end: &State,
+        time: f64,
+        index: usize,
+    ) -> Result<Vec<PathControl>, String> {
+        let at_end = from
+            .with_start(end, Path::new("the rest's end"))
+            .map_err(|e| e.to_string())?;
+        let ending = self.replan(
+            &Problem::new(at_end, self.settings.planner),
+            0.25 * time,
+            index,
+        )?;
+        Ok([rest, &ending].concat())
+    }
+
     /// A new plan from `problem`'s start (the observed state): searched for `time` seconds
     /// at most, then finished (checked by re-simulation, shortcut). The `index`-th re-plan
     /// of the execution.
@@ -315,12 +391,24 @@ impl ClosedLoop<'_> {
 /// ends within half the planning margin of the goal disc less its margin, that is, the
 /// margin may be half spent. The plan was made to end a margin inside the disc so that
 /// errors in the world still leave the object in; a re-plan for every millimetre of that
-/// error would thrash, and the next observation corrects what builds up.
+/// error would thrash, and the next observation corrects what builds up. The object
+/// clearance is spent the same way ([`margins_half_spent`]).
 fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
     match goal {
         crate::scene::Goal::ObjectInDisc { margin, .. } => goal.distance(state) <= 0.5 * margin,
         _ => goal.is_satisfied(state),
     }
+}
+
+/// `from` with half its object clearance (`physics.object_clearance`), as the rest of a
+/// plan is judged: objects a plan kept a clearance apart come closer in a world that is not
+/// the model, and a re-plan whenever two pass a millimetre closer than planned would
+/// thrash. What is spent of the clearance is still no contact; re-plans keep it whole.
+fn margins_half_spent(from: &Scene) -> Scene {
+    let mut scene = from.clone();
+    scene.physics.object_clearance *= 0.5;
+    scene.clearances = Clearances::at_start(&scene).with_start_overhangs(&scene);
+    scene
 }
 
 /// Steps the world `seconds` with the arm still.

@@ -451,7 +451,8 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
 /// where the scene says and grips the table twice as hard. Played open loop, the plan
 /// pushes past it and misses; closed loop, the first observation finds the box where it
 /// is, the rest of the plan is re-simulated from there and misses, and the plan searched
-/// from the observed state brings the box into the goal disc.
+/// from the observed state brings the box into the goal disc. Where the rest is still
+/// valid but ends short, it is kept and only an ending searched (a repair).
 #[test]
 fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
@@ -478,6 +479,7 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
             planner: plan.settings.planner,
             replan_time: 10.0,
             replan_shortcut: 0.5,
+            polish: 2.0,
             seed: 1,
             max_replans: 10,
             tolerance: DRIFT,
@@ -489,6 +491,10 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
         .unwrap();
     assert!(closed.reached, "closed loop reaches the goal: {closed:?}");
     assert!(closed.replans >= 1, "it re-planned: {closed:?}");
+    assert!(
+        closed.repairs >= 1 && closed.repairs <= closed.replans,
+        "some re-plans kept the rest and added an ending: {closed:?}"
+    );
     assert!(
         closed.tipped.is_empty() && closed.stopped.is_none(),
         "{closed:?}"

@@ -17,6 +17,8 @@ pub struct Clearances {
     between_objects: Vec<f64>,
     /// Row-major, objects x obstacles.
     to_obstacles: Vec<f64>,
+    /// Per object: how far it may reach past the table's edge (empty: nowhere).
+    overhangs: Vec<f64>,
 }
 
 impl Clearances {
@@ -64,7 +66,30 @@ impl Clearances {
             objects: objects.len(),
             between_objects,
             to_obstacles,
+            overhangs: Vec::new(),
         }
+    }
+
+    /// These clearances, with each object allowed to reach past the table's edge as far as
+    /// it does in `scene`'s start ([`Table::overhang`](super::Table::overhang)), and no
+    /// further: a start observed in the world, where an object was pushed partly over the
+    /// edge and still stands (its centre on the table), may be planned from, and the
+    /// object pushed back, but no plan takes it further over. A scene file's start has
+    /// none: every footprint starts wholly on the table.
+    pub fn with_start_overhangs(mut self, scene: &Scene) -> Clearances {
+        self.overhangs = scene
+            .objects
+            .iter()
+            .zip(&scene.start.objects)
+            .map(|(object, pose)| scene.table.overhang(&object.footprint, pose).max(0.0))
+            .collect();
+        self
+    }
+
+    /// How far object `i` may reach past the table's edge (m; zero but for a start
+    /// observed hanging over, [`Clearances::with_start_overhangs`]).
+    pub fn overhang(&self, i: usize) -> f64 {
+        self.overhangs.get(i).copied().unwrap_or(0.0)
     }
 
     /// Between objects `i` and `j` (m).

@@ -113,19 +113,29 @@ impl Table {
     /// Does the table carry the whole `footprint` (object frame) at `pose`? An object
     /// whose centre is on the table but whose footprint hangs over the edge rests on a
     /// support polygon the planar model does not know, and tips off at the slightest
-    /// push: the model keeps every footprint wholly on the table.
+    /// push: the model keeps every footprint wholly on the table (but see
+    /// [`Clearances::overhang`] for a start observed hanging over).
     pub fn holds(&self, footprint: &Footprint, pose: &Pose2) -> bool {
+        self.overhang(footprint, pose) <= 0.0
+    }
+
+    /// How far `footprint` (object frame) at `pose` reaches past the table's edges (m):
+    /// the largest distance along x or y of any of its points beyond the table's extent;
+    /// zero or less when the table carries it whole (then minus its least distance from
+    /// an edge).
+    pub fn overhang(&self, footprint: &Footprint, pose: &Pose2) -> f64 {
+        let beyond = |p: Vector2<f64>, radius: f64| {
+            (self.x.0 - (p.x - radius))
+                .max(p.x + radius - self.x.1)
+                .max(self.y.0 - (p.y - radius))
+                .max(p.y + radius - self.y.1)
+        };
         match footprint {
-            Footprint::Circle { radius } => {
-                let c = pose.translation();
-                c.x - radius >= self.x.0
-                    && c.x + radius <= self.x.1
-                    && c.y - radius >= self.y.0
-                    && c.y + radius <= self.y.1
-            }
+            Footprint::Circle { radius } => beyond(pose.translation(), *radius),
             Footprint::Polygon { vertices } => vertices
                 .iter()
-                .all(|v| self.contains(pose.translation() + pose.rotation() * v)),
+                .map(|v| beyond(pose.translation() + pose.rotation() * v, 0.0))
+                .fold(f64::NEG_INFINITY, f64::max),
         }
     }
 }

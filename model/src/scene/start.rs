@@ -1,11 +1,30 @@
 //! [`Scene::with_start`]: the scene from another start state, such as one observed while a
 //! plan runs (re-planning from where the world is, not where the model said it would be).
+//!
+//! A world the model only approximates leaves states the model would never reach itself,
+//! and a robot must still go on from them: an object pushed partly over the table's edge
+//! that still stands, an object the hand has sunk a few millimetres into (a soft contact,
+//! or perception's error), a joint a hair past its limit once the tool is brought back
+//! onto its plane. These are taken as they physically are, within bounds; anything
+//! further is refused.
 
 use super::{Clearances, Scene};
+use crate::contact::{find_arm_contacts, object_bounds, ArmBounds};
 use crate::error::{Error, Result};
+use crate::math::Pose2;
 use crate::robot::RobotKind;
 use crate::state::State;
+use nalgebra::{DVector, Vector2};
 use std::path::Path;
+
+/// The most an observed object inside the arm is moved out to touch it (m): a soft
+/// contact's depth or perception's error, not an object the arm passes through.
+pub const MAX_SEPARATION: f64 = 0.02;
+
+/// The most an observed joint may lie past its limit once the tool is on its plane (rad,
+/// or m), to be put back on the limit: the plane projection's own step, not a joint
+/// driven past it.
+pub const LIMIT_SLACK: f64 = 1e-3;
 
 impl Scene {
     /// This scene with `start` as its start state, checked as a scene file's start is:
@@ -54,14 +73,8 @@ impl Scene {
         }
         let mut q = start.q.clone();
         if self.robot.kind == RobotKind::Arm {
-            self.robot.start_on_plane(&mut q).map_err(|failure| {
-                invalid(
-                    "q".into(),
-                    format!(
-                        "the tool cannot be brought onto its pushing plane from here: {failure}"
-                    ),
-                )
-            })?;
+            self.start_on_plane_within_limits(&mut q)
+                .map_err(|failure| invalid("q".into(), failure))?;
         }
         if let Err(i) = self.robot.chain.within_limits(&q) {
             let joint = self.robot.chain.dof_joint(i);
@@ -74,7 +87,18 @@ impl Scene {
             ));
         }
         scene.start.q = q;
-        scene.clearances = Clearances::at_start(&scene);
+        for (i, object) in self.objects.iter().enumerate() {
+            let pose = scene.start.objects[i];
+            if !self.table.contains(pose.translation()) {
+                return Err(invalid(
+                    format!("objects.{}", object.name),
+                    format!("centre ({}, {}) is off the table", pose.x, pose.y),
+                ));
+            }
+        }
+        self.separate_from_arm(&mut scene.start)
+            .map_err(|(object, message)| invalid(format!("objects.{object}"), message))?;
+        scene.clearances = Clearances::at_start(&scene).with_start_overhangs(&scene);
         crate::validity::check_state(&scene, &scene.start).map_err(|reason| {
             Error::InvalidStart {
                 file: source.to_path_buf(),
@@ -82,5 +106,103 @@ impl Scene {
             }
         })?;
         Ok(scene)
+    }
+
+    /// Brings the tool of `q` onto its pushing plane; a joint the projection takes past
+    /// its limit by at most [`LIMIT_SLACK`] is put back on the limit and the tool brought
+    /// back again (the other joints take up the difference), a few times at most.
+    fn start_on_plane_within_limits(
+        &self,
+        q: &mut DVector<f64>,
+    ) -> std::result::Result<(), String> {
+        let chain = &self.robot.chain;
+        for _ in 0..4 {
+            self.robot.start_on_plane(q).map_err(|failure| {
+                format!("the tool cannot be brought onto its pushing plane from here: {failure}")
+            })?;
+            let mut clamped = false;
+            for i in 0..q.len() {
+                let joint = chain.dof_joint(i);
+                let within = q[i].clamp(joint.lower, joint.upper);
+                if within != q[i] && (within - q[i]).abs() <= LIMIT_SLACK {
+                    q[i] = within;
+                    clamped = true;
+                }
+            }
+            if !clamped {
+                return Ok(());
+            }
+        }
+        Ok(()) // what is left past a limit is refused by the caller, with the joint named
+    }
+
+    /// Moves every object of `state` that the arm's links reach into beyond
+    /// `physics.penetration_tolerance` out along the contact's horizontal normal until it
+    /// touches them, by [`MAX_SEPARATION`] at most; an object the arm presses down on, or
+    /// that lies deeper, is refused (its name and why).
+    fn separate_from_arm(&self, state: &mut State) -> std::result::Result<(), (String, String)> {
+        let tolerance = self.physics.penetration_tolerance;
+        let poses = self.robot.link_poses(&state.q);
+        let mut bounds = ArmBounds::default();
+        ArmBounds::compute(self, &poses, &mut bounds);
+        let start: Vec<Pose2> = state.objects.clone();
+        let (mut boxes, mut contacts) = (Vec::new(), Vec::new());
+        // A few rounds: moving an object out of one link may take it into another.
+        for _ in 0..8 {
+            object_bounds(self, &state.objects, &mut boxes);
+            contacts.clear();
+            find_arm_contacts(
+                self,
+                &poses,
+                &bounds,
+                &state.objects,
+                &boxes,
+                self.physics.contact_margin,
+                &mut contacts,
+            );
+            let Some(deepest) = contacts
+                .iter()
+                .filter(|c| c.point.distance < -tolerance)
+                .min_by(|a, b| a.point.distance.total_cmp(&b.point.distance))
+            else {
+                return Ok(());
+            };
+            let i = deepest.object;
+            let name = || self.objects[i].name.clone();
+            // The normal points out of the object towards the link: the object moves the
+            // other way, in the table's plane.
+            let n = deepest.point.normal_a;
+            let horizontal = Vector2::new(n.x, n.y);
+            if horizontal.norm() < 0.5 {
+                return Err((
+                    name(),
+                    format!(
+                        "link '{}' is {:.1} mm inside it from above",
+                        self.robot.chain.links[deepest.link].name,
+                        -deepest.point.distance * 1e3
+                    ),
+                ));
+            }
+            // Out until the contact's depth is gone along the normal (a little over, so
+            // that the tolerance is not met exactly).
+            let depth = -deepest.point.distance + 1e-4;
+            let shift = -horizontal * (depth / horizontal.norm_squared());
+            let pose = &mut state.objects[i];
+            *pose = Pose2::new(pose.x + shift.x, pose.y + shift.y, pose.theta);
+            let moved = (pose.translation() - start[i].translation()).norm();
+            if moved > MAX_SEPARATION {
+                return Err((
+                    name(),
+                    format!(
+                        "link '{}' reaches {:.1} mm into it, more than the {} mm an \
+                         observation may be off",
+                        self.robot.chain.links[deepest.link].name,
+                        -deepest.point.distance * 1e3,
+                        MAX_SEPARATION * 1e3
+                    ),
+                ));
+            }
+        }
+        Ok(()) // the validity check names what is left
     }
 }

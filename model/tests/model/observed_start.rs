@@ -68,10 +68,123 @@ fn a_wrong_observation_names_its_file_and_field() {
     );
     let beyond = refused(&|s| s.q[3] = 100.0);
     assert!(matches!(&beyond, Error::Invalid { .. }), "{beyond}");
-    // The box where the arm's base stands: not a valid start.
+    // The box where the arm's base stands: off the table.
     let inside = refused(&|s| {
         s.objects[0].x = 0.1;
         s.objects[0].y = 0.14;
     });
-    assert!(matches!(&inside, Error::InvalidStart { .. }), "{inside}");
+    assert!(
+        matches!(&inside, Error::Invalid { field, .. } if field == "objects.green_box"),
+        "{inside}"
+    );
+}
+
+fn planar_hand() -> Scene {
+    Scene::load("scenes/planar_hand_single_object.yaml").unwrap()
+}
+
+/// The planar hand's start: a 4 x 12 cm box at (0.4, 0) facing +x, its front face at
+/// x = 0.42; the 10 cm box ahead of it. The table ends at x = 1.03.
+const HAND_FRONT_X: f64 = 0.42;
+const BOX_HALF: f64 = 0.05;
+const TABLE_END_X: f64 = 1.03;
+
+#[test]
+fn an_object_observed_inside_the_hand_is_taken_to_touch_it() {
+    let scene = planar_hand();
+    let mut observed = scene.start.clone();
+    // The box's back face 5 mm behind the hand's front face: a soft contact's depth.
+    observed.objects[0].x = HAND_FRONT_X + BOX_HALF - 0.005;
+    observed.objects[0].y = 0.01;
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    let pose = from.start.objects[0];
+    let back_face = pose.x - BOX_HALF;
+    assert!(
+        back_face >= HAND_FRONT_X - scene.physics.penetration_tolerance
+            && back_face <= HAND_FRONT_X + 1e-3,
+        "moved out along the face's normal to touch the hand: back face at {back_face}"
+    );
+    assert_eq!((pose.y, pose.theta), (0.01, 0.0), "and only along it");
+    // 25 mm inside: not a contact's depth; refused, the object named.
+    observed.objects[0].x = HAND_FRONT_X + BOX_HALF - 0.025;
+    let error = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap_err();
+    assert!(
+        matches!(&error, Error::Invalid { field, .. } if field == "objects.box"),
+        "{error}"
+    );
+}
+
+#[test]
+fn an_object_observed_over_the_edge_may_be_pushed_back_but_not_further_out() {
+    let scene = planar_hand();
+    let mut observed = scene.start.clone();
+    // 5 mm of the box past the table's far edge, its centre 4.5 cm inside.
+    observed.objects[0].x = TABLE_END_X - BOX_HALF + 0.005;
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    let at = |x: f64| {
+        let mut state = from.start.clone();
+        state.objects[0].x = x;
+        pushplan_model::validity::check_state(&from, &state)
+    };
+    assert!(at(observed.objects[0].x - 0.01).is_ok(), "pushed back");
+    let further = at(observed.objects[0].x + 0.001).unwrap_err();
+    assert!(
+        matches!(
+            further,
+            pushplan_model::validity::Invalid::ObjectOffTable { .. }
+        ),
+        "{further}"
+    );
+    // The scene file's own start keeps every footprint wholly on the table.
+    let mut state = scene.start.clone();
+    state.objects[0].x = observed.objects[0].x;
+    assert!(pushplan_model::validity::check_state(&scene, &state).is_err());
+    // Its centre off the table: fallen, not standing; refused, the object named.
+    observed.objects[0].x = TABLE_END_X + 0.01;
+    let error = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap_err();
+    assert!(
+        matches!(&error, Error::Invalid { field, .. } if field == "objects.box"),
+        "{error}"
+    );
+}
+
+#[test]
+fn an_observed_joint_at_its_limit_stays_within_it_on_the_plane() {
+    let scene = herb();
+    let robot = &scene.robot;
+    let chain = &robot.chain;
+    let mut pushed_past = 0;
+    for joint in 0..robot.dof() {
+        let limits = chain.dof_joint(joint);
+        for limit in [limits.lower, limits.upper] {
+            let mut observed = scene.start.clone();
+            observed.q[joint] = limit;
+            observed.q[1] -= 0.01; // the tool off its plane
+            let mut projected = observed.q.clone();
+            if robot.start_on_plane(&mut projected).is_err() {
+                continue;
+            }
+            pushed_past += usize::from(chain.within_limits(&projected).is_err());
+            // A start may still be refused for a collision, never for the limit.
+            if let Ok(from) = scene.with_start(&observed, Path::new("observed.json")) {
+                assert!(chain.within_limits(&from.start.q).is_ok());
+                assert!(
+                    height_off_plane(&from, &from.start.q).abs()
+                        <= 1e-3 * robot.projection.height_tolerance
+                );
+            }
+        }
+    }
+    assert!(
+        pushed_past > 0,
+        "the projection alone takes some joint past its limit"
+    );
 }
