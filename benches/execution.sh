@@ -9,7 +9,8 @@
 # 3D trials and perturbed re-simulations per plan (default 10). CLOSED_LOOP=1 also plays
 # each plan closed loop (`execute --closed-loop`, the same trials and worlds), into
 # OUT_DIR/*.closed.{json,txt}, with CLOSED_LOOP_ARGS (e.g. "--replan-shortcut 0.1");
-# OPEN_LOOP=0 then skips the open-loop plays.
+# OPEN_LOOP=0 then skips the open-loop plays. REUSE_PLANS=1 judges the plans already in
+# OUT_DIR (FOLDER_scene_NN.json with its .plan.txt) instead of planning again.
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -32,8 +33,10 @@ done
 for scene in "${scenes[@]}"; do
   # Named by folder and file: scenes of two folders may share a file name.
   n=$(basename "$(dirname "$scene")")_$(basename "$scene" .yaml)
-  # shellcheck disable=SC2086
-  "$bin" plan "$scene" --seed 1 --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
+  if [ -z "${REUSE_PLANS:-}" ] || [ ! -f "$out/$n.plan.txt" ]; then
+    # shellcheck disable=SC2086
+    "$bin" plan "$scene" --seed 1 --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
+  fi
   if head -1 "$out/$n.plan.txt" | grep -q '^solved'; then
     "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1
     echo "$n: $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
