@@ -147,6 +147,8 @@ impl ClosedLoop<'_> {
         // re-plans without end.
         let most_controls = 10 * plan.len() + 100;
         let mut failures_in_a_row: u32 = 0;
+        // Of those, the searches while the arm waited with nothing valid to play.
+        let mut waiting_failures: u32 = 0;
         // The plan given was shortcut when it was made: only re-plans are polished.
         let mut polish_left = 0.0;
         loop {
@@ -208,15 +210,18 @@ impl ClosedLoop<'_> {
                         trial.replans += 1;
                         trial.replan_latencies.push(started.elapsed().as_secs_f64());
                         failures_in_a_row = 0;
+                        waiting_failures = 0;
                     }
                     Err(why) => {
                         trial.failed_replans += 1;
                         failures_in_a_row += 1;
                         let playable = rest_valid && !rest.is_empty();
-                        if !playable && failures_in_a_row == WAITING_SEARCHES {
+                        waiting_failures += u32::from(!playable);
+                        if waiting_failures == WAITING_SEARCHES {
                             trial.stopped = Some(format!(
-                                "{why} ({WAITING_SEARCHES} searches in a row found nothing, the \
-                                 longest {time} s, and the rest of the plan is no longer valid)"
+                                "{why} ({WAITING_SEARCHES} searches found nothing while the arm \
+                                 waited, the longest {time} s: the rest of the plan is no longer \
+                                 valid)"
                             ));
                             break;
                         }
