@@ -8,8 +8,10 @@
 //! onto its plane. These are taken as they physically are, within bounds; anything
 //! further is refused.
 
+#![allow(non_snake_case)] // frame-named points: p_WL, a link's point in the world frame
+
 use super::{Clearances, Scene};
-use crate::contact::{find_arm_contacts, object_bounds, ArmBounds};
+use crate::contact::{find_arm_contacts, object_bounds, ArmBounds, ArmContact};
 use crate::error::{Error, Result};
 use crate::math::Pose2;
 use crate::robot::RobotKind;
@@ -137,18 +139,22 @@ impl Scene {
     }
 
     /// Moves every object of `state` that the arm's links reach into beyond
-    /// `physics.penetration_tolerance` out along the contact's horizontal normal until it
-    /// touches them, by [`MAX_SEPARATION`] at most; an object the arm presses down on, or
-    /// that lies deeper, is refused (its name and why).
+    /// `physics.penetration_tolerance`, or rest on from above (a link within a millimetre
+    /// of its top), out in the table's plane until the validity rules accept it, by
+    /// [`MAX_SEPARATION`] at most: along the contact's normal when that is within 60
+    /// degrees of horizontal, else straight away from the link's contact point in 2 mm
+    /// steps. An object further in is refused (its name and why).
     fn separate_from_arm(&self, state: &mut State) -> std::result::Result<(), (String, String)> {
         let tolerance = self.physics.penetration_tolerance;
+        let vertical = self.physics.vertical_normal_angle.cos();
         let poses = self.robot.link_poses(&state.q);
         let mut bounds = ArmBounds::default();
         ArmBounds::compute(self, &poses, &mut bounds);
         let start: Vec<Pose2> = state.objects.clone();
         let (mut boxes, mut contacts) = (Vec::new(), Vec::new());
-        // A few rounds: moving an object out of one link may take it into another.
-        for _ in 0..8 {
+        // Rounds: moving an object out of one link may take it into another, and an
+        // object under a link moves out in steps.
+        for _ in 0..16 {
             object_bounds(self, &state.objects, &mut boxes);
             contacts.clear();
             find_arm_contacts(
@@ -160,44 +166,48 @@ impl Scene {
                 self.physics.contact_margin,
                 &mut contacts,
             );
-            let Some(deepest) = contacts
+            // What the validity rules refuse (`check_arm_contacts`).
+            let from_above =
+                |c: &ArmContact| c.point.distance <= 1e-3 && c.point.normal_a.z.abs() > vertical;
+            let Some(worst) = contacts
                 .iter()
-                .filter(|c| c.point.distance < -tolerance)
+                .filter(|c| c.point.distance < -tolerance || from_above(c))
                 .min_by(|a, b| a.point.distance.total_cmp(&b.point.distance))
             else {
                 return Ok(());
             };
-            let i = deepest.object;
-            let name = || self.objects[i].name.clone();
+            let i = worst.object;
             // The normal points out of the object towards the link: the object moves the
-            // other way, in the table's plane.
-            let n = deepest.point.normal_a;
+            // other way.
+            let n = worst.point.normal_a;
             let horizontal = Vector2::new(n.x, n.y);
-            if horizontal.norm() < 0.5 {
-                return Err((
-                    name(),
-                    format!(
-                        "link '{}' is {:.1} mm inside it from above",
-                        self.robot.chain.links[deepest.link].name,
-                        -deepest.point.distance * 1e3
-                    ),
-                ));
-            }
-            // Out until the contact's depth is gone along the normal (a little over, so
-            // that the tolerance is not met exactly).
-            let depth = -deepest.point.distance + 1e-4;
-            let shift = -horizontal * (depth / horizontal.norm_squared());
+            let depth = (-worst.point.distance).max(0.0);
+            let shift = if horizontal.norm() >= 0.5 {
+                // Until the contact's depth is gone along the normal (a little over, so
+                // that the tolerance is not met exactly).
+                -horizontal * ((depth + 1e-4) / horizontal.norm_squared())
+            } else {
+                // The link's contact point, world frame.
+                let p_WL = worst.point.point_b;
+                let away = state.objects[i].translation() - Vector2::new(p_WL.x, p_WL.y);
+                let away = match away.try_normalize(1e-9) {
+                    Some(direction) => direction,
+                    None => -horizontal.try_normalize(1e-9).unwrap_or(Vector2::x()),
+                };
+                away * 2e-3
+            };
             let pose = &mut state.objects[i];
             *pose = Pose2::new(pose.x + shift.x, pose.y + shift.y, pose.theta);
             let moved = (pose.translation() - start[i].translation()).norm();
             if moved > MAX_SEPARATION {
                 return Err((
-                    name(),
+                    self.objects[i].name.clone(),
                     format!(
-                        "link '{}' reaches {:.1} mm into it, more than the {} mm an \
+                        "link '{}' reaches {:.1} mm into it{}, further than the {} mm an \
                          observation may be off",
-                        self.robot.chain.links[deepest.link].name,
-                        -deepest.point.distance * 1e3,
+                        self.robot.chain.links[worst.link].name,
+                        depth * 1e3,
+                        if from_above(worst) { " from above" } else { "" },
                         MAX_SEPARATION * 1e3
                     ),
                 ));

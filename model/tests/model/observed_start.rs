@@ -186,3 +186,41 @@ fn an_observed_joint_at_its_limit_stays_within_it_on_the_plane() {
         "the projection alone takes some joint past its limit"
     );
 }
+
+#[test]
+fn an_object_observed_under_the_hand_is_taken_to_stand_beside_it() {
+    // A flat hand (4 x 12 x 2 cm, its centre 4.7 cm up: its underside at 3.7 cm) over the
+    // rim of a 4 cm tall disc: 3 mm down into it, 1 cm in from the rim. No push along a
+    // normal takes the disc out (the contact's normal is vertical): it is moved straight
+    // away from the hand until the hand is clear of its top.
+    let yaml = "robot: {type: planar_hand, shape: {type: box, size: [0.04, 0.12, 0.02]}, \
+                start: [0.4, 0.0, 0.0], height: 0.047}
+table: {height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}
+objects:
+  - {name: box, shape: {type: cylinder, radius: 0.05, height: 0.04}, pose: [0.6, 0.0, 0.0], \
+     mass: 0.5, mu_g: 0.4, mu_c: 0.3}
+goal: {object: box, center: [0.85, 0.1], radius: 0.1}";
+    let scene = Scene::from_yaml(yaml, Path::new("under-the-hand.yaml")).unwrap();
+    let mut observed = scene.start.clone();
+    let hand_front = HAND_FRONT_X;
+    observed.objects[0].x = hand_front + 0.05 - 0.01;
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    // Out until what is left of the 1 cm overlap is a side contact within the
+    // penetration tolerance, in 2 mm steps.
+    let moved = from.start.objects[0].x - observed.objects[0].x;
+    let tolerance = scene.physics.penetration_tolerance;
+    assert!(
+        (0.01 - tolerance..=0.012).contains(&moved),
+        "out by the 1 cm the hand overlaps it less the tolerance: {moved}"
+    );
+    let sideways = from.start.objects[0].y;
+    assert!(
+        sideways.abs() < 1e-3,
+        "away from the hand, not sideways: {sideways}"
+    );
+    // 2.5 cm under the hand: further than an observation may be off.
+    observed.objects[0].x = hand_front + 0.05 - 0.025;
+    refused_naming_the_box(&scene, &observed);
+}
