@@ -159,12 +159,16 @@ fn a_wrong_observation_is_refused_with_its_file_and_field() {
         v["format"] = "pushplan-observed/0".into();
     });
     assert!(err.contains("format"), "{err}");
-    // The box inside the hand: not a valid start.
+    // The box centred on the hand, deeper than an observation may be off: not a valid
+    // start, the object named.
     let hand = plan.controls[0].state.q.clone();
     let err = with(&|v| {
         v["objects"][object] = serde_json::json!([hand[0], hand[1], 0.0]);
     });
-    assert!(err.contains("start"), "{err}");
+    assert!(
+        err.contains(&format!("objects.{object}")) && err.contains("an observation may be off"),
+        "{err}"
+    );
     let err = with(&|v| {
         v["joints"] = serde_json::json!({});
     });
