@@ -143,6 +143,10 @@ enum Command {
         /// needs more stops with a report.
         #[arg(long, default_value_t = 50, value_name = "N")]
         max_replans: usize,
+        /// With --closed-loop: search time per trial at most, found or not (s); each search
+        /// gets no more than what is left, and a trial that needs more stops with a report.
+        #[arg(long, default_value_t = 120.0, value_name = "SECONDS")]
+        replan_budget: f64,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,
     /// run) in a process of its own, the logs merged into DIR/results.db (Planner Arena's
@@ -413,6 +417,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             replan_shortcut,
             replan_polish,
             max_replans,
+            replan_budget,
         } => execute(
             &plan,
             ExecuteOptions {
@@ -429,6 +434,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                         replan_shortcut,
                         replan_polish,
                         max_replans,
+                        replan_budget,
                     },
                 )),
             },

@@ -19,6 +19,8 @@ pub struct ClosedLoopFlags {
     pub replan_polish: f64,
     /// Searches per trial at most.
     pub max_replans: usize,
+    /// Search time per trial at most (s).
+    pub replan_budget: f64,
 }
 
 /// What `execute` is asked.
@@ -78,6 +80,12 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                     flags.replan_time
                 ));
             }
+            if !(flags.replan_budget.is_finite() && flags.replan_budget > 0.0) {
+                return Err(format!(
+                    "--replan-budget: must be positive and finite, got {}",
+                    flags.replan_budget
+                ));
+            }
             for (flag, value) in [
                 ("--replan-shortcut", flags.replan_shortcut),
                 ("--replan-polish", flags.replan_polish),
@@ -105,6 +113,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                     polish: flags.replan_polish,
                     seed: plan.settings.seed,
                     max_replans: flags.max_replans,
+                    search_budget: flags.replan_budget,
                     tolerance: DRIFT,
                 },
                 execution,
@@ -150,7 +159,7 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
     );
     for (i, t) in report.trials.iter().enumerate() {
         println!(
-            "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans ({} repairs){}{}{}{}",
+            "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans ({} repairs){}, {:.1} s searching{}{}{}",
             trial_outcome(i, n, t.reached, t.goal_distance),
             t.controls_played,
             t.cut_short,
@@ -161,6 +170,7 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
                 0 => String::new(),
                 f => format!(", {f} more found nothing in time"),
             },
+            t.search_time,
             match t.separations {
                 0 => String::new(),
                 s => format!("; {s} observations had an object inside the arm"),

@@ -41,6 +41,10 @@ pub struct ClosedLoopSettings {
     pub seed: u64,
     /// Re-planning searches at most; then the execution stops.
     pub max_replans: usize,
+    /// Time the re-planning searches of one execution may take in all, found or not (s):
+    /// a search gets no more than what is left, and once it is spent the execution stops
+    /// with a report (a robot should not think for minutes while its world waits).
+    pub search_budget: f64,
     /// An object this far from its predicted position cuts its control short (m).
     pub tolerance: f64,
 }
@@ -80,6 +84,8 @@ pub struct ClosedLoopTrial {
     pub failed_replans: usize,
     /// Why the last of those found none.
     pub last_failure: Option<String>,
+    /// Time the re-planning searches took in all, found or not, shortcutting included (s).
+    pub search_time: f64,
     /// Time from each observation to the plan played next: the rest re-simulated, and the
     /// search and shortcutting when it re-planned (s).
     pub latencies: Vec<f64>,
@@ -136,6 +142,7 @@ impl ClosedLoop<'_> {
             repairs: 0,
             failed_replans: 0,
             last_failure: None,
+            search_time: 0.0,
             latencies: Vec::new(),
             replan_latencies: Vec::new(),
             stopped: None,
@@ -185,12 +192,23 @@ impl ClosedLoop<'_> {
                     ));
                     break;
                 }
+                let budget_left = settings.search_budget - trial.search_time;
+                if budget_left <= 0.0 {
+                    trial.stopped = Some(format!(
+                        "the rest of the plan misses the goal and the {} s of search time are \
+                         spent ({} re-plans, {} found nothing)",
+                        settings.search_budget, trial.replans, trial.failed_replans
+                    ));
+                    break;
+                }
                 // A search that found nothing is tried again at the next observation with
                 // twice the time (up to 8 times), while the old rest is played on if it
                 // can be: the world may have moved to where a plan is easier to find.
                 // With nothing valid to play the arm waits (the objects are at rest) and
                 // searches again from the same state, up to WAITING_SEARCHES times.
-                let time = settings.replan_time * f64::from(1 << failures_in_a_row.min(3));
+                let time = (settings.replan_time * f64::from(1 << failures_in_a_row.min(3)))
+                    .min(budget_left);
+                let searching = Instant::now();
                 let index = trial.replans + trial.failed_replans;
                 // A rest that is still valid but ends short is kept and its end corrected
                 // (a warm start: the search begins where the rest ends, close to the
@@ -203,7 +221,9 @@ impl ClosedLoop<'_> {
                 if repaired.is_ok() {
                     trial.repairs += 1;
                 }
-                match repaired.or_else(|_| self.replan(&problem, time, index)) {
+                let replanned = repaired.or_else(|_| self.replan(&problem, time, index));
+                trial.search_time += searching.elapsed().as_secs_f64();
+                match replanned {
                     Ok(controls) => {
                         rest = controls;
                         polish_left = settings.polish;

@@ -482,6 +482,7 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
             polish: 2.0,
             seed: 1,
             max_replans: 10,
+            search_budget: 60.0,
             tolerance: DRIFT,
         },
         execution: ExecuteSettings::default(),
@@ -498,6 +499,31 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     assert!(
         closed.tipped.is_empty() && closed.stopped.is_none(),
         "{closed:?}"
+    );
+    assert!(
+        closed.search_time > 0.0 && closed.search_time < 60.0,
+        "{closed:?}"
+    );
+
+    // With no search time to spend the same trial stops, saying why, where the rest first
+    // misses.
+    let thoughtless = ClosedLoop {
+        settings: ClosedLoopSettings {
+            search_budget: 1e-9,
+            ..closed_loop.settings.clone()
+        },
+        ..closed_loop
+    };
+    let stopped = thoughtless
+        .execute(&scene, &plan.path_controls(), &world)
+        .unwrap();
+    assert!(!stopped.reached, "{stopped:?}");
+    assert!(
+        stopped
+            .stopped
+            .as_deref()
+            .is_some_and(|why| why.contains("s of search time are spent")),
+        "{stopped:?}"
     );
 }
 
