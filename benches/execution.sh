@@ -8,7 +8,7 @@
 # scenes/benchmark; e.g. SCENES="scenes/dense/scene_17.yaml scenes/benchmark"); TRIALS the
 # 3D trials and perturbed re-simulations per plan (default 10). CLOSED_LOOP=1 also plays
 # each plan closed loop (`execute --closed-loop`, the same trials and worlds), into
-# OUT_DIR/*.closed.{json,txt}, with CLOSED_LOOP_ARGS (e.g. "--replan-shortcut 0.1");
+# OUT_DIR/*.closed.{json,txt}, with CLOSED_LOOP_ARGS (e.g. "--replan-shortcut 0.1 --replan-budget 60");
 # OPEN_LOOP=0 then skips the open-loop plays. REUSE_PLANS=1 judges the plans already in
 # OUT_DIR (FOLDER_scene_NN.json with its .plan.txt) instead of planning again.
 #

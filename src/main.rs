@@ -130,9 +130,10 @@ enum Command {
         /// With --closed-loop: each re-planning search's time limit (s).
         #[arg(long, default_value_t = 2.0, value_name = "SECONDS")]
         replan_time: f64,
-        /// With --closed-loop: shortcutting of each re-planned path (s of work; 0.1 keeps
-        /// the median re-plan under 0.2 s, BENCHMARKS.md).
-        #[arg(long, default_value_t = 0.1, value_name = "SECONDS")]
+        /// With --closed-loop: shortcutting of each re-planned path before its first control
+        /// is played (s of work; by default none: the polish below shortens it while the arm
+        /// plays, and the median re-plan takes 0.03 s instead of 0.16 s, BENCHMARKS.md).
+        #[arg(long, default_value_t = 0.0, value_name = "SECONDS")]
         replan_shortcut: f64,
         /// With --closed-loop: shortcutting of each re-planned path while the arm plays it
         /// (s of work, as much per control as the control lasts, until this is spent; it
