@@ -47,7 +47,7 @@ pub use validity::ValidityChecker;
 use crate::planner::NearestTree;
 use crate::planning::PlannerKind;
 use convert::{
-    add_search_stats, planner_cut_at_time_limit, planner_kind, planner_name,
+    add_search_stats, plan_robust_trials, planner_cut_at_time_limit, planner_kind, planner_name,
     planner_shares_one_search, planner_yields_controls, run_settings_of_scene, search_stats,
 };
 use metric::{tree_add, tree_nearest, tree_nearest_k, tree_nearest_r};
@@ -328,6 +328,8 @@ pub mod ffi {
         fn planner_yields_controls(kind: PlannerKind) -> bool;
         /// `planning::RunSettings::of_scene`: the settings no option changes.
         fn run_settings_of_scene(kind: PlannerKind, params: &PlannerParams) -> RunSettings;
+        /// `planning::PLAN_ROBUST_TRIALS`: a plan's robustness check when none is asked for.
+        fn plan_robust_trials() -> u32;
         fn planner_shares_one_search(kind: PlannerKind) -> bool;
         fn planner_cut_at_time_limit(kind: PlannerKind) -> bool;
         fn planner_kind(name: &str) -> Result<PlannerKind>;

@@ -150,10 +150,11 @@ namespace pushplan
 
         RunSettings resolve(const Options &options, const bridge::SceneInfo &info)
         {
-            // The settings no option changes (Rust's, as the CLI's), on every core; then
-            // each option given. Options has a field of each name RunSettings has.
+            // The settings no option changes (Rust's, as the CLI's), on every core, a plan
+            // robust; then each option given. Options has a field of each name RunSettings has.
             RunSettings run = bridge::run_settings_of_scene(checkedKind(options.planner), info.planner);
             run.threads = defaultThreads();
+            run.robust_trials = bridge::plan_robust_trials();
 #define PUSHPLAN_GIVEN(field) given(run.field, options.field);
             PUSHPLAN_RUN_SETTINGS_FIELDS(PUSHPLAN_GIVEN)
 #undef PUSHPLAN_GIVEN
@@ -261,7 +262,12 @@ namespace pushplan
             const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(*problem);
             const rust::Vec<double> states = finisher->resimulate(detail::slice(kept.controls), detail::slice(kept.steps));
             if (states.empty())
-                return solveFrom(observed, options);
+            {
+                // A re-plan is wanted fast: the first solution unless robustness is asked for.
+                Options fast = options;
+                fast.robust_trials = options.robust_trials.value_or(0u);
+                return solveFrom(observed, fast);
+            }
             kept.states.assign(states.begin(), states.end());
             // Checked and described as every plan is; not shortcut (it is the old plan's rest).
             const bridge::FinishedPath path = detail::finish(
@@ -402,22 +408,41 @@ namespace pushplan
             read_path();
             // Robust planning: a solution that too few perturbed re-simulations carry to the
             // goal is first shortcut toward the most robust path (`planner::finish`); if it is
-            // still not robust enough it is dropped, and its search starts over with a new tree
-            // (the old tree's next solutions would mostly extend the dropped one, past its goal
-            // node).
+            // still not robust enough it is set aside, and its search starts over with a new
+            // tree (the old tree's next solutions would mostly extend it, past its goal node).
+            // When the time runs out before a solution reaches the rate, the most robust one
+            // set aside is the plan, its rate recorded: a plan in time, never a worse one.
+            struct SetAside
+            {
+                std::size_t search;
+                detail::FlatPath path;
+                double robustness;
+            };
+            std::optional<SetAside> most_robust;
             while (winner && run.robust_trials > 0)
             {
-                const bridge::FinishedPath repaired = detail::finish(
-                    *bridge::Finisher::make(models[*winner]->problem()), found, true, bridge::FinishSettings{run.robust_shortcut, seed, run.robust_trials,
-                                                        run.robust_rate, time_limit - elapsed()});
+                // Measured as found first: a solution robust as it is goes to the final
+                // shortcutting without the work toward robustness.
+                const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(models[*winner]->problem());
+                const auto finished = [&](double shortcut) {
+                    return detail::finish(*finisher, found, true,
+                                          bridge::FinishSettings{shortcut, seed, run.robust_trials, run.robust_rate,
+                                                                 time_limit - elapsed()});
+                };
+                const bridge::FinishedPath as_found = finished(0.0);
+                const bridge::FinishedPath repaired =
+                    as_found.robustness >= run.robust_rate ? as_found : finished(run.robust_shortcut);
                 plan.robustness = repaired.robustness;
+                detail::FlatPath as_repaired{std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
+                                             std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
+                                             std::vector<double>(repaired.states.begin(), repaired.states.end())};
                 if (plan.robustness >= run.robust_rate)
                 {
-                    found = {std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
-                             std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
-                             std::vector<double>(repaired.states.begin(), repaired.states.end())};
+                    found = std::move(as_repaired);
                     break;
                 }
+                if (!most_robust || plan.robustness > most_robust->robustness)
+                    most_robust = SetAside{*winner, std::move(as_repaired), plan.robustness};
                 {
                     char note[256];
                     std::snprintf(note, sizeof note,
@@ -429,12 +454,24 @@ namespace pushplan
                 }
                 if (out_of_time())
                 {
-                    winner.reset();  // the last path is kept, as an approximate solution
+                    winner.reset();  // the most robust path set aside is taken below
                     break;
                 }
                 portfolio.restart(*winner);
                 winner = search();
                 read_path();
+            }
+            if (!winner && most_robust)
+            {
+                winner = most_robust->search;
+                found = std::move(most_robust->path);
+                plan.robustness = most_robust->robustness;
+                char note[256];
+                std::snprintf(note, sizeof note,
+                              "no solution reached %.0f %% in time: the most robust found, %.0f %% of %u "
+                              "perturbed re-simulations, is the plan",
+                              100.0 * run.robust_rate, 100.0 * plan.robustness, run.robust_trials);
+                tell_event(note);
             }
             const bool solved = winner.has_value();
             const detail::ModelHandlePtr &model = models[winner.value_or(portfolio.best().value_or(0))];

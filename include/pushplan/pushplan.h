@@ -108,7 +108,11 @@ namespace pushplan
         std::optional<bool> intermediate_states;
         /// Keep a solution only if at least `robust_rate` of this many re-simulations from
         /// perturbed scenes (object start poses +-5 mm / +-0.05 rad; mass, frictions and
-        /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on. Default 0: no check.
+        /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on, and when the time
+        /// runs out first, the most robust solution found is the plan (Plan::robustness says
+        /// its rate). Default 20 in solve and solveFrom, as the CLI's `plan` (a plan is
+        /// robust by default), 0 in replan's search (a re-plan is wanted fast); 0 takes the
+        /// first solution as found.
         std::optional<unsigned> robust_trials;
         /// Default 0.95: one perturbed world in 20 may miss (BENCHMARKS.md).
         std::optional<double> robust_rate;
@@ -245,7 +249,8 @@ namespace pushplan
         /// What a controller plays (empty without a path).
         Trajectory trajectory;
         /// Fraction of the perturbed re-simulations that reached the goal (-1: not checked,
-        /// Options::robust_trials was 0).
+        /// Options::robust_trials was 0). Below Options::robust_rate when no solution reached
+        /// it within the time limit: the plan is then the most robust solution found.
         double robustness = -1.0;
         /// Set by Planner::replan: the plan starts at the observed state, not the scene's start.
         std::optional<Replanned> replanned;

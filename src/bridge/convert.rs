@@ -14,6 +14,10 @@ pub(super) fn planner_name(kind: PlannerKind) -> &'static str {
     kind.name()
 }
 
+pub(super) fn plan_robust_trials() -> u32 {
+    crate::planning::PLAN_ROBUST_TRIALS
+}
+
 pub(super) fn run_settings_of_scene(
     kind: PlannerKind,
     params: &super::PlannerParams,

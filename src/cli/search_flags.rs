@@ -33,8 +33,9 @@ pub struct SearchFlags {
     #[arg(long)]
     pub intermediate_states: bool,
     /// Keep a solution only if at least --robust-rate of this many re-simulations from
-    /// perturbed scenes (as `check --noise`) reach the goal; search on otherwise
-    /// [default: 0, no such check].
+    /// perturbed scenes (as `check --noise`) reach the goal; search on otherwise, and when
+    /// the time runs out first, write the most robust solution found, its rate stated
+    /// [default: 20 for `plan`, 0 for `replan`; 0 takes the first solution as found].
     #[arg(long = "robust", value_name = "TRIALS")]
     pub robust_trials: Option<u32>,
     /// The fraction of --robust re-simulations that must reach the goal [default: 0.95:

@@ -35,4 +35,4 @@ pub use deadline::deadline;
 pub use finish::{finish, FinishSettings, FinishedPath, RobustRequirement, ShortcutReport};
 pub use kind::PlannerKind;
 pub use problem::Problem;
-pub use run_settings::RunSettings;
+pub use run_settings::{RunSettings, PLAN_ROBUST_TRIALS};

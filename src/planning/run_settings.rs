@@ -50,6 +50,14 @@ pub struct RunSettings {
     pub fallback_steps: u64,
 }
 
+/// Perturbed re-simulations a plan is checked in when none are asked for: `plan` and C++'s
+/// `Planner::solve` / `solveFrom` keep a solution only if [`RunSettings::robust_rate`] of
+/// them reach the goal, and when none does in time, the most robust one found (robust by
+/// default; `--robust 0` / `robust_trials = 0` takes the first solution as found).
+/// Re-plans (`replan`, `Planner::replan`, the closed loop) and benchmark runs keep 0: a
+/// re-plan is wanted fast, and a benchmark measures the search ([`RunSettings::of_scene`]).
+pub const PLAN_ROBUST_TRIALS: u32 = 20;
+
 impl RunSettings {
     /// `planner` as the scene's `planner:` parameters say, with the planner's own restart
     /// and fallback budgets, on one thread, with the defaults of what no scene sets (3 s of

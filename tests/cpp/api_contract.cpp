@@ -191,7 +191,10 @@ int main()
     bad_option("robust_shortcut", [](pushplan::Options &o) { o.robust_shortcut = -1.0; });
     bad_option("shortcut", [](pushplan::Options &o) { o.shortcut = std::nan(""); });
     // Perturbed worlds belong to robust planning of the pushing problem.
-    bad_option("robust_particles", [](pushplan::Options &o) { o.robust_particles = 4; });
+    bad_option("robust_particles", [](pushplan::Options &o) {
+        o.robust_trials = 0u;  // the first solution as found: no robust planning
+        o.robust_particles = 4;
+    });
     bad_option("robust_particles", [](pushplan::Options &o) {
         o.robust_trials = 10;
         o.robust_particles = 4;
