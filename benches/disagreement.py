@@ -15,12 +15,21 @@ nominal trial (the scene as it is: model error alone) and in all trials (with th
 perturbations), and how many trials' goal-object error stays within the plan's goal
 margin.
 
+Then, per scene class and object count (1-3, 4-5, 6-7, 8-12, 13 or more objects), whether
+the model's own noise covers each engine's disagreement: for every plan, the goal
+object's median distance from its predicted final pose in the engine's trials, against
+its mean distance in the model's perturbed re-simulations (`check --noise`, the
+FOLDER_scene_NN.check.txt beside the plan: the worlds robust planning must reach the goal
+in). A ratio at or below 1 means a plan robust in the model's worlds keeps a margin as
+wide as the engine's error.
+
     benches/disagreement.py OUT_DIR [OUT_DIR ...]
 """
 import glob
 import json
 import math
 import os
+import re
 import sys
 from collections import defaultdict
 
@@ -30,6 +39,36 @@ def quantile(values, p):
     if not values:
         return float("nan")
     return values[min(len(values) - 1, max(0, math.ceil(p * len(values)) - 1))]
+
+
+def object_count_class(objects):
+    for top, label in ((3, "1-3"), (5, "4-5"), (7, "6-7"), (12, "8-12")):
+        if objects <= top:
+            return f"{label} objects"
+    return "13 or more objects"
+
+
+def noise_coverage(outs):
+    """Per (folder, object count, engine): (engine's median goal error, model's mean
+    perturbed distance) per plan, in m."""
+    rows = defaultdict(list)
+    for out in outs:
+        for check_path in sorted(glob.glob(os.path.join(out, "*_scene_*.check.txt"))):
+            name = os.path.basename(check_path)[: -len(".check.txt")]
+            found = re.search(r"([\d.]+) mm from the planned one on average", open(check_path).read())
+            if not found:
+                continue
+            spread = 1e-3 * float(found.group(1))
+            for engine in ("rapier", "mujoco"):
+                path = os.path.join(out, f"{name}.{engine}.exec.json")
+                if not os.path.exists(path):
+                    continue
+                report = json.load(open(path))
+                goal = report["objects"].index(report["goal_object"])
+                errors = [t["final_errors"][goal] for t in report["trials"]]
+                key = (name.rsplit("_scene_", 1)[0], object_count_class(len(report["objects"])), engine)
+                rows[key].append((quantile(errors, 0.5), spread))
+    return rows
 
 
 def main(outs):
@@ -93,6 +132,14 @@ def main(outs):
         for pair, (ok, total) in sorted(within[cls].items()):
             print(f"{pair}: goal object within the goal margin of its predicted pose in {ok} of {total} trials")
         print()
+    print("## Does the model's noise cover the engines' error? (goal object, per plan)")
+    print("| class | objects | engine | plans | engine error, median of plans, mm | model's perturbed spread, median, mm | ratio, median (<= 1: covered) | plans covered |")
+    print("|---|---|---|---|---|---|---|---|")
+    for (cls, count, engine), plans in sorted(noise_coverage(outs).items()):
+        ratios = [error / max(spread, 1e-3) for error, spread in plans]
+        print(f"| {cls} | {count} | {engine} | {len(plans)} | {1e3 * quantile([e for e, _ in plans], 0.5):.0f} "
+              f"| {1e3 * quantile([s for _, s in plans], 0.5):.0f} | {quantile(ratios, 0.5):.2f} "
+              f"| {sum(r <= 1 for r in ratios)} of {len(plans)} |")
 
 
 if __name__ == "__main__":
