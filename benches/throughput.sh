@@ -33,8 +33,8 @@ for scene in benches/scenes/throughput_*.yaml; do
   name=$(basename "$scene" .yaml)
   exact="$(dirname "$scene")/.exact_$name.yaml"  # beside the scene: its URDF path is relative
   { cat "$scene"; echo "planner: {nearest_checks: 0}"; } > "$exact"
-  "$bin" plan "$scene" --planner pcrrt --threads 1 --time "$time" --seed 1 --shortcut 0 --out "$tmp/$name.json" 2> "$tmp/$name.budget.log" > /dev/null
-  "$bin" plan "$exact" --planner pcrrt --threads 1 --time "$time" --seed 1 --shortcut 0 --out "$tmp/$name.exact.json" 2> "$tmp/$name.exact.log" > /dev/null
+  "$bin" plan "$scene" --planner pcrrt --threads 1 --time "$time" --seed 1 --shortcut 0 --robust 0 --out "$tmp/$name.json" 2> "$tmp/$name.budget.log" > /dev/null
+  "$bin" plan "$exact" --planner pcrrt --threads 1 --time "$time" --seed 1 --shortcut 0 --robust 0 --out "$tmp/$name.exact.json" 2> "$tmp/$name.exact.log" > /dev/null
   rm -f "$exact"
   row "$name, 128 checks" "$tmp/$name.budget.log"
   row "$name, exact" "$tmp/$name.exact.log"
