@@ -240,7 +240,7 @@ impl ClosedLoop<'_> {
                         if waiting_failures == WAITING_SEARCHES {
                             trial.stopped = Some(format!(
                                 "{why} ({WAITING_SEARCHES} searches found nothing while the arm \
-                                 waited, the longest {time} s: the rest of the plan is no longer \
+                                 waited, the longest {time:.1} s: the rest of the plan is no longer \
                                  valid)"
                             ));
                             break;
@@ -397,7 +397,9 @@ impl ClosedLoop<'_> {
             .solve(self.scene_path, Some(&from.start), &run, None)
             .map_err(|e| format!("re-planning failed: {e}"))?;
         if !found.summary.exact {
-            return Err(format!("no plan from the observed state within {time} s"));
+            return Err(format!(
+                "no plan from the observed state within {time:.1} s"
+            ));
         }
         let finish = FinishSettings {
             shortcut: settings.replan_shortcut,
