@@ -74,17 +74,13 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
             if render.is_some() {
                 return Err("--render draws open-loop executions only".into());
             }
-            if !(flags.replan_time.is_finite() && flags.replan_time > 0.0) {
-                return Err(format!(
-                    "--replan-time: must be positive and finite, got {}",
-                    flags.replan_time
-                ));
-            }
-            if !(flags.replan_budget.is_finite() && flags.replan_budget > 0.0) {
-                return Err(format!(
-                    "--replan-budget: must be positive and finite, got {}",
-                    flags.replan_budget
-                ));
+            for (flag, value) in [
+                ("--replan-time", flags.replan_time),
+                ("--replan-budget", flags.replan_budget),
+            ] {
+                if !(value.is_finite() && value > 0.0) {
+                    return Err(format!("{flag}: must be positive and finite, got {value}"));
+                }
             }
             for (flag, value) in [
                 ("--replan-shortcut", flags.replan_shortcut),
