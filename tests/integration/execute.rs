@@ -578,6 +578,25 @@ fn execute_closed_loop_reports_trials_replans_and_latency() {
         ],
     );
     assert_eq!(code, 2, "{stderr}");
+    // Re-planning times that are no time are refused, naming the flag.
+    for (flag, value) in [
+        ("--replan-time", "0"),
+        ("--replan-budget", "-1"),
+        ("--replan-budget", "nan"),
+        ("--replan-polish", "-1"),
+    ] {
+        let (code, _, stderr) = common::pushplan_in(
+            Path::new("."),
+            &[
+                "execute",
+                plan.to_str().unwrap(),
+                "--closed-loop",
+                &format!("{flag}={value}"),
+            ],
+        );
+        assert_eq!(code, 2, "{flag} {value}: {stderr}");
+        assert!(stderr.contains(flag), "{stderr}");
+    }
 }
 
 #[test]
