@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The execution benchmark of BENCHMARKS.md ("Plans that work in the world"): for every
-# benchmark scene, plan once (seed 1), play the plan 10 times in each 3D engine (ENGINES,
+# benchmark scene, plan once (seed SEED, default 1), play the plan 10 times in each 3D engine (ENGINES,
 # default "rapier mujoco": the same plan, trials and perturbed worlds in each) and
 # re-simulate it 10 times with parameter noise. Extra `plan` options go in PLAN_ARGS
 # (e.g. PLAN_ARGS="--robust 20"); TIME sets the search time (default 10 s); SCENES the
@@ -35,7 +35,7 @@ for scene in "${scenes[@]}"; do
   n=$(basename "$(dirname "$scene")")_$(basename "$scene" .yaml)
   if [ -z "${REUSE_PLANS:-}" ] || [ ! -f "$out/$n.plan.txt" ]; then
     # shellcheck disable=SC2086
-    "$bin" plan "$scene" --seed 1 --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
+    "$bin" plan "$scene" --seed "${SEED:-1}" --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
   fi
   if head -1 "$out/$n.plan.txt" | grep -q '^solved'; then
     "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1

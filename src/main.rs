@@ -88,8 +88,8 @@ enum Command {
         /// Plan file (JSON, written by `plan`).
         plan: PathBuf,
         /// Re-simulate the plan this many times with perturbed object start poses and
-        /// parameters (±5 mm, ±0.05 rad; mass, mu_g, mu_c, c x U(0.8, 1.2); centres of
-        /// friction ±2 cm), objects pushing one another.
+        /// parameters (±5 mm, ±0.05 rad; mass, mu_g, c x U(0.8, 1.2); mu_c x U(0.5, 1.2);
+        /// centres of friction ±2 cm), objects pushing one another.
         #[arg(long, default_value_t = 0)]
         noise: usize,
         /// Seed of the perturbations.

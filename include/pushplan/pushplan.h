@@ -107,8 +107,9 @@ namespace pushplan
         /// Default false.
         std::optional<bool> intermediate_states;
         /// Keep a solution only if at least `robust_rate` of this many re-simulations from
-        /// perturbed scenes (object start poses +-5 mm / +-0.05 rad; mass, frictions and
-        /// pressure x U(0.8, 1.2)) reach the goal; otherwise search on, and when the time
+        /// perturbed scenes (object start poses +-5 mm / +-0.05 rad; mass, `mu_g` and
+        /// pressure x U(0.8, 1.2), the arm's friction `mu_c` x U(0.5, 1.2), the centre of
+        /// friction +-2 cm) reach the goal; otherwise search on, and when the time
         /// runs out first, the most robust solution found is the plan (Plan::robustness says
         /// its rate). Default 20 in solve and solveFrom, as the CLI's `plan` (a plan is
         /// robust by default), 0 in replan's search (a re-plan is wanted fast); 0 takes the

@@ -17,22 +17,52 @@ use crate::validity::{check_state, Invalid};
 use serde::Serialize;
 use std::sync::Arc;
 
-/// Spreads of the parameter noise. Poses are shifted uniformly within ± the given
-/// amounts; the physical parameters are scaled by factors uniform in `[1 - s, 1 + s]`.
+/// A factor a physical parameter is multiplied by, drawn uniformly from `[low, high]`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Factor {
+    /// Smallest factor.
+    pub low: f64,
+    /// Largest factor.
+    pub high: f64,
+}
+
+impl Factor {
+    /// The parameter as the scene gives it.
+    pub const ONE: Factor = Factor {
+        low: 1.0,
+        high: 1.0,
+    };
+
+    /// `1 ± spread`.
+    pub const fn spread(spread: f64) -> Factor {
+        Factor {
+            low: 1.0 - spread,
+            high: 1.0 + spread,
+        }
+    }
+
+    fn draw(&self, rng: &mut SplitMix64) -> f64 {
+        rng.uniform(self.low, self.high)
+    }
+}
+
+/// The parameter noise. Poses are shifted uniformly within ± the given amounts; the
+/// physical parameters are scaled by [`Factor`]s.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Noise {
     /// Start position of every object, per axis (m).
     pub position: f64,
     /// Start yaw of every object (rad).
     pub yaw: f64,
-    /// Relative spread of mass, `mu_g`, `mu_c` and the characteristic length `c`.
-    pub mass: f64,
-    /// Relative spread of `mu_g`.
-    pub mu_g: f64,
-    /// Relative spread of `mu_c`.
-    pub mu_c: f64,
-    /// Relative spread of the characteristic length `c`.
-    pub c: f64,
+    /// Mass of every object.
+    pub mass: Factor,
+    /// Object–table friction coefficient `mu_g`.
+    pub mu_g: Factor,
+    /// Arm–object friction coefficient `mu_c`.
+    pub mu_c: Factor,
+    /// The limit surface's characteristic length `c` (how far the support pressure lies
+    /// from the centre of friction).
+    pub c: Factor,
     /// Largest shift of each object's centre of friction from its footprint's centroid,
     /// per axis (m): the support pressure is not known to be uniform.
     pub friction_centre: f64,
@@ -40,13 +70,24 @@ pub struct Noise {
 
 impl Default for Noise {
     /// The model's own noise (`check --noise`, `plan --robust`): the world's
-    /// ([`Noise::world`]) and each object's centre of friction shifted by up to ±2 cm per
-    /// axis. The model assumes a uniform support pressure; a real object's is not known,
-    /// and a push at height h loads the leading edge, moving the centre of friction by
-    /// about `mu_g h` (2 cm for the hand at 5 cm). Near-central pushes whose turning
-    /// direction depends on it are what failed in the 3D engine (BENCHMARKS.md).
+    /// ([`Noise::world`]) widened where the model is known to err, so that a plan robust
+    /// to it keeps margins the size of the model's error (BENCHMARKS.md, "Margins from
+    /// the model's error"):
+    /// - each object's centre of friction shifted by up to ±2 cm per axis. The model
+    ///   assumes a uniform support pressure; a real object's is not known, and a push at
+    ///   height h loads the leading edge, moving the centre of friction by about
+    ///   `mu_g h` (2 cm for the hand at 5 cm). Near-central pushes whose turning direction
+    ///   depends on it are what failed in the 3D engine.
+    /// - `mu_c` down to half the scene's: the arm's surface is the least known, and
+    ///   the arm's friction drags objects sideways only as far as Coulomb's law lets it
+    ///   (MuJoCo's regularised friction drags a box about half as far as the model).
+    ///   Plans that lean on sideways drag are fragile.
     fn default() -> Self {
         Noise {
+            mu_c: Factor {
+                low: 0.5,
+                high: 1.2,
+            },
             friction_centre: 0.02,
             ..Noise::world()
         }
@@ -60,10 +101,23 @@ impl Noise {
         Noise {
             position: 0.005,
             yaw: 0.05,
-            mass: 0.2,
-            mu_g: 0.2,
-            mu_c: 0.2,
-            c: 0.2,
+            mass: Factor::spread(0.2),
+            mu_g: Factor::spread(0.2),
+            mu_c: Factor::spread(0.2),
+            c: Factor::spread(0.2),
+            friction_centre: 0.0,
+        }
+    }
+
+    /// No noise: every perturbed world is the scene itself.
+    pub fn none() -> Self {
+        Noise {
+            position: 0.0,
+            yaw: 0.0,
+            mass: Factor::ONE,
+            mu_g: Factor::ONE,
+            mu_c: Factor::ONE,
+            c: Factor::ONE,
             friction_centre: 0.0,
         }
     }
@@ -84,9 +138,8 @@ impl Noise {
             s.physics.arm_clearance = 0.0;
             s.physics.object_pushing = true;
             for object in &mut s.objects {
-                let mut scale = |spread: f64| rng.uniform(1.0 - spread, 1.0 + spread);
-                let mass = scale(self.mass);
-                let (mu_g, mu_c, c) = (scale(self.mu_g), scale(self.mu_c), scale(self.c));
+                let mass = self.mass.draw(rng);
+                let (mu_g, mu_c, c) = (self.mu_g.draw(rng), self.mu_c.draw(rng), self.c.draw(rng));
                 object.mass *= mass;
                 object.mu_g *= mu_g;
                 object.mu_c *= mu_c;

@@ -4,7 +4,7 @@
 use pushplan::planning::execute::{execute, ExecuteSettings};
 use pushplan::planning::path::PathControl;
 use pushplan::planning::plan_file::PlanFile;
-use pushplan::planning::robustness::{robustness, Noise};
+use pushplan::planning::robustness::{robustness, Factor, Noise};
 use pushplan::{EeAction, Scene};
 
 const SCENE: &str = "tests/data/hand_push_straight.yaml";
@@ -28,16 +28,7 @@ fn controls() -> Vec<PathControl> {
 #[test]
 fn without_noise_every_trial_is_the_plan_and_more_noise_reaches_the_goal_less_often() {
     let scene = Scene::load(SCENE).unwrap();
-    let none = Noise {
-        position: 0.0,
-        yaw: 0.0,
-        mass: 0.0,
-        mu_g: 0.0,
-        mu_c: 0.0,
-        c: 0.0,
-        friction_centre: 0.0,
-    };
-    let exact = robustness(&scene, &controls(), &none, 5, 1);
+    let exact = robustness(&scene, &controls(), &Noise::none(), 5, 1);
     assert_eq!(exact.success_rate, 1.0, "{:?}", exact.trials[0]);
     assert_eq!(exact.max_deviation, 0.0);
     let default = robustness(&scene, &controls(), &Noise::default(), 20, 1);
@@ -107,4 +98,74 @@ fn an_unknown_pressure_distribution_makes_a_point_push_fragile_and_leaves_a_flat
     let (world, model) = rates(&point);
     assert_eq!(world, 1.0, "the point push in the world's noise");
     assert!(model < 0.8, "the point push in the model's noise: {model}");
+}
+
+#[test]
+fn a_push_that_leans_on_the_arms_friction_is_fragile_in_the_models_noise() {
+    // The hand moves at (0.2, 0.05) m/s. In contact with the box's back face (from
+    // x 0.55, after 0.13 m) it pushes for 1.25 s. Carrying the box sideways with it
+    // (sticking) takes a tangential contact force a quarter of the normal one: the
+    // table's friction opposes the box's motion. So the box sticks only while
+    // mu_c >= 0.25 and ends at y = 0.05 * 1.25 = 62.5 mm. Sliding, it moves along the
+    // friction cone's edge, sideways at 0.2 * mu_c m/s: 37.5 mm with mu_c 0.15.
+    let base = std::fs::read_to_string(SCENE).unwrap();
+    let diagonal = base.replace(
+        "goal: {object: box, center: [0.85, 0.0], radius: 0.1}",
+        "goal: {object: box, center: [0.85, 0.0625], radius: 0.01, margin: 0.0}",
+    );
+    let scene = Scene::from_yaml(&diagonal, std::path::Path::new(SCENE)).unwrap();
+    let controls = [
+        PathControl {
+            action: EeAction::planar(0.2, 0.05, 0.0),
+            steps: 190,
+        },
+        PathControl {
+            action: EeAction::planar(-0.2, 0.0, 0.0),
+            steps: 20,
+        },
+    ];
+    let exact = robustness(&scene, &controls, &Noise::none(), 1, 1);
+    let end = exact.planned_goal_object.unwrap();
+    assert!(
+        (end[0] - 0.85).abs() < 2e-3 && (end[1] - 0.0625).abs() < 2e-3,
+        "{end:?}"
+    );
+    let report = |noise: &Noise| robustness(&scene, &controls, noise, 40, 5);
+    // The closed form, with mu_c = 0.3 x factor: sideways 1.25 s x min(0.2 mu_c, 0.05).
+    for factor in [0.6, 0.7, 0.8, 0.9, 1.0] {
+        let exact = Factor {
+            low: factor,
+            high: factor,
+        };
+        let trial = &report(&Noise {
+            mu_c: exact,
+            ..Noise::none()
+        })
+        .trials[0];
+        let [x, y, _] = trial.goal_object.unwrap();
+        let sideways = 1.25 * (0.2 * 0.3 * factor).min(0.05);
+        assert!(
+            (x - 0.85).abs() < 1e-3 && (y - sideways).abs() < 1e-3,
+            "{factor}: {trial:?}"
+        );
+    }
+    // The scene's mu_c (0.3) x U(0.8, 1.2) is at least 0.24: the box (nearly) always
+    // sticks. The model's noise draws mu_c down to 0.15: where it slides, the box falls
+    // short of the 10 mm disc sideways.
+    let world = report(&Noise::world());
+    assert_eq!(world.success_rate, 1.0, "the world's noise");
+    let low_mu_c = report(&Noise {
+        mu_c: Noise::default().mu_c,
+        ..Noise::world()
+    });
+    assert!(
+        low_mu_c.success_rate < 0.9,
+        "mu_c down to half: {}",
+        low_mu_c.success_rate
+    );
+    for trial in low_mu_c.trials.iter().filter(|t| !t.reached) {
+        let [x, y, _] = trial.goal_object.unwrap();
+        assert!(y < 0.0625 - 0.008 && (x - 0.85).abs() < 0.005, "{trial:?}");
+    }
+    assert!(report(&Noise::default()).success_rate < 0.9);
 }
