@@ -140,6 +140,9 @@ pub mod ffi {
         pub seed: u64,
         pub robust_trials: usize,
         pub robust_rate: f64,
+        /// The found path's rate, already measured with the same seed and trials (negative:
+        /// not measured).
+        pub found_rate: f64,
         /// Seconds from now at which shortcutting stops, budget left or not (infinite: never).
         pub time_left: f64,
     }

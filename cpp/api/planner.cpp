@@ -271,7 +271,7 @@ namespace pushplan
             kept.states.assign(states.begin(), states.end());
             // Checked and described as every plan is; not shortcut (it is the old plan's rest).
             const bridge::FinishedPath path = detail::finish(
-                *finisher, kept, true, bridge::FinishSettings{0.0, 0, 0, 0.0, std::numeric_limits<double>::infinity()});
+                *finisher, kept, true, bridge::FinishSettings{0.0, 0, 0, 0.0, -1.0, std::numeric_limits<double>::infinity()});
             Plan out;
             out.solved = true;
             detail::nameParts(out, info);
@@ -424,14 +424,17 @@ namespace pushplan
                 // Measured as found first: a solution robust as it is goes to the final
                 // shortcutting without the work toward robustness.
                 const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(models[*winner]->problem());
-                const auto finished = [&](double shortcut) {
+                // The rate as found is passed on: the shortcutting toward robustness compares
+                // with it and need not measure it again.
+                const auto finished = [&](double shortcut, double found_rate) {
                     return detail::finish(*finisher, found, true,
                                           bridge::FinishSettings{shortcut, seed, run.robust_trials, run.robust_rate,
-                                                                 time_limit - elapsed()});
+                                                                 found_rate, time_limit - elapsed()});
                 };
-                const bridge::FinishedPath as_found = finished(0.0);
-                const bridge::FinishedPath repaired =
-                    as_found.robustness >= run.robust_rate ? as_found : finished(run.robust_shortcut);
+                const bridge::FinishedPath as_found = finished(0.0, -1.0);
+                const bridge::FinishedPath repaired = as_found.robustness >= run.robust_rate
+                                                          ? as_found
+                                                          : finished(run.robust_shortcut, as_found.robustness);
                 plan.robustness = repaired.robustness;
                 detail::FlatPath as_repaired{std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
                                              std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
@@ -503,6 +506,7 @@ namespace pushplan
             const bridge::FinishedPath path = detail::finish(
                 *finisher, found, solved,
                 bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate,
+                                       solved && run.robust_trials > 0 ? plan.robustness : -1.0,
                                        time_limit - elapsed()});
             describe(plan, *finisher, info, path);
             return plan;

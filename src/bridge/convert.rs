@@ -147,6 +147,12 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 s.robust_rate
             ));
         }
+        if s.found_rate > 1.0 {
+            return Err(format!(
+                "the found path's rate must be at most 1, got {}",
+                s.found_rate
+            ));
+        }
         Ok(FinishSettings {
             shortcut: s.shortcut,
             seed: s.seed,
@@ -154,6 +160,7 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 trials: s.robust_trials,
                 rate: s.robust_rate,
             }),
+            found_rate: (s.found_rate >= 0.0).then_some(s.found_rate),
             deadline: crate::planning::deadline(std::time::Instant::now(), s.time_left),
             progress: None,
         })

@@ -241,6 +241,7 @@ pub fn plan(
             trials: options.robust_trials as usize,
             rate: options.robust_rate,
         }),
+        found_rate: None,
         deadline: pushplan::planning::deadline(started, options.time_limit),
         progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
     };

@@ -405,6 +405,7 @@ impl ClosedLoop<'_> {
             shortcut: settings.replan_shortcut,
             seed: run.seed,
             robust: None,
+            found_rate: None,
             deadline: None,
             progress: None,
         };

@@ -22,6 +22,9 @@ pub struct FinishSettings {
     pub seed: u64,
     /// The robustness a solution must keep, if any.
     pub robust: Option<RobustRequirement>,
+    /// The found path's success rate under `robust`, if the caller measured it already
+    /// (with the same seed): not measured again.
+    pub found_rate: Option<f64>,
     /// When shortcutting must stop, budget left or not (the plan's time limit).
     pub deadline: Option<Instant>,
     /// Told how far shortcutting is (a progress line).
@@ -159,7 +162,8 @@ pub fn finish(
             // Kept if robust enough, or at least as robust as the path as found.
             let rates = settings.robust.map(|r| {
                 let rate = |controls| r.success_rate(scene, controls, settings.seed);
-                (rate(&outcome.controls), rate(found).min(r.rate))
+                let found_rate = settings.found_rate.unwrap_or_else(|| rate(found));
+                (rate(&outcome.controls), found_rate.min(r.rate))
             });
             if rates.is_none_or(|(shortcut, bar)| shortcut >= bar) {
                 finished.simulation =
@@ -171,11 +175,14 @@ pub fn finish(
             }
         }
     }
-    // The rate of the finished controls, unless the shortcut's check already measured it.
+    // The rate of the finished controls, unless the shortcut's check or the caller
+    // already measured it.
     if finished.robustness.is_none() {
-        finished.robustness = settings
-            .robust
-            .map(|r| r.success_rate(scene, &finished.controls, settings.seed));
+        finished.robustness = settings.robust.map(|r| {
+            settings
+                .found_rate
+                .unwrap_or_else(|| r.success_rate(scene, &finished.controls, settings.seed))
+        });
     }
     Ok(finished)
 }

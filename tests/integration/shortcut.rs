@@ -249,6 +249,7 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_beats_shorten
             shortcut: 3.0,
             seed: 1,
             robust,
+            found_rate: None,
             deadline: None,
             progress: None,
         };
