@@ -176,7 +176,7 @@ pub fn finish(
         }
     }
     // The rate of the finished controls, unless the shortcut's check or the caller
-    // already measured it.
+    // already measured it (unmeasured here, the finished controls are the found ones).
     if finished.robustness.is_none() {
         finished.robustness = settings.robust.map(|r| {
             settings

@@ -71,8 +71,8 @@ pub struct Noise {
 impl Default for Noise {
     /// The model's own noise (`check --noise`, `plan --robust`): the world's
     /// ([`Noise::world`]) widened where the model is known to err, so that a plan robust
-    /// to it keeps margins the size of the model's error (BENCHMARKS.md, "Margins from
-    /// the model's error"):
+    /// to it keeps margins the size of the model's error (BENCHMARKS.md, "Robust by
+    /// default"):
     /// - each object's centre of friction shifted by up to ±2 cm per axis. The model
     ///   assumes a uniform support pressure; a real object's is not known, and a push at
     ///   height h loads the leading edge, moving the centre of friction by about

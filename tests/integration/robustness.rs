@@ -9,13 +9,25 @@ use pushplan::{EeAction, Scene};
 
 const SCENE: &str = "tests/data/hand_push_straight.yaml";
 
+/// [`SCENE`] with `from` (text that must be in it) replaced by `to`.
+fn scene_with(from: &str, to: &str) -> Scene {
+    let yaml = std::fs::read_to_string(SCENE).unwrap();
+    assert!(yaml.contains(from), "{from}");
+    Scene::from_yaml(&yaml.replace(from, to), std::path::Path::new(SCENE)).unwrap()
+}
+
 /// The hand (front face at x 0.42) pushes the box (back face at 0.55) straight along +x
 /// at 0.2 m/s for 1.9 s, so the box ends at x 0.85, the goal disc's centre; then it
 /// backs off.
 fn controls() -> Vec<PathControl> {
+    push_then_back_off(0.0)
+}
+
+/// [`controls`] with the hand also moving sideways (+y) at `vy` m/s while it pushes.
+fn push_then_back_off(vy: f64) -> Vec<PathControl> {
     vec![
         PathControl {
-            action: EeAction::planar(0.2, 0.0, 0.0),
+            action: EeAction::planar(0.2, vy, 0.0),
             steps: 190,
         },
         PathControl {
@@ -83,18 +95,20 @@ fn an_unknown_pressure_distribution_makes_a_point_push_fragile_and_leaves_a_flat
     // to be uniform); the world's does not. A flat face pushing the box straight holds
     // it whatever the pressure; a small round pusher through the centroid turns it one
     // way or the other.
-    let base = std::fs::read_to_string(SCENE).unwrap();
-    let point = base.replace(
+    let point = scene_with(
         "shape: {type: box, size: [0.04, 0.12, 0.08]}",
         "shape: {type: cylinder, radius: 0.02, height: 0.08}",
     );
-    let rates = |yaml: &str| {
-        let scene = Scene::from_yaml(yaml, std::path::Path::new(SCENE)).unwrap();
-        let world = robustness(&scene, &controls(), &Noise::world(), 40, 3).success_rate;
-        let model = robustness(&scene, &controls(), &Noise::default(), 40, 3).success_rate;
+    let rates = |scene: &Scene| {
+        let world = robustness(scene, &controls(), &Noise::world(), 40, 3).success_rate;
+        let model = robustness(scene, &controls(), &Noise::default(), 40, 3).success_rate;
         (world, model)
     };
-    assert_eq!(rates(&base), (1.0, 1.0), "the flat push");
+    assert_eq!(
+        rates(&Scene::load(SCENE).unwrap()),
+        (1.0, 1.0),
+        "the flat push"
+    );
     let (world, model) = rates(&point);
     assert_eq!(world, 1.0, "the point push in the world's noise");
     assert!(model < 0.8, "the point push in the model's noise: {model}");
@@ -108,22 +122,11 @@ fn a_push_that_leans_on_the_arms_friction_is_fragile_in_the_models_noise() {
     // table's friction opposes the box's motion. So the box sticks only while
     // mu_c >= 0.25 and ends at y = 0.05 * 1.25 = 62.5 mm. Sliding, it moves along the
     // friction cone's edge, sideways at 0.2 * mu_c m/s: 37.5 mm with mu_c 0.15.
-    let base = std::fs::read_to_string(SCENE).unwrap();
-    let diagonal = base.replace(
+    let scene = scene_with(
         "goal: {object: box, center: [0.85, 0.0], radius: 0.1}",
         "goal: {object: box, center: [0.85, 0.0625], radius: 0.01, margin: 0.0}",
     );
-    let scene = Scene::from_yaml(&diagonal, std::path::Path::new(SCENE)).unwrap();
-    let controls = [
-        PathControl {
-            action: EeAction::planar(0.2, 0.05, 0.0),
-            steps: 190,
-        },
-        PathControl {
-            action: EeAction::planar(-0.2, 0.0, 0.0),
-            steps: 20,
-        },
-    ];
+    let controls = push_then_back_off(0.05);
     let exact = robustness(&scene, &controls, &Noise::none(), 1, 1);
     let end = exact.planned_goal_object.unwrap();
     assert!(
@@ -133,12 +136,12 @@ fn a_push_that_leans_on_the_arms_friction_is_fragile_in_the_models_noise() {
     let report = |noise: &Noise| robustness(&scene, &controls, noise, 40, 5);
     // The closed form, with mu_c = 0.3 x factor: sideways 1.25 s x min(0.2 mu_c, 0.05).
     for factor in [0.6, 0.7, 0.8, 0.9, 1.0] {
-        let exact = Factor {
+        let fixed = Factor {
             low: factor,
             high: factor,
         };
         let trial = &report(&Noise {
-            mu_c: exact,
+            mu_c: fixed,
             ..Noise::none()
         })
         .trials[0];
