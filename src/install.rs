@@ -42,13 +42,14 @@ pub fn install(prefix: &Path, binary: &Path) -> Result<Vec<PathBuf>, String> {
             std::fs::create_dir_all(dir).map_err(fail)?;
         }
         match contents {
-            Contents::Text(text) => std::fs::write(&path, text).map_err(fail)?,
+            Contents::Text(text) => pushplan::output::write_whole(&path, text)?,
             Contents::Copy(from) => {
-                // Replace rather than overwrite: the binary being installed may be the
-                // one running (re-installing into the same prefix).
-                let _ = std::fs::remove_file(&path);
-                std::fs::copy(from, &path)
-                    .map_err(|e| format!("{} -> {}: {e}", from.display(), path.display()))?;
+                // Renamed into place, not overwritten: the binary being installed may be
+                // the one running (re-installing into the same prefix).
+                pushplan::output::write_whole_with(&path, |temporary| {
+                    std::fs::copy(from, temporary).map(drop)
+                })
+                .map_err(|e| format!("{e} (copying {})", from.display()))?;
             }
         }
         written.push(path);

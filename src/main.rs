@@ -346,9 +346,13 @@ enum ScenesCommand {
 fn main() -> ExitCode {
     // Output piped into `head` and the like: end quietly when the reader goes away, as
     // command-line tools do, instead of panicking on the failed write.
-    // SAFETY: restoring a signal's default disposition at start-up, before any thread.
+    // A file-size limit (`ulimit -f`) makes a write fail with an error instead of killing
+    // the program, so that the file being written is removed and the old one kept
+    // (`pushplan::output`).
+    // SAFETY: setting signal dispositions at start-up, before any thread.
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
     }
     let cli = Cli::parse();
     cli::exit_code(move || run(cli.command))

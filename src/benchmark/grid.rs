@@ -207,7 +207,7 @@ impl Manifest {
     pub fn write(&self, dir: &Path) -> Result<(), String> {
         let path = dir.join(MANIFEST);
         let text = serde_json::to_string_pretty(self).expect("a manifest serialises") + "\n";
-        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
+        crate::output::write_whole(&path, text)
     }
 
     /// Reads the manifest of `dir`; an error names the file.

@@ -526,7 +526,7 @@ pub fn write_plots(logs: &[BenchmarkLog], dir: &Path) -> Result<Vec<PathBuf>, St
         .into_iter()
         .map(|(name, svg)| {
             let path = dir.join(name);
-            std::fs::write(&path, svg).map_err(|e| format!("{}: {e}", path.display()))?;
+            crate::output::write_whole(&path, svg)?;
             Ok(path)
         })
         .collect()

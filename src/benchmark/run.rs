@@ -230,21 +230,34 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, String> {
             .collect();
         let text = merge_scene(&groups, grid.seed, grid.runs)?;
         let path = grid.scene_log(out, scene);
-        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        crate::output::write_whole(&path, text)?;
         scene_logs.push(path);
     }
+    // A new database, not added to the old one, which stays until the new one is whole.
     let database = out.join("results.db");
-    let _ = std::fs::remove_file(&database);
-    let status = Command::new("ompl_benchmark_statistics")
-        .args(&scene_logs)
-        .arg("-d")
-        .arg(&database)
-        .stdout(Stdio::null())
-        .status()
-        .map_err(|e| format!("cannot run ompl_benchmark_statistics ({e}): install ompl-demos (bash .ci/install-packages)"))?;
-    if !status.success() {
-        return Err("ompl_benchmark_statistics failed".into());
-    }
+    let mut why = String::new();
+    crate::output::write_whole_with(&database, |temporary| {
+        let status = Command::new("ompl_benchmark_statistics")
+            .args(&scene_logs)
+            .arg("-d")
+            .arg(temporary)
+            .stdout(Stdio::null())
+            .status()
+            .inspect_err(|e| {
+                why = format!(
+                    "cannot run ompl_benchmark_statistics ({e}): install ompl-demos \
+                     (bash .ci/install-packages)"
+                )
+            })?;
+        match status.success() {
+            true => Ok(()),
+            false => {
+                why = "ompl_benchmark_statistics failed".into();
+                Err(std::io::Error::other(why.clone()))
+            }
+        }
+    })
+    .map_err(|e| if why.is_empty() { e } else { why })?;
     Ok(Merged {
         database,
         scene_logs,

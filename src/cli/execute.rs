@@ -57,6 +57,13 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
     if trials == 0 {
         return Err("--trials: must be at least 1".into());
     }
+    // The report's and the picture's files are tried before the trials, not after them.
+    if let Some(json) = json {
+        pushplan::output::check_writable(json)?;
+    }
+    if let Some(dir) = render {
+        pushplan::output::check_writable(&dir.join("execution.html"))?;
+    }
     let plan = PlanFile::read(path)?;
     let scene = plan.load_scene(path)?;
     plan.check_trajectory(&scene)
@@ -131,7 +138,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
     };
     if let Some(json) = json {
         let text = report.expect("reports serialise") + "\n";
-        std::fs::write(json, text).map_err(|e| format!("{}: {e}", json.display()))?;
+        pushplan::output::write_whole(json, text)?;
     }
     Ok(if success_rate > 0.0 {
         ExitCode::SUCCESS

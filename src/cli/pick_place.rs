@@ -97,6 +97,7 @@ pub fn pick_place(
     if run.grasps == 0 || run.budget == 0 {
         return Err("--grasps and --budget must be positive".into());
     }
+    pushplan::output::check_writable(out)?;
     let problem = PickAndPlace::new(&scene, &scene.start, object, goal, run.grasps, run.seed)?;
     let settings = Settings {
         budget: run.budget,
@@ -183,8 +184,7 @@ pub fn pick_place(
     }
     println!("checked: every line valid at 0.02 rad, grasps held at both placements");
     let text = serde_json::to_string_pretty(&file).map_err(|e| e.to_string())?;
-    std::fs::write(out, text + "\n")
-        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    pushplan::output::write_whole(out, text + "\n")?;
     println!("pick-and-place path written to {}", out.display());
     if let Some(dir) = &run.render {
         // Frames one Transit step (0.02 rad) apart, drawn 0.02 s apart.

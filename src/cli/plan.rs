@@ -112,11 +112,8 @@ pub fn plan(
             .map_err(|e| e.to_string())?,
         None => scene,
     };
-    // The plan's folder is made before the search, not found missing after it.
-    if let Some(folder) = out.parent().filter(|f| !f.as_os_str().is_empty()) {
-        std::fs::create_dir_all(folder)
-            .map_err(|e| format!("{}: cannot make the plan's folder: {e}", folder.display()))?;
-    }
+    // The plan's folder is made and tried before the search, not found wanting after it.
+    pushplan::output::check_writable(out)?;
     let mut options = run.search.settings(&scene.planner);
     // A plan is robust unless asked otherwise; a re-plan (`replan`) is wanted fast.
     if run.search.robust_trials.is_none() && run.from.is_none() {
@@ -292,8 +289,7 @@ pub fn plan(
             }
         }
     }
-    std::fs::write(out, file.to_json())
-        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    pushplan::output::write_whole(out, file.to_json())?;
 
     let status = if solution.summary.exact {
         "solved"
@@ -431,8 +427,7 @@ pub fn plan(
 
 /// Writes a plan file of a reach alone and says how it went.
 fn write_plan(file: &PlanFile, out: &Path, solved: bool) -> Result<ExitCode, String> {
-    std::fs::write(out, file.to_json())
-        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    pushplan::output::write_whole(out, file.to_json())?;
     match &file.reach {
         Some(r) => println!(
             "solved: a grasp of '{}' reached through {} waypoints",

@@ -76,8 +76,7 @@ pub fn replan(
         let reference = PlanFile::scene_reference(&scene_path, out);
         let mut file = PlanFile::build(&reference, from, &old.settings, rest, None)?;
         file.replanned = Some(record(true));
-        std::fs::write(out, file.to_json())
-            .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+        pushplan::output::write_whole(out, file.to_json())?;
         println!(
             "kept: the plan's controls {at} to {} still reach the goal from the observed state ({} written)",
             controls.len(),

@@ -256,8 +256,7 @@ pub fn render_execution(
     let film = Film::of_execution(plan, plan_path, executed)?;
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let path = dir.join("execution.html");
-    std::fs::write(&path, html::animation(&film))
-        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    crate::output::write_whole(&path, html::animation(&film))?;
     Ok(path)
 }
 
@@ -302,8 +301,7 @@ pub fn write_pictures(film: &Film, dir: &Path, times: &[f64]) -> Result<Rendered
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let write = |name: &str, text: String| {
         let path = dir.join(name);
-        std::fs::write(&path, text)
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        crate::output::write_whole(&path, text)?;
         Ok::<PathBuf, String>(path)
     };
     Ok(Rendered {

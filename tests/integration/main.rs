@@ -27,3 +27,4 @@ mod robustness;
 mod semi_dynamic;
 mod shortcut;
 mod slurm;
+mod writes;

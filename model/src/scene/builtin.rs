@@ -56,15 +56,13 @@ pub fn wam_for(dir: &Path) -> Result<PathBuf, String> {
     }
 }
 
-/// Writes `text` to `path` unless the file holds it already; through a temporary file
-/// renamed into place, so a concurrent reader sees the old file or the new one, whole.
+/// Writes `text` to `path` unless the file holds it already ([`crate::output::write_whole`]:
+/// a concurrent reader sees the old file or the new one, whole).
 fn write_if_different(path: &Path, text: &str) -> Result<(), String> {
     if std::fs::read_to_string(path).is_ok_and(|old| old == text) {
         return Ok(());
     }
     let folder = path.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
-    let temporary = path.with_extension(format!("tmp{}", std::process::id()));
-    std::fs::write(&temporary, text).map_err(|e| format!("{}: {e}", temporary.display()))?;
-    std::fs::rename(&temporary, path).map_err(|e| format!("{}: {e}", path.display()))
+    crate::output::write_whole(path, text)
 }

@@ -166,7 +166,7 @@ pub fn generate(
             }
         }
         .ok_or_else(|| format!("no valid layout with {n} objects found"))?;
-        std::fs::write(&path, yaml).map_err(|e| format!("{}: {e}", path.display()))?;
+        crate::output::write_whole(&path, yaml)?;
         files.push(path);
     }
     Ok(files)
