@@ -47,8 +47,9 @@ pub use validity::ValidityChecker;
 use crate::planner::NearestTree;
 use crate::planning::PlannerKind;
 use convert::{
-    add_search_stats, plan_robust_trials, planner_cut_at_time_limit, planner_kind, planner_name,
-    planner_shares_one_search, planner_yields_controls, run_settings_of_scene, search_stats,
+    add_search_stats, check_run_settings, plan_robust_trials, planner_cut_at_time_limit,
+    planner_kind, planner_name, planner_shares_one_search, planner_yields_controls,
+    run_settings_of_scene, search_stats,
 };
 use metric::{tree_add, tree_nearest, tree_nearest_k, tree_nearest_r};
 
@@ -329,6 +330,9 @@ pub mod ffi {
 
         fn planner_name(kind: PlannerKind) -> &'static str;
         fn planner_yields_controls(kind: PlannerKind) -> bool;
+        /// `planning::RunSettings::check`: a value outside the limits table, named as
+        /// C++'s `Options` names it.
+        fn check_run_settings(settings: &RunSettings) -> Result<()>;
         /// `planning::RunSettings::of_scene`: the settings no option changes.
         fn run_settings_of_scene(kind: PlannerKind, params: &PlannerParams) -> RunSettings;
         /// `planning::PLAN_ROBUST_TRIALS`: a plan's robustness check when none is asked for.

@@ -18,8 +18,8 @@ pub mod render;
 
 // The model, under the names its modules have there.
 pub use pushplan_model::{
-    collision, contact, distance, error, input, math, output, physics, propagate, random, robot,
-    scene, semi_dynamic, state, validity,
+    collision, contact, distance, error, input, limits, math, output, physics, propagate, random,
+    robot, scene, semi_dynamic, state, validity,
 };
 
 pub use distance::DistanceMetric;

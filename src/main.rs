@@ -5,6 +5,7 @@ mod cli;
 mod install;
 
 use clap::{Parser, Subcommand};
+use cli::within;
 use cli::{
     bench, bench_merge, bench_scene, check, draw, execute, generate_scenes, install, pick_place,
     plan, plots, replan, robot, ClosedLoopFlags, ExecuteOptions, PickPlaceOptions, PlanOptions,
@@ -12,6 +13,7 @@ use cli::{
 };
 use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
+use pushplan::limits;
 use pushplan::planning::execute::EngineKind;
 use pushplan::planning::PlannerKind;
 use pushplan::scene::builtin;
@@ -90,7 +92,7 @@ enum Command {
         /// Re-simulate the plan this many times with perturbed object start poses and
         /// parameters (±5 mm, ±0.05 rad; mass, mu_g, c x U(0.8, 1.2); mu_c x U(0.5, 1.2);
         /// centres of friction ±2 cm), objects pushing one another.
-        #[arg(long, default_value_t = 0)]
+        #[arg(long, default_value_t = 0, value_parser = within::count::<usize>(&limits::NOISE))]
         noise: usize,
         /// Seed of the perturbations.
         #[arg(long, default_value_t = 1)]
@@ -103,10 +105,10 @@ enum Command {
         /// Plan file (JSON, written by `plan`).
         plan: PathBuf,
         /// Trials; the first is unperturbed, the others perturbed as `check --noise`.
-        #[arg(long, default_value_t = 10)]
+        #[arg(long, default_value_t = 10, value_parser = within::count::<usize>(&limits::TRIALS))]
         trials: usize,
         /// Pace relative to the plan's trajectory (0.25: four times slower).
-        #[arg(long, default_value_t = 1.0)]
+        #[arg(long, default_value_t = 1.0, value_parser = within::real(&limits::SPEED))]
         speed: f64,
         /// Seed of the perturbations.
         #[arg(long, default_value_t = 1)]
@@ -128,25 +130,25 @@ enum Command {
         #[arg(long)]
         closed_loop: bool,
         /// With --closed-loop: each re-planning search's time limit (s).
-        #[arg(long, default_value_t = 2.0, value_name = "SECONDS")]
+        #[arg(long, default_value_t = 2.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_TIME))]
         replan_time: f64,
         /// With --closed-loop: shortcutting of each re-planned path before its first control
         /// is played (s of work; by default none: the polish below shortens it while the arm
         /// plays, and the median re-plan takes 0.03 s instead of 0.16 s, BENCHMARKS.md).
-        #[arg(long, default_value_t = 0.0, value_name = "SECONDS")]
+        #[arg(long, default_value_t = 0.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_SHORTCUT))]
         replan_shortcut: f64,
         /// With --closed-loop: shortcutting of each re-planned path while the arm plays it
         /// (s of work, as much per control as the control lasts, until this is spent; it
         /// does not delay the arm).
-        #[arg(long, default_value_t = 2.0, value_name = "SECONDS")]
+        #[arg(long, default_value_t = 2.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_POLISH))]
         replan_polish: f64,
         /// With --closed-loop: searches per trial at most (found or not); a trial that
         /// needs more stops with a report.
-        #[arg(long, default_value_t = 50, value_name = "N")]
+        #[arg(long, default_value_t = 50, value_name = "N", value_parser = within::count::<usize>(&limits::MAX_REPLANS))]
         max_replans: usize,
         /// With --closed-loop: search time per trial at most, found or not (s); each search
         /// gets no more than what is left, and a trial that needs more stops with a report.
-        #[arg(long, default_value_t = 120.0, value_name = "SECONDS")]
+        #[arg(long, default_value_t = 120.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_BUDGET))]
         replan_budget: f64,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,
@@ -169,23 +171,23 @@ enum Command {
         )]
         planners: Vec<PlannerKind>,
         /// Runs per planner and scene.
-        #[arg(long, default_value_t = 10)]
+        #[arg(long, default_value_t = 10, value_parser = within::count::<u32>(&limits::RUNS))]
         runs: u32,
         /// Time limit per run (s).
-        #[arg(long, default_value_t = 30.0)]
+        #[arg(long, default_value_t = 30.0, value_parser = within::real(&limits::TIME_LIMIT))]
         time: f64,
         /// Output folder (logs and results.db).
         #[arg(long, required = true)]
         out: Option<PathBuf>,
         /// Runs at once (default: the number of cores over --threads).
-        #[arg(long)]
+        #[arg(long, value_parser = within::count::<usize>(&limits::JOBS))]
         jobs: Option<usize>,
         /// Threads of each run of push_kpiece and kpiece, whose threads share one search
         /// (as `plan --threads`); the other planners run on one thread.
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, value_parser = within::count::<u32>(&limits::THREADS))]
         threads: u32,
         /// Shortcutting budget measured after each solved run (s of work).
-        #[arg(long, default_value_t = 3.0)]
+        #[arg(long, default_value_t = 3.0, value_parser = within::real(&limits::SHORTCUT))]
         shortcut: f64,
         /// Every run's seeds derive from this seed and the run's index.
         #[arg(long, default_value_t = 1)]
@@ -249,7 +251,7 @@ enum Command {
         reach: Option<Vec<f64>>,
         /// Inverse kinematics attempts for --reach: from the shown configuration, then from
         /// random ones within the limits.
-        #[arg(long, default_value_t = 50)]
+        #[arg(long, default_value_t = 50, value_parser = within::count::<usize>(&limits::IK_TRIES))]
         tries: usize,
         /// Seed of the random attempts.
         #[arg(long, default_value_t = 1)]
@@ -269,13 +271,13 @@ enum Command {
         #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         to: Option<Vec<f64>>,
         /// Grasps drawn from each of the object's grasp regions.
-        #[arg(long, default_value_t = 16)]
+        #[arg(long, default_value_t = 16, value_parser = within::count::<usize>(&limits::GRASPS))]
         grasps: usize,
         /// Seed of the grasps and the Fuzzy PRMs' samples.
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Validity checks the search may spend.
-        #[arg(long, default_value_t = 200_000)]
+        #[arg(long, default_value_t = 200_000, value_parser = within::count::<usize>(&limits::CHECK_BUDGET))]
         budget: usize,
         /// Where to write the path.
         #[arg(long, default_value = "pick_place.json")]
@@ -329,7 +331,7 @@ enum ScenesCommand {
         #[arg(long, default_value = "paper")]
         design: Design,
         /// Number of scenes.
-        #[arg(long, default_value_t = 35)]
+        #[arg(long, default_value_t = 35, value_parser = within::count::<usize>(&limits::SCENES))]
         count: usize,
         /// Range of object counts, e.g. 1..7 (spread evenly over the scenes).
         #[arg(long, default_value = "1..7")]

@@ -161,24 +161,17 @@ namespace pushplan
             return run;
         }
 
-        /// Throws pushplan::Error, naming the option, for a value out of range.
+        /// Throws, naming the option, for a value out of range (a pushplan::Error once
+        /// through asPushplanError, as in solve).
         static void check(const RunSettings &run)
         {
             checkedKind(run.planner);
             if (!bridge::planner_yields_controls(run.planner))
                 throw Error("DARRT's paths are sequences of primitives, not controls: a plan holds controls "
                             "(measure DARRT with `pushplan bench`)");
-            checked("threads", run.threads, run.threads >= 1 && run.threads <= 256);
-            checked("time_limit", run.time_limit, std::isfinite(run.time_limit) && run.time_limit > 0.0);
-            checked("k", run.k, run.k >= 1);
-            checked("goal_bias", run.goal_bias, run.goal_bias >= 0.0 && run.goal_bias <= 1.0);
-            checked("robust_rate", run.robust_rate, run.robust_rate >= 0.0 && run.robust_rate <= 1.0);
-            checked("robust_shortcut", run.robust_shortcut,
-                    std::isfinite(run.robust_shortcut) && run.robust_shortcut >= 0.0);
-            checked("shortcut", run.shortcut, std::isfinite(run.shortcut) && run.shortcut >= 0.0);
-            checked("robust_particles", run.robust_particles,
-                    run.robust_particles <= 64 &&
-                        (run.robust_particles == 0 || (run.robust_trials > 0 && run.planner != PlannerKind::StaticRrt)));
+            // The limits table's (Rust's RunSettings::check, as the CLI's), each value
+            // named as Options names it.
+            bridge::check_run_settings(run);
         }
     }  // namespace detail
 

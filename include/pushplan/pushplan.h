@@ -93,6 +93,9 @@ namespace pushplan
 
     /// Planner options. Unset values take the scene file's `planner:` values, or the
     /// library's defaults (the same as the CLI's: Rust's `planning::RunSettings::of_scene`).
+    /// Every count, duration and rate has the CLI's limit (docs/commands.md, "Input
+    /// limits"): a value outside throws pushplan::Error naming it (`Options::k: must be in
+    /// [1, 10000], got 1000000000 ...`) before any search.
     struct Options
     {
         PlannerKind planner = PlannerKind::PushKpiece;

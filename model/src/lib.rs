@@ -11,8 +11,8 @@
 //! - [`physics`]: quasistatic planar pushing (limit surface, friction, complementarity,
 //!   tipping); [`semi_dynamic`]: the workshop paper's rigid-body transition function;
 //! - [`propagate`] (`ConstrainedProp`, Alg. 2), [`validity`] and [`distance`] (the metric);
-//! - [`state`], [`math`], [`random`], [`input`], [`output`] and [`error`]: what they all
-//!   share.
+//! - [`state`], [`math`], [`random`], [`input`], [`output`], [`limits`] and [`error`]:
+//!   what they all share.
 //!
 //! Units are SI throughout (m, rad, s, kg, N); the world frame has z up.
 
@@ -23,6 +23,7 @@ pub mod contact;
 pub mod distance;
 pub mod error;
 pub mod input;
+pub mod limits;
 pub mod math;
 pub mod output;
 pub mod physics;

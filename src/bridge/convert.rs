@@ -37,6 +37,10 @@ pub(super) fn planner_yields_controls(kind: PlannerKind) -> bool {
     kind.yields_controls()
 }
 
+pub(super) fn check_run_settings(settings: &RunSettings) -> Result<(), String> {
+    settings.check(crate::limits::Front::CppOptions)
+}
+
 pub(super) fn planner_kind(name: &str) -> Result<PlannerKind, String> {
     name.parse()
 }

@@ -19,21 +19,10 @@ pub fn bench(
     jobs: Option<usize>,
     resume: bool,
 ) -> Result<ExitCode, String> {
-    if !(grid.time.is_finite() && grid.time > 0.0) || grid.runs == 0 {
-        return Err("--time must be positive and --runs at least 1".into());
-    }
-    if !(grid.shortcut.is_finite() && grid.shortcut >= 0.0) {
-        return Err(format!(
-            "--shortcut must be zero or positive, got {}",
-            grid.shortcut
-        ));
-    }
     for scene in &grid.scenes {
         Scene::load(scene).map_err(|e| e.to_string())?; // bad scenes fail before anything runs
     }
-    if !(1..=256).contains(&grid.threads) {
-        return Err(format!("--threads must be 1 to 256, got {}", grid.threads));
-    }
+    // --time, --runs, --threads and --shortcut are within the limits table (`cli::within`).
     let jobs = jobs
         .unwrap_or_else(|| (super::cores() / grid.threads) as usize)
         .max(1);

@@ -51,12 +51,8 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
         render,
         closed_loop,
     } = options;
-    if !(speed.is_finite() && speed > 0.0) {
-        return Err(format!("--speed: must be positive and finite, got {speed}"));
-    }
-    if trials == 0 {
-        return Err("--trials: must be at least 1".into());
-    }
+    // --trials, --speed and the re-planning options are within the limits table (parsed
+    // so, `cli::within`).
     // The report's and the picture's files are tried before the trials, not after them.
     if let Some(json) = json {
         pushplan::output::check_writable(json)?;
@@ -80,24 +76,6 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
         Some((search, flags)) => {
             if render.is_some() {
                 return Err("--render draws open-loop executions only".into());
-            }
-            for (flag, value) in [
-                ("--replan-time", flags.replan_time),
-                ("--replan-budget", flags.replan_budget),
-            ] {
-                if !(value.is_finite() && value > 0.0) {
-                    return Err(format!("{flag}: must be positive and finite, got {value}"));
-                }
-            }
-            for (flag, value) in [
-                ("--replan-shortcut", flags.replan_shortcut),
-                ("--replan-polish", flags.replan_polish),
-            ] {
-                if !(value.is_finite() && value >= 0.0) {
-                    return Err(format!(
-                        "{flag}: must be zero or positive and finite, got {value}"
-                    ));
-                }
             }
             if !plan.settings.planner.yields_controls() {
                 return Err(format!(

@@ -12,6 +12,7 @@ mod progress;
 mod replan;
 mod robot;
 mod search_flags;
+pub mod within;
 
 pub use bench::{bench, bench_merge, bench_scene, plots};
 pub use check::check;

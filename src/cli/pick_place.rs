@@ -94,9 +94,6 @@ pub fn pick_place(
     if !(goal.x.is_finite() && goal.y.is_finite() && goal.theta.is_finite()) {
         return Err("--to must be finite".into());
     }
-    if run.grasps == 0 || run.budget == 0 {
-        return Err("--grasps and --budget must be positive".into());
-    }
     pushplan::output::check_writable(out)?;
     let problem = PickAndPlace::new(&scene, &scene.start, object, goal, run.grasps, run.seed)?;
     let settings = Settings {

@@ -2,6 +2,7 @@
 
 use super::progress;
 use super::SearchFlags;
+use pushplan::limits::Front;
 use pushplan::planner::{ReachSettings, Search};
 use pushplan::planning::plan_file::{
     PlanFile, PlanSettings, ReachRecord, ReplanRecord, RobustnessRecord,
@@ -130,25 +131,7 @@ pub fn plan(
             planner.name()
         ));
     }
-    if !(0.0..=1.0).contains(&options.robust_rate) {
-        return Err(format!(
-            "--robust-rate must be in [0, 1], got {}",
-            options.robust_rate
-        ));
-    }
-    if !(options.time_limit.is_finite() && options.time_limit > 0.0) {
-        return Err(format!(
-            "--time must be positive, got {}",
-            options.time_limit
-        ));
-    }
-    if options.k == 0 || options.k > pushplan::scene::MAX_K {
-        return Err(format!(
-            "--k must be in [1, {}], got {}",
-            pushplan::scene::MAX_K,
-            options.k
-        ));
-    }
+    options.check(Front::CommandLine)?;
     if run.search.k.is_some() && !planner.takes_best_of_k() {
         let takers: Vec<&str> = PlannerKind::ALL
             .into_iter()
@@ -160,23 +143,6 @@ pub fn plan(
             planner.name(),
             takers.join(" and ")
         );
-    }
-    if options.robust_particles > 0
-        && (options.robust_trials == 0 || planner == PlannerKind::StaticRrt)
-    {
-        return Err(format!(
-            "--particles {} needs --robust, and a planner that pushes (not {})",
-            options.robust_particles,
-            PlannerKind::StaticRrt.name()
-        ));
-    }
-    for (flag, seconds) in [
-        ("--shortcut", options.shortcut),
-        ("--robust-shortcut", options.robust_shortcut),
-    ] {
-        if !(seconds.is_finite() && seconds >= 0.0) {
-            return Err(format!("{flag} must be zero or positive, got {seconds}"));
-        }
     }
     let settings = PlanSettings::from(&options);
     let reference = PlanFile::scene_reference(scene_path, out);

@@ -1,7 +1,10 @@
 //! [`SearchFlags`]: the command line's flags of one search, one per field of
 //! [`RunSettings`] and named as it is (a short flag name where the field's is long). A flag
-//! not given keeps the scene's value or the library's default ([`RunSettings::of_scene`]).
+//! not given keeps the scene's value or the library's default ([`RunSettings::of_scene`]);
+//! one given is checked against the limits table as it is parsed.
 
+use super::within::{count, real};
+use pushplan::limits;
 use pushplan::planning::{PlannerKind, RunSettings};
 use pushplan::scene::PlannerParams;
 
@@ -14,19 +17,19 @@ pub struct SearchFlags {
     #[arg(long, default_value_t = PlannerKind::PushKpiece)]
     pub planner: PlannerKind,
     /// Search time limit (s); default: the scene's planner.time_limit.
-    #[arg(long = "time", value_name = "SECONDS")]
+    #[arg(long = "time", value_name = "SECONDS", value_parser = real(&limits::TIME_LIMIT))]
     pub time_limit: Option<f64>,
     /// Random seed; default: the scene's planner.seed.
     #[arg(long)]
     pub seed: Option<u64>,
     /// Control samples per extension; default: the scene's planner.k.
-    #[arg(long)]
+    #[arg(long, value_parser = count::<u32>(&limits::K))]
     pub k: Option<u32>,
     /// Probability of sampling the goal; default: the scene's planner.goal_bias.
-    #[arg(long)]
+    #[arg(long, value_parser = real(&limits::GOAL_BIAS))]
     pub goal_bias: Option<f64>,
     /// Shortcutting budget in seconds of work (0 turns it off) [default: 3].
-    #[arg(long)]
+    #[arg(long, value_parser = real(&limits::SHORTCUT))]
     pub shortcut: Option<f64>,
     /// Add every propagation step to the tree (OMPL RRT's intermediate_states; off by
     /// default, see BENCHMARKS.md).
@@ -36,26 +39,26 @@ pub struct SearchFlags {
     /// perturbed scenes (as `check --noise`) reach the goal; search on otherwise, and when
     /// the time runs out first, write the most robust solution found, its rate stated
     /// [default: 20 for `plan`, 0 for `replan`; 0 takes the first solution as found].
-    #[arg(long = "robust", value_name = "TRIALS")]
+    #[arg(long = "robust", value_name = "TRIALS", value_parser = count::<u32>(&limits::ROBUST_TRIALS))]
     pub robust_trials: Option<u32>,
     /// The fraction of --robust re-simulations that must reach the goal [default: 0.95:
     /// one perturbed world in 20 may miss; BENCHMARKS.md, "19 of 20 perturbed worlds"].
-    #[arg(long)]
+    #[arg(long, value_parser = real(&limits::ROBUST_RATE))]
     pub robust_rate: Option<f64>,
     /// Shortcutting budget (seconds of work) spent on each solution that is not robust
     /// enough, toward the path that reaches the goal in the most perturbed scenes, before
     /// it is dropped [default: 3].
-    #[arg(long)]
+    #[arg(long, value_parser = real(&limits::ROBUST_SHORTCUT))]
     pub robust_shortcut: Option<f64>,
     /// With --robust: perturbed worlds every tree state carries; an extension is kept
     /// only if it is valid in each, and the goal is reached only when it is reached in
     /// each [default: 0: none, only the check of each solution].
-    #[arg(long = "particles", value_name = "WORLDS", value_parser = clap::value_parser!(u32).range(0..=64))]
+    #[arg(long = "particles", value_name = "WORLDS", value_parser = count::<u32>(&limits::ROBUST_PARTICLES))]
     pub robust_particles: Option<u32>,
     /// Threads to plan on: the KPIECE planners extend one search on all of them, the
     /// others run a search on each, in rounds of propagation steps (the same seed and
     /// thread count give the same plan); default: one per core.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
+    #[arg(long, value_parser = count::<u32>(&limits::THREADS))]
     pub threads: Option<u32>,
     /// A search that finds no solution within this many propagation steps starts over
     /// with a new tree, later attempts with Luby multiples (1, 1, 2, 1, 1, 2, 4, ...);

@@ -4,6 +4,7 @@
 //! it as it is.
 
 use super::PlannerKind;
+use crate::limits::Front;
 use crate::scene::PlannerParams;
 
 /// How one search runs, every value resolved (no "the scene's default" left).
@@ -59,6 +60,34 @@ pub struct RunSettings {
 pub const PLAN_ROBUST_TRIALS: u32 = 20;
 
 impl RunSettings {
+    /// Refuses a value outside the limits table ([`crate::limits`]), or particles without
+    /// a robustness check or a planner that pushes: named as `front` names it (`--k`,
+    /// `Options::k`). The CLI's `plan` and C++'s `Planner` check the same way.
+    pub fn check(&self, front: Front) -> Result<(), String> {
+        use crate::limits::*;
+        K.check(front, self.k)?;
+        THREADS.check(front, self.threads)?;
+        ROBUST_TRIALS.check(front, self.robust_trials)?;
+        ROBUST_PARTICLES.check(front, self.robust_particles)?;
+        TIME_LIMIT.check(front, self.time_limit)?;
+        SHORTCUT.check(front, self.shortcut)?;
+        ROBUST_SHORTCUT.check(front, self.robust_shortcut)?;
+        GOAL_BIAS.check(front, self.goal_bias)?;
+        ROBUST_RATE.check(front, self.robust_rate)?;
+        if self.robust_particles > 0
+            && (self.robust_trials == 0 || self.planner == PlannerKind::StaticRrt)
+        {
+            return Err(format!(
+                "{} {} needs {} above 0, and a planner that pushes (not {})",
+                ROBUST_PARTICLES.name(front),
+                self.robust_particles,
+                ROBUST_TRIALS.name(front),
+                PlannerKind::StaticRrt.name()
+            ));
+        }
+        Ok(())
+    }
+
     /// `planner` as the scene's `planner:` parameters say, with the planner's own restart
     /// and fallback budgets, on one thread, with the defaults of what no scene sets (3 s of
     /// shortcutting; no robust planning, and when it is asked for, 19 of 20 perturbed

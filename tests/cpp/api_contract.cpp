@@ -27,6 +27,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -186,6 +187,13 @@ int main()
         expect(throwsError([&] { planner.solve(o); }, field), "a bad " + field + " throws pushplan::Error");
     };
     bad_option("k", [](pushplan::Options &o) { o.k = 0u; });
+    // The limits table's, as the CLI's: counts that once ran past a minute with
+    // time_limit = 1 (k = 10^9, robust_trials = UINT_MAX), the limit named.
+    bad_option("Options::k: must be in [1, 10000]", [](pushplan::Options &o) { o.k = 1000000000u; });
+    bad_option("Options::robust_trials: must be in [0, 1000]",
+               [](pushplan::Options &o) { o.robust_trials = std::numeric_limits<unsigned>::max(); });
+    bad_option("Options::threads", [](pushplan::Options &o) { o.threads = 0u; });
+    bad_option("Options::time_limit", [](pushplan::Options &o) { o.time_limit = 1e300; });
     bad_option("goal_bias", [](pushplan::Options &o) { o.goal_bias = 1.5; });
     bad_option("robust_rate", [](pushplan::Options &o) { o.robust_rate = 2.0; });
     bad_option("robust_shortcut", [](pushplan::Options &o) { o.robust_shortcut = -1.0; });

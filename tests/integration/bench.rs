@@ -444,7 +444,7 @@ for name, threads, counted, credited, solved in c.execute("""select p.name, r.th
         &[&out.join("zero")],
     );
     assert_eq!(zero.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&zero.stderr).contains("--threads must be 1 to 256"));
+    assert!(String::from_utf8_lossy(&zero.stderr).contains("--threads: must be in [1, 256]"));
 }
 
 /// The scene's `planner.goal_bias` reaches every planner, not only the RRTs: OMPL's

@@ -329,7 +329,10 @@ fn robust_planning_can_carry_perturbed_worlds_along_the_search() {
     // the flag.
     let (code, output, _) = plan("c.json", &["--robust", "0", "--particles", "4"]);
     assert_ne!(code, 0, "{output}");
-    assert!(output.contains("--particles 4 needs --robust"), "{output}");
+    assert!(
+        output.contains("--particles 4 needs --robust above 0"),
+        "{output}"
+    );
 }
 
 /// `plan` without options checks its solution in 20 perturbed worlds and keeps it only if

@@ -249,5 +249,110 @@ fn k_beyond_its_limit_is_refused_on_the_command_line() {
     let (code, stdout, stderr) =
         pushplan(&["plan", "scenes/herb_single_object.yaml", "--k", "100000"]);
     assert_eq!(code, 2, "{stdout}{stderr}");
-    assert!(stderr.contains("--k must be in [1, 10000]"), "{stderr}");
+    assert!(stderr.contains("--k: must be in [1, 10000]"), "{stderr}");
+}
+
+#[test]
+fn counts_are_refused_beyond_the_limits_table_not_allocated() {
+    // Each once aborted (an allocation of the count's size), panicked (capacity
+    // overflow), wrote files without end or ran far past --time.
+    let u32_max = u32::MAX.to_string();
+    let u64_max = u64::MAX.to_string();
+    let cases: [(&[&str], &str); 9] = [
+        (
+            &["scenes", "generate", "--count", "4294967296", "--out", "x"],
+            "--count: must be in [1, 1000]",
+        ),
+        (
+            &[
+                "scenes",
+                "generate",
+                "--count",
+                "9223372036854775808",
+                "--out",
+                "x",
+            ],
+            "--count: must be in [1, 1000]",
+        ),
+        (
+            &["scenes", "generate", "--count", "100000", "--out", "x"],
+            "--count: must be in [1, 1000]",
+        ),
+        (
+            &["check", "plan.json", "--noise", &u32_max],
+            "--noise: must be in [0, 10000]",
+        ),
+        (
+            &["check", "plan.json", "--noise", &u64_max],
+            "--noise: must be in [0, 10000]",
+        ),
+        (
+            &["execute", "plan.json", "--trials", &u32_max],
+            "--trials: must be in [1, 1000]",
+        ),
+        (
+            &["execute", "plan.json", "--trials", &u64_max],
+            "--trials: must be in [1, 1000]",
+        ),
+        (
+            &["pick-place", "--object", "box", "--grasps", &u32_max],
+            "--grasps: must be in [1, 1000]",
+        ),
+        (
+            &[
+                "plan",
+                "scenes/herb_single_object.yaml",
+                "--robust",
+                "100000",
+            ],
+            "--robust: must be in [0, 1000]",
+        ),
+    ];
+    for (args, expected) in cases {
+        let (code, stdout, stderr) = pushplan(args);
+        assert_eq!(code, 2, "{args:?}: {stdout}{stderr}");
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+    }
+    // Reals too: a duration of 10^300 s, a NaN rate.
+    for (args, expected) in [
+        (
+            &["plan", "scenes/herb_single_object.yaml", "--time", "1e300"][..],
+            "--time: must be in (0, 86400]",
+        ),
+        (
+            &[
+                "plan",
+                "scenes/herb_single_object.yaml",
+                "--robust-rate",
+                "NaN",
+            ],
+            "--robust-rate: must be in [0, 1]",
+        ),
+        (
+            &["execute", "plan.json", "--speed", "0"],
+            "--speed: must be in (0, 100]",
+        ),
+    ] {
+        let (code, stdout, stderr) = pushplan(args);
+        assert_eq!(code, 2, "{args:?}: {stdout}{stderr}");
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
+fn the_documented_limits_are_the_limits_table() {
+    let docs = std::fs::read_to_string("docs/commands.md").unwrap();
+    for limit in pushplan::limits::ALL {
+        let api = match limit.field {
+            "" => String::new(),
+            field => format!(" / `Options::{field}`"),
+        };
+        let row = format!(
+            "| `{}`{api} | {} | {} |",
+            limit.option,
+            limit.range(),
+            limit.what
+        );
+        assert!(docs.contains(&row), "docs/commands.md lacks the row {row}");
+    }
 }

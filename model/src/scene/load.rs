@@ -108,7 +108,7 @@ pub const MAX_MASS: f64 = 1000.0;
 /// Largest friction coefficient (`mu_g`, `mu_c`).
 pub const MAX_FRICTION: f64 = 10.0;
 /// Most control samples per extension (`planner.k`).
-pub const MAX_K: u32 = 10_000;
+pub const MAX_K: u32 = crate::limits::K.most as u32;
 /// Shortest and longest propagation step (s): shorter steps make paths of millions of
 /// steps, longer ones let a link pass through an object within one step.
 pub const MIN_STEP: f64 = 1e-4;
