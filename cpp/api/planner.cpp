@@ -117,7 +117,7 @@ namespace pushplan
     {
         try
         {
-            return bridge::planner_kind(name);
+            return bridge::planner_kind(detail::utf8(name, "the planner kind's name"));
         }
         catch (const rust::Error &e)
         {
@@ -280,7 +280,40 @@ namespace pushplan
 
     Plan detail::solve(const std::function<rust::Box<bridge::Problem>()> &load,
                        const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
-                       const std::function<void(const Progress &)> &tell)
+                       const std::function<void(const Progress &)> &application_tell)
+    {
+        // An exception from the application's progress callback stops the search and
+        // reaches the caller as it was thrown; every other failure inside, the model's or
+        // OMPL's, leaves as pushplan::Error.
+        std::exception_ptr callback_failure;
+        std::function<void(const Progress &)> tell;
+        if (application_tell)
+            tell = [&](const Progress &p) {
+                try
+                {
+                    application_tell(p);
+                }
+                catch (...)
+                {
+                    callback_failure = std::current_exception();
+                    throw;
+                }
+            };
+        try
+        {
+            return solveScene(load, settings_of, tell);
+        }
+        catch (...)
+        {
+            if (callback_failure)
+                std::rethrow_exception(callback_failure);
+            throw;
+        }
+    }
+
+    Plan detail::solveScene(const std::function<rust::Box<bridge::Problem>()> &load,
+                              const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
+                              const std::function<void(const Progress &)> &tell)
     {
         // Every failure inside, the model's or OMPL's, leaves as pushplan::Error.
         return detail::asPushplanError([&]() -> Plan {

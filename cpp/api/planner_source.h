@@ -9,6 +9,7 @@
 #include "rust/cxx.h"  // rust::Error
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 namespace pushplan
@@ -60,15 +61,34 @@ namespace pushplan
         void describe(Plan &plan, const bridge::Finisher &finisher, const bridge::SceneInfo &info,
                       const bridge::FinishedPath &path);
 
+        /// `text` for Rust, which takes UTF-8 only; else a pushplan::Error naming `what`.
+        inline rust::Str utf8(const std::string &text, const std::string &what)
+        {
+            try
+            {
+                return rust::Str(text);
+            }
+            catch (const std::invalid_argument &)
+            {
+                throw Error(what + " is not UTF-8 text");
+            }
+        }
+
         /// Options with every unset value taken from the scene (`info`).
         RunSettings resolve(const Options &options, const bridge::SceneInfo &info);
 
         /// Plans the scene `load` reads as the settings `settings_of` gives for it (checked
         /// here, every value named), telling `tell` (if set) how far the search is: what
-        /// Planner::solve and the CLI's search do. Throws pushplan::Error.
+        /// Planner::solve and the CLI's search do. Throws pushplan::Error, or what `tell`
+        /// threw (the search stopped there).
         Plan solve(const std::function<rust::Box<bridge::Problem>()> &load,
                    const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
                    const std::function<void(const Progress &)> &tell);
+
+        /// solve's work, every failure as pushplan::Error (an exception of `tell` too).
+        Plan solveScene(const std::function<rust::Box<bridge::Problem>()> &load,
+                        const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
+                        const std::function<void(const Progress &)> &tell);
 
         /// Reaches a grasp of `object` in the scene `load` reads as the settings
         /// `settings_of` gives for it (checked here), from the flat state `start_of` gives
@@ -89,8 +109,9 @@ namespace pushplan
         {
             try
             {
-                return from_yaml ? bridge::Problem::from_yaml(yaml, path) :
-                                   bridge::Problem::load(path);
+                return from_yaml ? bridge::Problem::from_yaml(detail::utf8(yaml, "the scene's YAML text"),
+                                                              detail::utf8(path, "the scene's source label")) :
+                                   bridge::Problem::load(detail::utf8(path, "the scene file's path"));
             }
             catch (const rust::Error &e)
             {

@@ -128,18 +128,32 @@ namespace pushplan::detail
         const auto failed = [&] {
             return std::any_of(failures.begin(), failures.end(), [](const std::exception_ptr &f) { return bool(f); });
         };
+        // A report that throws (an application's callback) stops the searches; its exception
+        // leaves once they are joined (a joinable thread destroyed would terminate).
+        std::exception_ptr report_failure;
         for (;;)
         {
             const std::size_t running = rendezvous.await();
             if (report_due())
-                report();
-            const bool stop = running == 0 || first_solved() || failed() || out_of_time();
+            {
+                try
+                {
+                    report();
+                }
+                catch (...)
+                {
+                    report_failure = std::current_exception();
+                }
+            }
+            const bool stop = report_failure || running == 0 || first_solved() || failed() || out_of_time();
             rendezvous.release(stop);
             if (stop)
                 break;
         }
         for (std::thread &t : threads)
             t.join();
+        if (report_failure)
+            std::rethrow_exception(report_failure);
         for (const std::exception_ptr &failure : failures)
             if (failure)
                 std::rethrow_exception(failure);

@@ -26,12 +26,14 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
-#include <limits>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
+#include <stdexcept>
 #include "expect.h"
 
 #include <iostream>
@@ -74,6 +76,11 @@ int main()
         expect(pushplan::plannerName(all[i]) == names[i], std::string("plannerName -> ") + names[i]);
         expect(pushplan::plannerKind(names[i]) == all[i], std::string("plannerKind(") + names[i] + ")");
     }
+    // Bytes that are no UTF-8 (Rust takes UTF-8 only): pushplan::Error, not std::invalid_argument.
+    expect(throwsError([] { pushplan::plannerKind("\xff\xfe"); }, "the planner kind's name is not UTF-8 text"),
+           "plannerKind of bytes that are not UTF-8 throws pushplan::Error");
+    expect(throwsError([] { pushplan::Planner::fromYaml("name: \xff", "bytes"); }, "the scene's YAML text is not UTF-8"),
+           "Planner::fromYaml of bytes that are not UTF-8 throws pushplan::Error");
     expect(throwsError([] { pushplan::plannerKind("rrtstar"); }, "unknown planner 'rrtstar'"),
            "an unknown name throws pushplan::Error");
 
@@ -150,6 +157,30 @@ int main()
         expect(refused, "Planner::reach of something without grasps throws pushplan::Error naming the graspable objects");
     }
 
+    {
+        // A progress callback that throws stops the search, and its own exception reaches
+        // the caller (it once ended in std::terminate).
+        const pushplan::Planner cluttered("tests/data/clutter_on_goal.yaml");
+        pushplan::Options o;
+        o.planner = PlannerKind::StaticRrt;
+        o.time_limit = 30.0;
+        o.seed = 1;
+        o.threads = 2;
+        o.on_progress = [](const pushplan::Progress &) { throw std::out_of_range("the application's own"); };
+        const auto started = std::chrono::steady_clock::now();
+        std::string caught;
+        try
+        {
+            cluttered.solve(o);
+        }
+        catch (const std::out_of_range &e)
+        {
+            caught = e.what();
+        }
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        expect(caught == "the application's own" && seconds < 15.0,
+               "an exception of on_progress stops the search and reaches the caller as thrown");
+    }
     {
         // A search that cannot succeed (clutter pinned on the goal disc) reports once a
         // second to on_progress, with how close it has come.
