@@ -17,7 +17,15 @@ pub const MAX_PLAN_BYTES: u64 = 256 << 20;
 /// The bytes of the regular file at `path`, if it has at most `max_bytes`. The error
 /// says why, without the path (callers name the file).
 pub fn read_bytes(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    // Looked at before it is opened: opening a pipe (FIFO) waits for a writer, for ever.
+    if let Some(why) = not_a_regular_file(path) {
+        return Err(why);
+    }
+    // Opened without waiting all the same, should a pipe have taken the file's place since.
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
+    let file = options.open(path).map_err(|e| e.to_string())?;
     let metadata = file.metadata().map_err(|e| e.to_string())?;
     if !metadata.is_file() {
         return Err("not a regular file".into());
@@ -38,6 +46,37 @@ pub fn read_bytes(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
         return Err(format!("more than {max_bytes} bytes"));
     }
     Ok(bytes)
+}
+
+/// Why `path` is no regular file to read, in a few words ("not found", "a pipe (FIFO),
+/// not a regular file", "a symbolic link loop"); `None` if it is one. Asks the file
+/// system only: it opens nothing.
+pub fn not_a_regular_file(path: &Path) -> Option<String> {
+    match std::fs::metadata(path) {
+        Ok(metadata) if metadata.is_file() => None,
+        Ok(metadata) => {
+            use std::os::unix::fs::FileTypeExt;
+            let kind = metadata.file_type();
+            let what = if kind.is_dir() {
+                "a folder"
+            } else if kind.is_fifo() {
+                "a pipe (FIFO)"
+            } else if kind.is_char_device() || kind.is_block_device() {
+                "a device"
+            } else {
+                "a special file"
+            };
+            Some(format!("{what}, not a regular file"))
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            Some(match std::fs::symlink_metadata(path) {
+                Ok(_) => "a symbolic link to nothing".into(),
+                Err(_) => "not found".into(),
+            })
+        }
+        Err(e) if e.raw_os_error() == Some(libc::ELOOP) => Some("a symbolic link loop".into()),
+        Err(e) => Some(e.to_string()),
+    }
 }
 
 /// As [`read_bytes`], as UTF-8 text.

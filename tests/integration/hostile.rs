@@ -207,6 +207,28 @@ fn endless_and_special_files_are_refused_not_read() {
             "{command}: {stderr}"
         );
     }
+    // A pipe as the scene, or as a plan's scene: opening it would wait for a writer for
+    // ever (a test that hangs here fails by CI's time limit).
+    let scratch = common::Scratch::new("hostile-fifo");
+    let (plan_path, mut plan) = base_plan(scratch.path());
+    let fifo = scratch.join("f.yaml");
+    let name = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: a valid C string and mode.
+    assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o644) }, 0);
+    plan["scene"] = Value::from("f.yaml");
+    let piped = tampered(scratch.path(), &plan, "piped.json", |_| {});
+    for args in [
+        vec!["plan", fifo.to_str().unwrap()],
+        vec!["check", piped.to_str().unwrap()],
+    ] {
+        let (code, stdout, stderr) = pushplan(&args);
+        assert_eq!(code, 2, "{args:?}: {stdout}{stderr}");
+        assert!(
+            stderr.contains("a pipe (FIFO), not a regular file"),
+            "{args:?}: {stderr}"
+        );
+    }
+    assert!(plan_path.is_file());
 }
 
 #[test]

@@ -11,33 +11,47 @@ use std::path::{Path, PathBuf};
 
 /// Resolves a URDF mesh reference (`package://pkg/rel`, `file:///abs` or a relative path)
 /// without ROS: `package://pkg` is searched for as a folder named `pkg` next to the URDF
-/// and in each folder above it, then in the folders listed in `ROS_PACKAGE_PATH`.
-pub fn resolve_mesh_path(filename: &str, urdf_path: &Path) -> Option<PathBuf> {
+/// and in each folder above it, then in the folders listed in `ROS_PACKAGE_PATH`. The
+/// error says where it looked, and why a file found there is not one to read (a pipe, a
+/// device, a symbolic link loop).
+pub fn resolve_mesh_path(filename: &str, urdf_path: &Path) -> std::result::Result<PathBuf, String> {
     let urdf_dir = urdf_path.parent().unwrap_or(Path::new("."));
-    if let Some(rest) = filename.strip_prefix("package://") {
-        let (package, relative) = rest.split_once('/')?;
+    let candidates: Vec<PathBuf> = if let Some(rest) = filename.strip_prefix("package://") {
+        let Some((package, relative)) = rest.split_once('/') else {
+            return Err("a package:// reference needs a package and a path in it".into());
+        };
         let mut roots: Vec<PathBuf> = urdf_dir.ancestors().map(Path::to_path_buf).collect();
         if let Some(paths) = std::env::var_os("ROS_PACKAGE_PATH") {
             roots.extend(std::env::split_paths(&paths));
         }
-        return roots.iter().find_map(|root| {
-            // Either the root holds the package folder, or the root is the package itself.
-            let inside = root.join(package).join(relative);
-            let itself = root.join(relative);
-            if inside.is_file() {
-                Some(inside)
-            } else if root.file_name().is_some_and(|n| n == package) && itself.is_file() {
-                Some(itself)
-            } else {
-                None
-            }
-        });
-    }
-    let path = match filename.strip_prefix("file://") {
-        Some(abs) => PathBuf::from(abs),
-        None => urdf_dir.join(filename),
+        // Either the root holds the package folder, or the root is the package itself.
+        roots
+            .iter()
+            .flat_map(|root| {
+                let itself = root.file_name().is_some_and(|n| n == package);
+                std::iter::once(root.join(package).join(relative))
+                    .chain(itself.then(|| root.join(relative)))
+            })
+            .collect()
+    } else {
+        vec![match filename.strip_prefix("file://") {
+            Some(abs) => PathBuf::from(abs),
+            None => urdf_dir.join(filename),
+        }]
     };
-    path.is_file().then_some(path)
+    let mut looked = Vec::new();
+    for candidate in candidates {
+        match crate::input::not_a_regular_file(&candidate) {
+            None => return Ok(candidate),
+            Some(why) => looked.push(format!("{} ({why})", candidate.display())),
+        }
+    }
+    let more = looked.len().saturating_sub(10);
+    looked.truncate(10);
+    if more > 0 {
+        looked.push(format!("and {more} more"));
+    }
+    Err(format!("looked for it at {}", looked.join(", ")))
 }
 
 /// Mesh formats read for collision geometry (by file extension, case-insensitive).

@@ -255,9 +255,9 @@ fn link_geometry(path: &Path, link: &urdf_rs::Link) -> Result<Vec<Geometry>> {
                 length: *length,
             },
             urdf_rs::Geometry::Mesh { filename, scale } => {
-                let mesh_path = resolve_mesh_path(filename, path).ok_or_else(|| Error::Mesh {
+                let mesh_path = resolve_mesh_path(filename, path).map_err(|why| Error::Mesh {
                     file: path.to_path_buf(),
-                    message: format!("link '{}': mesh '{filename}' not found", link.name),
+                    message: format!("link '{}': mesh '{filename}' not found: {why}", link.name),
                 })?;
                 load_convex_mesh(&mesh_path, scale.as_ref().map_or([1.0; 3], |s| **s))?
             }

@@ -134,6 +134,41 @@ fn a_missing_mesh_names_the_urdf_and_the_mesh() {
             && message.contains("'arm'"),
         "{message}"
     );
+    // Where it looked: beside the URDF, then each folder above it.
+    let beside = root.join("nowhere/arm.stl");
+    assert!(
+        message.contains(&format!("{} (not found)", beside.display())),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_mesh_that_is_no_regular_file_says_what_it_is() {
+    let scratch = common::Scratch::new("test-special-mesh");
+    let root = scratch.path().to_path_buf();
+    let urdf = root.join("r.urdf");
+    // A symbolic link loop, a pipe (which a plain open would wait on for ever), a device.
+    std::os::unix::fs::symlink("loop_b.stl", root.join("loop_a.stl")).unwrap();
+    std::os::unix::fs::symlink("loop_a.stl", root.join("loop_b.stl")).unwrap();
+    let fifo = std::ffi::CString::new(root.join("pipe.stl").to_str().unwrap()).unwrap();
+    // SAFETY: a valid C string and mode.
+    assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o644) }, 0);
+    std::os::unix::fs::symlink("/dev/null", root.join("device.stl")).unwrap();
+    for (mesh, what) in [
+        ("loop_a.stl", "a symbolic link loop"),
+        ("pipe.stl", "a pipe (FIFO), not a regular file"),
+        ("device.stl", "a device, not a regular file"),
+        ("gone.stl", "not found"),
+    ] {
+        std::fs::write(&urdf, urdf_with_mesh(mesh, "")).unwrap();
+        let message = load_urdf(&urdf, "finger", Isometry3::identity())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains(mesh) && message.contains(what),
+            "{mesh}: {message}"
+        );
+    }
 }
 
 #[test]
