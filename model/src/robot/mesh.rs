@@ -66,6 +66,32 @@ pub const HULL_TOLERANCE: f64 = 5e-4;
 /// vertices would cost more than the rest of the step.
 pub const MAX_HULL_VERTICES: usize = 64;
 
+/// Refuses a binary STL whose size is not what its header says: 84 bytes, then 50 per
+/// triangle of the count in bytes 80-83 (a header claiming 2^31 triangles over a few
+/// would otherwise load silently, or be read as far as the file goes). A file that
+/// starts with `solid` and is all ASCII is an ASCII STL, which has no count.
+fn check_stl_size(bytes: &[u8]) -> std::result::Result<(), String> {
+    let ascii = bytes.trim_ascii_start().starts_with(b"solid") && bytes.is_ascii();
+    if ascii {
+        return Ok(());
+    }
+    let Some(count) = bytes.get(80..84) else {
+        return Err(format!(
+            "{} bytes: too short for a binary STL (84 bytes of header and count)",
+            bytes.len()
+        ));
+    };
+    let triangles = u32::from_le_bytes([count[0], count[1], count[2], count[3]]);
+    let expected = 84 + 50 * u64::from(triangles);
+    match expected == bytes.len() as u64 {
+        true => Ok(()),
+        false => Err(format!(
+            "binary STL header says {triangles} triangles ({expected} bytes), the file has {} bytes",
+            bytes.len()
+        )),
+    }
+}
+
 /// Reads a mesh (STL, OBJ or COLLADA), scales it (per axis, in the mesh's own frame) and
 /// returns the convex hull of all its vertices, simplified to within [`HULL_TOLERANCE`]
 /// (see [`simplify_hull`]). COLLADA's `<unit>`, `<up_axis>` and node transforms are
@@ -82,7 +108,10 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
     let bytes = crate::input::read_bytes(path, crate::input::MAX_MESH_BYTES)
         .map_err(|message| Error::io(path, message))?;
     let scene = match extension.as_deref() {
-        Some("stl") => mesh_loader::stl::from_slice(&bytes),
+        Some("stl") => {
+            check_stl_size(&bytes).map_err(mesh_error)?;
+            mesh_loader::stl::from_slice(&bytes)
+        }
         Some("obj") => mesh_loader::obj::from_slice(&bytes, Some(path), |_: &Path| {
             // Materials do not collide: the `.mtl` file is neither needed nor read.
             Err::<Vec<u8>, _>(std::io::Error::other("not read"))

@@ -143,6 +143,34 @@ fn a_missing_mesh_names_the_urdf_and_the_mesh() {
 }
 
 #[test]
+fn a_binary_stl_whose_count_does_not_match_its_size_is_refused() {
+    let scratch = common::Scratch::new("test-stl-count");
+    let root = scratch.path().to_path_buf();
+    let stl = root.join("arm.stl");
+    write_box_stl(&stl, [0.05, 0.05, 0.05]);
+    let urdf = root.join("r.urdf");
+    std::fs::write(&urdf, urdf_with_mesh("arm.stl", "")).unwrap();
+    assert!(load_urdf(&urdf, "finger", Isometry3::identity()).is_ok());
+    // The same file with a header that claims 2^31 triangles.
+    let mut bytes = std::fs::read(&stl).unwrap();
+    let real = u32::from_le_bytes(bytes[80..84].try_into().unwrap());
+    assert_eq!(
+        bytes.len() as u64,
+        84 + 50 * u64::from(real),
+        "write_box_stl writes binary STL"
+    );
+    bytes[80..84].copy_from_slice(&(1u32 << 31).to_le_bytes());
+    std::fs::write(&stl, &bytes).unwrap();
+    let message = load_urdf(&urdf, "finger", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("arm.stl") && message.contains("says 2147483648 triangles"),
+        "{message}"
+    );
+}
+
+#[test]
 fn a_mesh_that_is_no_regular_file_says_what_it_is() {
     let scratch = common::Scratch::new("test-special-mesh");
     let root = scratch.path().to_path_buf();
