@@ -35,6 +35,8 @@ pub enum Front {
     CommandLine,
     /// A field of the C++ API's `pushplan::Options`.
     CppOptions,
+    /// A field of a plan file (its settings, as `plan` recorded them).
+    PlanFile,
 }
 
 impl Limit {
@@ -73,8 +75,9 @@ impl Limit {
     pub fn name(&self, front: Front) -> String {
         match front {
             Front::CommandLine => self.option.to_string(),
-            Front::CppOptions if self.field.is_empty() => self.option.to_string(),
+            Front::CppOptions | Front::PlanFile if self.field.is_empty() => self.option.to_string(),
             Front::CppOptions => format!("Options::{}", self.field),
+            Front::PlanFile => self.field.to_string(),
         }
     }
 

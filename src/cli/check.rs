@@ -82,6 +82,20 @@ pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
     for problem in &report.problems {
         println!("  {problem}");
     }
+    // What a re-simulation cannot confirm is said, not passed over: the search that made
+    // the plan (its settings are only checked to be within their limits).
+    println!(
+        "  as recorded, not re-planned: made by {} with seed {}, k {}, {} s, {} thread(s){}",
+        plan.settings.planner.name(),
+        plan.settings.seed,
+        plan.settings.k,
+        plan.settings.time_limit,
+        plan.settings.threads,
+        match plan.settings.shortcut > 0.0 {
+            true => "; the metrics before shortcutting likewise",
+            false => "",
+        }
+    );
     println!(
         "{}",
         if report.passed() {

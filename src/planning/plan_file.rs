@@ -51,6 +51,20 @@ pub struct PlanSettings {
     pub fallback_steps: u64,
 }
 
+impl PlanSettings {
+    /// Each setting within the limits table ([`crate::limits`]), named as the file names it.
+    fn check(&self) -> Result<(), String> {
+        use crate::limits::{Front, GOAL_BIAS, K, SHORTCUT, THREADS, TIME_LIMIT};
+        let file = Front::PlanFile;
+        K.check(file, self.k)?;
+        THREADS.check(file, self.threads)?;
+        TIME_LIMIT.check(file, self.time_limit)?;
+        SHORTCUT.check(file, self.shortcut)?;
+        GOAL_BIAS.check(file, self.goal_bias)?;
+        Ok(())
+    }
+}
+
 fn one_search() -> u32 {
     1
 }
@@ -200,6 +214,39 @@ pub struct Metrics {
     pub before_shortcut: PathMetrics,
     /// After shortcutting (the plan's).
     pub after_shortcut: PathMetrics,
+}
+
+impl Metrics {
+    /// What can be checked of the metrics without the path as found, which the file does
+    /// not hold: lengths, displacements and durations finite and not negative, no more
+    /// objects moved than the scene has. (`check` compares the rest with the
+    /// re-simulation: the metrics after shortcutting, and before it when the plan was not
+    /// shortcut.)
+    fn check(&self, objects: usize) -> Result<(), String> {
+        for (name, m) in [
+            ("before_shortcut", &self.before_shortcut),
+            ("after_shortcut", &self.after_shortcut),
+        ] {
+            let lengths = [
+                m.joint_length,
+                m.ee_length,
+                m.object_displacement,
+                m.duration,
+            ];
+            if let Some(v) = lengths.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
+                return Err(format!(
+                    "metrics.{name}: a length or duration of {v}; they are finite and not negative"
+                ));
+            }
+            if m.objects_moved > objects {
+                return Err(format!(
+                    "metrics.{name}.objects_moved: {} of {objects} objects",
+                    m.objects_moved
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Joint values and object poses `[x, y, yaw]`.
@@ -377,6 +424,8 @@ impl PlanFile {
             finite(field, q.iter().chain(poses.iter().flatten()))
         };
         finite("step", [&self.step])?;
+        self.settings.check()?;
+        self.metrics.check(self.objects.len())?;
         state("start", &self.start.q, &self.start.objects)?;
         let mut total = 0usize;
         for (i, c) in self.controls.iter().enumerate() {
@@ -584,14 +633,16 @@ impl PlanFile {
     }
 
     /// The plan file its controls give in `scene` (the plan's scene), with what cannot
-    /// be re-derived from them (the metrics before shortcutting, robustness) copied over.
+    /// be re-derived from them (the metrics before shortcutting, unless the plan was not
+    /// shortcut; robustness) copied over.
     fn rebuilt(&self, scene: Scene) -> Result<PlanFile, String> {
+        let shortcut = self.settings.shortcut > 0.0;
         let mut rebuilt = PlanFile::build(
             &self.scene,
             scene.clone(),
             &self.settings,
             &self.path_controls(),
-            Some(self.metrics.before_shortcut),
+            shortcut.then_some(self.metrics.before_shortcut),
         )?;
         rebuilt.robustness.clone_from(&self.robustness);
         rebuilt.replanned.clone_from(&self.replanned);
@@ -673,9 +724,10 @@ impl PlanFile {
     /// planner: every state valid, the recorded states reproduced, the goal reached, and
     /// everything else the file records about the path (start, contacts, durations,
     /// metrics after shortcutting, `solved`, margins, `step`, the trajectory) equal to
-    /// what the re-simulation gives. Not checkable here: how the plan was made (planner
-    /// settings, seed, robustness) and the metrics of the path before shortcutting, which
-    /// the file does not hold.
+    /// what the re-simulation gives (the metrics before shortcutting too, when the plan
+    /// was not shortcut). Not checkable here: how the plan was made (planner settings,
+    /// seed, robustness; [`PlanFile::read`] checks them against their limits) and the
+    /// metrics of a shortcut plan's path as found, which the file does not hold.
     pub fn check(&self, plan_path: &Path) -> Result<CheckReport, String> {
         let scene = self.load_scene(plan_path)?;
         let problem = Problem::new(scene.clone(), self.settings.planner);

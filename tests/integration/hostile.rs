@@ -37,7 +37,7 @@ fn tampered(dir: &Path, plan: &Value, name: &str, edit: impl Fn(&mut Value)) -> 
 fn malformed_plan_files_are_bad_input_for_check_render_and_execute() {
     let scratch = common::Scratch::new("hostile-malformed-plans");
     let (_, plan) = base_plan(scratch.path());
-    let cases: [(&str, &str, Edit); 5] = [
+    let cases: [(&str, &str, Edit); 8] = [
         // Steps beyond any plan: a capacity overflow, a 2.4 TB allocation, a minute.
         (
             "huge_steps.json",
@@ -72,7 +72,29 @@ fn malformed_plan_files_are_bad_input_for_check_render_and_execute() {
             "joints",
             Box::new(|p| p["joints"].as_array_mut().unwrap().reverse()),
         ),
+        // Settings and metrics the re-simulation cannot give, each checked for what it
+        // can be (check said "plan OK").
+        (
+            "before_negative.json",
+            "metrics.before_shortcut",
+            Box::new(|p| p["metrics"]["before_shortcut"]["ee_length"] = Value::from(-1e308)),
+        ),
+        (
+            "time_limit.json",
+            "time_limit: must be in (0, 86400]",
+            Box::new(|p| p["time_limit"] = Value::from(-1.0)),
+        ),
+        (
+            "threads.json",
+            "threads: must be in [1, 256]",
+            Box::new(|p| p["threads"] = Value::from(0)),
+        ),
     ];
+    assert_eq!(
+        plan["shortcut"],
+        Value::from(0.0),
+        "made without shortcutting"
+    );
     for (name, field, edit) in cases {
         let path = tampered(scratch.path(), &plan, name, edit);
         let path = path.to_str().unwrap();
@@ -104,7 +126,7 @@ fn check_compares_everything_a_plan_file_claims_with_the_re_simulation() {
         .iter()
         .position(|c| !c["contacts"].as_array().unwrap().is_empty())
         .expect("the plan pushes the box");
-    let cases: [(&str, String, Edit); 7] = [
+    let cases: [(&str, String, Edit); 8] = [
         // The reproducer: a joint trajectory sample and `solved` changed; "plan OK".
         (
             "trajectory.json",
@@ -137,6 +159,15 @@ fn check_compares_everything_a_plan_file_claims_with_the_re_simulation() {
             "step.json",
             "step".into(),
             Box::new(|p| p["step"] = Value::from(0.02)),
+        ),
+        // Without shortcutting the path as found is the plan: its metrics are the
+        // re-simulation's too (check said "plan OK").
+        (
+            "before_huge.json",
+            "metrics.before_shortcut.duration".into(),
+            Box::new(|p| {
+                p["metrics"]["before_shortcut"]["duration"] = Value::from(u64::MAX as f64)
+            }),
         ),
         // The start differs from the scene's: check said so, then "plan OK".
         (
