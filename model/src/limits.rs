@@ -121,6 +121,11 @@ impl From<f64> for Number {
     }
 }
 
+/// Largest coordinate or size in a scene or a robot (m; joint values and angles in rad
+/// too): a kilometre. No table or arm comes near it, and within it squared distances keep
+/// the millimetres the model works in (a table 10^308 m wide drew `-inf` into pictures).
+pub const MAX_EXTENT: f64 = 1000.0;
+
 /// A day (s): the longest duration any option takes.
 const DAY: f64 = 86_400.0;
 

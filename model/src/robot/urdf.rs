@@ -281,11 +281,12 @@ pub fn check_dimensions(primitive: &Primitive) -> std::result::Result<(), String
         Primitive::Sphere { radius } => vec![*radius],
         Primitive::ConvexHull { .. } => vec![],
     };
-    if dims.iter().all(|d| d.is_finite() && *d > 0.0) {
+    let most = crate::limits::MAX_EXTENT;
+    if dims.iter().all(|d| d.is_finite() && *d > 0.0 && *d <= most) {
         Ok(())
     } else {
         Err(format!(
-            "dimensions must be positive and finite, got {dims:?}"
+            "dimensions must be positive and at most {most} m, got {dims:?}"
         ))
     }
 }

@@ -12,6 +12,7 @@ use super::{
 use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
 use crate::input::name_list;
+use crate::limits::MAX_EXTENT;
 use crate::math::{isometry_from_xyz_rpy, Pose2};
 use crate::physics::limit_surface::GRAVITY;
 use crate::physics::{Footprint, LimitSurface, LoadedSupport};
@@ -171,17 +172,27 @@ impl Loader<'_> {
         Error::invalid(self.file, field, message)
     }
 
+    /// Coordinates, angles and joint values: finite, and within [`MAX_EXTENT`] of zero.
     fn finite(&self, field: &str, values: &[f64]) -> Result<()> {
-        match values.iter().position(|v| !v.is_finite()) {
+        let plausible = |v: &f64| v.is_finite() && v.abs() <= MAX_EXTENT;
+        let message =
+            |v: f64| format!("must be a finite number within +-{MAX_EXTENT} (m or rad), got {v}");
+        match values.iter().position(|v| !plausible(v)) {
             None => Ok(()),
-            Some(i) if values.len() == 1 => {
-                Err(self.invalid(field, format!("must be a finite number, got {}", values[i])))
-            }
-            Some(i) => Err(self.invalid(
-                format!("{field}[{i}]"),
-                format!("must be a finite number, got {}", values[i]),
-            )),
+            Some(i) if values.len() == 1 => Err(self.invalid(field, message(values[i]))),
+            Some(i) => Err(self.invalid(format!("{field}[{i}]"), message(values[i]))),
         }
+    }
+
+    /// A length (m): positive, and at most [`MAX_EXTENT`].
+    fn length(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value > 0.0 && value <= MAX_EXTENT {
+            return Ok(());
+        }
+        Err(self.invalid(
+            field,
+            format!("must be positive and at most {MAX_EXTENT} m, got {value:?}"),
+        ))
     }
 
     fn positive(&self, field: &str, value: f64) -> Result<()> {
@@ -422,7 +433,7 @@ impl Loader<'_> {
         self.finite("table.height", &[t.height])?;
         self.finite("table.x", &t.x)?;
         self.finite("table.y", &t.y)?;
-        self.positive("table.thickness", t.thickness)?;
+        self.length("table.thickness", t.thickness)?;
         for (field, r) in [("table.x", t.x), ("table.y", t.y)] {
             if r[0] >= r[1] {
                 return Err(self.invalid(
@@ -518,7 +529,7 @@ impl Loader<'_> {
         };
         check_dimensions(&out.0).map_err(|m| self.invalid(field, m))?;
         if let Some((_, h)) = &out.1 {
-            self.positive(&format!("{field}.height"), *h)?;
+            self.length(&format!("{field}.height"), *h)?;
         }
         Ok(out)
     }
@@ -789,7 +800,7 @@ impl Loader<'_> {
                 height,
             } => {
                 self.finite("robot.start", start)?;
-                self.positive("robot.height", *height)?;
+                self.length("robot.height", *height)?;
                 let (primitive, _) = self.shape("robot.shape", shape, true)?;
                 let geometry = self.geometry("robot.shape", &primitive, Isometry3::identity())?;
                 let chain = planar_hand_chain(
@@ -859,7 +870,7 @@ impl Loader<'_> {
                 let radius = g.radius.ok_or_else(|| {
                     self.invalid("goal.radius", "missing (the goal disc's radius)")
                 })?;
-                self.positive("goal.radius", radius)?;
+                self.length("goal.radius", radius)?;
                 let margin = g.margin.unwrap_or(DEFAULT_GOAL_MARGIN);
                 if !(margin.is_finite() && (0.0..radius).contains(&margin)) {
                     return Err(self.invalid(

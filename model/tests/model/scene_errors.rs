@@ -375,3 +375,19 @@ fn a_scene_with_too_many_objects_is_refused() {
         "{message}"
     );
 }
+
+#[test]
+fn absurd_sizes_and_positions_are_refused_with_the_field() {
+    // Finite but absurd: accepted once, and `render` drew -inf into the picture.
+    for (from, to, field) in [
+        ("x: [0.27, 1.03]", "x: [0.27, 1e308]", "table.x[1]"),
+        ("xyz: [0.1, 0.14, 0.45]", "xyz: [1e308, 0.14, 0.45]", "robot.base_pose.xyz[0]"),
+        ("radius: 0.1}", "radius: 1e308}", "goal.radius"),
+    ] {
+        let (_, message) = error_of(&edited(from, to));
+        assert!(
+            message.contains(field) && message.contains("1000"),
+            "{field}: {message}"
+        );
+    }
+}
