@@ -115,6 +115,13 @@ pub const MAX_K: u32 = crate::limits::K.most as u32;
 pub const MIN_STEP: f64 = 1e-4;
 /// Longest propagation step (s).
 pub const MAX_STEP: f64 = 0.1;
+/// Farthest the tool may move in one propagation step (m): `planner.max_ee_speed x
+/// planner.step`, the longest step at the default speed.
+pub const MAX_STEP_TRAVEL: f64 = 0.05;
+/// Most the tool may turn, or the null space move, in one propagation step (rad):
+/// `planner.max_ee_turn_rate` or `planner.max_nullspace_speed` times `planner.step`, the
+/// longest step at the default rates.
+pub const MAX_STEP_TURN: f64 = 0.1;
 /// Most propagation steps in one control (`planner.max_duration / planner.step`).
 pub const MAX_CONTROL_STEPS: usize = 10_000;
 
@@ -1010,6 +1017,36 @@ impl Loader<'_> {
             MAX_STEP,
             "s per propagation step",
         )?;
+        // The tool's travel in one step bounds how far a link can jump past an object
+        // between two collision checks: at most what the longest step allows at the
+        // default speed (0.1 s x 0.5 m/s).
+        for (field, speed, most, unit) in [
+            ("planner.max_ee_speed", p.max_ee_speed, MAX_STEP_TRAVEL, "m"),
+            (
+                "planner.max_ee_turn_rate",
+                p.max_ee_turn_rate,
+                MAX_STEP_TURN,
+                "rad",
+            ),
+            (
+                "planner.max_nullspace_speed",
+                p.max_nullspace_speed,
+                MAX_STEP_TURN,
+                "rad",
+            ),
+        ] {
+            if speed * p.step > most {
+                return Err(self.invalid(
+                    field,
+                    format!(
+                        "{speed} x planner.step {} s moves {} {unit} in one step; at most {most} {unit}, \
+                         or a link passes through an object between two checks",
+                        p.step,
+                        speed * p.step
+                    ),
+                ));
+            }
+        }
         if p.max_duration / p.step > MAX_CONTROL_STEPS as f64 {
             return Err(self.invalid(
                 "planner.max_duration",

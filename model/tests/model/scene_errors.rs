@@ -381,7 +381,11 @@ fn absurd_sizes_and_positions_are_refused_with_the_field() {
     // Finite but absurd: accepted once, and `render` drew -inf into the picture.
     for (from, to, field) in [
         ("x: [0.27, 1.03]", "x: [0.27, 1e308]", "table.x[1]"),
-        ("xyz: [0.1, 0.14, 0.45]", "xyz: [1e308, 0.14, 0.45]", "robot.base_pose.xyz[0]"),
+        (
+            "xyz: [0.1, 0.14, 0.45]",
+            "xyz: [1e308, 0.14, 0.45]",
+            "robot.base_pose.xyz[0]",
+        ),
         ("radius: 0.1}", "radius: 1e308}", "goal.radius"),
     ] {
         let (_, message) = error_of(&edited(from, to));
@@ -390,4 +394,20 @@ fn absurd_sizes_and_positions_are_refused_with_the_field() {
             "{field}: {message}"
         );
     }
+}
+
+#[test]
+fn a_tool_that_would_jump_past_objects_in_one_step_is_refused() {
+    // max_ee_speed 100 m/s: every propagation step was singular (or a plan that did not
+    // re-simulate), with nothing said at load.
+    let (_, message) = error_of(&format!("{}\nplanner: {{max_ee_speed: 100}}\n", base()));
+    assert!(
+        message.contains("planner.max_ee_speed") && message.contains("moves 1 m in one step"),
+        "{message}"
+    );
+    // The same speed is fine with steps short enough: 5 cm a step at 0.5 ms.
+    let text = format!("{}\nplanner: {{max_ee_speed: 100, step: 0.0005, min_duration: 0.001, max_duration: 0.5}}\n", base());
+    assert!(Scene::from_yaml(&text, Path::new("ok.yaml")).is_ok());
+    let (_, message) = error_of(&format!("{}\nplanner: {{max_ee_turn_rate: 30}}\n", base()));
+    assert!(message.contains("planner.max_ee_turn_rate"), "{message}");
 }
