@@ -78,7 +78,10 @@ impl Film {
         let path = Problem::new(scene.clone(), plan.settings.planner)
             .simulate(&plan.path_controls(), true);
         if let Some((i, reason)) = path.stopped_by {
-            return Err(format!("the plan does not simulate: control {i}: {reason}"));
+            return Err(format!(
+                "{}: the plan does not simulate: control {i}: {reason}",
+                plan_path.display()
+            ));
         }
         let mut control_starts = vec![0];
         for c in &plan.controls {

@@ -747,11 +747,10 @@ impl Loader<'_> {
                 self.finite("robot.pushing_plane.height", &[pushing_plane.height])?;
                 self.finite("robot.start_joints", start_joints)?;
                 let urdf_path = self.relative(urdf);
-                if !urdf_path.is_file() {
-                    return Err(self.invalid(
-                        "robot.urdf",
-                        format!("file {} not found", urdf_path.display()),
-                    ));
+                if let Some(why) = crate::input::not_a_regular_file(&urdf_path) {
+                    return Err(
+                        self.invalid("robot.urdf", format!("file {}: {why}", urdf_path.display()))
+                    );
                 }
                 let base = isometry_from_xyz_rpy(base_pose.xyz, base_pose.rpy);
                 let chain = load_urdf(&urdf_path, end_effector, base)?;
