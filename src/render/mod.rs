@@ -83,6 +83,10 @@ impl Film {
                 plan_path.display()
             ));
         }
+        // The file's trajectory is not drawn, but a picture of a plan whose trajectory is
+        // not its controls' would show a plan that is not the file (as execute refuses it).
+        plan.check_trajectory(&scene)
+            .map_err(|e| format!("{}: {e}", plan_path.display()))?;
         let mut control_starts = vec![0];
         for c in &plan.controls {
             control_starts.push(control_starts.last().unwrap() + c.steps);

@@ -187,12 +187,23 @@ fn check_compares_everything_a_plan_file_claims_with_the_re_simulation() {
                 .extend(samples);
         }
     });
-    let (code, _, stderr) = pushplan(&["execute", longer.to_str().unwrap(), "--trials", "1"]);
-    assert_eq!(code, 2, "{stderr}");
-    assert!(
-        stderr.contains("longer.json: trajectory: not the one"),
-        "{stderr}"
-    );
+    let pictures = scratch.join("pictures");
+    for args in [
+        vec!["execute", longer.to_str().unwrap(), "--trials", "1"],
+        vec![
+            "render",
+            longer.to_str().unwrap(),
+            "--out",
+            pictures.to_str().unwrap(),
+        ],
+    ] {
+        let (code, _, stderr) = pushplan(&args);
+        assert_eq!(code, 2, "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("longer.json: trajectory: not the one"),
+            "{args:?}: {stderr}"
+        );
+    }
     for (name, field, edit) in cases {
         let path = tampered(scratch.path(), &plan, name, edit);
         let (code, stdout, stderr) = pushplan(&["check", path.to_str().unwrap()]);
