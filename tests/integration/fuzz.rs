@@ -265,3 +265,73 @@ fn the_command_line_answers_mutated_input_with_exit_codes_0_1_or_2() {
         }
     }
 }
+
+/// Seeded fuzzing of the options every front door shares (`RunSettings`, the C++ API's
+/// `Options` resolve to it): each case sets every count, duration and rate to a value near
+/// or far outside its limit. `check` must never panic, and must refuse a case exactly when
+/// a value lies outside the range docs/commands.md states, compared here field by field.
+#[test]
+fn fuzzed_options_are_refused_exactly_outside_their_limits() {
+    use pushplan::limits::Front;
+    let mut rng = SplitMix64::new(59);
+    let counts: [u64; 9] = [
+        0,
+        1,
+        2,
+        64,
+        65,
+        256,
+        257,
+        1_000_000_000,
+        u64::from(u32::MAX),
+    ];
+    let reals: [f64; 11] = [
+        f64::NAN,
+        f64::INFINITY,
+        -1.0,
+        0.0,
+        1e-9,
+        0.5,
+        1.0,
+        1.5,
+        86_400.0,
+        86_401.0,
+        1e308,
+    ];
+    for case in 0..3_000 {
+        let mut run = common::run_settings("push_kpiece");
+        let count = |rng: &mut SplitMix64| counts[(rng.next_u64() % 9) as usize] as u32;
+        let real = |rng: &mut SplitMix64| reals[(rng.next_u64() % 11) as usize];
+        run.k = count(&mut rng);
+        run.threads = count(&mut rng);
+        run.robust_trials = count(&mut rng);
+        run.robust_particles = count(&mut rng) % 128;
+        run.time_limit = real(&mut rng);
+        run.shortcut = real(&mut rng);
+        run.robust_shortcut = real(&mut rng);
+        run.goal_bias = real(&mut rng);
+        run.robust_rate = real(&mut rng);
+        let within = |v: f64, low: f64, high: f64| v.is_finite() && low <= v && v <= high;
+        let allowed = (1..=10_000).contains(&run.k)
+            && (1..=256).contains(&run.threads)
+            && run.robust_trials <= 1_000
+            && run.robust_particles <= 64
+            && within(run.time_limit, f64::MIN_POSITIVE, 86_400.0)
+            && within(run.shortcut, 0.0, 86_400.0)
+            && within(run.robust_shortcut, 0.0, 86_400.0)
+            && within(run.goal_bias, 0.0, 1.0)
+            && within(run.robust_rate, 0.0, 1.0)
+            && (run.robust_particles == 0 || run.robust_trials > 0);
+        let checked = no_panic(&format!("options case {case}"), || {
+            run.check(Front::CppOptions)
+        });
+        assert_eq!(
+            checked.is_ok(),
+            allowed,
+            "case {case}: {run:?}: {checked:?}"
+        );
+        if let Err(message) = checked {
+            assert!(message.starts_with("Options::"), "case {case}: {message}");
+        }
+    }
+}
