@@ -238,7 +238,13 @@ impl ClosedLoop<'_> {
                     Err(why) => {
                         trial.failed_replans += 1;
                         failures_in_a_row += 1;
-                        let playable = rest_valid && !rest.is_empty();
+                        // A rest no longer valid to its end is played up to where it stops
+                        // being valid: the arm goes on the way the plan went (toward the
+                        // goal), and the next search starts from there.
+                        if let Some((invalid_from, _)) = simulated.stopped_by {
+                            rest.truncate(invalid_from);
+                        }
+                        let playable = !rest.is_empty();
                         waiting_failures += u32::from(!playable);
                         if waiting_failures == WAITING_SEARCHES {
                             trial.stopped = Some(format!(
