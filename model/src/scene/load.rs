@@ -753,7 +753,18 @@ impl Loader<'_> {
                     );
                 }
                 let base = isometry_from_xyz_rpy(base_pose.xyz, base_pose.rpy);
-                let chain = load_urdf(&urdf_path, end_effector, base)?;
+                // A link the URDF lacks is the scene's fault: its field is named.
+                let chain = load_urdf(&urdf_path, end_effector, base).map_err(|e| match e {
+                    Error::Urdf { file, message }
+                        if message.contains(crate::robot::urdf::NOT_THE_END_EFFECTOR) =>
+                    {
+                        self.invalid(
+                            "robot.end_effector",
+                            format!("{}: {message}", file.display()),
+                        )
+                    }
+                    e => e,
+                })?;
                 let ee_link = chain
                     .link_index(end_effector)
                     .expect("checked by load_urdf");

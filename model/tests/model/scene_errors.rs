@@ -88,19 +88,13 @@ fn a_missing_obstacle_mesh_names_the_field() {
 
 #[test]
 fn an_end_effector_with_no_path_from_the_base_is_rejected() {
-    // The URDF is the file at fault here: the error names it.
-    let err = Scene::from_yaml(
-        &edited("end_effector: hand", "end_effector: gripper"),
-        Path::new("scenes/bad.yaml"),
-    )
-    .unwrap_err();
-    let message = err.to_string();
+    // A link the URDF lacks: the scene's field is at fault, the URDF named beside it.
+    let (err, message) = error_of(&edited("end_effector: hand", "end_effector: gripper"));
+    assert!(matches!(err, Error::Invalid { .. }), "{message}");
     assert!(
-        matches!(err, Error::Urdf { ref file, .. } if file.ends_with("wam7.urdf")),
-        "{message}"
-    );
-    assert!(
-        message.contains("wam7.urdf") && message.contains("'gripper'"),
+        message.starts_with("scenes/bad.yaml: robot.end_effector: ")
+            && message.contains("wam7.urdf")
+            && message.contains("no link named 'gripper'"),
         "{message}"
     );
     let (_, message) = error_of(&edited("end_effector: hand", "end_effector: wam_base"));
