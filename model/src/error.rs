@@ -40,6 +40,14 @@ pub enum Error {
         /// What is wrong with it.
         message: String,
     },
+    /// The URDF has no link of the end effector's name: the fault of whoever named it
+    /// (a scene's `robot.end_effector`).
+    NoEndEffector {
+        /// The URDF file.
+        file: PathBuf,
+        /// Which link is missing, and the links there are.
+        message: String,
+    },
     /// A collision mesh is missing or unusable.
     Mesh {
         /// The mesh file.
@@ -81,6 +89,7 @@ impl Error {
             | Error::Parse { file, .. }
             | Error::Invalid { file, .. }
             | Error::Urdf { file, .. }
+            | Error::NoEndEffector { file, .. }
             | Error::Mesh { file, .. }
             | Error::InvalidStart { file, .. } => file,
         }
@@ -109,7 +118,7 @@ impl fmt::Display for Error {
                 field,
                 message,
             } => write!(f, "{}: {field}: {message}", file.display()),
-            Error::Urdf { file, message } => {
+            Error::Urdf { file, message } | Error::NoEndEffector { file, message } => {
                 write!(f, "{}: URDF: {message}", file.display())
             }
             Error::Mesh { file, message } => {

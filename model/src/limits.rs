@@ -57,7 +57,7 @@ impl Limit {
             // Compared as integers: 2^64 - 1 must not round to a limit.
             Number::Count(v) => {
                 let least = self.least.ceil() as u64 + u64::from(self.above_least);
-                v >= least && (v as f64) <= self.most && v <= self.most as u64
+                v >= least && v <= self.most as u64
             }
         };
         match within {
@@ -255,7 +255,7 @@ pub const RUNS: Limit = count("--runs", "", 1, 10_000, "runs");
 /// `bench --jobs`: runs at once.
 pub const JOBS: Limit = count("--jobs", "", 1, 1_024, "processes");
 
-/// Every limit, for the README's table and its test.
+/// Every limit, for the table in docs/commands.md and its test.
 pub const ALL: [&Limit; 23] = [
     &K,
     &THREADS,

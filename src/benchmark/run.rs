@@ -235,7 +235,6 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, String> {
     }
     // A new database, not added to the old one, which stays until the new one is whole.
     let database = out.join("results.db");
-    let mut why = String::new();
     crate::output::write_whole_with(&database, |temporary| {
         let status = Command::new("ompl_benchmark_statistics")
             .args(&scene_logs)
@@ -243,21 +242,17 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, String> {
             .arg(temporary)
             .stdout(Stdio::null())
             .status()
-            .inspect_err(|e| {
-                why = format!(
+            .map_err(|e| {
+                std::io::Error::other(format!(
                     "cannot run ompl_benchmark_statistics ({e}): install ompl-demos \
                      (bash .ci/install-packages)"
-                )
+                ))
             })?;
         match status.success() {
             true => Ok(()),
-            false => {
-                why = "ompl_benchmark_statistics failed".into();
-                Err(std::io::Error::other(why.clone()))
-            }
+            false => Err(std::io::Error::other("ompl_benchmark_statistics failed")),
         }
-    })
-    .map_err(|e| if why.is_empty() { e } else { why })?;
+    })?;
     Ok(Merged {
         database,
         scene_logs,

@@ -128,11 +128,8 @@ fn the_plans_folder_is_tried_before_the_search() {
     // before searching (no search summary printed), each named.
     std::fs::write(dir.join("blocker"), "").unwrap();
     std::fs::create_dir(dir.join("taken.json")).unwrap();
-    for (out, named) in [
-        ("blocker/plan.json", "blocker"),
-        ("taken.json", "taken.json"),
-    ] {
-        let (code, stdout, stderr) = common::pushplan_in(
+    let plan_to = |out: &str| {
+        common::pushplan_in(
             dir,
             &[
                 "plan",
@@ -142,23 +139,19 @@ fn the_plans_folder_is_tried_before_the_search() {
                 "--out",
                 out,
             ],
-        );
+        )
+    };
+    for (out, named) in [
+        ("blocker/plan.json", "blocker"),
+        ("taken.json", "taken.json"),
+    ] {
+        let (code, stdout, stderr) = plan_to(out);
         assert_eq!(code, 2, "{stdout}{stderr}");
         assert!(stderr.contains(named), "{stderr}");
         assert!(!stdout.contains("propagations"), "searched first: {stdout}");
     }
     // A missing folder is made.
-    let (code, stdout, stderr) = common::pushplan_in(
-        dir,
-        &[
-            "plan",
-            scene.to_str().unwrap(),
-            "--time",
-            "30",
-            "--out",
-            "new/folder/plan.json",
-        ],
-    );
+    let (code, stdout, stderr) = plan_to("new/folder/plan.json");
     assert_eq!(code, 0, "{stdout}{stderr}");
     assert!(dir.join("new/folder/plan.json").is_file());
 }

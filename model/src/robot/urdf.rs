@@ -30,10 +30,13 @@ pub fn load_urdf(path: &Path, end_effector: &str, base: Isometry3<f64>) -> Resul
 
     let order = tree_order(&robot).map_err(urdf_error)?;
     if !order.iter().any(|(name, _)| name == end_effector) {
-        return Err(urdf_error(format!(
-            "no link named '{end_effector}' {NOT_THE_END_EFFECTOR}; the links are {}",
-            name_list(robot.links.iter().map(|l| l.name.as_str()))
-        )));
+        return Err(Error::NoEndEffector {
+            file: path.to_path_buf(),
+            message: format!(
+                "no link named '{end_effector}' (the end-effector link); the links are {}",
+                name_list(robot.links.iter().map(|l| l.name.as_str()))
+            ),
+        });
     }
 
     // The planning chain: joints from the end effector up to the root.
@@ -270,10 +273,6 @@ fn link_geometry(path: &Path, link: &urdf_rs::Link) -> Result<Vec<Geometry>> {
     }
     Ok(out)
 }
-
-/// Words of the error of an end-effector link the URDF lacks: the scene names the link,
-/// so the scene's loader tells it apart from the URDF's own faults.
-pub const NOT_THE_END_EFFECTOR: &str = "(the end-effector link)";
 
 /// Positive, finite dimensions for primitive solids.
 pub fn check_dimensions(primitive: &Primitive) -> std::result::Result<(), String> {

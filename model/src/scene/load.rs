@@ -755,14 +755,10 @@ impl Loader<'_> {
                 let base = isometry_from_xyz_rpy(base_pose.xyz, base_pose.rpy);
                 // A link the URDF lacks is the scene's fault: its field is named.
                 let chain = load_urdf(&urdf_path, end_effector, base).map_err(|e| match e {
-                    Error::Urdf { file, message }
-                        if message.contains(crate::robot::urdf::NOT_THE_END_EFFECTOR) =>
-                    {
-                        self.invalid(
-                            "robot.end_effector",
-                            format!("{}: {message}", file.display()),
-                        )
-                    }
+                    Error::NoEndEffector { file, message } => self.invalid(
+                        "robot.end_effector",
+                        format!("{}: {message}", file.display()),
+                    ),
                     e => e,
                 })?;
                 let ee_link = chain
