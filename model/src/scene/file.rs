@@ -1,6 +1,7 @@
 //! The scene file format (YAML), as typed structs. Unknown keys are rejected everywhere.
 //! Units: metres, radians, kilograms, seconds. See the README for an annotated example.
 
+use super::number::number;
 use serde::Deserialize;
 use std::path::PathBuf;
 
@@ -56,6 +57,7 @@ pub enum RobotSpec {
         #[serde(default)]
         base_pose: PoseSpec,
         /// Start configuration (rad / m), one value per joint from base to end effector.
+        #[serde(deserialize_with = "number")]
         start_joints: Vec<f64>,
         /// The end-effector link.
         end_effector: String,
@@ -70,8 +72,10 @@ pub enum RobotSpec {
         /// The hand's solid, centred on the hand frame.
         shape: ShapeSpec,
         /// Start pose [x, y, yaw] (m, m, rad), world frame.
+        #[serde(deserialize_with = "number")]
         start: [f64; 3],
         /// Height of the hand frame above the table top (m).
+        #[serde(deserialize_with = "number")]
         height: f64,
     },
 }
@@ -82,9 +86,11 @@ pub enum RobotSpec {
 pub struct PoseSpec {
     /// Translation (m).
     #[serde(default)]
+    #[serde(deserialize_with = "number")]
     pub xyz: [f64; 3],
     /// Roll, pitch, yaw (rad).
     #[serde(default)]
+    #[serde(deserialize_with = "number")]
     pub rpy: [f64; 3],
 }
 
@@ -93,8 +99,10 @@ pub struct PoseSpec {
 #[serde(deny_unknown_fields)]
 pub struct PlaneSpec {
     /// Height of the tool point above the table top (m).
+    #[serde(deserialize_with = "number")]
     pub height: f64,
     /// The tool's world orientation at yaw 0 (roll, pitch, yaw in rad); yaw stays free.
+    #[serde(deserialize_with = "number")]
     pub orientation_rpy: [f64; 3],
 }
 
@@ -103,13 +111,17 @@ pub struct PlaneSpec {
 #[serde(deny_unknown_fields)]
 pub struct TableSpec {
     /// World height of the table top (m).
+    #[serde(deserialize_with = "number")]
     pub height: f64,
     /// Extent of the support surface along world x and y: [min, max] (m).
+    #[serde(deserialize_with = "number")]
     pub x: [f64; 2],
     /// Extent along world y: [min, max] (m).
+    #[serde(deserialize_with = "number")]
     pub y: [f64; 2],
     /// Thickness of the table top slab (m).
     #[serde(default = "default_table_thickness")]
+    #[serde(deserialize_with = "number")]
     pub thickness: f64,
 }
 
@@ -124,20 +136,25 @@ pub enum ShapeSpec {
     /// A box centred on its frame.
     Box {
         /// Full side lengths x, y, z (m).
+        #[serde(deserialize_with = "number")]
         size: [f64; 3],
     },
     /// An upright cylinder.
     Cylinder {
         /// Radius (m).
+        #[serde(deserialize_with = "number")]
         radius: f64,
         /// Height (m).
+        #[serde(deserialize_with = "number")]
         height: f64,
     },
     /// A convex polygon (x, y vertices in the body frame) extruded to `height`.
     Polygon {
         /// The vertices, counter-clockwise (m).
+        #[serde(deserialize_with = "number")]
         vertices: Vec<[f64; 2]>,
         /// Height of the extrusion (m).
+        #[serde(deserialize_with = "number")]
         height: f64,
     },
     /// An STL mesh (file relative to the scene file), used as its convex hull.
@@ -146,6 +163,7 @@ pub enum ShapeSpec {
         file: PathBuf,
         /// Scale along x, y, z (default 1).
         #[serde(default = "unit_scale")]
+        #[serde(deserialize_with = "number")]
         scale: [f64; 3],
     },
 }
@@ -177,12 +195,16 @@ pub struct ObjectSpec {
     /// box, cylinder or polygon; it rests on the table.
     pub shape: ShapeSpec,
     /// [x, y, yaw] of the footprint's centre (m, m, rad), world frame.
+    #[serde(deserialize_with = "number")]
     pub pose: [f64; 3],
     /// Mass (kg).
+    #[serde(deserialize_with = "number")]
     pub mass: f64,
     /// Friction coefficient with the table.
+    #[serde(deserialize_with = "number")]
     pub mu_g: f64,
     /// Friction coefficient with the robot.
+    #[serde(deserialize_with = "number")]
     pub mu_c: f64,
     /// Pressure distribution over the footprint; sets the characteristic length.
     #[serde(default)]
@@ -226,21 +248,27 @@ pub struct GraspSpec {
 pub struct BoundsSpec {
     /// Displacement along x (m).
     #[serde(default)]
+    #[serde(deserialize_with = "number")]
     pub x: [f64; 2],
     /// Displacement along y (m).
     #[serde(default)]
+    #[serde(deserialize_with = "number")]
     pub y: [f64; 2],
     /// Displacement along z (m).
     #[serde(default)]
+    #[serde(deserialize_with = "number")]
     pub z: [f64; 2],
     /// Roll (rad).
     #[serde(default)]
+    #[serde(deserialize_with = "number")]
     pub roll: [f64; 2],
     /// Pitch (rad).
     #[serde(default)]
+    #[serde(deserialize_with = "number")]
     pub pitch: [f64; 2],
     /// Yaw (rad).
     #[serde(default)]
+    #[serde(deserialize_with = "number")]
     pub yaw: [f64; 2],
 }
 
@@ -254,6 +282,7 @@ pub enum PressureSpec {
     /// A given characteristic length c (m).
     CharacteristicLength {
         /// The characteristic length (m).
+        #[serde(deserialize_with = "number")]
         c: f64,
     },
 }
@@ -265,20 +294,26 @@ pub struct GoalSpec {
     /// Name of the goal object.
     pub object: Option<String>,
     /// Goal disc centre [x, y] (m), world frame.
+    #[serde(default, deserialize_with = "number")]
     pub center: Option<[f64; 2]>,
     /// Goal disc radius (m).
+    #[serde(default, deserialize_with = "number")]
     pub radius: Option<f64>,
     /// How far inside the disc's edge the goal object's centre must end (m).
+    #[serde(default, deserialize_with = "number")]
     pub margin: Option<f64>,
     /// A robot goal configuration instead.
+    #[serde(default, deserialize_with = "number")]
     pub configuration: Option<Vec<f64>>,
     /// Distance in configuration space counted as reached (rad).
+    #[serde(default, deserialize_with = "number")]
     pub tolerance: Option<f64>,
     /// Or: an object whose grasp (one of its `grasps`) the tool must reach, pushing
     /// clutter aside on the way.
     pub grasp: Option<String>,
     /// With `grasp`: may pushes move the object to grasp too (default false: it must stay
     /// where it starts).
+    #[serde(default, deserialize_with = "number")]
     pub object_may_move: Option<bool>,
 }
 
@@ -291,35 +326,50 @@ pub struct GoalSpec {
 #[repr(C)]
 pub struct PlannerSpec {
     /// Search time limit (s).
+    #[serde(deserialize_with = "number")]
     pub time_limit: f64,
     /// Random seed.
+    #[serde(deserialize_with = "number")]
     pub seed: u64,
     /// Control samples per extension (Alg. 1).
+    #[serde(deserialize_with = "number")]
     pub k: u32,
     /// Tree states a nearest-neighbour query compares at most, nearest boxes first; 0
     /// for exact answers (slower as the tree grows; see `planner::NearestTree`).
+    #[serde(deserialize_with = "number")]
     pub nearest_checks: u32,
     /// Probability of sampling the goal.
+    #[serde(deserialize_with = "number")]
     pub goal_bias: f64,
     /// Propagation step dt (s).
+    #[serde(deserialize_with = "number")]
     pub step: f64,
     /// Shortest and longest control duration (s).
+    #[serde(deserialize_with = "number")]
     pub min_duration: f64,
     /// Longest control duration (s).
+    #[serde(deserialize_with = "number")]
     pub max_duration: f64,
     /// Bound on |vx|, |vy| of the end effector (m/s).
+    #[serde(deserialize_with = "number")]
     pub max_ee_speed: f64,
     /// Bound on |omega_z| of the end effector (rad/s).
+    #[serde(deserialize_with = "number")]
     pub max_ee_turn_rate: f64,
     /// Bound on each joint's null-space sample (rad/s).
+    #[serde(deserialize_with = "number")]
     pub max_nullspace_speed: f64,
     /// Distance weights: robot configuration, each object, the goal object.
+    #[serde(deserialize_with = "number")]
     pub robot_weight: f64,
     /// Distance weight of each object other than the goal object.
+    #[serde(deserialize_with = "number")]
     pub object_weight: f64,
     /// Distance weight of the goal object.
+    #[serde(deserialize_with = "number")]
     pub goal_object_weight: f64,
     /// Length (m) that one radian of object yaw counts as in the distance.
+    #[serde(deserialize_with = "number")]
     pub rotation_length: f64,
 }
 
@@ -350,18 +400,25 @@ impl Default for PlannerSpec {
 #[serde(default, deny_unknown_fields)]
 pub struct PhysicsSpec {
     /// Contacts are tracked from this distance on (m): more than a link moves in a step.
+    #[serde(deserialize_with = "number")]
     pub contact_margin: f64,
     /// Arm-object penetration tolerated (m).
+    #[serde(deserialize_with = "number")]
     pub penetration_tolerance: f64,
     /// Object-object overlap tolerated (m).
+    #[serde(deserialize_with = "number")]
     pub overlap_tolerance: f64,
     /// A contact whose normal is within this angle of vertical is invalid (rad).
+    #[serde(deserialize_with = "number")]
     pub vertical_normal_angle: f64,
     /// Largest joint motion per step (rad or m).
+    #[serde(deserialize_with = "number")]
     pub max_joint_step: f64,
     /// Tolerated distance of the tool from its plane (m) and tilt (rad).
+    #[serde(deserialize_with = "number")]
     pub plane_tolerance: f64,
     /// Tolerated tilt of the tool from its plane's orientation (rad).
+    #[serde(deserialize_with = "number")]
     pub tilt_tolerance: f64,
     /// Reserve against tipping, a fraction in [0, 1): the support's centre of pressure
     /// must stay inside the footprint shrunk by this fraction about its centroid. The
@@ -370,30 +427,36 @@ pub struct PhysicsSpec {
     /// a glass pushed at 0.8 of its `b / mu_g` leans by 0.03 rad on its compressed edge,
     /// and with 0.2 two of 330 executed trials rocked a glass past 8.6 degrees
     /// (BENCHMARKS.md, "Plans that work in the world").
+    #[serde(deserialize_with = "number")]
     pub tipping_margin: f64,
     /// Smallest distance between a moving object and any other object or obstacle (m).
+    #[serde(deserialize_with = "number")]
     pub object_clearance: f64,
     /// Smallest distance a link closing in on an object keeps from it where a push
     /// hard enough to slide the object would tip it (m): such a touch must not happen,
     /// and a plan that misses it by millimetres tips the object when it stands a little
     /// elsewhere. At most `contact_margin` (contacts are tracked from there on); 0 turns
     /// the rule off.
+    #[serde(deserialize_with = "number")]
     pub arm_clearance: f64,
     /// How pushed objects move: `quasistatic` (the default: the planar pushing model) or
     /// `semi_dynamic` (the workshop paper's: a 2D rigid-body engine; objects may be
     /// struck, push one another and coast, and must come to rest within `t_max`).
     pub model: PhysicsModel,
     /// Semi-dynamic model: longest time for every object to come to rest after a step (s).
+    #[serde(deserialize_with = "number")]
     pub t_max: f64,
     /// A push at height loads the object's leading edge: the centre of friction follows
     /// the support's centre of pressure (the tipping balance's), instead of staying where
     /// a uniform pressure puts it.
+    #[serde(deserialize_with = "number")]
     pub pressure_shift: bool,
     /// Quasistatic model: an object pushed against another pushes it along
     /// (`physics::chain`), instead of the state being invalid (the whole-arm paper's
     /// rule). Off by default: plans keep `object_clearance`; the perturbed worlds that
     /// judge a plan's robustness turn it on, since a real object touched by its
     /// neighbour moves.
+    #[serde(deserialize_with = "number")]
     pub object_pushing: bool,
 }
 
@@ -423,9 +486,11 @@ impl Default for PhysicsSpec {
 #[serde(default, deny_unknown_fields)]
 pub struct TrajectorySpec {
     /// Largest joint acceleration (rad/s^2, m/s^2 for prismatic joints).
+    #[serde(deserialize_with = "number")]
     pub max_joint_acceleration: f64,
     /// Fastest any point of a pushed object may move (m/s): the quasistatic model holds
     /// for slow pushes (an object let go at `v` slides on by `v^2 / (2 mu_g g)`).
+    #[serde(deserialize_with = "number")]
     pub max_object_speed: f64,
 }
 

@@ -8,6 +8,7 @@ mod clearances;
 pub mod file;
 pub mod generate;
 mod load;
+mod number;
 mod start;
 
 pub use clearances::Clearances;

@@ -405,3 +405,59 @@ fn a_tool_that_would_jump_past_objects_in_one_step_is_refused() {
     let (_, message) = error_of(&format!("{}\nplanner: {{max_ee_turn_rate: 30}}\n", base()));
     assert!(message.contains("planner.max_ee_turn_rate"), "{message}");
 }
+
+#[test]
+fn numbers_and_flags_written_as_quoted_text_are_refused() {
+    // Each a number or flag quoted, at each kind of place: a plain field, a list, a
+    // field with a default, an optional field, a count and a flag.
+    for (from, to, field) in [
+        ("    mu_g: 0.4", "    mu_g: \"0.4\"", "objects[0].mu_g"),
+        ("    mass: 1.0", "    mass: '1.0'", "objects[0].mass"),
+        (
+            "pose: [0.75, 0.0, 0.0]",
+            "pose: [0.75, \"0.0\", 0.0]",
+            "objects[0].pose",
+        ),
+        ("radius: 0.1}", "radius: \"0.1\"}", "goal.radius"),
+        ("height: 0.76,", "height: \"0.76\",", "table.height"),
+    ] {
+        let (err, message) = error_of(&edited(from, to));
+        assert!(matches!(err, Error::Parse { .. }), "{message}");
+        assert!(
+            message.contains(field) && message.contains("without quotes"),
+            "{to}: {message}"
+        );
+    }
+    for (extra, field) in [
+        ("planner: {step: \"0.01\"}", "planner.step"),
+        ("planner: {k: \"3\"}", "planner.k"),
+        ("planner: {seed: '7'}", "planner.seed"),
+        (
+            "physics: {object_pushing: \"true\"}",
+            "physics.object_pushing",
+        ),
+    ] {
+        let (_, message) = error_of(&format!("{}\n{extra}\n", base()));
+        assert!(
+            message.contains(field) && message.contains("without quotes"),
+            "{extra}: {message}"
+        );
+    }
+    // The same values unquoted load; so does a quoted name that looks like a number.
+    for extra in [
+        "planner: {step: 0.01, k: 3, seed: 7}\nphysics: {object_pushing: true}",
+        "planner: {time_limit: 1e1, max_duration: 1}",
+    ] {
+        Scene::from_yaml(&format!("{}\n{extra}\n", base()), Path::new(BASE))
+            .unwrap_or_else(|e| panic!("{extra}: {e}"));
+    }
+    let named = edited("name: green_box", "name: \"1\"")
+        .replace("goal: {object: green_box", "goal: {object: \"1\"");
+    let scene = Scene::from_yaml(&named, Path::new(BASE)).unwrap();
+    assert_eq!(scene.objects[0].name, "1");
+    // A negative count is refused as a value, a fraction as a type.
+    let (_, message) = error_of(&format!("{}\nplanner: {{k: -3}}\n", base()));
+    assert!(message.contains("planner.k"), "{message}");
+    let (_, message) = error_of(&format!("{}\nplanner: {{k: 2.5}}\n", base()));
+    assert!(message.contains("planner.k"), "{message}");
+}
