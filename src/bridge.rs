@@ -141,14 +141,17 @@ pub mod ffi {
         pub seed: u64,
         pub robust_trials: usize,
         pub robust_rate: f64,
-        /// The found path's rate, already measured with the same seed and trials (negative:
-        /// not measured).
+        /// The found path's rate, already measured with the same seed over `found_trials`
+        /// trials (negative: not measured).
         pub found_rate: f64,
-        /// Seconds from now at which shortcutting stops, budget left or not (infinite: never).
+        pub found_trials: usize,
+        /// Seconds from now at which shortcutting and robustness checks stop, budget left
+        /// or not (infinite: never).
         pub time_left: f64,
     }
 
-    /// `planner::FinishedPath`, flat; `robustness` -1 if not measured.
+    /// `planner::FinishedPath`, flat; `robustness` -1 if not measured, else over
+    /// `robustness_trials` perturbed re-simulations.
     pub struct FinishedPath {
         pub controls: Vec<f64>,
         pub steps: Vec<usize>,
@@ -161,6 +164,7 @@ pub mod ffi {
         pub shortcut_accepted: usize,
         pub shortcut_dropped_as_less_robust: bool,
         pub robustness: f64,
+        pub robustness_trials: usize,
     }
 
     /// Part of a DARRT path: flat states one after another, and what the hand holds in

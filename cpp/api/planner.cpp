@@ -264,7 +264,7 @@ namespace pushplan
             kept.states.assign(states.begin(), states.end());
             // Checked and described as every plan is; not shortcut (it is the old plan's rest).
             const bridge::FinishedPath path = detail::finish(
-                *finisher, kept, true, bridge::FinishSettings{0.0, 0, 0, 0.0, -1.0, std::numeric_limits<double>::infinity()});
+                *finisher, kept, true, bridge::FinishSettings{0.0, 0, 0, 0.0, -1.0, 0, std::numeric_limits<double>::infinity()});
             Plan out;
             out.solved = true;
             detail::nameParts(out, info);
@@ -280,7 +280,7 @@ namespace pushplan
 
     Plan detail::solve(const std::function<rust::Box<bridge::Problem>()> &load,
                        const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
-                       const std::function<void(const Progress &)> &application_tell)
+                       const std::function<void(const Progress &)> &application_tell, Finishing finishing)
     {
         // An exception from the application's progress callback stops the search and
         // reaches the caller as it was thrown; every other failure inside, the model's or
@@ -301,7 +301,7 @@ namespace pushplan
             };
         try
         {
-            return solveScene(load, settings_of, tell);
+            return solveScene(load, settings_of, tell, finishing);
         }
         catch (...)
         {
@@ -313,11 +313,14 @@ namespace pushplan
 
     Plan detail::solveScene(const std::function<rust::Box<bridge::Problem>()> &load,
                               const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
-                              const std::function<void(const Progress &)> &tell)
+                              const std::function<void(const Progress &)> &tell, Finishing finishing)
     {
         // Every failure inside, the model's or OMPL's, leaves as pushplan::Error.
         return detail::asPushplanError([&]() -> Plan {
             using detail::checked;
+            // The time limit counts from here: loading the scene and setting up the
+            // searches are part of the time a plan takes.
+            const auto started = std::chrono::steady_clock::now();
             detail::SearchBuilder builder(load);
             const bridge::SceneInfo &info = builder.info();
             const RunSettings run = settings_of(info);
@@ -357,7 +360,6 @@ namespace pushplan
             detail::Portfolio portfolio(std::move(searches));
 
             // Search until an exact solution or the time limit; progress once a second.
-            const auto started = std::chrono::steady_clock::now();
             const auto elapsed = [&] {
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             };
@@ -366,7 +368,7 @@ namespace pushplan
             // (OMPL checks the limit only between extensions) ends on time. Not PDST's.
             if (bridge::planner_cut_at_time_limit(run.planner))
                 for (const detail::ModelHandlePtr &m : every_model)
-                    m->propagator().set_time_limit(time_limit);
+                    m->propagator().set_time_limit(time_limit - elapsed());
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
@@ -443,6 +445,7 @@ namespace pushplan
                 std::size_t search;
                 detail::FlatPath path;
                 double robustness;
+                std::size_t trials;
             };
             std::optional<SetAside> most_robust;
             while (winner && run.robust_trials > 0)
@@ -452,16 +455,19 @@ namespace pushplan
                 const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(models[*winner]->problem());
                 // The rate as found is passed on: the shortcutting toward robustness compares
                 // with it and need not measure it again.
-                const auto finished = [&](double shortcut, double found_rate) {
+                // Checks cut short by the time limit are over the trials they ran.
+                const auto finished = [&](double shortcut, double found_rate, std::size_t found_trials) {
                     return detail::finish(*finisher, found, true,
                                           bridge::FinishSettings{shortcut, seed, run.robust_trials, run.robust_rate,
-                                                                 found_rate, time_limit - elapsed()});
+                                                                 found_rate, found_trials, time_limit - elapsed()});
                 };
-                const bridge::FinishedPath as_found = finished(0.0, -1.0);
-                const bridge::FinishedPath repaired = as_found.robustness >= run.robust_rate
-                                                          ? as_found
-                                                          : finished(run.robust_shortcut, as_found.robustness);
+                const bridge::FinishedPath as_found = finished(0.0, -1.0, 0);
+                const bridge::FinishedPath repaired =
+                    as_found.robustness >= run.robust_rate
+                        ? as_found
+                        : finished(run.robust_shortcut, as_found.robustness, as_found.robustness_trials);
                 plan.robustness = repaired.robustness;
+                plan.robustness_trials = repaired.robustness_trials;
                 detail::FlatPath as_repaired{std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
                                              std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
                                              std::vector<double>(repaired.states.begin(), repaired.states.end())};
@@ -471,13 +477,13 @@ namespace pushplan
                     break;
                 }
                 if (!most_robust || plan.robustness > most_robust->robustness)
-                    most_robust = SetAside{*winner, std::move(as_repaired), plan.robustness};
+                    most_robust = SetAside{*winner, std::move(as_repaired), plan.robustness, plan.robustness_trials};
                 {
                     char note[256];
                     std::snprintf(note, sizeof note,
-                                  "a solution reaches the goal in %.0f %% of %u perturbed re-simulations "
+                                  "a solution reaches the goal in %.0f %% of %zu perturbed re-simulations "
                                   "(%zu of %zu controls kept shortcutting toward robustness): searching on",
-                                  100.0 * plan.robustness, run.robust_trials, repaired.steps.size(),
+                                  100.0 * plan.robustness, plan.robustness_trials, repaired.steps.size(),
                                   found.steps.size());
                     tell_event(note);
                 }
@@ -495,11 +501,12 @@ namespace pushplan
                 winner = most_robust->search;
                 found = std::move(most_robust->path);
                 plan.robustness = most_robust->robustness;
+                plan.robustness_trials = most_robust->trials;
                 char note[256];
                 std::snprintf(note, sizeof note,
-                              "no solution reached %.0f %% in time: the most robust found, %.0f %% of %u "
+                              "no solution reached %.0f %% in time: the most robust found, %.0f %% of %zu "
                               "perturbed re-simulations, is the plan",
-                              100.0 * run.robust_rate, 100.0 * plan.robustness, run.robust_trials);
+                              100.0 * run.robust_rate, 100.0 * plan.robustness, plan.robustness_trials);
                 tell_event(note);
             }
             const bool solved = winner.has_value();
@@ -522,6 +529,11 @@ namespace pushplan
             plan.solved = solved;
             if (found.states.empty())
                 return plan;
+            if (finishing == Finishing::AsFound)
+            {
+                describePath(plan, info, found.states, found.controls, found.steps);
+                return plan;
+            }
 
             // Every plan is checked (re-simulating it reproduces its states) and finished
             // (shortcut, kept robust) by the model, the same way as the CLI's and bench's.
@@ -533,7 +545,7 @@ namespace pushplan
                 *finisher, found, solved,
                 bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate,
                                        solved && run.robust_trials > 0 ? plan.robustness : -1.0,
-                                       time_limit - elapsed()});
+                                       plan.robustness_trials, time_limit - elapsed()});
             describe(plan, *finisher, info, path);
             return plan;
             });
@@ -545,27 +557,13 @@ namespace pushplan
         plan.before_shortcut = path.before;
         plan.after_shortcut = path.after;
         if (path.robustness >= 0.0)
+        {
             plan.robustness = path.robustness;
-
-        const std::size_t width = info.dof + 3 * info.objects;
-        for (std::size_t s = 0; s * width < path.states.size(); ++s)
-        {
-            const double *x = path.states.data() + s * width;
-            plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
-            std::vector<Eigen::Vector3d> poses;
-            const detail::FlatLayout flat{info.dof, info.objects};
-            for (std::size_t o = 0; o < info.objects; ++o)
-                poses.emplace_back(x[flat.object(o)], x[flat.object(o) + 1], x[flat.object(o) + 2]);
-            plan.object_poses.push_back(std::move(poses));
+            plan.robustness_trials = path.robustness_trials;
         }
-        const std::size_t cwidth = 3 + info.dof;
-        for (std::size_t i = 0; i < path.steps.size(); ++i)
-        {
-            const double *c = path.controls.data() + i * cwidth;
-            plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
-                                            Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
-                                            static_cast<double>(path.steps[i]) * info.planner.step, path.steps[i]});
-        }
+        describePath(plan, info, std::vector<double>(path.states.begin(), path.states.end()),
+                     std::vector<double>(path.controls.begin(), path.controls.end()),
+                     std::vector<std::size_t>(path.steps.begin(), path.steps.end()));
         const bridge::Trajectory trajectory =
             finisher.trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
                              rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
@@ -586,5 +584,28 @@ namespace pushplan
         for (const auto &c : path.contacts)
             plan.contacts[c.control].push_back(
                 Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
+    }
+
+    void detail::describePath(Plan &plan, const bridge::SceneInfo &info, const std::vector<double> &states,
+                              const std::vector<double> &controls, const std::vector<std::size_t> &steps)
+    {
+        const detail::FlatLayout flat{info.dof, info.objects};
+        for (std::size_t s = 0; s * flat.size() < states.size(); ++s)
+        {
+            const double *x = states.data() + s * flat.size();
+            plan.joint_trajectory.emplace_back(Eigen::Map<const Eigen::VectorXd>(x, info.dof));
+            std::vector<Eigen::Vector3d> poses;
+            for (std::size_t o = 0; o < info.objects; ++o)
+                poses.emplace_back(x[flat.object(o)], x[flat.object(o) + 1], x[flat.object(o) + 2]);
+            plan.object_poses.push_back(std::move(poses));
+        }
+        const std::size_t cwidth = 3 + info.dof;
+        for (std::size_t i = 0; i < steps.size(); ++i)
+        {
+            const double *c = controls.data() + i * cwidth;
+            plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
+                                            Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
+                                            static_cast<double>(steps[i]) * info.planner.step, steps[i]});
+        }
     }
 }  // namespace pushplan

@@ -77,18 +77,35 @@ namespace pushplan
         /// Options with every unset value taken from the scene (`info`).
         RunSettings resolve(const Options &options, const bridge::SceneInfo &info);
 
+        /// What solve does with the path it found.
+        enum class Finishing
+        {
+            /// Finishes it (re-simulated, shortcut, with its trajectory and contacts):
+            /// Planner::solve.
+            Whole,
+            /// Hands back its controls and the states after each, its robustness if
+            /// measured: the CLI finishes the path itself (planning::finish), and would
+            /// otherwise pay for re-simulating it twice after the time limit.
+            AsFound,
+        };
+
         /// Plans the scene `load` reads as the settings `settings_of` gives for it (checked
         /// here, every value named), telling `tell` (if set) how far the search is: what
         /// Planner::solve and the CLI's search do. Throws pushplan::Error, or what `tell`
         /// threw (the search stopped there).
         Plan solve(const std::function<rust::Box<bridge::Problem>()> &load,
                    const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
-                   const std::function<void(const Progress &)> &tell);
+                   const std::function<void(const Progress &)> &tell, Finishing finishing = Finishing::Whole);
 
         /// solve's work, every failure as pushplan::Error (an exception of `tell` too).
         Plan solveScene(const std::function<rust::Box<bridge::Problem>()> &load,
                         const std::function<RunSettings(const bridge::SceneInfo &)> &settings_of,
-                        const std::function<void(const Progress &)> &tell);
+                        const std::function<void(const Progress &)> &tell, Finishing finishing);
+
+        /// `plan`'s states (the start and after each control) and controls from the flat
+        /// `states`, `controls` and `steps` of the scene `info` describes.
+        void describePath(Plan &plan, const bridge::SceneInfo &info, const std::vector<double> &states,
+                          const std::vector<double> &controls, const std::vector<std::size_t> &steps);
 
         /// Reaches a grasp of `object` in the scene `load` reads as the settings
         /// `settings_of` gives for it (checked here), from the flat state `start_of` gives

@@ -26,13 +26,15 @@ namespace pushplan::bridge
                 problem->set_start(start);
             return problem;
         };
-        const Plan plan = detail::solve(load,
-                                        [&](const SceneInfo &) { return run; }, tell);
+        const Plan plan = detail::solve(
+            load, [&](const SceneInfo &) { return run; }, tell, detail::Finishing::AsFound);
         SolveOutput out;
         out.summary = detail::SearchSummary{plan.solved,          !plan.solved && !plan.controls.empty(),
                                             plan.planning_time,   plan.tree_size,
                                             plan.propagation_steps, plan.restarts,
                                             plan.fallbacks};
+        out.robustness = plan.robustness;
+        out.robustness_trials = plan.robustness_trials;
         out.search.propagations = plan.search.propagations;
         out.search.steps = plan.search.steps;
         out.search.moved_goal_object = plan.search.moved_goal_object;

@@ -256,6 +256,10 @@ namespace pushplan
         /// Options::robust_trials was 0). Below Options::robust_rate when no solution reached
         /// it within the time limit: the plan is then the most robust solution found.
         double robustness = -1.0;
+        /// The perturbed re-simulations `robustness` is over: Options::robust_trials, or fewer
+        /// where the time limit cut the check short (the first of them: the same seed and this
+        /// many trials measure it again). 0 when not checked.
+        std::size_t robustness_trials = 0;
         /// Set by Planner::replan: the plan starts at the observed state, not the scene's start.
         std::optional<Replanned> replanned;
         /// Total duration of the controls (s).

@@ -6,7 +6,7 @@ use super::Propagator;
 use crate::planner::SearchStats;
 use crate::planning::darrt::PrimitivePath;
 use crate::planning::path::{PathControl, PathMetrics};
-use crate::planning::{FinishSettings, FinishedPath, RobustRequirement};
+use crate::planning::{FinishSettings, FinishedPath, MeasuredRate, RobustRequirement};
 use crate::planning::{PlannerKind, RunSettings};
 use crate::scene::{Goal, Scene};
 
@@ -151,10 +151,10 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 s.robust_rate
             ));
         }
-        if s.found_rate > 1.0 {
+        if s.found_rate > 1.0 || (s.found_rate >= 0.0 && s.found_trials == 0) {
             return Err(format!(
-                "the found path's rate must be at most 1, got {}",
-                s.found_rate
+                "the found path's rate must be at most 1 and over at least one trial, got {} over {}",
+                s.found_rate, s.found_trials
             ));
         }
         Ok(FinishSettings {
@@ -164,7 +164,10 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 trials: s.robust_trials,
                 rate: s.robust_rate,
             }),
-            found_rate: (s.found_rate >= 0.0).then_some(s.found_rate),
+            found_rate: (s.found_rate >= 0.0).then_some(MeasuredRate {
+                rate: s.found_rate,
+                trials: s.found_trials,
+            }),
             deadline: crate::planning::deadline(std::time::Instant::now(), s.time_left),
             progress: None,
         })
@@ -200,7 +203,8 @@ impl From<FinishedPath> for bridge::FinishedPath {
             shortcut_attempts: path.shortcut.attempts,
             shortcut_accepted: path.shortcut.accepted,
             shortcut_dropped_as_less_robust: path.shortcut.dropped_as_less_robust,
-            robustness: path.robustness.unwrap_or(-1.0),
+            robustness: path.robustness.map_or(-1.0, |r| r.rate),
+            robustness_trials: path.robustness.map_or(0, |r| r.trials),
         }
     }
 }

@@ -4,7 +4,7 @@
 
 use crate::planner::{Found, ReachSettings, Reached, Search, SearchProgress, SearchStats};
 use crate::planning::path::PathControl;
-use crate::planning::RunSettings;
+use crate::planning::{MeasuredRate, RunSettings};
 use crate::state::State;
 use nalgebra::DVector;
 use std::cell::Cell;
@@ -15,11 +15,15 @@ use std::path::Path;
 #[cxx::bridge(namespace = "pushplan::bridge")]
 pub mod ffi {
     /// `planner::Found` with the path flat: controls, their step counts and the states
-    /// at the start and after each control (`dof` joints, `objects` poses each).
+    /// at the start and after each control (`dof` joints, `objects` poses each); the
+    /// path's robustness over `robustness_trials` trials as robust planning measured it
+    /// (-1: not measured).
     #[derive(Debug, Clone)]
     pub struct SolveOutput {
         pub summary: SearchSummary,
         pub search: SearchStats,
+        pub robustness: f64,
+        pub robustness_trials: usize,
         pub dof: usize,
         pub objects: usize,
         pub controls: Vec<f64>,
@@ -125,6 +129,10 @@ impl Search for OmplSearch {
             search: SearchStats::from(&out.search),
             controls: PathControl::from_flat(&out.controls, &out.steps, out.dof)?,
             states: State::many_from_flat(&out.states, out.dof, out.objects)?,
+            robustness: (out.robustness >= 0.0).then_some(MeasuredRate {
+                rate: out.robustness,
+                trials: out.robustness_trials,
+            }),
         })
     }
 

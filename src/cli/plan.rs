@@ -54,8 +54,8 @@ pub fn grasp_goal(goal: &str) -> Result<String, String> {
 }
 
 /// IK-BiRRT's reach of a grasp of `object` from `from` (`None`: the start), as the plan
-/// file records it; `None` if no reach was found within the search's time limit (with
-/// its seed: `search_settings`).
+/// file records it; `None` if no reach was found by `deadline` (with the search's seed:
+/// `search_settings`).
 fn reach(
     search: &dyn Search,
     scene_path: &Path,
@@ -63,6 +63,7 @@ fn reach(
     from: Option<&State>,
     run: &PlanOptions,
     search_settings: &RunSettings,
+    deadline: &Deadline,
 ) -> Result<Option<ReachRecord>, String> {
     if !(0.0..=1.0).contains(&run.sample_probability) {
         return Err(format!(
@@ -71,7 +72,7 @@ fn reach(
         ));
     }
     let settings = ReachSettings {
-        time_limit: search_settings.time_limit,
+        time_limit: deadline.search_time(),
         seed: search_settings.seed,
         sample_probability: run.sample_probability,
     };
@@ -94,6 +95,44 @@ fn reach(
             .map(|q| q.as_slice().to_vec())
             .collect(),
     }))
+}
+
+/// How `--time` is spent: it bounds the whole command (loading, search, robustness checks,
+/// shortcutting, writing). The search and the finishing stop a reserve before the limit,
+/// for what must follow them: re-simulating the path (the check every plan passes) and
+/// writing it, whose cost grows with the path's steps.
+struct Deadline {
+    /// When the search and the finishing stop.
+    finishing: std::time::Instant,
+}
+
+impl Deadline {
+    /// Propagation steps a second of re-simulating takes at least (a few times slower than
+    /// this machine: BENCHMARKS.md, "Propagation").
+    const STEPS_PER_SECOND: f64 = 50_000.0;
+
+    /// The deadline of a command started at `started` with `--time seconds` in `scene`.
+    /// The reserve is what ten of the scene's longest controls take to re-simulate, at
+    /// most a fifth of the limit: 10 ms at the default `planner.step` and
+    /// `max_duration`, and the fifth when a control has thousands of steps (a path of
+    /// 24 000 steps of `step: 0.0001` took 0.29 s to re-simulate after a 1 s search).
+    fn new(started: std::time::Instant, seconds: f64, scene: &Scene) -> Deadline {
+        let longest = scene.planner.max_duration / scene.planner.step;
+        let reserve = (10.0 * longest / Self::STEPS_PER_SECOND).min(0.2 * seconds);
+        Deadline {
+            // `options.check` bounds `seconds` by a day: never `None`.
+            finishing: pushplan::planning::deadline(started, seconds - reserve).unwrap_or(started),
+        }
+    }
+
+    /// The time left for a search (s): at least a millisecond, for the search to report
+    /// on what it had.
+    fn search_time(&self) -> f64 {
+        self.finishing
+            .saturating_duration_since(std::time::Instant::now())
+            .as_secs_f64()
+            .max(1e-3)
+    }
 }
 
 /// `pushplan plan`: searches the scene with `search`, finishes the path and writes the plan
@@ -145,11 +184,12 @@ pub fn plan(
         );
     }
     let settings = PlanSettings::from(&options);
+    let deadline = Deadline::new(started, options.time_limit, &scene);
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
         // Reaching a grasp only: no controls, the reach from the start.
         pushplan::planning::reach::graspable_object(&scene, object)?;
-        let found = reach(search, scene_path, object, None, run, &options)?;
+        let found = reach(search, scene_path, object, None, run, &options, &deadline)?;
         let solved = found.is_some();
         let mut file = PlanFile::build(&reference, scene.clone(), &settings, &[], None)?;
         if let Some(record) = found {
@@ -190,7 +230,10 @@ pub fn plan(
         .solve(
             scene_path,
             run.from.as_ref().map(|_| &scene.start),
-            &options,
+            &RunSettings {
+                time_limit: deadline.search_time(),
+                ..options
+            },
             (!quiet).then_some(progress::search as _),
         )
         .inspect_err(|_| progress::finish())?;
@@ -204,8 +247,8 @@ pub fn plan(
             trials: options.robust_trials as usize,
             rate: options.robust_rate,
         }),
-        found_rate: None,
-        deadline: pushplan::planning::deadline(started, options.time_limit),
+        found_rate: solution.robustness,
+        deadline: Some(deadline.finishing),
         progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
     };
     let path = problem.finish(
@@ -228,18 +271,19 @@ pub fn plan(
             eprintln!("shortcutting: the shortcut path is less robust; the path as found is kept");
         }
     }
-    let mut file = PlanFile::build(
+    let mut file = PlanFile::from_simulation(
         &reference,
-        scene,
+        &scene,
         &settings,
         &path.controls,
+        &path.simulation,
         Some(path.before),
     )?;
     file.replanned = run.from.as_ref().map(|from| from.record.clone());
-    file.robustness = path.robustness.map(|success_rate| RobustnessRecord {
-        trials: options.robust_trials as usize,
+    file.robustness = path.robustness.map(|measured| RobustnessRecord {
+        trials: measured.trials,
         required_rate: options.robust_rate,
-        success_rate,
+        success_rate: measured.rate,
         particles: options.robust_particles,
     });
     let mut solved = solution.summary.exact;
@@ -247,7 +291,15 @@ pub fn plan(
         let goal_object = problem.scene().goal.object().expect("checked above");
         let name = problem.scene().objects[goal_object].name.clone();
         let end = file.end_state();
-        match reach(search, scene_path, &name, Some(&end), run, &options)? {
+        match reach(
+            search,
+            scene_path,
+            &name,
+            Some(&end),
+            run,
+            &options,
+            &deadline,
+        )? {
             Some(record) => file = file.with_reach(problem.scene(), record)?,
             None => {
                 file.solved = false;
@@ -309,9 +361,16 @@ pub fn plan(
     println!("search: {}", solution.search.report());
     if let Some(r) = &file.robustness {
         println!(
-            "robust: {:.0} % of {} perturbed re-simulations reach the goal ({})",
+            "robust: {:.0} % of {} perturbed re-simulations reach the goal{} ({})",
             100.0 * r.success_rate,
             r.trials,
+            match r.trials < options.robust_trials as usize {
+                true => format!(
+                    ", of {} asked: the time limit cut the check short",
+                    options.robust_trials
+                ),
+                false => String::new(),
+            },
             if r.success_rate >= r.required_rate {
                 format!("at least {:.0} % required", 100.0 * r.required_rate)
             } else {

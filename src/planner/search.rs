@@ -4,7 +4,7 @@
 
 use super::SearchStats;
 use crate::planning::path::PathControl;
-use crate::planning::RunSettings;
+use crate::planning::{MeasuredRate, RunSettings};
 use crate::state::State;
 use nalgebra::DVector;
 use std::path::Path;
@@ -64,6 +64,9 @@ pub struct Found {
     pub controls: Vec<PathControl>,
     /// The states at the start and after each control (none without a path).
     pub states: Vec<State>,
+    /// The path's success rate under noise as robust planning measured it (with the
+    /// run's seed), if it did.
+    pub robustness: Option<MeasuredRate>,
 }
 
 /// Reaching a grasp with IK-BiRRT: its time limit (s), seed and P_sample (the

@@ -3,7 +3,7 @@
 //! (Sec. IV) and, in robust planning, shortcut toward the most robust path.
 
 use crate::planning::path::{simulate, PathControl, PathMetrics, SimulatedPath};
-use crate::planning::robustness::{robustness, Noise, PerturbedWorld};
+use crate::planning::robustness::{robustness_until, Noise, PerturbedWorld};
 use crate::planning::shortcut::{
     shortcut_by, Criterion, ShortcutOutcome, ShortcutProgress, ShortcutSettings,
 };
@@ -24,8 +24,9 @@ pub struct FinishSettings {
     pub robust: Option<RobustRequirement>,
     /// The found path's success rate under `robust`, if the caller measured it already
     /// (with the same seed): not measured again.
-    pub found_rate: Option<f64>,
-    /// When shortcutting must stop, budget left or not (the plan's time limit).
+    pub found_rate: Option<MeasuredRate>,
+    /// When shortcutting and robustness checks must stop, budget left or not (the plan's
+    /// time limit): a check cut short is over the trials it ran ([`MeasuredRate`]).
     pub deadline: Option<Instant>,
     /// Told how far shortcutting is (a progress line).
     pub progress: Option<fn(&ShortcutProgress)>,
@@ -41,10 +42,39 @@ pub struct RobustRequirement {
     pub rate: f64,
 }
 
+/// A success rate under noise, and the perturbed re-simulations it is over: fewer than
+/// asked where the time limit cut the check short (the first of those asked: the same
+/// seed and that many trials measure it again).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeasuredRate {
+    /// Fraction of the trials that reached the goal.
+    pub rate: f64,
+    /// Perturbed re-simulations run.
+    pub trials: usize,
+}
+
 impl RobustRequirement {
-    /// The fraction of perturbed re-simulations of `controls` that reach the goal.
-    pub fn success_rate(&self, scene: &Scene, controls: &[PathControl], seed: u64) -> f64 {
-        robustness(scene, controls, &Noise::default(), self.trials, seed).success_rate
+    /// The fraction of perturbed re-simulations of `controls` that reach the goal, over
+    /// the trials run by `deadline` (at least one).
+    pub fn success_rate(
+        &self,
+        scene: &Scene,
+        controls: &[PathControl],
+        seed: u64,
+        deadline: Option<Instant>,
+    ) -> MeasuredRate {
+        let report = robustness_until(
+            scene,
+            controls,
+            &Noise::default(),
+            self.trials,
+            seed,
+            deadline,
+        );
+        MeasuredRate {
+            rate: report.success_rate,
+            trials: report.trials.len(),
+        }
     }
 
     /// As many perturbed worlds as trials to shortcut toward robustness in, drawn apart
@@ -76,14 +106,14 @@ pub struct ShortcutReport {
 pub struct FinishedPath {
     /// The finished path's controls.
     pub controls: Vec<PathControl>,
-    /// The finished path simulated from the start (no step states).
+    /// The finished path simulated from the start, every step's state recorded.
     pub simulation: SimulatedPath,
     /// The metrics of the path as found (the same as after if nothing was shortened).
     pub before: PathMetrics,
     /// What shortcutting did.
     pub shortcut: ShortcutReport,
     /// The finished path's success rate under noise, in robust planning.
-    pub robustness: Option<f64>,
+    pub robustness: Option<MeasuredRate>,
 }
 
 /// Finishes `found` in `scene` (the scene the planner searched). `found_states` are the
@@ -103,7 +133,9 @@ pub fn finish(
         ));
     }
     let mut propagator = Propagator::new(scene.clone());
-    let path = simulate(&mut propagator, &scene.start, found, false);
+    // Every step recorded: the plan file is written from this simulation
+    // (`PlanFile::from_simulation`), not from another one.
+    let path = simulate(&mut propagator, &scene.start, found, true);
     let reproduced = path.valid() && path.states.as_slice() == found_states;
     if !reproduced || (solved && !scene.goal.is_satisfied(path.final_state())) {
         return Err(format!(
@@ -161,13 +193,14 @@ pub fn finish(
         if outcome.accepted > 0 {
             // Kept if robust enough, or at least as robust as the path as found.
             let rates = settings.robust.map(|r| {
-                let rate = |controls| r.success_rate(scene, controls, settings.seed);
+                let rate =
+                    |controls| r.success_rate(scene, controls, settings.seed, settings.deadline);
                 let found_rate = settings.found_rate.unwrap_or_else(|| rate(found));
-                (rate(&outcome.controls), found_rate.min(r.rate))
+                (rate(&outcome.controls), found_rate.rate.min(r.rate))
             });
-            if rates.is_none_or(|(shortcut, bar)| shortcut >= bar) {
+            if rates.is_none_or(|(shortcut, bar)| shortcut.rate >= bar) {
                 finished.simulation =
-                    simulate(&mut propagator, &scene.start, &outcome.controls, false);
+                    simulate(&mut propagator, &scene.start, &outcome.controls, true);
                 finished.controls = outcome.controls;
                 finished.robustness = rates.map(|(shortcut, _)| shortcut);
             } else {
@@ -179,9 +212,9 @@ pub fn finish(
     // already measured it (unmeasured here, the finished controls are the found ones).
     if finished.robustness.is_none() {
         finished.robustness = settings.robust.map(|r| {
-            settings
-                .found_rate
-                .unwrap_or_else(|| r.success_rate(scene, &finished.controls, settings.seed))
+            settings.found_rate.unwrap_or_else(|| {
+                r.success_rate(scene, &finished.controls, settings.seed, settings.deadline)
+            })
         });
     }
     Ok(finished)

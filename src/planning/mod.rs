@@ -32,7 +32,9 @@ pub mod trajectory;
 pub mod transit;
 
 pub use deadline::deadline;
-pub use finish::{finish, FinishSettings, FinishedPath, RobustRequirement, ShortcutReport};
+pub use finish::{
+    finish, FinishSettings, FinishedPath, MeasuredRate, RobustRequirement, ShortcutReport,
+};
 pub use kind::PlannerKind;
 pub use problem::Problem;
 pub use run_settings::{RunSettings, PLAN_ROBUST_TRIALS};

@@ -5,7 +5,8 @@
 //! count, the state it reaches and the pushes during its steps. Nothing in it depends on
 //! the machine or the clock, so the same scene, parameters and seed give the same bytes.
 
-use crate::planning::path::{PathControl, PathMetrics};
+use crate::planning::path::{PathControl, PathMetrics, SimulatedPath};
+use crate::planning::robustness::Noise;
 pub use crate::planning::trajectory::TRAJECTORY_RATE;
 use crate::planning::trajectory::{executable, Trajectory};
 use crate::planning::{PlannerKind, Problem, RunSettings};
@@ -545,9 +546,31 @@ impl PlanFile {
         controls: &[PathControl],
         before: Option<PathMetrics>,
     ) -> Result<PlanFile, String> {
-        let problem = Problem::new(scene, settings.planner);
-        let scene = problem.scene();
-        let path = problem.simulate(controls, true);
+        let path = Problem::new(scene.clone(), settings.planner).simulate(controls, true);
+        PlanFile::from_simulation(scene_ref, &scene, settings, controls, &path, before)
+    }
+
+    /// [`PlanFile::build`] from `path`, `controls` as simulated in `scene` with every step
+    /// recorded (a finished path's [`crate::planning::FinishedPath::simulation`]), without
+    /// simulating them again: after the search, a long path's simulations are what is
+    /// left of the time limit.
+    pub fn from_simulation(
+        scene_ref: &str,
+        scene: &Scene,
+        settings: &PlanSettings,
+        controls: &[PathControl],
+        path: &SimulatedPath,
+        before: Option<PathMetrics>,
+    ) -> Result<PlanFile, String> {
+        let steps: usize = controls.iter().map(|c| c.steps).sum();
+        if path.states.len() != controls.len() + 1 || path.step_states.len() != steps + 1 {
+            return Err(format!(
+                "internal error: a simulation of {} states and {} step states for {} controls of {steps} steps",
+                path.states.len(),
+                path.step_states.len(),
+                controls.len()
+            ));
+        }
         if let Some((i, reason)) = &path.stopped_by {
             return Err(format!("the plan does not simulate: control {i}: {reason}"));
         }
@@ -725,8 +748,9 @@ impl PlanFile {
     /// everything else the file records about the path (start, contacts, durations,
     /// metrics after shortcutting, `solved`, margins, `step`, the trajectory) equal to
     /// what the re-simulation gives (the metrics before shortcutting too, when the plan
-    /// was not shortcut). Not checkable here: how the plan was made (planner settings,
-    /// seed, robustness; [`PlanFile::read`] checks them against their limits) and the
+    /// was not shortcut), and the robustness record's rate measured again (the plan's
+    /// seed, the record's trials). Not checkable here: how the plan was made (planner
+    /// settings, seed; [`PlanFile::read`] checks them against their limits) and the
     /// metrics of a shortcut plan's path as found, which the file does not hold.
     pub fn check(&self, plan_path: &Path) -> Result<CheckReport, String> {
         let scene = self.load_scene(plan_path)?;
@@ -782,7 +806,18 @@ impl PlanFile {
         }
         let mut record_matches = problems.is_empty();
         if record_matches {
-            if let Some(field) = first_difference(self, &self.rebuilt(scene)?) {
+            let mut rebuilt = self.rebuilt(scene)?;
+            if let Some(record) = &mut rebuilt.robustness {
+                record.success_rate = problem
+                    .robustness(
+                        &self.path_controls(),
+                        &Noise::default(),
+                        record.trials,
+                        self.settings.seed,
+                    )
+                    .success_rate;
+            }
+            if let Some(field) = first_difference(self, &rebuilt) {
                 record_matches = false;
                 problems.push(format!("{field}: differs from the re-simulation"));
             }

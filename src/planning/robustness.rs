@@ -16,6 +16,7 @@ use crate::state::State;
 use crate::validity::{check_state, Invalid};
 use serde::Serialize;
 use std::sync::Arc;
+use std::time::Instant;
 
 /// A factor a physical parameter is multiplied by, drawn uniformly from `[low, high]`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -262,6 +263,20 @@ pub fn robustness(
     trials: usize,
     seed: u64,
 ) -> RobustnessReport {
+    robustness_until(scene, controls, noise, trials, seed, None)
+}
+
+/// [`robustness`], stopped at `deadline` after at least one trial: the report holds the
+/// trials run, the first of the `trials` asked (the worlds are drawn in order, so a check
+/// cut short is the full check of as many trials), and its rate is theirs.
+pub fn robustness_until(
+    scene: &Scene,
+    controls: &[PathControl],
+    noise: &Noise,
+    trials: usize,
+    seed: u64,
+    deadline: Option<Instant>,
+) -> RobustnessReport {
     let goal_object = scene.goal.object();
     let planned = {
         let mut propagator = Propagator::new(Arc::new(scene.clone()));
@@ -270,6 +285,7 @@ pub fn robustness(
     };
     let mut rng = SplitMix64::new(seed);
     let runs: Vec<Trial> = (0..trials)
+        .take_while(|&i| i == 0 || deadline.is_none_or(|d| Instant::now() < d))
         .map(|_| match PerturbedWorld::draw(noise, scene, &mut rng) {
             Err(e) => Trial {
                 reached: false,
@@ -292,7 +308,7 @@ pub fn robustness(
             }
         })
         .collect();
-    let success_rate = runs.iter().filter(|t| t.reached).count() as f64 / trials.max(1) as f64;
+    let success_rate = runs.iter().filter(|t| t.reached).count() as f64 / runs.len().max(1) as f64;
     let ends: Vec<[f64; 3]> = runs.iter().filter_map(|t| t.goal_object).collect();
     let (mut max_deviation, mut mean_deviation, mut std_xy_yaw) = (0.0, 0.0, [0.0; 3]);
     if let (Some(p), false) = (planned, ends.is_empty()) {

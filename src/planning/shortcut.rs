@@ -164,10 +164,15 @@ pub fn shortcut_by(
     let mut work = path.steps() as u64;
     let mut worlds = match criterion {
         Criterion::Shorter => None,
-        Criterion::MoreRobust(worlds) => Some(WorldRuns::new(worlds)),
+        Criterion::MoreRobust(worlds) => Some(WorldRuns::new(worlds, settings.deadline)),
     };
     if let Some(worlds) = &mut worlds {
-        work += worlds.run(&scene.goal, &current);
+        let Some(spent) = worlds.run(&scene.goal, &current) else {
+            outcome.stopped_at_deadline = true;
+            outcome.controls = current;
+            return outcome;
+        };
+        work += spent;
     }
     // Shortcuts need two controls to replace; nudges one.
     let least = if worlds.is_some() { 1 } else { 2 };
@@ -224,10 +229,12 @@ pub fn shortcut_by(
             current = candidate;
             path = simulate(propagator, start, &current, false);
             work += path.steps() as u64;
-            if let Some(worlds) = &mut worlds {
-                work += worlds.run(&scene.goal, &current);
-            }
             outcome.accepted += 1;
+            if let Some(worlds) = &mut worlds {
+                // Cut short by the deadline, the runs are incomplete: no candidate is
+                // judged by them (the loop stops at the deadline).
+                work += worlds.run(&scene.goal, &current).unwrap_or(0);
+            }
         }
     }
     outcome.after = path.metrics;
@@ -241,23 +248,32 @@ struct WorldRuns<'a> {
     runs: Vec<SimulatedPath>,
     /// How many of the runs reach the goal.
     reached: usize,
+    /// When re-simulating stops (the shortcutting's deadline).
+    deadline: Option<Instant>,
 }
 
 impl<'a> WorldRuns<'a> {
-    fn new(worlds: &'a mut [PerturbedWorld]) -> Self {
+    fn new(worlds: &'a mut [PerturbedWorld], deadline: Option<Instant>) -> Self {
         Self {
             worlds,
             runs: vec![],
             reached: 0,
+            deadline,
         }
     }
 
     /// Re-simulates `controls`, the new current path, in every world; returns the
-    /// propagation steps spent.
-    fn run(&mut self, goal: &Goal, controls: &[PathControl]) -> u64 {
-        self.runs = self.worlds.iter_mut().map(|w| w.run(controls)).collect();
+    /// propagation steps spent, or `None` if the deadline came first.
+    fn run(&mut self, goal: &Goal, controls: &[PathControl]) -> Option<u64> {
+        self.runs.clear();
+        for world in self.worlds.iter_mut() {
+            if self.deadline.is_some_and(|d| Instant::now() >= d) {
+                return None;
+            }
+            self.runs.push(world.run(controls));
+        }
         self.reached = self.runs.iter().filter(|r| reaches(goal, r)).count();
-        self.runs.iter().map(|r| r.steps() as u64).sum()
+        Some(self.runs.iter().map(|r| r.steps() as u64).sum())
     }
 
     /// Whether `candidate`, which differs from the current path from control `i` on,
@@ -277,6 +293,10 @@ impl<'a> WorldRuns<'a> {
         }
         let (mut reached, mut failed, mut work) = (0, 0, 0);
         for (world, run) in self.worlds.iter_mut().zip(&self.runs) {
+            // Past the deadline the candidate is not judged (and not kept).
+            if self.deadline.is_some_and(|d| Instant::now() >= d) {
+                return (false, work);
+            }
             // A world whose run stopped before control i fails the same way.
             let reaches_i = run.stopped_by.as_ref().is_none_or(|(k, _)| *k >= i);
             let tail = reaches_i.then(|| world.simulate(&run.states[i], &candidate[i..]));

@@ -123,6 +123,15 @@ int main()
         const pushplan::Plan plan = hand.solve(o);
         expect(plan.solved && !o.robust_rate && plan.robustness >= 0.95,
                "a robust plan through the API reaches the goal in 95 % of its perturbed re-simulations");
+        expect(plan.robustness_trials == 10, "with time to spare, its robustness is over every trial asked");
+        // With a thousand trials and a tenth of a second, the check stops at the limit:
+        // over fewer trials, and says how many.
+        o.robust_trials = 1000;
+        o.time_limit = 0.1;
+        const pushplan::Plan hurried = hand.solve(o);
+        expect(hurried.robustness < 0 ? hurried.robustness_trials == 0
+                                      : hurried.robustness_trials >= 1 && hurried.robustness_trials < 1000,
+               "a robustness check the time limit cuts short is over the trials it ran");
     }
 
     {

@@ -4,7 +4,7 @@
 use pushplan::planning::execute::{execute, ExecuteSettings};
 use pushplan::planning::path::PathControl;
 use pushplan::planning::plan_file::PlanFile;
-use pushplan::planning::robustness::{robustness, Factor, Noise};
+use pushplan::planning::robustness::{robustness, robustness_until, Factor, Noise};
 use pushplan::{EeAction, Scene};
 
 const SCENE: &str = "tests/data/hand_push_straight.yaml";
@@ -171,4 +171,42 @@ fn a_push_that_leans_on_the_arms_friction_is_fragile_in_the_models_noise() {
         assert!(y < 0.0625 - 0.008 && (x - 0.85).abs() < 0.005, "{trial:?}");
     }
     assert!(report(&Noise::default()).success_rate < 0.9);
+}
+
+/// A check stopped by a deadline is the full check of the trials it ran: the worlds are
+/// drawn in order, so its trials are the first of those asked, and its rate is theirs.
+#[test]
+fn a_check_cut_short_by_its_deadline_is_the_check_of_the_trials_it_ran() {
+    // The round pusher through the centroid: the box turns one way or the other.
+    let scene = scene_with(
+        "shape: {type: box, size: [0.04, 0.12, 0.08]}",
+        "shape: {type: cylinder, radius: 0.02, height: 0.08}",
+    );
+    let noise = Noise::default();
+    let full = robustness(&scene, &controls(), &noise, 40, 7);
+    assert_eq!(full.trials.len(), 40);
+    let reached = full.trials.iter().filter(|t| t.reached).count();
+    assert!(
+        (1..40).contains(&reached),
+        "the noise leaves some trials short of the goal, not all: {reached}"
+    );
+    // A deadline already past: one trial, the first.
+    let past = std::time::Instant::now();
+    let cut = robustness_until(&scene, &controls(), &noise, 40, 7, Some(past));
+    assert_eq!(cut.trials, full.trials[..1]);
+    assert_eq!(
+        cut.success_rate,
+        f64::from(u8::from(full.trials[0].reached))
+    );
+    // Any prefix is the check of that many trials.
+    for n in [1, 7, 23] {
+        let prefix = robustness(&scene, &controls(), &noise, n, 7);
+        assert_eq!(prefix.trials, full.trials[..n]);
+        let rate = full.trials[..n].iter().filter(|t| t.reached).count() as f64 / n as f64;
+        assert_eq!(prefix.success_rate, rate);
+    }
+    // A deadline far off: every trial.
+    let later = std::time::Instant::now() + std::time::Duration::from_secs(3600);
+    let whole = robustness_until(&scene, &controls(), &noise, 40, 7, Some(later));
+    assert_eq!(whole, full);
 }

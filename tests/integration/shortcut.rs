@@ -255,7 +255,7 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_beats_shorten
         };
         finish(&scene, &controls, &states, true, &settings).unwrap()
     };
-    let rate = |controls: &[PathControl]| requirement.success_rate(&scene, controls, 1);
+    let rate = |controls: &[PathControl]| requirement.success_rate(&scene, controls, 1, None).rate;
     let (found, shortened, toward_robust) = (
         rate(&controls),
         rate(&finished(None).controls),
