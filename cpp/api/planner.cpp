@@ -455,7 +455,15 @@ namespace pushplan
                 const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(models[*winner]->problem());
                 // The rate as found is passed on: the shortcutting toward robustness compares
                 // with it and need not measure it again.
-                // Checks cut short by the time limit are over the trials they ran.
+                // Checks cut short by the time limit are over the trials they ran. Such a
+                // check does not make a solution robust (one lucky trial is not 95 %), and
+                // solutions set aside are ranked as if the trials not run had failed.
+                const auto robust = [&](const bridge::FinishedPath &p) {
+                    return p.robustness_trials == run.robust_trials && p.robustness >= run.robust_rate;
+                };
+                const auto surely = [&](double rate, std::size_t trials) {
+                    return rate * static_cast<double>(trials) / run.robust_trials;
+                };
                 const auto finished = [&](double shortcut, double found_rate, std::size_t found_trials) {
                     return detail::finish(*finisher, found, true,
                                           bridge::FinishSettings{shortcut, seed, run.robust_trials, run.robust_rate,
@@ -463,7 +471,7 @@ namespace pushplan
                 };
                 const bridge::FinishedPath as_found = finished(0.0, -1.0, 0);
                 const bridge::FinishedPath repaired =
-                    as_found.robustness >= run.robust_rate
+                    robust(as_found) || out_of_time()
                         ? as_found
                         : finished(run.robust_shortcut, as_found.robustness, as_found.robustness_trials);
                 plan.robustness = repaired.robustness;
@@ -471,12 +479,13 @@ namespace pushplan
                 detail::FlatPath as_repaired{std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
                                              std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
                                              std::vector<double>(repaired.states.begin(), repaired.states.end())};
-                if (plan.robustness >= run.robust_rate)
+                if (robust(repaired))
                 {
                     found = std::move(as_repaired);
                     break;
                 }
-                if (!most_robust || plan.robustness > most_robust->robustness)
+                if (!most_robust || surely(plan.robustness, plan.robustness_trials) >
+                                        surely(most_robust->robustness, most_robust->trials))
                     most_robust = SetAside{*winner, std::move(as_repaired), plan.robustness, plan.robustness_trials};
                 {
                     char note[256];

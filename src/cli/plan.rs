@@ -15,6 +15,7 @@ use pushplan::state::State;
 use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
+use std::time::Instant;
 
 /// The `plan` command's options: the search's settings as the flags set them, and what
 /// the command does around the search.
@@ -72,7 +73,7 @@ fn reach(
         ));
     }
     let settings = ReachSettings {
-        time_limit: deadline.search_time(),
+        time_limit: deadline.reach_time(),
         seed: search_settings.seed,
         sample_probability: run.sample_probability,
     };
@@ -98,12 +99,15 @@ fn reach(
 }
 
 /// How `--time` is spent: it bounds the whole command (loading, search, robustness checks,
-/// shortcutting, writing). The search and the finishing stop a reserve before the limit,
-/// for what must follow them: re-simulating the path (the check every plan passes) and
-/// writing it, whose cost grows with the path's steps.
+/// shortcutting, a reach with `--grasp`, writing). Each part stops a reserve before the
+/// limit, for what must follow it: re-simulating the path (the check every plan passes)
+/// and writing it, whose cost grows with the path's steps. With `--grasp` the pushing has
+/// half of the limit, the reach what is left.
 struct Deadline {
-    /// When the search and the finishing stop.
-    finishing: std::time::Instant,
+    /// When the pushing's search and finishing stop.
+    pushing: Instant,
+    /// When the last part (the reach, or the pushing without one) stops.
+    last: Instant,
 }
 
 impl Deadline {
@@ -111,25 +115,43 @@ impl Deadline {
     /// this machine: BENCHMARKS.md, "Propagation").
     const STEPS_PER_SECOND: f64 = 50_000.0;
 
-    /// The deadline of a command started at `started` with `--time seconds` in `scene`.
-    /// The reserve is what ten of the scene's longest controls take to re-simulate, at
-    /// most a fifth of the limit: 10 ms at the default `planner.step` and
-    /// `max_duration`, and the fifth when a control has thousands of steps (a path of
-    /// 24 000 steps of `step: 0.0001` took 0.29 s to re-simulate after a 1 s search).
-    fn new(started: std::time::Instant, seconds: f64, scene: &Scene) -> Deadline {
+    /// The deadlines of a command started at `started` with `--time seconds` in `scene`,
+    /// reaching a grasp after pushing if `then_reach`. The reserve is what ten of the
+    /// scene's longest controls take to re-simulate, at most a fifth of the limit: 10 ms
+    /// at the default `planner.step` and `max_duration`, and the fifth when a control has
+    /// thousands of steps (a path of 24 000 steps of `step: 0.0001` took 0.29 s to
+    /// re-simulate after a 1 s search).
+    fn new(started: Instant, seconds: f64, scene: &Scene, then_reach: bool) -> Deadline {
         let longest = scene.planner.max_duration / scene.planner.step;
         let reserve = (10.0 * longest / Self::STEPS_PER_SECOND).min(0.2 * seconds);
+        // `options.check` bounds `seconds` by a day: never `None`.
+        let at = |seconds: f64| pushplan::planning::deadline(started, seconds).unwrap_or(started);
+        let last = at(seconds - reserve);
         Deadline {
-            // `options.check` bounds `seconds` by a day: never `None`.
-            finishing: pushplan::planning::deadline(started, seconds - reserve).unwrap_or(started),
+            pushing: if then_reach {
+                at(0.5 * seconds - reserve)
+            } else {
+                last
+            },
+            last,
         }
     }
 
-    /// The time left for a search (s): at least a millisecond, for the search to report
-    /// on what it had.
+    /// The time left for the pushing's search (s).
     fn search_time(&self) -> f64 {
-        self.finishing
-            .saturating_duration_since(std::time::Instant::now())
+        Self::left(self.pushing)
+    }
+
+    /// The time left for a reach (s).
+    fn reach_time(&self) -> f64 {
+        Self::left(self.last)
+    }
+
+    /// The time left until `until` (s): at least a millisecond, for a search to report on
+    /// what it had.
+    fn left(until: Instant) -> f64 {
+        until
+            .saturating_duration_since(Instant::now())
             .as_secs_f64()
             .max(1e-3)
     }
@@ -184,7 +206,7 @@ pub fn plan(
         );
     }
     let settings = PlanSettings::from(&options);
-    let deadline = Deadline::new(started, options.time_limit, &scene);
+    let deadline = Deadline::new(started, options.time_limit, &scene, run.grasp_after);
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
         // Reaching a grasp only: no controls, the reach from the start.
@@ -248,7 +270,7 @@ pub fn plan(
             rate: options.robust_rate,
         }),
         found_rate: solution.robustness,
-        deadline: Some(deadline.finishing),
+        deadline: Some(deadline.pushing),
         progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
     };
     let path = problem.finish(
@@ -360,24 +382,23 @@ pub fn plan(
     }
     println!("search: {}", solution.search.report());
     if let Some(r) = &file.robustness {
+        let asked = options.robust_trials as usize;
+        let required = 100.0 * r.required_rate;
         println!(
-            "robust: {:.0} % of {} perturbed re-simulations reach the goal{} ({})",
+            "robust: {:.0} % of {} perturbed re-simulations reach the goal ({})",
             100.0 * r.success_rate,
             r.trials,
-            match r.trials < options.robust_trials as usize {
-                true => format!(
-                    ", of {} asked: the time limit cut the check short",
-                    options.robust_trials
-                ),
-                false => String::new(),
-            },
-            if r.success_rate >= r.required_rate {
-                format!("at least {:.0} % required", 100.0 * r.required_rate)
+            if r.trials < asked {
+                format!(
+                    "of {asked} asked: the time limit cut the check short, so the {required:.0} % \
+                     required is not confirmed; more --time checks them all"
+                )
+            } else if r.success_rate >= r.required_rate {
+                format!("at least {required:.0} % required")
             } else {
                 format!(
-                    "below the {:.0} % asked: the most robust solution found in the time; \
-                     more --time may find a more robust one",
-                    100.0 * r.required_rate
+                    "below the {required:.0} % asked: the most robust solution found in the time; \
+                     more --time may find a more robust one"
                 )
             }
         );

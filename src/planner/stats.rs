@@ -47,11 +47,14 @@ impl SearchStats {
             .map(|(reason, n)| format!("{reason} {:.1} %", share(**n)))
             .collect();
         format!(
-            "{} propagations of {:.1} steps on average, {:.1} % stopped early ({}); the goal object moved in {:.1} %, other objects in {:.1} %",
+            "{} propagations of {:.1} steps on average, {:.1} % stopped early{}; the goal object moved in {:.1} %, other objects in {:.1} %",
             self.propagations,
             self.steps as f64 / self.propagations.max(1) as f64,
             share(self.stopped.values().sum()),
-            reasons.join(", "),
+            match reasons.is_empty() {
+                true => String::new(),
+                false => format!(" ({})", reasons.join(", ")),
+            },
             share(self.moved_goal_object),
             share(self.moved_clutter)
         )

@@ -428,85 +428,29 @@ fn the_documented_limits_are_the_limits_table() {
     }
 }
 
-/// Wall time (s) of `pushplan args` and its exit code and stdout.
-fn timed(args: &[&str]) -> (f64, i32, String) {
-    let started = std::time::Instant::now();
-    let (code, stdout, stderr) = pushplan(args);
-    let wall = started.elapsed().as_secs_f64();
-    assert!((0..=1).contains(&code), "{args:?}: {stdout}{stderr}");
-    (wall, code, stdout)
-}
-
-/// `--time` bounds the whole `plan` command, within 5 % + 0.2 s: the search, the
-/// robustness checks, shortcutting, re-simulating and writing. The reproducers: a
-/// thousand robustness trials ran 8 s past a 2 s limit (a check measured twice, neither
-/// stopping at the limit), and a path of tens of thousands of 0.1 ms steps was
-/// re-simulated three times after the search had used the whole limit. A run over the
-/// bound is tried once more before it fails: the machine is shared with other tests.
+/// A time limit too short for a search to grow its tree (a millisecond, the scene's
+/// loading included) gives an unsolved plan of the start alone: once an internal error,
+/// "re-simulating the plan does not reproduce it" (no path was compared with the start).
 #[test]
-fn the_time_limit_bounds_the_whole_plan_command() {
-    let scratch = common::Scratch::new("hostile-time-limit");
+fn a_search_with_no_time_writes_the_start_alone() {
+    let scratch = common::Scratch::new("hostile-no-time");
     let out = scratch.join("plan.json");
     let out = out.to_str().unwrap();
-    let within = |args: &[&str], seconds: f64| -> (i32, String) {
-        let bound = 1.05 * seconds + 0.2;
-        let mut walls = vec![];
-        for _ in 0..2 {
-            let (wall, code, stdout) = timed(args);
-            if wall <= bound {
-                return (code, stdout);
-            }
-            walls.push(wall);
-        }
-        panic!("{args:?}: {walls:?} s, past {bound:.2} s");
-    };
-    let (code, stdout) = within(
-        &[
-            "plan",
-            "scenes/benchmark/scene_05.yaml",
-            "--robust",
-            "1000",
-            "--time",
-            "2",
-            "--threads",
-            "1",
-            "--quiet",
-            "--out",
-            out,
-        ],
-        2.0,
+    let (code, stdout, stderr) = pushplan(&[
+        "plan",
+        "scenes/herb_single_object.yaml",
+        "--time",
+        "0.001",
+        "--quiet",
+        "--out",
+        out,
+    ]);
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(stdout.contains("not solved"), "{stdout}");
+    let (code, checked, _) = pushplan(&["check", out]);
+    assert_eq!(code, 1, "{checked}");
+    assert!(
+        checked.contains("the goal is not reached") && !checked.contains("differs"),
+        "{checked}"
     );
-    assert_eq!(code, 0, "{stdout}");
-    // Its robustness record, over the trials the limit left, is what `check` measures.
-    let (code, checked, stderr) = pushplan(&["check", out]);
-    assert_eq!(code, 0, "{checked}{stderr}");
-    for planner in [
-        "push_kpiece",
-        "pcrrt",
-        "static",
-        "kpiece",
-        "est",
-        "pdst",
-        "sst",
-    ] {
-        let (_, stdout) = within(
-            &[
-                "plan",
-                "tests/data/fine_steps.yaml",
-                "--planner",
-                planner,
-                "--time",
-                "1",
-                "--quiet",
-                "--out",
-                out,
-            ],
-            1.0,
-        );
-        let (code, checked, stderr) = pushplan(&["check", out]);
-        assert!(
-            code <= 1 && !checked.contains("differs"),
-            "{planner}: {stdout}{checked}{stderr}"
-        );
-    }
 }
