@@ -299,3 +299,54 @@ fn a_mesh_robot_plans() {
         assert!(stdout.contains("1 reach the goal"), "{engine}: {stdout}");
     }
 }
+
+/// The simplification measures again only the vertices whose earlier distance could still
+/// make them the furthest; the eager greedy choice, every exact hull vertex measured from
+/// the kept hull in every round (the lowest index of equals), must keep the same
+/// vertices in the same order: on a sphere (many vertices exactly as far) and on a
+/// lumpy cloud.
+#[test]
+fn simplifying_lazily_keeps_what_measuring_every_vertex_keeps() {
+    use parry3d_f64::query::PointQuery;
+    use parry3d_f64::shape::ConvexPolyhedron;
+    let mut state = 0x9E37_79B9_7F4A_7C15_u64;
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let lumpy: Vec<Point3<f64>> = (0..3000)
+        .map(|_| {
+            let (u, v, r) = (uniform(), uniform(), 0.05 + 0.01 * uniform());
+            let (polar, a) = ((1.0 - 2.0 * u).acos(), 2.0 * std::f64::consts::PI * v);
+            Point3::new(
+                1.5 * r * polar.sin() * a.cos(),
+                r * polar.sin() * a.sin(),
+                0.7 * r * polar.cos(),
+            )
+        })
+        .collect();
+    for cloud in [fine_sphere(), lumpy] {
+        let lazily = simplify_hull(&cloud, HULL_TOLERANCE, MAX_HULL_VERTICES).unwrap();
+        let (exact, _) = parry3d_f64::transformation::try_convex_hull(&cloud).unwrap();
+        // The start: the same tetrahedron (the simplification stopped at four vertices).
+        let mut kept = simplify_hull(&cloud, HULL_TOLERANCE, 4).unwrap().points;
+        loop {
+            let hull = ConvexPolyhedron::from_convex_hull(&kept).unwrap();
+            let (mut worst, mut error) = (0, 0.0);
+            for (i, p) in exact.iter().enumerate() {
+                let d = hull.distance_to_local_point(p, true);
+                if d > error {
+                    (worst, error) = (i, d);
+                }
+            }
+            if error <= HULL_TOLERANCE || kept.len() >= MAX_HULL_VERTICES {
+                break;
+            }
+            kept.push(exact[worst]);
+        }
+        assert!(kept.len() > 20, "{}", kept.len());
+        assert_eq!(lazily.points, kept);
+    }
+}

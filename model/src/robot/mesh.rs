@@ -7,6 +7,8 @@ use crate::error::{Error, Result};
 use nalgebra::Point3;
 use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::ConvexPolyhedron;
+use std::cmp::Ordering;
+use std::collections::{BinaryHeap, HashSet};
 use std::path::{Path, PathBuf};
 
 /// Resolves a URDF mesh reference (`package://pkg/rel`, `file:///abs` or a relative path)
@@ -66,6 +68,26 @@ pub const HULL_TOLERANCE: f64 = 5e-4;
 /// vertices would cost more than the rest of the step.
 pub const MAX_HULL_VERTICES: usize = 64;
 
+/// Most triangles a collision mesh may have. Only its convex hull collides, and the
+/// hull's time grows with the vertices, faster than in proportion: a sphere of 50 000
+/// triangles (every vertex on the hull, the worst case) loads in 0.4 s, of 100 000 in
+/// 0.9 s, of 200 000 in 2.6 s (docs/notes/mesh-robots.md); a visual mesh of a million
+/// took half a minute and 800 MB before planning started. A collision mesh needs
+/// hundreds to thousands.
+pub const MAX_MESH_TRIANGLES: usize = 100_000;
+
+/// Refuses a mesh of more than [`MAX_MESH_TRIANGLES`], naming both numbers.
+fn check_triangles(triangles: u64) -> std::result::Result<(), String> {
+    match triangles <= MAX_MESH_TRIANGLES as u64 {
+        true => Ok(()),
+        false => Err(format!(
+            "{triangles} triangles; a collision mesh may have at most {MAX_MESH_TRIANGLES} \
+             (only its convex hull collides: decimate it, or give the collision element a \
+             simpler mesh than the visual one)"
+        )),
+    }
+}
+
 /// Refuses a binary STL whose size is not what its header says: 84 bytes, then 50 per
 /// triangle of the count in bytes 80-83 (a header claiming 2^31 triangles over a few
 /// would otherwise load silently, or be read as far as the file goes). A file that
@@ -84,7 +106,8 @@ fn check_stl_size(bytes: &[u8]) -> std::result::Result<(), String> {
     let triangles = u32::from_le_bytes([count[0], count[1], count[2], count[3]]);
     let expected = 84 + 50 * u64::from(triangles);
     match expected == bytes.len() as u64 {
-        true => Ok(()),
+        // Counted before the file is parsed: a huge mesh costs nothing to refuse.
+        true => check_triangles(triangles.into()),
         false => Err(format!(
             "binary STL header says {triangles} triangles ({expected} bytes), the file has {} bytes",
             bytes.len()
@@ -120,6 +143,7 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
         _ => return Err(mesh_error(format!("the mesh must be {MESH_FORMATS}"))),
     }
     .map_err(|e| mesh_error(e.to_string()))?;
+    check_triangles(scene.meshes.iter().map(|m| m.faces.len() as u64).sum()).map_err(mesh_error)?;
     let up = match extension.as_deref() {
         Some("dae") => collada_up_axis(&bytes),
         _ => UpAxis::Z,
@@ -209,27 +233,53 @@ pub fn simplify_hull(
     tolerance: f64,
     max_vertices: usize,
 ) -> Option<SimplifiedHull> {
-    let (exact, _) = parry3d_f64::transformation::try_convex_hull(points).ok()?;
+    // A mesh lists each vertex once per triangle around it (an STL six times): the hull's
+    // time grows faster than its input, so each point goes in once, in the order first met.
+    let mut seen = HashSet::new();
+    let unique: Vec<Point3<f64>> = points
+        .iter()
+        .filter(|p| seen.insert(p.coords.map(f64::to_bits)))
+        .copied()
+        .collect();
+    let (exact, _) = parry3d_f64::transformation::try_convex_hull(&unique).ok()?;
     if exact.len() < 4 {
         return None;
     }
     let mut kept = initial_tetrahedron(&exact)?;
-    // The exact vertices still outside the kept hull by more than the tolerance: the hull
-    // only grows, so a vertex once within it stays within.
-    let mut outside: Vec<usize> = (0..exact.len()).collect();
+    // Lazily: a vertex's distance from the kept hull only shrinks as the hull grows, so a
+    // distance measured earlier bounds it from above. Each round measures again only the
+    // vertices whose bound could still make them the furthest, in order of their bounds;
+    // the choice is the exact one (the furthest, the lowest index among equals), but a
+    // mesh of 50 000 triangles no longer costs its 25 000 hull vertices' distances in
+    // each of 60 rounds (10 s).
+    let mut bounds: BinaryHeap<Bound> = (0..exact.len())
+        .map(|index| Bound {
+            distance: f64::INFINITY,
+            index,
+        })
+        .collect();
     loop {
         let hull = ConvexPolyhedron::from_convex_hull(
             &kept.iter().map(|&i| exact[i]).collect::<Vec<_>>(),
         )?;
-        let distances: Vec<(usize, f64)> = outside
-            .iter()
-            .map(|&i| (i, hull.distance_to_local_point(&exact[i], true)))
-            .collect();
-        let (worst, error) =
-            distances.iter().fold(
-                (0, 0.0_f64),
-                |best, &(i, d)| if d > best.1 { (i, d) } else { best },
-            );
+        let mut measured = Vec::new();
+        let mut furthest: Option<Bound> = None;
+        while let Some(top) = bounds.peek() {
+            if furthest.is_some_and(|f| top.distance < f.distance - BOUND_SLACK) {
+                break;
+            }
+            let index = bounds.pop().expect("peeked").index;
+            let distance = hull.distance_to_local_point(&exact[index], true);
+            // Within the tolerance now, within it for good: the hull only grows.
+            if distance > tolerance {
+                let bound = Bound { distance, index };
+                if furthest.is_none_or(|f| bound > f) {
+                    furthest = Some(bound);
+                }
+                measured.push(bound);
+            }
+        }
+        let error = furthest.map_or(0.0, |f| f.distance);
         if error <= tolerance || kept.len() >= max_vertices.max(4) {
             let error = exact
                 .iter()
@@ -241,12 +291,46 @@ pub fn simplify_hull(
                 error,
             });
         }
+        let worst = furthest.expect("beyond the tolerance").index;
         kept.push(worst);
-        outside = distances
-            .into_iter()
-            .filter(|&(i, d)| d > tolerance && i != worst)
-            .map(|(i, _)| i)
-            .collect();
+        bounds.extend(measured.into_iter().filter(|b| b.index != worst));
+    }
+}
+
+/// How far a measured distance may rise as the hull grows (m): in exact arithmetic it
+/// only shrinks, but GJK's rounding moves it by about 1e-16 m. Every vertex whose bound
+/// is within this of the furthest is measured again, so that the choice is the one
+/// measuring every vertex makes (a symmetric mesh has many as far).
+const BOUND_SLACK: f64 = 1e-9;
+
+/// An exact hull vertex's distance from the kept hull, or a bound on it from above; the
+/// greater is the one further out, and of two as far the one of the lower index (the
+/// vertex the greedy choice takes first).
+#[derive(Clone, Copy, Debug)]
+struct Bound {
+    distance: f64,
+    index: usize,
+}
+
+impl PartialEq for Bound {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Bound {}
+
+impl PartialOrd for Bound {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Bound {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.distance
+            .total_cmp(&other.distance)
+            .then(other.index.cmp(&self.index))
     }
 }
 

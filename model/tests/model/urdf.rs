@@ -170,6 +170,43 @@ fn a_binary_stl_whose_count_does_not_match_its_size_is_refused() {
     );
 }
 
+/// A visual mesh of a million triangles took half a minute and 800 MB before planning
+/// started; past the limit a binary STL is refused from its header, before it is parsed.
+#[test]
+fn a_mesh_of_more_triangles_than_the_limit_is_refused_with_the_numbers() {
+    use pushplan_model::robot::mesh::MAX_MESH_TRIANGLES;
+    let scratch = common::Scratch::new("test-stl-triangles");
+    let root = scratch.path().to_path_buf();
+    let stl = root.join("arm.stl");
+    let urdf = root.join("r.urdf");
+    std::fs::write(&urdf, urdf_with_mesh("arm.stl", "")).unwrap();
+    for (triangles, refused) in [(MAX_MESH_TRIANGLES, false), (MAX_MESH_TRIANGLES + 1, true)] {
+        // Triangles of a box, repeated: the box's hull whatever their number.
+        write_box_stl(&stl, [0.05, 0.05, 0.05]);
+        let bytes = std::fs::read(&stl).unwrap();
+        let mut many = bytes[..80].to_vec();
+        many.extend((triangles as u32).to_le_bytes());
+        for k in 0..triangles {
+            let t = 84 + 50 * (k % 12);
+            many.extend(&bytes[t..t + 50]);
+        }
+        std::fs::write(&stl, &many).unwrap();
+        let loaded = load_urdf(&urdf, "finger", Isometry3::identity());
+        match refused {
+            false => assert!(loaded.is_ok(), "{triangles}: {:?}", loaded.err()),
+            true => {
+                let message = loaded.unwrap_err().to_string();
+                assert!(
+                    message.contains("arm.stl")
+                        && message.contains(&format!("{triangles} triangles"))
+                        && message.contains(&format!("at most {MAX_MESH_TRIANGLES}")),
+                    "{message}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn a_mesh_that_is_no_regular_file_says_what_it_is() {
     let scratch = common::Scratch::new("test-special-mesh");
