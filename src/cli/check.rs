@@ -85,12 +85,17 @@ pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
     // What a re-simulation cannot confirm is said, not passed over: the search that made
     // the plan (its settings are only checked to be within their limits).
     println!(
-        "  as recorded, not re-planned: made by {} with seed {}, k {}, {} s, {} thread(s){}",
+        "  as recorded, not re-planned: made by {} with seed {}, k {}, {} s, {} thread(s){}{}",
         plan.settings.planner.name(),
         plan.settings.seed,
         plan.settings.k,
         plan.settings.time_limit,
         plan.settings.threads,
+        plan.robustness.as_ref().map_or(String::new(), |r| format!(
+            ", {:.0} % of the perturbed re-simulations required, {} perturbed worlds carried",
+            100.0 * r.required_rate,
+            r.particles
+        )),
         match plan.settings.shortcut > 0.0 {
             true => "; the metrics before shortcutting likewise",
             false => "",

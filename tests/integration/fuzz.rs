@@ -1,4 +1,6 @@
-//! Seeded mutation fuzzing of everything pushplan reads: scene YAML, URDF and plan files.
+//! Seeded mutation fuzzing of everything pushplan reads: scene YAML, URDF, meshes and plan
+//! files (750, 300, 600 and 300 cases), the command line (24) and the options every front
+//! door shares (3000).
 //! Each case mutates a shipped file (characters changed, spans deleted or repeated,
 //! numbers replaced by extreme values, the text cut short) and feeds it in. Nothing may
 //! panic; every error names the file. A smaller sample goes through the command line,
@@ -136,7 +138,7 @@ fn mutated_scenes_load_or_fail_naming_the_file_and_never_panic() {
     for (b, base) in bases.iter().enumerate() {
         let text = std::fs::read_to_string(base).unwrap();
         let mut rng = SplitMix64::new(1000 + b as u64);
-        for case in 0..150 {
+        for case in 0..250 {
             let mutated = mutate(&text, &mut rng);
             let what = format!("{base}, case {case}:\n{mutated}");
             match no_panic(&what, || Scene::from_yaml(&mutated, source)) {
@@ -169,7 +171,7 @@ fn mutated_urdfs_load_or_fail_naming_the_file_and_never_panic() {
     let text = std::fs::read_to_string("robots/wam7.urdf").unwrap();
     let path = scratch.join("fuzzed.urdf");
     let mut rng = SplitMix64::new(2000);
-    for case in 0..200 {
+    for case in 0..300 {
         let mutated = mutate(&text, &mut rng);
         std::fs::write(&path, &mutated).unwrap();
         let what = format!("case {case}:\n{mutated}");
@@ -200,7 +202,9 @@ fn mutated_plan_files_are_read_and_checked_without_panics() {
     let mut rng = SplitMix64::new(3000);
     let mut read = 0;
     let value: serde_json::Value = serde_json::from_str(&text).unwrap();
-    for case in 0..150 {
+    let base_plan = PlanFile::read(&base).unwrap();
+    let mut passed = 0;
+    for case in 0..300 {
         // Half the cases break the JSON; half change a value and stay JSON.
         let mutated = if case % 2 == 0 {
             mutate(&text, &mut rng)
@@ -215,16 +219,166 @@ fn mutated_plan_files_are_read_and_checked_without_panics() {
             Err(e) => assert!(e.contains("fuzzed.json"), "{what}: {e}"),
             Ok(plan) => {
                 read += 1;
-                if let Err(e) = no_panic(&what, || plan.check(&path)) {
-                    assert!(
+                match no_panic(&what, || plan.check(&path)) {
+                    Err(e) => assert!(
                         e.contains("fuzzed.json") || e.contains(".yaml"),
                         "{what}: {e}"
-                    );
+                    ),
+                    // No false "plan OK": a plan that passes says what the plan made
+                    // says, but for how it was made (its settings, and the rate and worlds
+                    // robust planning was asked for: only within limits, and `check`
+                    // says they are as recorded).
+                    Ok(report) if report.problems.is_empty() => {
+                        let settings = serde_json::to_value(&base_plan.settings).unwrap();
+                        let claims = |text: &str| {
+                            let mut v: serde_json::Value = serde_json::from_str(text).unwrap();
+                            for key in settings.as_object().unwrap().keys() {
+                                v.as_object_mut().unwrap().remove(key);
+                            }
+                            if let Some(r) = v["robustness"].as_object_mut() {
+                                r.remove("required_rate");
+                                r.remove("particles");
+                            }
+                            v
+                        };
+                        let (made, read) = (claims(&base_plan.to_json()), claims(&plan.to_json()));
+                        let changed: Vec<String> = read
+                            .as_object()
+                            .unwrap()
+                            .iter()
+                            .filter(|(key, value)| made.get(key.as_str()) != Some(value))
+                            .map(|(key, value)| {
+                                let mut shown = format!("{key}: {value}");
+                                shown.truncate(300);
+                                shown
+                            })
+                            .collect();
+                        assert!(
+                            changed.is_empty(),
+                            "{what}: checked OK but not the plan made: {changed:?}"
+                        );
+                        passed += 1;
+                    }
+                    Ok(_) => {}
                 }
             }
         }
     }
     assert!(read > 10, "only {read} mutated plans were read");
+    assert!(
+        passed > 0,
+        "no mutated plan passed its check (a change of settings does)"
+    );
+}
+
+/// A binary STL of a box with half extents 5 cm: 12 triangles.
+fn box_stl() -> Vec<u8> {
+    let h = 0.05_f32;
+    let corner = |i: usize| {
+        [
+            if i & 1 == 0 { -h } else { h },
+            if i & 2 == 0 { -h } else { h },
+            if i & 4 == 0 { -h } else { h },
+        ]
+    };
+    let faces = [
+        [0, 2, 3],
+        [0, 3, 1],
+        [4, 5, 7],
+        [4, 7, 6],
+        [0, 1, 5],
+        [0, 5, 4],
+        [2, 6, 7],
+        [2, 7, 3],
+        [0, 4, 6],
+        [0, 6, 2],
+        [1, 3, 7],
+        [1, 7, 5],
+    ];
+    let mut bytes = vec![0u8; 80];
+    bytes.extend((faces.len() as u32).to_le_bytes());
+    for face in faces {
+        bytes.extend([0u8; 12]);
+        for v in face {
+            for c in corner(v) {
+                bytes.extend(c.to_le_bytes());
+            }
+        }
+        bytes.extend([0u8; 2]);
+    }
+    bytes
+}
+
+/// `bytes` with one to three random byte mutations: a byte changed, a span deleted or
+/// repeated, four bytes set to an extreme `f32` or count, the file cut short.
+fn mutate_bytes(bytes: &[u8], rng: &mut SplitMix64) -> Vec<u8> {
+    let mut bytes = bytes.to_vec();
+    for _ in 0..1 + rng.below(3) {
+        let at = rng.below(bytes.len().max(1)).min(bytes.len());
+        match rng.below(5) {
+            0 if at < bytes.len() => bytes[at] = rng.below(256) as u8,
+            1 => {
+                let end = (at + 1 + rng.below(60)).min(bytes.len());
+                bytes.drain(at..end);
+            }
+            2 => {
+                let end = (at + 1 + rng.below(100)).min(bytes.len());
+                let span = bytes[at..end].to_vec();
+                bytes.splice(at..at, span);
+            }
+            3 if at + 4 <= bytes.len() => {
+                let extreme: [u8; 4] = match rng.below(5) {
+                    0 => f32::NAN.to_le_bytes(),
+                    1 => f32::INFINITY.to_le_bytes(),
+                    2 => f32::MAX.to_le_bytes(),
+                    3 => u32::MAX.to_le_bytes(),
+                    _ => 0u32.to_le_bytes(),
+                };
+                bytes[at..at + 4].copy_from_slice(&extreme);
+            }
+            _ => bytes.truncate(at),
+        }
+    }
+    bytes
+}
+
+/// Meshes as a URDF or a scene names them: OBJ and COLLADA text (the shipped robot's)
+/// and binary STL, mutated. Each loads as a convex hull or fails naming the file.
+#[test]
+fn mutated_meshes_load_or_fail_naming_the_file_and_never_panic() {
+    use pushplan::robot::mesh::load_convex_mesh;
+    let scratch = common::Scratch::new("fuzz-meshes");
+    let mut loaded = 0;
+    for (b, (extension, base)) in [
+        ("obj", std::fs::read("robots/meshes/wam7/hand.obj").unwrap()),
+        (
+            "dae",
+            std::fs::read("robots/meshes/wam7/wam_link4.dae").unwrap(),
+        ),
+        ("stl", box_stl()),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let path = scratch.join(&format!("fuzzed.{extension}"));
+        let mut rng = SplitMix64::new(5000 + b as u64);
+        for case in 0..200 {
+            let mutated = match extension {
+                "stl" => mutate_bytes(&base, &mut rng),
+                _ => mutate(std::str::from_utf8(&base).unwrap(), &mut rng).into_bytes(),
+            };
+            std::fs::write(&path, &mutated).unwrap();
+            let what = format!("{extension}, case {case}");
+            match no_panic(&what, || load_convex_mesh(&path, [1.0; 3])) {
+                Err(e) => assert!(
+                    e.to_string().contains(&format!("fuzzed.{extension}")),
+                    "{what}: the error names the file: {e}"
+                ),
+                Ok(_) => loaded += 1,
+            }
+        }
+    }
+    assert!(loaded > 30, "only {loaded} mutated meshes loaded");
 }
 
 #[test]

@@ -139,7 +139,15 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
             // Materials do not collide: the `.mtl` file is neither needed nor read.
             Err::<Vec<u8>, _>(std::io::Error::other("not read"))
         }),
-        Some("dae") => mesh_loader::collada::from_slice(&bytes),
+        // mesh-loader 0.1.13 indexes a COLLADA file's arrays as its indices say: a file
+        // whose indices point past its arrays panicked (found by tests/integration/fuzz.rs).
+        // The panic is caught and the file refused like any malformed one.
+        Some("dae") => std::panic::catch_unwind(|| mesh_loader::collada::from_slice(&bytes))
+            .unwrap_or_else(|_| {
+                Err(std::io::Error::other(
+                    "COLLADA indices beyond the arrays they index",
+                ))
+            }),
         _ => return Err(mesh_error(format!("the mesh must be {MESH_FORMATS}"))),
     }
     .map_err(|e| mesh_error(e.to_string()))?;
