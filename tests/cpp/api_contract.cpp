@@ -26,7 +26,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -414,6 +416,69 @@ int main()
         inside.objects[0].head<2>() = plan.joint_trajectory[k].head<2>();
         expect(throwsError([&] { hand.solveFrom(inside, o); }, "an observation may be off"),
                "an observed box deep inside the hand (further than 2 cm) is no valid start");
+    }
+    {
+        // Seeded fuzzing of Options through Planner::solve: every count, duration and rate
+        // near or past its limit. A case either plans (its values within the limits) or
+        // throws pushplan::Error naming an Options field; nothing else leaves, and no case
+        // runs past its time limit (a tenth of a second when allowed) by more than a second.
+        const pushplan::Planner hand("scenes/planar_hand_single_object.yaml");
+        std::uint64_t state = 59;
+        const auto draw = [&](std::size_t n) {
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            return static_cast<std::size_t>((state >> 33) % n);
+        };
+        const unsigned counts[] = {0u, 1u, 2u, 65u, 257u, 1001u, 10001u, 1000000000u, UINT_MAX};
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        const double inf = std::numeric_limits<double>::infinity();
+        // No duration allowed here is long: a case that plans plans for a tenth of a second.
+        const double times[] = {nan, inf, -1.0, 0.0, 0.1, 86401.0};
+        const double shares[] = {nan, -0.5, 0.0, 0.5, 1.0, 1.5};
+        unsigned planned = 0, refused = 0, other = 0, slow = 0;
+        for (int c = 0; c < 200; ++c)
+        {
+            pushplan::Options o;
+            o.seed = 1;
+            // Each value extreme one time in eight, else an ordinary one: some cases plan.
+            const auto count = [&](unsigned ordinary) { return draw(8) == 0 ? counts[draw(9)] : ordinary; };
+            const auto seconds = [&](double ordinary) { return draw(8) == 0 ? times[draw(6)] : ordinary; };
+            const auto share = [&](double ordinary) { return draw(8) == 0 ? shares[draw(6)] : ordinary; };
+            o.k = count(3);
+            o.threads = std::min(count(1), 257u);
+            o.robust_trials = count(5);
+            o.robust_particles = std::min(count(0), 65u);
+            o.time_limit = seconds(0.1);
+            o.shortcut = seconds(0.0);
+            o.robust_shortcut = seconds(0.0);
+            o.goal_bias = share(0.05);
+            o.robust_rate = share(0.95);
+            const auto started = std::chrono::steady_clock::now();
+            try
+            {
+                hand.solve(o);
+                ++planned;
+            }
+            catch (const pushplan::Error &e)
+            {
+                (std::string(e.what()).rfind("Options::", 0) == 0 ? refused : other) += 1;
+                if (std::string(e.what()).rfind("Options::", 0) != 0)
+                    std::cout << "  fuzzed options, case " << c << ": " << e.what() << "\n";
+            }
+            catch (...)
+            {
+                ++other;
+            }
+            if (const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+                wall > 1.1)
+            {
+                ++slow;
+                std::cout << "  fuzzed options, case " << c << ": " << wall << " s\n";
+            }
+        }
+        std::cout << "fuzzed Options: " << planned << " planned, " << refused << " refused, " << other
+                  << " other failures, " << slow << " slow\n";
+        expect(other == 0 && refused > 100 && planned > 0 && slow == 0,
+               "200 fuzzed Options: each plans or throws pushplan::Error naming its field, within its time");
     }
     return failures == 0 ? 0 : 1;
 }
