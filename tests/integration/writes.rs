@@ -155,3 +155,94 @@ fn the_plans_folder_is_tried_before_the_search() {
     assert_eq!(code, 0, "{stdout}{stderr}");
     assert!(dir.join("new/folder/plan.json").is_file());
 }
+
+/// The size of the largest file under `dir` (bytes).
+fn largest_file(dir: &Path) -> u64 {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let path = e.unwrap().path();
+            match path.is_dir() {
+                true => largest_file(&path),
+                false => std::fs::metadata(&path).unwrap().len(),
+            }
+        })
+        .max()
+        .unwrap_or(0)
+}
+
+/// Seeded fuzzing of write failures: `render` (several pictures) and `scenes generate`
+/// under file-size limits drawn at random, from none to more than the files need. Each
+/// run either writes every file whole (as an unlimited run writes them) or fails with
+/// exit 2, the file named, the previous files as they were and no temporary file left:
+/// a limit anywhere inside a file, or between two files, never leaves a part.
+#[test]
+fn writes_under_random_size_limits_are_whole_or_not_at_all() {
+    use pushplan::random::SplitMix64;
+    let scratch = common::Scratch::new("writes-fuzz");
+    let dir = scratch.path();
+    let scene = std::fs::canonicalize("scenes/herb_single_object.yaml").unwrap();
+    common::plan_solved(scene.to_str().unwrap(), &dir.join("plan.json"), &[]);
+    let commands: [(&str, Vec<&str>); 2] = [
+        ("pictures", vec!["render", "plan.json", "--out", "pictures"]),
+        (
+            "scenes",
+            vec!["scenes", "generate", "--count", "3", "--out", "scenes"],
+        ),
+    ];
+    let mut rng = SplitMix64::new(590);
+    let (mut whole, mut refused) = (0, 0);
+    for (folder, args) in &commands {
+        // What an unlimited run writes, file by file.
+        let (code, text) = pushplan_limited(dir, 1 << 20, args);
+        assert_eq!(code, 0, "{text}");
+        let written: Vec<(String, Vec<u8>)> = listing(&dir.join(folder))
+            .into_iter()
+            .filter(|name| {
+                !std::fs::metadata(dir.join(folder).join(name))
+                    .unwrap()
+                    .is_dir()
+            })
+            .map(|name| {
+                let bytes = std::fs::read(dir.join(folder).join(&name)).unwrap();
+                (name, bytes)
+            })
+            .collect();
+        // The largest file the command writes, its folders' included (a generated set
+        // carries its robot), in 1 KiB blocks: limits up to twice it.
+        let largest = largest_file(&dir.join(folder)) / 1024 + 2;
+        for case in 0..20 {
+            // The previous files: marked, so that a part of a new one would show.
+            for (name, _) in &written {
+                std::fs::write(dir.join(folder).join(name), format!("old {name}")).unwrap();
+            }
+            let blocks = rng.below(2 * largest as usize) as u32;
+            let (code, text) = pushplan_limited(dir, blocks, args);
+            let what = format!("{folder}, case {case}, ulimit -f {blocks}: {text}");
+            let names = listing(&dir.join(folder));
+            assert!(
+                names.iter().all(|n| !n.ends_with(".tmp")),
+                "{what}: {names:?}"
+            );
+            for (name, bytes) in &written {
+                let now = std::fs::read(dir.join(folder).join(name)).unwrap();
+                assert!(
+                    now == *bytes || now == format!("old {name}").into_bytes(),
+                    "{what}: {name} is neither the new file nor the old one"
+                );
+            }
+            match code {
+                0 => whole += 1,
+                2 => {
+                    assert!(
+                        text.contains("the previous file is left as it was"),
+                        "{what}"
+                    );
+                    refused += 1;
+                }
+                _ => panic!("{what}: exit {code}"),
+            }
+        }
+    }
+    assert!(whole > 0 && refused > 0, "{whole} whole, {refused} refused");
+}
