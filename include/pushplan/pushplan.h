@@ -99,7 +99,9 @@ namespace pushplan
     struct Options
     {
         PlannerKind planner = PlannerKind::PushKpiece;
-        std::optional<double> time_limit;     ///< search time (s)
+        /// Time limit of the call (s), counted from its start: loading the scene, the
+        /// search and the robustness checks (shortcutting stops at it too).
+        std::optional<double> time_limit;
         std::optional<std::uint64_t> seed;    ///< random seed
         std::optional<unsigned> k;            ///< control samples per extension
         std::optional<double> goal_bias;      ///< probability of sampling the goal

@@ -273,35 +273,14 @@ fn mutated_plan_files_are_read_and_checked_without_panics() {
 
 /// A binary STL of a box with half extents 5 cm: 12 triangles.
 fn box_stl() -> Vec<u8> {
-    let h = 0.05_f32;
-    let corner = |i: usize| {
-        [
-            if i & 1 == 0 { -h } else { h },
-            if i & 2 == 0 { -h } else { h },
-            if i & 4 == 0 { -h } else { h },
-        ]
-    };
-    let faces = [
-        [0, 2, 3],
-        [0, 3, 1],
-        [4, 5, 7],
-        [4, 7, 6],
-        [0, 1, 5],
-        [0, 5, 4],
-        [2, 6, 7],
-        [2, 7, 3],
-        [0, 4, 6],
-        [0, 6, 2],
-        [1, 3, 7],
-        [1, 7, 5],
-    ];
+    let (corners, faces) = crate::meshes::box_mesh([0.05; 3]);
     let mut bytes = vec![0u8; 80];
     bytes.extend((faces.len() as u32).to_le_bytes());
     for face in faces {
         bytes.extend([0u8; 12]);
         for v in face {
-            for c in corner(v) {
-                bytes.extend(c.to_le_bytes());
+            for c in corners[v] {
+                bytes.extend((c as f32).to_le_bytes());
             }
         }
         bytes.extend([0u8; 2]);

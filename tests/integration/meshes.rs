@@ -10,7 +10,7 @@ use pushplan::robot::urdf::load_urdf;
 use std::path::Path;
 
 /// The 8 corners and 12 triangles of an axis-aligned box with half extents `h`.
-fn box_mesh(h: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
+pub(crate) fn box_mesh(h: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
     let corners = (0..8)
         .map(|i| {
             [
