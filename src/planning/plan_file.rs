@@ -207,6 +207,43 @@ pub struct RobustnessRecord {
     pub particles: u32,
 }
 
+impl RobustnessRecord {
+    /// Within the limits robust planning has (`check` measures the rate again over
+    /// `trials`: a count from the file must not be a loop without end).
+    fn check(&self) -> Result<(), String> {
+        use crate::limits::{ROBUST_PARTICLES, ROBUST_TRIALS};
+        let named = |field: &str, e: String| format!("robustness.{field}: {e}");
+        if !(1..=ROBUST_TRIALS.most as usize).contains(&self.trials) {
+            return Err(named(
+                "trials",
+                format!(
+                    "must be in [1, {}], got {}",
+                    ROBUST_TRIALS.most, self.trials
+                ),
+            ));
+        }
+        if self.particles > ROBUST_PARTICLES.most as u32 {
+            return Err(named(
+                "particles",
+                format!(
+                    "must be in {}, got {}",
+                    ROBUST_PARTICLES.range(),
+                    self.particles
+                ),
+            ));
+        }
+        for (field, rate) in [
+            ("required_rate", self.required_rate),
+            ("success_rate", self.success_rate),
+        ] {
+            if !(0.0..=1.0).contains(&rate) {
+                return Err(named(field, format!("must be in [0, 1], got {rate}")));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The path's metrics as found and as written.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -427,6 +464,9 @@ impl PlanFile {
         finite("step", [&self.step])?;
         self.settings.check()?;
         self.metrics.check(self.objects.len())?;
+        if let Some(r) = &self.robustness {
+            r.check()?;
+        }
         state("start", &self.start.q, &self.start.objects)?;
         let mut total = 0usize;
         for (i, c) in self.controls.iter().enumerate() {

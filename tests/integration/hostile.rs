@@ -37,7 +37,7 @@ fn tampered(dir: &Path, plan: &Value, name: &str, edit: impl Fn(&mut Value)) -> 
 fn malformed_plan_files_are_bad_input_for_check_render_and_execute() {
     let scratch = common::Scratch::new("hostile-malformed-plans");
     let (_, plan) = base_plan(scratch.path());
-    let cases: [(&str, &str, Edit); 8] = [
+    let cases: [(&str, &str, Edit); 9] = [
         // Steps beyond any plan: a capacity overflow, a 2.4 TB allocation, a minute.
         (
             "huge_steps.json",
@@ -88,6 +88,13 @@ fn malformed_plan_files_are_bad_input_for_check_render_and_execute() {
             "threads.json",
             "threads: must be in [1, 256]",
             Box::new(|p| p["threads"] = Value::from(0)),
+        ),
+        // check measures the record's rate again over its trials: a trillion of them
+        // would never end.
+        (
+            "trials.json",
+            "robustness.trials: must be in [1, 1000]",
+            Box::new(|p| p["robustness"]["trials"] = Value::from(1_000_000_000_000u64)),
         ),
     ];
     assert_eq!(
