@@ -540,7 +540,7 @@ namespace pushplan
                 return plan;
             if (finishing == Finishing::AsFound)
             {
-                describePath(plan, info, found.states, found.controls, found.steps);
+                describePath(plan, info, slice(found.states), slice(found.controls), slice(found.steps));
                 return plan;
             }
 
@@ -570,12 +570,10 @@ namespace pushplan
             plan.robustness = path.robustness;
             plan.robustness_trials = path.robustness_trials;
         }
-        describePath(plan, info, std::vector<double>(path.states.begin(), path.states.end()),
-                     std::vector<double>(path.controls.begin(), path.controls.end()),
-                     std::vector<std::size_t>(path.steps.begin(), path.steps.end()));
-        const bridge::Trajectory trajectory =
-            finisher.trajectory(rust::Slice<const double>(path.controls.data(), path.controls.size()),
-                             rust::Slice<const std::size_t>(path.steps.data(), path.steps.size()));
+        const rust::Slice<const double> controls(path.controls.data(), path.controls.size());
+        const rust::Slice<const std::size_t> steps(path.steps.data(), path.steps.size());
+        describePath(plan, info, rust::Slice<const double>(path.states.data(), path.states.size()), controls, steps);
+        const bridge::Trajectory trajectory = finisher.trajectory(controls, steps);
         plan.trajectory.rate = trajectory.rate;
         for (std::size_t k = 0; k < trajectory.times.size(); ++k)
         {
@@ -595,8 +593,8 @@ namespace pushplan
                 Contact{c.step, std::string(info.link_names[c.link]), std::string(info.object_names[c.object]), c.force});
     }
 
-    void detail::describePath(Plan &plan, const bridge::SceneInfo &info, const std::vector<double> &states,
-                              const std::vector<double> &controls, const std::vector<std::size_t> &steps)
+    void detail::describePath(Plan &plan, const bridge::SceneInfo &info, rust::Slice<const double> states,
+                              rust::Slice<const double> controls, rust::Slice<const std::size_t> steps)
     {
         const detail::FlatLayout flat{info.dof, info.objects};
         for (std::size_t s = 0; s * flat.size() < states.size(); ++s)

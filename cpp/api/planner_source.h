@@ -104,8 +104,8 @@ namespace pushplan
 
         /// `plan`'s states (the start and after each control) and controls from the flat
         /// `states`, `controls` and `steps` of the scene `info` describes.
-        void describePath(Plan &plan, const bridge::SceneInfo &info, const std::vector<double> &states,
-                          const std::vector<double> &controls, const std::vector<std::size_t> &steps);
+        void describePath(Plan &plan, const bridge::SceneInfo &info, rust::Slice<const double> states,
+                          rust::Slice<const double> controls, rust::Slice<const std::size_t> steps);
 
         /// Reaches a grasp of `object` in the scene `load` reads as the settings
         /// `settings_of` gives for it (checked here), from the flat state `start_of` gives

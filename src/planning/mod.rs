@@ -31,7 +31,7 @@ pub mod static_clutter;
 pub mod trajectory;
 pub mod transit;
 
-pub use deadline::deadline;
+pub use deadline::{deadline, passed};
 pub use finish::{
     finish, FinishSettings, FinishedPath, MeasuredRate, RobustRequirement, ShortcutReport,
 };

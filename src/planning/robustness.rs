@@ -6,6 +6,7 @@
 //! pushing plane from the arm alone), so re-simulating the controls is executing the
 //! plan open loop.
 
+use crate::planning::passed;
 use crate::planning::path::{simulate, PathControl, SimulatedPath};
 use crate::propagate::{Propagation, Propagator};
 use crate::random::SplitMix64;
@@ -285,7 +286,7 @@ pub fn robustness_until(
     };
     let mut rng = SplitMix64::new(seed);
     let runs: Vec<Trial> = (0..trials)
-        .take_while(|&i| i == 0 || deadline.is_none_or(|d| Instant::now() < d))
+        .take_while(|&i| i == 0 || !passed(deadline))
         .map(|_| match PerturbedWorld::draw(noise, scene, &mut rng) {
             Err(e) => Trial {
                 reached: false,

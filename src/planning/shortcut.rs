@@ -16,6 +16,7 @@
 //! deterministic under its seed; [`STEPS_PER_SECOND`] converts the user's seconds.
 
 use crate::math::wrap_angle;
+use crate::planning::passed;
 use crate::planning::path::{simulate, PathControl, PathMetrics, SimulatedPath};
 use crate::planning::robustness::{reaches, PerturbedWorld};
 use crate::propagate::Propagator;
@@ -177,7 +178,7 @@ pub fn shortcut_by(
     // Shortcuts need two controls to replace; nudges one.
     let least = if worlds.is_some() { 1 } else { 2 };
     while work < settings.budget_steps && current.len() >= least {
-        if settings.deadline.is_some_and(|d| Instant::now() >= d) {
+        if passed(settings.deadline) {
             outcome.stopped_at_deadline = true;
             break;
         }
@@ -267,7 +268,7 @@ impl<'a> WorldRuns<'a> {
     fn run(&mut self, goal: &Goal, controls: &[PathControl]) -> Option<u64> {
         self.runs.clear();
         for world in self.worlds.iter_mut() {
-            if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            if passed(self.deadline) {
                 return None;
             }
             self.runs.push(world.run(controls));
@@ -294,7 +295,7 @@ impl<'a> WorldRuns<'a> {
         let (mut reached, mut failed, mut work) = (0, 0, 0);
         for (world, run) in self.worlds.iter_mut().zip(&self.runs) {
             // Past the deadline the candidate is not judged (and not kept).
-            if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            if passed(self.deadline) {
                 return (false, work);
             }
             // A world whose run stopped before control i fails the same way.

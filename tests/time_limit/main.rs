@@ -3,43 +3,15 @@
 //! shared with the other tests' processes on a 2-core machine (under the integration
 //! suite's load a 1 s search once took 2.7 s of wall time).
 
-use std::path::PathBuf;
-use std::process::Command;
+#[path = "../integration/common.rs"]
+mod common;
+
+use common::Scratch;
+use std::path::Path;
 
 /// `pushplan args` in the crate's folder: exit code, stdout, stderr.
 fn pushplan(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_pushplan"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-/// A folder of its own under the system's temporary folder, removed when dropped.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(name: &str) -> Scratch {
-        let dir = std::env::temp_dir().join(format!("pushplan-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Scratch(dir)
-    }
-
-    fn join(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
+    common::pushplan_in(Path::new("."), args)
 }
 
 /// Wall time (s) of `pushplan args` and its exit code and stdout.
@@ -59,7 +31,7 @@ fn timed(args: &[&str]) -> (f64, i32, String) {
 /// bound is tried once more before it fails: the machine may be shared.
 #[test]
 fn the_time_limit_bounds_the_whole_plan_command() {
-    let scratch = Scratch::new("hostile-time-limit");
+    let scratch = Scratch::new("time-limit");
     let out = scratch.join("plan.json");
     let out = out.to_str().unwrap();
     let within = |args: &[&str], seconds: f64| -> (i32, String) {

@@ -13,6 +13,7 @@
 
 use super::fuzzy::{most_probable_path, FuzzyRoadmap, Query};
 use super::{Motion, PickAndPlace, Segment};
+use crate::planning::passed;
 use crate::planning::transit::{transit_points, TRANSIT_RESOLUTION};
 use crate::random::SplitMix64;
 use nalgebra::DVector;
@@ -270,7 +271,7 @@ impl ManipulationGraph {
     }
 
     fn past_deadline(&self) -> bool {
-        self.settings.deadline.is_some_and(|d| Instant::now() >= d)
+        passed(self.settings.deadline)
     }
 
     /// The segments of a path of certain edges.
