@@ -37,7 +37,7 @@ for scene in "${scenes[@]}"; do
     # shellcheck disable=SC2086
     "$bin" plan "$scene" --seed "${SEED:-1}" --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
   fi
-  if head -1 "$out/$n.plan.txt" | grep -q '^solved'; then
+  if grep -v '^warning:' "$out/$n.plan.txt" | head -1 | grep -q '^solved'; then
     "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1
     echo "$n: $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
     for e in "${engines[@]}"; do

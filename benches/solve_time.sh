@@ -6,7 +6,7 @@
 solve_time() {
   local bin=$1 limit=$2 scene=$3 seed=$4 out=$5 line
   shift 5
-  line=$("$bin" plan "$scene" --seed "$seed" --time "$limit" --shortcut 0 --robust 0 --quiet --out "$out" "$@" 2>&1 | head -1)
+  line=$("$bin" plan "$scene" --seed "$seed" --time "$limit" --shortcut 0 --robust 0 --quiet --out "$out" "$@" 2>&1 | grep -v "^warning:" | head -1)
   case "$line" in
     "solved in "*) awk '{print $3}' <<< "$line" ;;
     *) echo "$limit" ;;

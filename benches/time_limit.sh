@@ -19,7 +19,7 @@ run() {
   shift 3
   local start end wall first
   start=$(date +%s.%N)
-  first=$("$bin" plan "$scene" --planner "$planner" --time "$t" --threads 1 "$@" --quiet --out "$out/plan.json" 2>&1 | head -1)
+  first=$("$bin" plan "$scene" --planner "$planner" --time "$t" --threads 1 "$@" --quiet --out "$out/plan.json" 2>&1 | grep -v "^warning:" | head -1)
   end=$(date +%s.%N)
   wall=$(echo "$end - $start" | bc -l)
   printf '%-34s %-12s %6s %8.2f %8.2f  %s\n' "$scene" "$planner" "$t" "$wall" "$(echo "$wall - 1.05 * $t - 0.2" | bc -l)" "${first%% in *}"

@@ -85,9 +85,13 @@ enum Command {
         search: SearchFlags,
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is
-    /// reached; with --noise, also how often perturbed re-simulations still reach it.
+    /// reached; with --noise, also how often perturbed re-simulations still reach it. Given
+    /// a scene file, check the scene: what cannot work or will be slow, with the numbers.
     Check {
-        /// Plan file (JSON, written by `plan`).
+        /// Plan file (JSON, written by `plan`), or a scene file (.yaml, .yml): the scene is
+        /// loaded and checked for what cannot work or will be slow (an object the tool tips
+        /// at the plane's height, a goal out of reach or over the table's edge, objects on
+        /// the goal disc), with the numbers; exit 1 with warnings
         plan: PathBuf,
         /// Re-simulate the plan this many times with perturbed object start poses and
         /// parameters (±5 mm, ±0.05 rad; mass, mu_g, c x U(0.8, 1.2); mu_c x U(0.5, 1.2);

@@ -4,6 +4,7 @@ use pushplan::input::MAX_PLAN_BYTES;
 use pushplan::planning::plan_file::PlanFile;
 use pushplan::planning::robustness::Noise;
 use pushplan::planning::Problem;
+use pushplan::scene::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -22,7 +23,48 @@ fn is_pick_place_file(path: &Path) -> bool {
         .is_some_and(|f| f == super::PICK_PLACE_FORMAT)
 }
 
+/// Is the file a scene (YAML, by its extension) rather than a plan?
+fn is_scene_file(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("yaml") || e.eq_ignore_ascii_case("yml"))
+}
+
+/// `pushplan check SCENE.yaml`: loads the scene (every rule, the start's validity) and
+/// prints the scene check's warnings. Exit 0 without warnings, 1 with some.
+fn check_scene(path: &Path) -> Result<ExitCode, String> {
+    let scene = Scene::load(path).map_err(|e| e.to_string())?;
+    let warnings = pushplan::scene::check::check(&scene);
+    println!(
+        "{}: loads; the start is valid; {} object(s); {} warning(s)",
+        path.display(),
+        scene.objects.len(),
+        warnings.len()
+    );
+    for warning in &warnings {
+        println!("  warning: {warning}");
+    }
+    let blocking = warnings.iter().filter(|w| w.blocks()).count();
+    println!(
+        "{}",
+        match (warnings.len(), blocking) {
+            (0, _) => "scene OK".to_string(),
+            (_, 0) => "scene OK, with warnings: it can be planned, perhaps slowly".to_string(),
+            (_, n) => format!("scene CANNOT WORK as written: {n} warning(s) say a plan is unlikely to reach the goal"),
+        }
+    );
+    Ok(match warnings.is_empty() {
+        true => ExitCode::SUCCESS,
+        false => ExitCode::FAILURE,
+    })
+}
+
 pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
+    if is_scene_file(path) {
+        if noise > 0 {
+            return Err("--noise applies to plans, not to scene files".into());
+        }
+        return check_scene(path);
+    }
     if is_pick_place_file(path) {
         if noise > 0 {
             return Err("--noise applies to pushing plans, not to pick-and-place paths".into());

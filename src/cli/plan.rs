@@ -174,6 +174,13 @@ pub fn plan(
             .map_err(|e| e.to_string())?,
         None => scene,
     };
+    // A scene that loads may still ask the impossible (`check SCENE.yaml` prints the same);
+    // a re-plan's start is the world's, not the user's choice.
+    if run.from.is_none() {
+        for warning in pushplan::scene::check::check(&scene) {
+            eprintln!("warning: {}: {warning}", scene_path.display());
+        }
+    }
     // The plan's folder is made and tried before the search, not found wanting after it.
     pushplan::output::check_writable(out)?;
     let mut options = run.search.settings(&scene.planner);

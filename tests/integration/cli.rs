@@ -154,11 +154,59 @@ fn invalid_scenes_give_clear_errors() {
     let (code, _, stderr) = pushplan(&["plan", "scenes/none.yaml"]);
     assert_eq!(code, 2);
     assert!(stderr.contains("scenes/none.yaml: cannot read"), "{stderr}");
-    let (code, _, stderr) = pushplan(&["check", "scenes/herb_single_object.yaml"]);
+    let (code, _, stderr) = pushplan(&["check", "scenes/herb_single_object.yaml", "--noise", "3"]);
     assert_eq!(code, 2);
-    assert!(stderr.contains("herb_single_object.yaml"), "{stderr}");
+    assert!(stderr.contains("--noise applies to plans"), "{stderr}");
     let (code, _, stderr) = pushplan(&["plan", "--time", "-3", "--quiet"]);
     assert_eq!(code, 2, "{stderr}");
+}
+
+#[test]
+fn check_of_a_scene_file_says_what_cannot_work_and_plan_warns_the_same() {
+    let scratch = common::Scratch::new("cli-check_of_a_scene_file");
+    let (code, stdout, _) = pushplan(&["check", "scenes/herb_single_object.yaml"]);
+    assert_eq!(code, 0, "{stdout}");
+    assert!(
+        stdout.contains("0 warning(s)") && stdout.ends_with("scene OK\n"),
+        "{stdout}"
+    );
+    // The pushing plane raised to 0.14 m: the goal box (b = 0.051 m, mu_g 0.4) tips above
+    // 0.1275 m whichever side is pushed.
+    let robots = std::fs::canonicalize("robots").unwrap();
+    let text = std::fs::read_to_string("scenes/herb_single_object.yaml")
+        .unwrap()
+        .replace("../robots/", &format!("{}/", robots.display()))
+        .replace(
+            "pushing_plane: {height: 0.08",
+            "pushing_plane: {height: 0.14",
+        );
+    let high = scratch.join("high.yaml");
+    std::fs::write(&high, text).unwrap();
+    let (code, stdout, _) = pushplan(&["check", high.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stdout}");
+    assert!(
+        stdout.contains("the goal object 'green_box' tips when the tool pushes it")
+            && stdout.contains("b / mu_g = 0.127 m")
+            && stdout.contains("scene CANNOT WORK"),
+        "{stdout}"
+    );
+    let out = scratch.join("p.json");
+    let (_, _, stderr) = pushplan(&[
+        "plan",
+        high.to_str().unwrap(),
+        "--time",
+        "0.2",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        stderr.contains(&format!(
+            "warning: {}: the goal object 'green_box' tips",
+            high.display()
+        )),
+        "{stderr}"
+    );
 }
 
 #[test]

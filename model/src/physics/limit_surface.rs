@@ -59,6 +59,23 @@ impl Footprint {
         }
     }
 
+    /// The least and the greatest distance (m) from the centroid to an edge's line: the
+    /// lever of the weight about the edge a push tips the prism over, for the push
+    /// toward that edge (a disc: its radius, both). A push that slides the prism at height
+    /// `h` tips it about an edge at lever `b` when `h > b / mu_g` (`physics.md`,
+    /// "Tipping").
+    pub fn half_widths(&self) -> (f64, f64) {
+        match self {
+            Footprint::Circle { radius } => (*radius, *radius),
+            Footprint::Polygon { vertices } => {
+                let g = self.centroid();
+                polygon_edges(vertices)
+                    .map(|(a, b)| cross(b - a, g - a) / (b - a).norm())
+                    .fold((f64::INFINITY, 0.0), |(lo, hi), d| (lo.min(d), hi.max(d)))
+            }
+        }
+    }
+
     /// Characteristic length `c = (1/A) ∫ |r| dA` (m) about the origin, for uniform
     /// pressure.
     ///

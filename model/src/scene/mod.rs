@@ -4,6 +4,7 @@
 //! World frame: z up, the table top horizontal at `table.top`.
 
 pub mod builtin;
+pub mod check;
 mod clearances;
 pub mod file;
 pub mod generate;
@@ -11,6 +12,7 @@ mod load;
 mod number;
 mod start;
 
+pub use check::SceneWarning;
 pub use clearances::Clearances;
 pub use load::{MAX_CONTROL_STEPS, MAX_FRICTION, MAX_K, MAX_MASS, MAX_OBJECTS, MAX_STEP, MIN_STEP};
 

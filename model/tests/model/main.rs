@@ -11,6 +11,7 @@ mod kinematics;
 mod observed_start;
 mod physics;
 mod pushing;
+mod scene_check;
 mod scene_errors;
 mod scenes;
 mod tipping;
