@@ -200,6 +200,9 @@ pub mod ffi {
         pub moved_clutter: u64,
         pub stop_reasons: Vec<String>,
         pub stop_counts: Vec<u64>,
+        /// Self-collision stops by link pair: two names per pair, flat.
+        pub self_collision_links: Vec<String>,
+        pub self_collision_counts: Vec<u64>,
     }
 
     extern "Rust" {

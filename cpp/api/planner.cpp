@@ -51,9 +51,13 @@ namespace pushplan
         SearchStats searchStats(const std::vector<ModelHandlePtr> &models)
         {
             const bridge::SearchStats sum = summedSearchStats(models);
-            SearchStats total{sum.propagations, sum.steps, sum.moved_goal_object, sum.moved_clutter, {}};
+            SearchStats total{sum.propagations, sum.steps, sum.moved_goal_object, sum.moved_clutter, {}, {}};
             for (std::size_t i = 0; i < sum.stop_reasons.size(); ++i)
                 total.stopped.emplace_back(std::string(sum.stop_reasons[i]), sum.stop_counts[i]);
+            for (std::size_t i = 0; i < sum.self_collision_counts.size(); ++i)
+                total.self_collisions.emplace_back(std::string(sum.self_collision_links[2 * i]),
+                                                   std::string(sum.self_collision_links[2 * i + 1]),
+                                                   sum.self_collision_counts[i]);
             return total;
         }
 

@@ -44,6 +44,12 @@ namespace pushplan::bridge
             out.search.stop_reasons.emplace_back(reason);
             out.search.stop_counts.push_back(count);
         }
+        for (const auto &[a, b, count] : plan.search.self_collisions)
+        {
+            out.search.self_collision_links.emplace_back(a);
+            out.search.self_collision_links.emplace_back(b);
+            out.search.self_collision_counts.push_back(count);
+        }
         out.dof = plan.joint_names.size();
         out.objects = plan.object_names.size();
         for (std::size_t i = 0; i < plan.joint_trajectory.size(); ++i)

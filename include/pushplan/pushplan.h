@@ -22,6 +22,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -207,6 +208,9 @@ namespace pushplan
         /// Propagations stopped early, by the rule a step broke ("objects too close",
         /// "jammed", "joint limit", ...).
         std::vector<std::pair<std::string, std::uint64_t>> stopped;
+        /// Of the self-collision stops, by link pair (names in order): a pair a robot's
+        /// searches keep stopping on usually belongs in the scene's allowed_collisions.
+        std::vector<std::tuple<std::string, std::string, std::uint64_t>> self_collisions;
     };
 
     /// A state observed while a plan runs, as a robot's joint encoders and perception

@@ -67,6 +67,12 @@ impl From<&SearchStats> for bridge::SearchStats {
             moved_clutter: stats.moved_clutter,
             stop_reasons: stats.stopped.keys().cloned().collect(),
             stop_counts: stats.stopped.values().copied().collect(),
+            self_collision_links: stats
+                .self_collisions
+                .keys()
+                .flat_map(|(a, b)| [a.clone(), b.clone()])
+                .collect(),
+            self_collision_counts: stats.self_collisions.values().copied().collect(),
         }
     }
 }
@@ -83,6 +89,12 @@ impl From<&bridge::SearchStats> for SearchStats {
                 .iter()
                 .cloned()
                 .zip(stats.stop_counts.iter().copied())
+                .collect(),
+            self_collisions: stats
+                .self_collision_links
+                .chunks_exact(2)
+                .map(|pair| (pair[0].clone(), pair[1].clone()))
+                .zip(stats.self_collision_counts.iter().copied())
                 .collect(),
         }
     }

@@ -21,7 +21,13 @@ pub struct SearchStats {
     pub moved_clutter: u64,
     /// Propagations stopped by an invalid step, by [`Invalid::kind`].
     pub stopped: BTreeMap<String, u64>,
+    /// Of those stopped by self-collision, by the pair of links (names in order): a
+    /// robot whose searches stop on one pair usually needs it in `allowed_collisions`.
+    pub self_collisions: BTreeMap<(String, String), u64>,
 }
+
+/// Link pairs named in the report's self-collision share, at most.
+const NAMED_PAIRS: usize = 3;
 
 impl SearchStats {
     /// Adds another search's counts (parallel searches report their sum).
@@ -33,18 +39,31 @@ impl SearchStats {
         for (reason, n) in &other.stopped {
             *self.stopped.entry(reason.clone()).or_insert(0) += n;
         }
+        for (pair, n) in &other.self_collisions {
+            *self.self_collisions.entry(pair.clone()).or_insert(0) += n;
+        }
     }
 
     /// One line: "N propagations of S steps on average, P % stopped early (reason P %,
     /// ...); the goal object moved in G %, other objects in C %" (reasons most frequent
-    /// first, shares of all propagations).
+    /// first, shares of all propagations; self-collision names its most frequent link
+    /// pairs).
     pub fn report(&self) -> String {
         let share = |n: u64| 100.0 * n as f64 / self.propagations.max(1) as f64;
         let mut reasons: Vec<(&String, &u64)> = self.stopped.iter().collect();
         reasons.sort_by(|a, b| b.1.cmp(a.1).then(a.0.cmp(b.0)));
         let reasons: Vec<String> = reasons
             .iter()
-            .map(|(reason, n)| format!("{reason} {:.1} %", share(**n)))
+            .map(|(reason, n)| match reason.as_str() {
+                "self-collision" if !self.self_collisions.is_empty() => {
+                    format!(
+                        "{reason} {:.1} % [{}]",
+                        share(**n),
+                        self.named_pairs(&share)
+                    )
+                }
+                _ => format!("{reason} {:.1} %", share(**n)),
+            })
             .collect();
         format!(
             "{} propagations of {:.1} steps on average, {:.1} % stopped early{}; the goal object moved in {:.1} %, other objects in {:.1} %",
@@ -58,6 +77,24 @@ impl SearchStats {
             share(self.moved_goal_object),
             share(self.moved_clutter)
         )
+    }
+}
+
+impl SearchStats {
+    /// The most frequent self-colliding link pairs with their shares: "'a' and 'b' 20.1 %;
+    /// ...".
+    fn named_pairs(&self, share: &dyn Fn(u64) -> f64) -> String {
+        let mut pairs: Vec<(&(String, String), &u64)> = self.self_collisions.iter().collect();
+        pairs.sort_by(|a, b| b.1.cmp(a.1).then(a.0.cmp(b.0)));
+        let mut named: Vec<String> = pairs
+            .iter()
+            .take(NAMED_PAIRS)
+            .map(|((a, b), n)| format!("'{a}' and '{b}' {:.1} %", share(**n)))
+            .collect();
+        if pairs.len() > NAMED_PAIRS {
+            named.push(format!("{} more pairs", pairs.len() - NAMED_PAIRS));
+        }
+        named.join("; ")
     }
 }
 
@@ -119,6 +156,24 @@ impl SearchCounter {
         }
         if let Some(reason) = stopped_by {
             self.count_stop(reason.kind());
+            if let Invalid::SelfCollision { link_a, link_b } = reason {
+                let pair = match link_a <= link_b {
+                    true => (link_a, link_b),
+                    false => (link_b, link_a),
+                };
+                match self
+                    .stats
+                    .self_collisions
+                    .get_mut(&(pair.0.clone(), pair.1.clone()))
+                {
+                    Some(n) => *n += 1,
+                    None => {
+                        self.stats
+                            .self_collisions
+                            .insert((pair.0.clone(), pair.1.clone()), 1);
+                    }
+                }
+            }
         }
     }
 
@@ -136,5 +191,53 @@ impl SearchCounter {
                 self.stats.stopped.insert(kind.to_string(), 1);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stop(counter: &mut SearchCounter, state: &State, reason: Invalid) {
+        counter.record(state, state, Some(&reason), false);
+    }
+
+    #[test]
+    fn self_collision_stops_name_their_link_pairs_most_frequent_first() {
+        let scene = Scene::load("scenes/herb_single_object.yaml").unwrap();
+        let state = scene.start.clone();
+        let mut counter = SearchCounter::new(&scene);
+        let pair = |a: &str, b: &str| Invalid::SelfCollision {
+            link_a: a.into(),
+            link_b: b.into(),
+        };
+        for _ in 0..3 {
+            stop(&mut counter, &state, pair("forearm", "upper_arm"));
+        }
+        // The same pair named the other way round is the same pair.
+        stop(&mut counter, &state, pair("upper_arm", "forearm"));
+        stop(&mut counter, &state, pair("hand", "shoulder"));
+        for _ in 0..5 {
+            counter.record(&state, &state, None, false);
+        }
+        let mut other = SearchCounter::new(&scene);
+        stop(&mut other, &state, pair("hand", "shoulder"));
+        let mut stats = counter.stats().clone();
+        stats.add(other.stats());
+        assert_eq!(
+            stats.self_collisions[&("forearm".into(), "upper_arm".into())],
+            4
+        );
+        assert_eq!(
+            stats.self_collisions[&("hand".into(), "shoulder".into())],
+            2
+        );
+        let report = stats.report();
+        assert!(
+            report.contains(
+                "self-collision 54.5 % ['forearm' and 'upper_arm' 36.4 %; 'hand' and 'shoulder' 18.2 %]"
+            ),
+            "{report}"
+        );
     }
 }

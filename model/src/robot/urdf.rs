@@ -216,8 +216,17 @@ fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize) -> Result<Joint
             "limit lower ({lower}) must be below upper ({upper})"
         )));
     }
-    let axis = Unit::try_new(Vector3::from(*j.axis.xyz), 1e-9)
-        .ok_or_else(|| urdf_error("axis must not be zero".into()))?;
+    // A fixed joint has no axis to turn about: ROS's urdfdom does not read it, and public
+    // URDFs (Franka's panda_joint8) write `0 0 0` there.
+    let axis = match kind {
+        JointKind::Fixed => Vector3::z_axis(),
+        _ => Unit::try_new(Vector3::from(*j.axis.xyz), 1e-9).ok_or_else(|| {
+            urdf_error(format!(
+                "axis must not be zero on a {} joint (it is the direction the joint moves about)",
+                format!("{:?}", j.joint_type).to_lowercase()
+            ))
+        })?,
+    };
     let max_velocity = if j.limit.velocity > 0.0 {
         j.limit.velocity
     } else {

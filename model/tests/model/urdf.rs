@@ -295,6 +295,71 @@ fn broken_urdfs_are_errors() {
 }
 
 #[test]
+fn urdfs_that_ros_loads_load_here() {
+    // What ROS's urdfdom accepts: a fixed joint's axis is not read (Franka's public URDF
+    // writes `0 0 0` on panda_joint8), a continuous joint needs no <limit>, a joint with
+    // no <axis> turns about x, an axis of any length is a direction.
+    let scratch = common::Scratch::new("test-urdf-ros");
+    let path = scratch.join("r.urdf");
+    let joint = |name: &str, kind: &str, parent: &str, child: &str, extra: &str| {
+        format!("<joint name='{name}' type='{kind}'><parent link='{parent}'/><child link='{child}'/>{extra}</joint>")
+    };
+    let text = format!(
+        "<robot name='r'><link name='a'/><link name='b'/><link name='c'/><link name='d'/><link name='e'/>{}{}{}{}</robot>",
+        joint("spin", "continuous", "a", "b", "<axis xyz='0 0 1'/>"),
+        joint("bend", "revolute", "b", "c", "<limit lower='-1' upper='1' effort='1' velocity='1'/>"),
+        joint("long", "revolute", "c", "d", "<axis xyz='0 2 0'/><limit lower='-1' upper='1' effort='1' velocity='1'/>"),
+        joint("flange", "fixed", "d", "e", "<origin xyz='0 0 0.1'/><axis xyz='0 0 0'/>"),
+    );
+    std::fs::write(&path, text).unwrap();
+    let chain = load_urdf(&path, "e", Isometry3::identity()).unwrap();
+    assert_eq!(chain.dof(), 3);
+    let axis = |name: &str| {
+        let joint = chain
+            .links
+            .iter()
+            .find_map(|l| l.joint.as_ref().filter(|j| j.name == name))
+            .unwrap();
+        (
+            joint.kind,
+            joint.axis.into_inner(),
+            joint.lower,
+            joint.upper,
+        )
+    };
+    assert_eq!(axis("spin").0, JointKind::Revolute);
+    assert_eq!(
+        (axis("spin").2, axis("spin").3),
+        (-std::f64::consts::PI, std::f64::consts::PI)
+    );
+    assert_eq!(axis("bend").1, Vector3::x());
+    assert_eq!(axis("long").1, Vector3::y());
+    assert_eq!(axis("flange").0, JointKind::Fixed);
+
+    // A joint that moves needs a direction to move about.
+    let zero = format!(
+        "<robot name='r'><link name='a'/><link name='b'/>{}</robot>",
+        joint(
+            "j",
+            "revolute",
+            "a",
+            "b",
+            "<axis xyz='0 0 0'/><limit lower='-1' upper='1' effort='1' velocity='1'/>"
+        )
+    );
+    std::fs::write(&path, zero).unwrap();
+    let message = load_urdf(&path, "b", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("r.urdf")
+            && message.contains("joint 'j'")
+            && message.contains("axis must not be zero on a revolute joint"),
+        "{message}"
+    );
+}
+
+#[test]
 fn urdfs_that_are_not_one_tree_are_errors_naming_the_links() {
     let scratch = common::Scratch::new("test-urdf-tree");
     let write = |name: &str, text: &str| {
