@@ -250,13 +250,15 @@ pub const GRASPS: Limit = count("--grasps", "", 1, 1_000, "grasps per region");
 pub const CHECK_BUDGET: Limit = count("--budget", "", 1, 100_000_000, "validity checks");
 /// `robot --tries`: inverse-kinematics attempts.
 pub const IK_TRIES: Limit = count("--tries", "", 1, 100_000, "attempts");
+/// `robot --samples`: random configurations of `--allowed-collisions`.
+pub const COLLISION_SAMPLES: Limit = count("--samples", "", 1, 1_000_000, "configurations");
 /// `bench --runs`: runs per planner and scene.
 pub const RUNS: Limit = count("--runs", "", 1, 10_000, "runs");
 /// `bench --jobs`: runs at once.
 pub const JOBS: Limit = count("--jobs", "", 1, 1_024, "processes");
 
 /// Every limit, for the table in docs/commands.md and its test.
-pub const ALL: [&Limit; 23] = [
+pub const ALL: [&Limit; 24] = [
     &K,
     &THREADS,
     &ROBUST_TRIALS,
@@ -278,6 +280,7 @@ pub const ALL: [&Limit; 23] = [
     &GRASPS,
     &CHECK_BUDGET,
     &IK_TRIES,
+    &COLLISION_SAMPLES,
     &RUNS,
     &JOBS,
 ];

@@ -21,7 +21,7 @@ pub use files::{draw, generate_scenes, install};
 pub use pick_place::{check_pick_place, pick_place, PickPlaceOptions, PICK_PLACE_FORMAT};
 pub use plan::{grasp_goal, plan, PlanOptions};
 pub use replan::{replan, ReplanOptions};
-pub use robot::{robot, RobotQuery};
+pub use robot::{allowed_collisions_of, robot, RobotQuery};
 pub use search_flags::SearchFlags;
 
 /// The cores this process may use (at least 1): the default of `plan --threads` and

@@ -4,6 +4,7 @@
 
 use nalgebra::{DVector, Isometry3};
 use pushplan::random::SplitMix64;
+use pushplan::robot::collision_matrix::{collision_matrix, SkipReason, ALWAYS_SHARE};
 use pushplan::robot::{IkSettings, Robot};
 use pushplan::scene::Scene;
 use pushplan::state::State;
@@ -223,4 +224,65 @@ fn reach_configurations(
     solutions.sort_by_key(|(_, validity)| validity.is_err());
     solutions.truncate(MAX_SOLUTIONS);
     solutions
+}
+
+/// `pushplan robot SCENE --allowed-collisions`: the link pairs to leave out of the
+/// self-collision checks, found as MoveIt's Setup Assistant finds them
+/// ([`collision_matrix`]), printed as the scene's `allowed_collisions` (YAML to paste,
+/// each pair with its reason). Pairs the scene already allows are marked so.
+pub fn allowed_collisions_of(
+    scene_path: &Path,
+    samples: usize,
+    seed: u64,
+) -> Result<ExitCode, String> {
+    let (scene, _) = Scene::load_any_start(scene_path).map_err(|e| e.to_string())?;
+    let robot = &scene.robot;
+    let names = |l: usize| robot.chain.links[l].name.as_str();
+    let started = std::time::Instant::now();
+    let matrix = collision_matrix(robot, samples, seed);
+    let count = |reason: SkipReason| matrix.skipped.iter().filter(|p| p.reason == reason).count();
+    println!(
+        "# Self-collision pairs of '{}' ({} links with geometry; adjacent links are never checked),",
+        scene_path.display(),
+        robot.solid_links().count()
+    );
+    println!(
+        "# as MoveIt's Setup Assistant finds them: of {} pairs, {} collide at the zero configuration,",
+        matrix.candidates,
+        count(SkipReason::AtZero)
+    );
+    println!(
+        "# {} in at least {:.0} % of {samples} random configurations (seed {seed}), {} in none ({:.1} s).",
+        count(SkipReason::Always),
+        100.0 * ALWAYS_SHARE,
+        count(SkipReason::Never),
+        started.elapsed().as_secs_f64()
+    );
+    println!(
+        "# The {} others stay checked. Pairs in none of the samples may still meet in a configuration",
+        matrix.candidates - matrix.skipped.len()
+    );
+    println!("# the samples missed: more --samples make that rarer.");
+    if matrix.skipped.is_empty() {
+        println!("allowed_collisions: []");
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!("allowed_collisions:");
+    let checked = &robot.self_collision_pairs;
+    for pair in &matrix.skipped {
+        let already = !checked.contains(&(pair.a, pair.b));
+        println!(
+            "  - [{}, {}]  # {} ({} of {samples}){}",
+            names(pair.a),
+            names(pair.b),
+            pair.reason.name(),
+            pair.collisions,
+            if already {
+                "; the scene allows it already"
+            } else {
+                ""
+            }
+        );
+    }
+    Ok(ExitCode::SUCCESS)
 }

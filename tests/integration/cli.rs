@@ -605,6 +605,57 @@ fn every_planner_kind_is_chosen_by_its_name() {
     );
 }
 
+/// `pushplan robot --allowed-collisions`: what it prints pastes into the scene as it is.
+#[test]
+fn robot_allowed_collisions_prints_pairs_a_scene_takes_as_they_are() {
+    let scratch = common::Scratch::new("cli-robot-allowed-collisions");
+    let scene = "scenes/herb_single_object.yaml";
+    let args = ["robot", scene, "--allowed-collisions", "--samples", "2000"];
+    let (code, stdout, stderr) = pushplan(&args);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains("of 2000 random configurations (seed 1)"),
+        "{stdout}"
+    );
+    let block = &stdout[stdout
+        .find("allowed_collisions:")
+        .expect("a block to paste")..];
+    let pairs = block.lines().filter(|l| l.starts_with("  - [")).count();
+    assert!(
+        pairs > 0 && block.contains("# Never (0 of 2000)"),
+        "{block}"
+    );
+    // Pasted into the scene, it loads; asked again, every pair is already allowed.
+    let robots = std::fs::canonicalize("robots").unwrap();
+    let text = std::fs::read_to_string(scene)
+        .unwrap()
+        .replace("../robots/", &format!("{}/", robots.display()));
+    let with = scratch.join("with.yaml");
+    std::fs::write(&with, format!("{text}\n{stdout}")).unwrap();
+    let (code, out, _) = pushplan(&["check", with.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}");
+    let again = [
+        "robot",
+        with.to_str().unwrap(),
+        "--allowed-collisions",
+        "--samples",
+        "2000",
+    ];
+    let (code, stdout, _) = pushplan(&again);
+    assert_eq!(code, 0);
+    assert_eq!(
+        stdout.matches("the scene allows it already").count(),
+        pairs,
+        "{stdout}"
+    );
+    let (code, _, stderr) = pushplan(&["robot", scene, "--allowed-collisions", "--samples", "0"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--samples: must be in [1, 1000000]"),
+        "{stderr}"
+    );
+}
+
 /// `pushplan robot --reach X,Y`: each printed `start_joints` line, written into the scene,
 /// loads as a valid start with the tool at (X, Y) on the plane (the loader's own forward
 /// kinematics and plane projection judge the inverse kinematics' answer); a scene whose

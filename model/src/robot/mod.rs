@@ -7,6 +7,7 @@
 //! code are the same for both.
 
 pub mod chain;
+pub mod collision_matrix;
 pub mod ik;
 pub mod mesh;
 pub mod planar_hand;
@@ -110,7 +111,7 @@ impl Robot {
 /// Pairs of links with geometry that are not adjacent. Two solid links are adjacent when
 /// one is the other's nearest solid ancestor: links without geometry between them
 /// (the zero-length links of a spherical shoulder, say) do not separate them.
-fn non_adjacent_pairs(chain: &KinematicChain) -> Vec<(usize, usize)> {
+pub(crate) fn non_adjacent_pairs(chain: &KinematicChain) -> Vec<(usize, usize)> {
     let solid = |l: usize| !chain.links[l].geometry.is_empty();
     let nearest_solid_ancestor = |l: usize| {
         let mut current = l;

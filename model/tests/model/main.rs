@@ -4,6 +4,7 @@
 
 mod common;
 
+mod collision_matrix;
 mod distance;
 mod footprint;
 mod generate;
