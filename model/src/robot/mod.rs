@@ -12,6 +12,7 @@ pub mod ik;
 pub mod mesh;
 pub mod planar_hand;
 pub mod projection;
+pub mod srdf;
 pub mod urdf;
 pub mod wgr;
 

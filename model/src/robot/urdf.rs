@@ -20,6 +20,19 @@ pub const MAX_LINKS: usize = 1000;
 /// Continuous joints get the limits [-pi, pi]. Floating, planar and spherical joints are
 /// rejected. `base` is the world pose of the root link.
 pub fn load_urdf(path: &Path, end_effector: &str, base: Isometry3<f64>) -> Result<KinematicChain> {
+    load_urdf_chain(path, None, end_effector, base)
+}
+
+/// [`load_urdf`] with the configuration the movable joints from `chain_base` (a link
+/// between the root and `end_effector`, as an SRDF group's `<chain base_link>` names it;
+/// `None`: the root) to `end_effector`: the joints above it are held like those off the
+/// chain (a torso, a mobile base's lift).
+pub fn load_urdf_chain(
+    path: &Path,
+    chain_base: Option<&str>,
+    end_effector: &str,
+    base: Isometry3<f64>,
+) -> Result<KinematicChain> {
     let urdf_error = |message: String| Error::Urdf {
         file: path.to_path_buf(),
         message,
@@ -47,7 +60,19 @@ pub fn load_urdf(path: &Path, end_effector: &str, base: Isometry3<f64>) -> Resul
         .collect();
     let mut chain_joints = Vec::new();
     let mut current = end_effector;
-    while let Some(ji) = order[position[current]].1 {
+    while Some(current) != chain_base {
+        let Some(ji) = order[position[current]].1 else {
+            if chain_base.is_none() {
+                break;
+            }
+            return Err(Error::NoEndEffector {
+                file: path.to_path_buf(),
+                message: format!(
+                    "link '{}' (the chain's base) is not on the way from the root link to '{end_effector}'",
+                    chain_base.unwrap_or_default()
+                ),
+            });
+        };
         chain_joints.push(ji);
         current = robot.joints[ji].parent.link.as_str();
     }

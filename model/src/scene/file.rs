@@ -59,8 +59,19 @@ pub enum RobotSpec {
         /// Start configuration (rad / m), one value per joint from base to end effector.
         #[serde(deserialize_with = "number")]
         start_joints: Vec<f64>,
-        /// The end-effector link.
-        end_effector: String,
+        /// The end-effector link (default: the tip of the SRDF group's chain).
+        #[serde(default)]
+        end_effector: Option<String>,
+        /// MoveIt SRDF, relative to the scene file (default: the URDF's path with `.srdf`,
+        /// if there is such a file): its `disable_collisions` pairs are never checked, its
+        /// chain group names the arm.
+        #[serde(default)]
+        srdf: Option<PathBuf>,
+        /// The SRDF group whose chain is the arm: its base link's joints and those above
+        /// are held, its tip is the default end effector (default: the only chain group,
+        /// used when `end_effector` is not given).
+        #[serde(default)]
+        group: Option<String>,
         /// The tool point and frame in the end-effector link (default: the link frame).
         #[serde(default)]
         tool: PoseSpec,

@@ -19,7 +19,8 @@ use crate::physics::{Footprint, LimitSurface, LoadedSupport};
 use crate::robot::mesh::load_convex_mesh;
 use crate::robot::planar_hand::planar_hand_chain;
 use crate::robot::projection::ProjectionSettings;
-use crate::robot::urdf::{check_dimensions, load_urdf};
+use crate::robot::srdf::Srdf;
+use crate::robot::urdf::{check_dimensions, load_urdf_chain};
 use crate::robot::wgr::Wgr;
 use crate::robot::{PushingPlane, Robot, RobotKind};
 use crate::state::State;
@@ -362,6 +363,30 @@ impl Loader<'_> {
             })?;
         }
         Ok(scene)
+    }
+
+    /// The SRDF `robot.srdf` names (relative to the scene file), else the one beside the
+    /// URDF (its path with `.srdf`) if there is one; with its path.
+    fn srdf(&self, named: Option<&Path>, urdf_path: &Path) -> Result<Option<(Srdf, PathBuf)>> {
+        let path = match named {
+            Some(named) => {
+                let path = self.relative(named);
+                if let Some(why) = crate::input::not_a_regular_file(&path) {
+                    return Err(
+                        self.invalid("robot.srdf", format!("file {}: {why}", path.display()))
+                    );
+                }
+                path
+            }
+            None => {
+                let beside = urdf_path.with_extension("srdf");
+                if !beside.is_file() {
+                    return Ok(None);
+                }
+                beside
+            }
+        };
+        Ok(Some((Srdf::read(&path)?, path)))
     }
 
     /// Resolves `allowed_collisions`: each pair names a robot link and the table, an
@@ -729,6 +754,8 @@ impl Loader<'_> {
                 base_pose,
                 start_joints,
                 end_effector,
+                srdf,
+                group,
                 tool,
                 pushing_plane,
             } => {
@@ -753,14 +780,48 @@ impl Loader<'_> {
                     );
                 }
                 let base = isometry_from_xyz_rpy(base_pose.xyz, base_pose.rpy);
+                let srdf = self.srdf(srdf.as_deref(), &urdf_path)?;
+                // The SRDF's chain group names the arm when it is asked for, or when the
+                // scene names no end effector.
+                let chain_group = match (&srdf, group, end_effector) {
+                    (None, Some(_), _) => {
+                        return Err(self.invalid(
+                            "robot.group",
+                            "names an SRDF group, but there is no SRDF (robot.srdf, or a .srdf file beside the URDF)",
+                        ))
+                    }
+                    (None, None, None) => {
+                        return Err(self.invalid(
+                            "robot.end_effector",
+                            "missing (the end-effector link; or an SRDF whose chain group ends in it)",
+                        ))
+                    }
+                    (Some((srdf, srdf_path)), group, None) | (Some((srdf, srdf_path)), group @ Some(_), _) => {
+                        Some(srdf.chain(group.as_deref()).map_err(|message| {
+                            self.invalid("robot.group", format!("{}: {message}", srdf_path.display()))
+                        })?)
+                    }
+                    _ => None,
+                };
+                let end_effector: &str = match (end_effector, &chain_group) {
+                    (Some(link), _) => link,
+                    (None, Some((_, tip))) => tip,
+                    (None, None) => unreachable!("refused above"),
+                };
+                let chain_base = chain_group.as_ref().map(|(base, _)| base.as_str());
                 // A link the URDF lacks is the scene's fault: its field is named.
-                let chain = load_urdf(&urdf_path, end_effector, base).map_err(|e| match e {
-                    Error::NoEndEffector { file, message } => self.invalid(
-                        "robot.end_effector",
-                        format!("{}: {message}", file.display()),
-                    ),
-                    e => e,
-                })?;
+                let chain = load_urdf_chain(&urdf_path, chain_base, end_effector, base).map_err(
+                    |e| match e {
+                        Error::NoEndEffector { file, message } => self.invalid(
+                            match chain_group {
+                                Some(_) => "robot.group",
+                                None => "robot.end_effector",
+                            },
+                            format!("{}: {message}", file.display()),
+                        ),
+                        e => e,
+                    },
+                )?;
                 let ee_link = chain
                     .link_index(end_effector)
                     .expect("checked by load_urdf");
@@ -785,7 +846,7 @@ impl Loader<'_> {
                     table.top + pushing_plane.height,
                     UnitQuaternion::from_euler_angles(r, p, y),
                 );
-                let robot = Robot::new(
+                let mut robot = Robot::new(
                     RobotKind::Arm,
                     chain,
                     ee_link,
@@ -793,6 +854,9 @@ impl Loader<'_> {
                     plane,
                     settings.clone(),
                 );
+                if let Some((srdf, srdf_path)) = &srdf {
+                    disable_collisions(&mut robot, srdf, srdf_path)?;
+                }
                 let mut q = DVector::from_column_slice(start_joints);
                 let written = q.clone();
                 if let Err(failure) = robot.start_on_plane(&mut q) {
@@ -1129,4 +1193,32 @@ impl Loader<'_> {
         }
         Ok(p.clone())
     }
+}
+
+/// Leaves the SRDF's `disable_collisions` pairs out of `robot`'s self-collision checks; a
+/// link the URDF lacks is an error naming the SRDF's element (the two files do not
+/// belong together).
+fn disable_collisions(robot: &mut Robot, srdf: &Srdf, path: &Path) -> Result<()> {
+    let links = &robot.chain.links;
+    let mut pairs = Vec::with_capacity(srdf.disabled.len());
+    for (i, pair) in srdf.disabled.iter().enumerate() {
+        let index = |name: &str, attribute: &str| {
+            links.iter().position(|l| l.name == name).ok_or_else(|| {
+                Error::invalid(
+                    path,
+                    format!("disable_collisions[{i}].{attribute}"),
+                    format!(
+                        "no link named '{name}' in the URDF (is this the SRDF of another robot?); the links are {}",
+                        name_list(links.iter().map(|l| l.name.as_str()))
+                    ),
+                )
+            })
+        };
+        let (a, b) = (index(&pair.link1, "link1")?, index(&pair.link2, "link2")?);
+        pairs.push((a.min(b), a.max(b)));
+    }
+    robot
+        .self_collision_pairs
+        .retain(|&(a, b)| !pairs.contains(&(a.min(b), a.max(b))));
+    Ok(())
 }

@@ -15,6 +15,7 @@ mod pushing;
 mod scene_check;
 mod scene_errors;
 mod scenes;
+mod srdf;
 mod tipping;
 mod urdf;
 mod validity;
