@@ -212,6 +212,7 @@ pub mod ffi {
         #[Self = "Problem"]
         fn from_yaml(yaml: &str, source: &str) -> Result<Box<Problem>>;
         fn info(self: &Problem) -> SceneInfo;
+        fn scene_warnings(self: &Problem) -> Vec<String>;
         fn set_start(self: &mut Problem, flat: &[f64]) -> Result<()>;
         fn set_static_clutter(self: &mut Problem, on: bool);
         fn static_clutter(self: &Problem) -> bool;

@@ -8,8 +8,8 @@ use clap::{Parser, Subcommand};
 use cli::within;
 use cli::{
     allowed_collisions_of, bench, bench_merge, bench_scene, check, draw, execute, generate_scenes,
-    install, pick_place, plan, plots, replan, robot, ClosedLoopFlags, ExecuteOptions,
-    PickPlaceOptions, PlanOptions, ReplanOptions, RobotQuery, SearchFlags,
+    generate_shipped_scenes, install, pick_place, plan, plots, replan, robot, ClosedLoopFlags,
+    ExecuteOptions, PickPlaceOptions, PlanOptions, ReplanOptions, RobotQuery, SearchFlags,
 };
 use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
@@ -17,7 +17,7 @@ use pushplan::limits;
 use pushplan::planning::execute::EngineKind;
 use pushplan::planning::PlannerKind;
 use pushplan::scene::builtin;
-use pushplan::scene::generate::Design;
+use pushplan::scene::generate::{Arm, Design};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -335,14 +335,20 @@ enum BenchCommand {
 
 #[derive(Subcommand)]
 enum ScenesCommand {
-    /// Generate a benchmark scene set on HERB's table: the same goal object and goal disc
-    /// in every scene, valid start states. Designs: `paper` (the whole-arm paper's: objects
-    /// anywhere in reach, up to 12) and `dense` (up to 20 objects placed one by one, in
-    /// turn scattered, covering part of the goal disc, and walling off the straight route).
+    /// Generate a benchmark scene set for an arm (the WAM on HERB's table by default): the
+    /// same goal object and goal disc in every scene, valid start states. Designs: `paper`
+    /// (the whole-arm paper's: objects anywhere in reach, up to 12), `dense` (up to 20
+    /// objects placed one by one, in turn scattered, covering part of the goal disc, and
+    /// walling off the straight route), `occupied_goal` (1-4 objects on the goal disc, at the
+    /// table's far edge in every other scene), `mixed_heights` (tall narrow and flat objects
+    /// among the clutter) and `walls` (two static walls across the way, a narrow passage).
     Generate {
-        /// paper or dense (see above).
+        /// paper, dense, occupied_goal, mixed_heights or walls (see above).
         #[arg(long, default_value = "paper")]
         design: Design,
+        /// The arm: wam (on HERB's table), panda, ur5e or iiwa14 (on a table before them).
+        #[arg(long, default_value = "wam")]
+        robot: Arm,
         /// Number of scenes.
         #[arg(long, default_value_t = 35, value_parser = within::count::<usize>(&limits::SCENES))]
         count: usize,
@@ -355,6 +361,10 @@ enum ScenesCommand {
         /// Output folder.
         #[arg(long)]
         out: PathBuf,
+        /// Instead, write every shipped set of every arm and design into OUT/ARM/DESIGN
+        /// (the repository's `scenes/`: `--shipped --out scenes` regenerates them).
+        #[arg(long, conflicts_with_all = ["design", "robot", "count", "objects", "seed"])]
+        shipped: bool,
     },
 }
 
@@ -505,12 +515,17 @@ fn run(command: Command) -> Result<ExitCode, String> {
             action:
                 ScenesCommand::Generate {
                     design,
+                    robot,
                     count,
                     objects,
                     seed,
                     out,
+                    shipped,
                 },
-        } => generate_scenes(design, count, &objects, seed, &out),
+        } => match shipped {
+            true => generate_shipped_scenes(&out),
+            false => generate_scenes(design, robot, count, &objects, seed, &out),
+        },
         Command::Bench {
             action: Some(BenchCommand::Merge { dirs, out }),
             ..

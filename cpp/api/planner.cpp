@@ -105,6 +105,14 @@ namespace pushplan
         return source().name;
     }
 
+    std::vector<std::string> Planner::sceneWarnings() const
+    {
+        std::vector<std::string> warnings;
+        for (const auto &w : source().load()->scene_warnings())
+            warnings.emplace_back(w);
+        return warnings;
+    }
+
     const Planner::Source &Planner::source() const
     {
         if (!source_)

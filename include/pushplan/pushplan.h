@@ -355,6 +355,12 @@ namespace pushplan
         /// The scene's name.
         std::string sceneName() const;
 
+        /// The scene check (the CLI's `check SCENE.yaml`): what will not work or will be
+        /// slow in a scene that loads, with the numbers (an object the tool tips at the
+        /// pushing plane's height, the goal out of the tool's reach or over the table's
+        /// edge, objects on the goal disc); empty when nothing is found.
+        std::vector<std::string> sceneWarnings() const;
+
     private:
         friend std::shared_ptr<ompl::control::SimpleSetup> makeSetup(const Planner &planner,
                                                                      const SetupOptions &options);

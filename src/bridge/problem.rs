@@ -73,6 +73,14 @@ impl Problem {
         SceneInfo::from(&*self.scene)
     }
 
+    /// The scene check's warnings (`scene::check`), in words.
+    pub fn scene_warnings(&self) -> Vec<String> {
+        crate::scene::check::check(&self.scene)
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    }
+
     /// The scene.
     pub fn scene(&self) -> &Scene {
         &self.scene

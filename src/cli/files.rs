@@ -15,6 +15,7 @@ pub fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, Str
 
 pub fn generate_scenes(
     design: pushplan::scene::generate::Design,
+    arm: pushplan::scene::generate::Arm,
     count: usize,
     objects: &str,
     seed: u64,
@@ -24,8 +25,20 @@ pub fn generate_scenes(
         .split_once("..")
         .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)))
         .ok_or_else(|| format!("--objects must look like 1..7, got '{objects}'"))?;
-    let files = pushplan::scene::generate::generate(design, count, range, seed, out)?;
+    let files = pushplan::scene::generate::generate(design, arm, count, range, seed, out)?;
     println!("wrote {} scenes to {}", files.len(), out.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `scenes generate --shipped --out DIR`: every shipped set into DIR/ARM/DESIGN.
+pub fn generate_shipped_scenes(out: &Path) -> Result<ExitCode, String> {
+    let files = pushplan::scene::generate::generate_shipped(out)?;
+    println!(
+        "wrote {} scenes of {} sets to {}",
+        files.len(),
+        pushplan::scene::generate::shipped_sets().len(),
+        out.display()
+    );
     Ok(ExitCode::SUCCESS)
 }
 

@@ -268,6 +268,18 @@ int main()
         expect(throwsError([&] { pushplan::makeSetup(moved); }, "moved from"),
                "makeSetup() of a moved-from planner throws");
     }
+    // The scene check: nothing on a shipped scene; the pushing plane raised above the goal
+    // box's tipping height (0.051 / 0.4 = 0.1275 m), one warning saying so.
+    {
+        const pushplan::Planner shipped("scenes/herb_single_object.yaml");
+        expect(shipped.sceneWarnings().empty(), "a shipped scene has no scene warnings");
+        std::ifstream in("scenes/herb_single_object.yaml");
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        text.replace(text.find("pushing_plane: {height: 0.08"), 28, "pushing_plane: {height: 0.14");
+        const auto warnings = pushplan::Planner::fromYaml(text, "scenes/high.yaml").sceneWarnings();
+        expect(warnings.size() == 1 && warnings[0].find("'green_box' tips when the tool pushes it") != std::string::npos,
+               "a plane above the goal object's tipping height is a scene warning");
+    }
     // A failure of the model inside solve() and makeSetup(): the scene file is gone by then.
     {
         std::ifstream in("scenes/herb_single_object.yaml");

@@ -16,9 +16,10 @@ pub const MAX_LINKS: usize = 1000;
 /// Loads the URDF at `path` as a kinematic chain whose configuration is the movable
 /// joints on the path from the root link to `end_effector`, in order.
 ///
-/// Movable joints off that path (fingers, say) are held at 0 (or the nearest limit).
-/// Continuous joints get the limits [-pi, pi]. Floating, planar and spherical joints are
-/// rejected. `base` is the world pose of the root link.
+/// Movable joints off that path (fingers, say) are held at 0 (or the nearest limit), and
+/// floating, planar and spherical joints off it at their origin. Continuous joints get the
+/// limits [-pi, pi]. Floating, planar and spherical joints on the path are rejected.
+/// `base` is the world pose of the root link.
 pub fn load_urdf(path: &Path, end_effector: &str, base: Isometry3<f64>) -> Result<KinematicChain> {
     load_urdf_chain(path, None, end_effector, base)
 }
@@ -95,7 +96,7 @@ pub fn load_urdf_chain(
                 let j = &robot.joints[*ji];
                 let on_chain = chain_joints.contains(ji);
                 let parent = position[j.parent.link.as_str()];
-                let joint = convert_joint(path, j, parent)?;
+                let joint = convert_joint(path, j, parent, on_chain)?;
                 let joint = if on_chain && joint.kind != JointKind::Fixed {
                     dof_links.push(links.len());
                     Joint {
@@ -206,7 +207,9 @@ fn tree_order(robot: &urdf_rs::Robot) -> std::result::Result<Vec<(String, Option
     Ok(order)
 }
 
-fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize) -> Result<Joint> {
+/// `j` as a joint of the chain; `on_chain`: between the root and the end effector (off
+/// it, a floating, planar or spherical joint is held like the others, as a fixed one).
+fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize, on_chain: bool) -> Result<Joint> {
     let urdf_error = |message: String| Error::Urdf {
         file: path.to_path_buf(),
         message: format!("joint '{}': {message}", j.name),
@@ -220,7 +223,13 @@ fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize) -> Result<Joint
         ),
         urdf_rs::JointType::Prismatic => (JointKind::Prismatic, j.limit.lower, j.limit.upper),
         urdf_rs::JointType::Fixed => (JointKind::Fixed, 0.0, 0.0),
-        ref other => return Err(urdf_error(format!("{other:?} joints are not supported"))),
+        _ if !on_chain => (JointKind::Fixed, 0.0, 0.0),
+        ref other => {
+            return Err(urdf_error(format!(
+                "{} joints are not supported between the root link and the end effector (off that chain they are held fixed)",
+                format!("{other:?}").to_lowercase()
+            )))
+        }
     };
     let numbers = j
         .origin

@@ -37,23 +37,28 @@ pub fn write_default_scene(root: &Path) -> Result<PathBuf, String> {
     Ok(scene)
 }
 
-/// The WAM URDF that scenes generated into `dir` name: `robots/wam7.urdf` in `dir` or in
-/// the nearest folder above it that has one identical to the built-in (a project's own
-/// tree), else the built-in copy written to `dir/robots/wam7.urdf`.
-pub fn wam_for(dir: &Path) -> Result<PathBuf, String> {
+/// The URDF `file` (built in as `text`) that scenes generated into `dir` name:
+/// `robots/FILE` in `dir` or in the nearest folder above it that has one identical to the
+/// built-in (a project's own tree), else the built-in copy written to `dir/robots/FILE`.
+pub fn robot_file_for(dir: &Path, file: &str, text: &str) -> Result<PathBuf, String> {
     let dir = std::path::absolute(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let found = dir
         .ancestors()
-        .map(|a| a.join("robots").join(WAM))
-        .find(|p| std::fs::read_to_string(p).is_ok_and(|text| text == WAM_TEXT));
+        .map(|a| a.join("robots").join(file))
+        .find(|p| std::fs::read_to_string(p).is_ok_and(|old| old == text));
     match found {
         Some(path) => Ok(path),
         None => {
-            let path = dir.join("robots").join(WAM);
-            write_if_different(&path, WAM_TEXT)?;
+            let path = dir.join("robots").join(file);
+            write_if_different(&path, text)?;
             Ok(path)
         }
     }
+}
+
+/// The WAM URDF that scenes generated into `dir` name ([`robot_file_for`]).
+pub fn wam_for(dir: &Path) -> Result<PathBuf, String> {
+    robot_file_for(dir, WAM, WAM_TEXT)
 }
 
 /// Writes `text` to `path` unless the file holds it already ([`crate::output::write_whole`]:

@@ -2,7 +2,9 @@
 
 use crate::common;
 
-use pushplan_model::scene::generate::{generate, Design, GOAL_CENTER, GOAL_RADIUS};
+use pushplan_model::scene::generate::{
+    generate, generate_shipped, shipped_sets, Arm, Design, GOAL_CENTER, GOAL_RADIUS,
+};
 use pushplan_model::scene::Goal;
 use pushplan_model::Scene;
 
@@ -21,7 +23,7 @@ fn generated_scenes_follow_the_dataset_design() {
     let scratch = common::Scratch::new("generate-generated_scenes_follow_the_dataset_design");
     let temp = |name: &str| scratch.join(name);
     let dir = temp("seven");
-    let files = generate(Design::Paper, 7, (1, 7), 3, &dir).unwrap();
+    let files = generate(Design::Paper, Arm::Wam, 7, (1, 7), 3, &dir).unwrap();
     let mut counts = Vec::new();
     let mut goal_starts = Vec::new();
     for file in &files {
@@ -62,8 +64,8 @@ fn generated_scenes_follow_the_dataset_design() {
     );
 
     // Deterministic under the seed; another seed gives other scenes.
-    let again = generate(Design::Paper, 7, (1, 7), 3, &temp("again")).unwrap();
-    let other = generate(Design::Paper, 7, (1, 7), 4, &temp("other")).unwrap();
+    let again = generate(Design::Paper, Arm::Wam, 7, (1, 7), 3, &temp("again")).unwrap();
+    let other = generate(Design::Paper, Arm::Wam, 7, (1, 7), 4, &temp("other")).unwrap();
     assert!(files
         .iter()
         .zip(&again)
@@ -80,7 +82,7 @@ fn generated_scenes_follow_the_dataset_design() {
 fn generated_scenes_name_a_robot_beside_them() {
     let scratch = common::Scratch::new("generate-generated_scenes_name_a_robot_beside_them");
     let dir = scratch.join("set");
-    let files = generate(Design::Paper, 2, (1, 2), 1, &dir).unwrap();
+    let files = generate(Design::Paper, Arm::Wam, 2, (1, 2), 1, &dir).unwrap();
     let text = std::fs::read_to_string(&files[0]).unwrap();
     assert!(text.contains("urdf: robots/wam7.urdf"), "{text}");
     assert_eq!(
@@ -105,7 +107,7 @@ fn the_committed_benchmark_set_is_what_the_command_generates() {
     let scratch =
         common::Scratch::new("generate-the_committed_benchmark_set_is_what_the_command_generates");
     let temp = |name: &str| scratch.join(name);
-    let files = generate(Design::Paper, 35, (1, 7), 1, &temp("committed")).unwrap();
+    let files = generate(Design::Paper, Arm::Wam, 35, (1, 7), 1, &temp("committed")).unwrap();
     for (i, file) in files.iter().enumerate() {
         let committed = std::path::PathBuf::from(format!("scenes/benchmark/scene_{i:02}.yaml"));
         assert_eq!(without_urdf(file), without_urdf(&committed), "{} differs: regenerate with `pushplan scenes generate --count 35 --objects 1..7 --seed 1 --out scenes/benchmark`", committed.display());
@@ -117,10 +119,12 @@ fn the_committed_benchmark_set_is_what_the_command_generates() {
 fn bad_ranges_are_errors() {
     let scratch = common::Scratch::new("generate-bad_ranges_are_errors");
     let temp = |name: &str| scratch.join(name);
-    assert!(generate(Design::Paper, 3, (0, 2), 1, &temp("bad"))
-        .unwrap_err()
-        .contains("range"));
-    assert!(generate(Design::Paper, 3, (4, 2), 1, &temp("bad")).is_err());
+    assert!(
+        generate(Design::Paper, Arm::Wam, 3, (0, 2), 1, &temp("bad"))
+            .unwrap_err()
+            .contains("range")
+    );
+    assert!(generate(Design::Paper, Arm::Wam, 3, (4, 2), 1, &temp("bad")).is_err());
 }
 
 #[test]
@@ -128,7 +132,7 @@ fn the_committed_dense_set_is_what_the_command_generates() {
     let scratch =
         common::Scratch::new("generate-the_committed_dense_set_is_what_the_command_generates");
     let temp = |name: &str| scratch.join(name);
-    let files = generate(Design::Dense, 20, (8, 20), 1, &temp("dense")).unwrap();
+    let files = generate(Design::Dense, Arm::Wam, 20, (8, 20), 1, &temp("dense")).unwrap();
     for (i, file) in files.iter().enumerate() {
         let committed = std::path::PathBuf::from(format!("scenes/dense/scene_{i:02}.yaml"));
         assert_eq!(without_urdf(file), without_urdf(&committed), "{} differs: regenerate with `pushplan scenes generate --design dense --count 20 --objects 8..20 --seed 1 --out scenes/dense`", committed.display());
@@ -150,7 +154,15 @@ fn dense_scenes_are_dense_and_take_their_layouts_in_turn() {
     let scratch =
         common::Scratch::new("generate-dense_scenes_are_dense_and_take_their_layouts_in_turn");
     let temp = |name: &str| scratch.join(name);
-    let files = generate(Design::Dense, 9, (8, 20), 5, &temp("dense-design")).unwrap();
+    let files = generate(
+        Design::Dense,
+        Arm::Wam,
+        9,
+        (8, 20),
+        5,
+        &temp("dense-design"),
+    )
+    .unwrap();
     let mut counts = Vec::new();
     for (i, file) in files.iter().enumerate() {
         let scene = Scene::load(file).unwrap(); // valid, start state included
@@ -186,10 +198,125 @@ fn dense_scenes_are_dense_and_take_their_layouts_in_turn() {
         }
     }
     assert_eq!(counts, vec![8, 9, 10, 12, 13, 15, 16, 18, 19]);
-    assert!(generate(Design::Dense, 2, (8, 21), 1, &temp("bad"))
-        .unwrap_err()
-        .contains("1..20"));
-    assert!(generate(Design::Paper, 2, (8, 13), 1, &temp("bad"))
-        .unwrap_err()
-        .contains("dense design"));
+    assert!(
+        generate(Design::Dense, Arm::Wam, 2, (8, 21), 1, &temp("bad"))
+            .unwrap_err()
+            .contains("1..20")
+    );
+    assert!(
+        generate(Design::Paper, Arm::Wam, 2, (8, 13), 1, &temp("bad"))
+            .unwrap_err()
+            .contains("placed designs place up to 20")
+    );
+}
+
+#[test]
+fn the_committed_arm_sets_are_what_the_command_generates() {
+    let scratch = common::Scratch::new("generate-the_committed_arm_sets");
+    let files = generate_shipped(scratch.path()).unwrap();
+    let sets = shipped_sets();
+    assert_eq!(files.len(), sets.iter().map(|s| s.count).sum::<usize>());
+    // Four arms, five designs each (the WAM's paper and dense sets have folders of their own).
+    assert_eq!(sets.len(), 4 * 5 - 2);
+    for file in &files {
+        let relative = file.strip_prefix(scratch.path()).unwrap();
+        let committed = std::path::Path::new("scenes").join(relative);
+        assert_eq!(
+            without_urdf(file),
+            without_urdf(&committed),
+            "{} differs: regenerate with `pushplan scenes generate --shipped --out scenes`",
+            committed.display()
+        );
+    }
+}
+
+/// The committed scenes of `arm`'s `design`, loaded.
+fn committed(arm: Arm, design: Design) -> Vec<Scene> {
+    let set = shipped_sets()
+        .into_iter()
+        .find(|s| s.arm == arm && s.design == design)
+        .unwrap();
+    (0..set.count)
+        .map(|i| {
+            let path = std::path::Path::new("scenes")
+                .join(set.folder())
+                .join(format!("scene_{i:02}.yaml"));
+            Scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+        })
+        .collect()
+}
+
+fn goal_disc(scene: &Scene) -> (nalgebra::Vector2<f64>, f64) {
+    match scene.goal {
+        Goal::ObjectInDisc { center, radius, .. } => (center, radius),
+        _ => panic!("object goal expected"),
+    }
+}
+
+#[test]
+fn every_arm_has_an_occupied_goal_at_the_far_edge_in_every_other_scene() {
+    use pushplan_model::collision::footprint::gap;
+    use pushplan_model::physics::Footprint;
+    for arm in Arm::ALL {
+        let scenes = committed(arm, Design::OccupiedGoal);
+        for (i, scene) in scenes.iter().enumerate() {
+            let (center, radius) = goal_disc(scene);
+            let disc = Footprint::Circle { radius };
+            let at = pushplan_model::Pose2::new(center.x, center.y, 0.0);
+            let on_disc = (1..scene.objects.len())
+                .filter(|&k| {
+                    gap(
+                        &disc,
+                        &at,
+                        &scene.objects[k].footprint,
+                        &scene.start.objects[k],
+                    ) <= 0.0
+                })
+                .count();
+            assert!(
+                (1..=4).contains(&on_disc),
+                "{} scene {i}: {on_disc} on the disc",
+                arm.name()
+            );
+            assert!(scene.physics.object_pushing);
+            // The far disc lies nearer the table's far edge than the usual one.
+            let near_edge = scene.table.x.1 - center.x < 0.15;
+            assert_eq!(
+                near_edge,
+                i % 2 == 1,
+                "{} scene {i}: disc at {center}",
+                arm.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn every_arm_has_walls_with_a_narrow_passage_and_objects_of_mixed_heights() {
+    for arm in Arm::ALL {
+        for scene in committed(arm, Design::Walls) {
+            assert_eq!(scene.obstacles.len(), 2, "{}", scene.name);
+            let (a, b) = (&scene.obstacles[0].pose, &scene.obstacles[1].pose);
+            // Two 0.3 m walls on one line: the passage is their centres' distance less 0.3.
+            let passage = (a.translation.vector - b.translation.vector).xy().norm() - 0.3;
+            assert!(
+                (0.20 - 1e-9..=0.26 + 1e-9).contains(&passage),
+                "{}: {passage}",
+                scene.name
+            );
+            // Standing on the table.
+            assert!((a.translation.z - (scene.table.top + 0.06)).abs() < 1e-9);
+        }
+        let kinds: Vec<String> = committed(arm, Design::MixedHeights)
+            .iter()
+            .flat_map(|s| s.objects.iter().map(|o| o.name.clone()))
+            .collect();
+        for kind in ["tall_bottle", "plate", "low_box"] {
+            assert!(
+                kinds.iter().any(|n| n.starts_with(kind)),
+                "{}: no {kind} in the mixed heights set",
+                arm.name()
+            );
+        }
+    }
 }

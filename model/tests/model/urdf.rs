@@ -304,8 +304,11 @@ fn urdfs_that_ros_loads_load_here() {
     let joint = |name: &str, kind: &str, parent: &str, child: &str, extra: &str| {
         format!("<joint name='{name}' type='{kind}'><parent link='{parent}'/><child link='{child}'/>{extra}</joint>")
     };
+    // A floating joint off the chain (a free part of the model, as simulators' URDFs
+    // have) is held where its origin puts it.
     let text = format!(
-        "<robot name='r'><link name='a'/><link name='b'/><link name='c'/><link name='d'/><link name='e'/>{}{}{}{}</robot>",
+        "<robot name='r'><link name='a'/><link name='b'/><link name='c'/><link name='d'/><link name='e'/><link name='free'/>{}{}{}{}{}</robot>",
+        joint("loose", "floating", "a", "free", "<origin xyz='1 0 0'/>"),
         joint("spin", "continuous", "a", "b", "<axis xyz='0 0 1'/>"),
         joint("bend", "revolute", "b", "c", "<limit lower='-1' upper='1' effort='1' velocity='1'/>"),
         joint("long", "revolute", "c", "d", "<axis xyz='0 2 0'/><limit lower='-1' upper='1' effort='1' velocity='1'/>"),
@@ -335,6 +338,16 @@ fn urdfs_that_ros_loads_load_here() {
     assert_eq!(axis("bend").1, Vector3::x());
     assert_eq!(axis("long").1, Vector3::y());
     assert_eq!(axis("flange").0, JointKind::Fixed);
+    assert_eq!(axis("loose").0, JointKind::Fixed);
+    let message = load_urdf(&path, "free", Isometry3::identity())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains(
+            "floating joints are not supported between the root link and the end effector"
+        ),
+        "{message}"
+    );
 
     // A joint that moves needs a direction to move about.
     let zero = format!(
