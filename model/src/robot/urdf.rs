@@ -245,7 +245,9 @@ fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize, on_chain: bool)
             "origin, axis and limits must be finite numbers".into(),
         ));
     }
-    if kind != JointKind::Fixed && lower >= upper {
+    // Off the chain a joint is held (at 0, or the nearest limit): its range need not be
+    // one, as ROS's urdfdom does not ask (grippers' URDFs hold fingers at 0..0).
+    if on_chain && kind != JointKind::Fixed && lower >= upper {
         return Err(urdf_error(format!(
             "limit lower ({lower}) must be below upper ({upper})"
         )));

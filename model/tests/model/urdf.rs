@@ -307,8 +307,9 @@ fn urdfs_that_ros_loads_load_here() {
     // A floating joint off the chain (a free part of the model, as simulators' URDFs
     // have) is held where its origin puts it.
     let text = format!(
-        "<robot name='r'><link name='a'/><link name='b'/><link name='c'/><link name='d'/><link name='e'/><link name='free'/>{}{}{}{}{}</robot>",
+        "<robot name='r'><link name='a'/><link name='b'/><link name='c'/><link name='d'/><link name='e'/><link name='free'/><link name='finger'/>{}{}{}{}{}{}</robot>",
         joint("loose", "floating", "a", "free", "<origin xyz='1 0 0'/>"),
+        joint("grip", "prismatic", "e", "finger", "<axis xyz='0 1 0'/><limit lower='0' upper='0' effort='1' velocity='1'/>"),
         joint("spin", "continuous", "a", "b", "<axis xyz='0 0 1'/>"),
         joint("bend", "revolute", "b", "c", "<limit lower='-1' upper='1' effort='1' velocity='1'/>"),
         joint("long", "revolute", "c", "d", "<axis xyz='0 2 0'/><limit lower='-1' upper='1' effort='1' velocity='1'/>"),

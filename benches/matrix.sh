@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# The planner across the matrix of arms and scene designs (BENCHMARKS.md, "Any arm, any
+# table"): for every arm (wam, panda, ur5e, iiwa14) and design (paper, dense,
+# occupied_goal, mixed_heights, walls), a set generated with SEED (default 2: held out;
+# the shipped sets, scenes/ARM/DESIGN, are seed 1, development) is planned once per scene
+# with `plan` (Push KPIECE, TIME s, default 10, one thread, the first solution as found:
+# --robust 0, the default shortcutting), JOBS runs at a time (default 2).
+#
+#   benches/matrix.sh OUT_DIR [PUSHPLAN_BINARY]
+#
+# Writes OUT_DIR/scenes/ARM/DESIGN/, OUT_DIR/plans/ARM_DESIGN_NN.{json,txt} and prints a
+# table per arm and design: scenes solved, median time to solve (unsolved counted at the
+# limit), and the end effector's travel per metre the goal object moved (after
+# shortcutting; median over the solved plans).
+set -eu
+out=${1:?usage: benches/matrix.sh OUT_DIR [PUSHPLAN_BINARY]}
+bin=${2:-target/release/pushplan}
+seed=${SEED:-2}
+time=${TIME:-10}
+jobs=${JOBS:-2}
+mkdir -p "$out/plans"
+for arm in wam panda ur5e iiwa14; do
+  for design in paper dense occupied_goal mixed_heights walls; do
+    case $design in
+      paper) count=4; objects=1..7;;
+      dense) count=2; objects=8..14;;
+      *) count=4; objects=2..7;;
+    esac
+    "$bin" scenes generate --robot $arm --design $design --count $count --objects $objects \
+      --seed "$seed" --out "$out/scenes/$arm/$design" > /dev/null
+  done
+done
+ls "$out"/scenes/*/*/scene_*.yaml | while read -r scene; do
+  design=$(basename "$(dirname "$scene")")
+  arm=$(basename "$(dirname "$(dirname "$scene")")")
+  echo "$scene ${arm}_${design}_$(basename "$scene" .yaml | sed 's/scene_//')"
+done | xargs -P "$jobs" -L 1 sh -c '"$0" plan "$1" --seed 1 --time '"$time"' --robust 0 --threads 1 --quiet \
+  --out "'"$out"'/plans/$2.json" > "'"$out"'/plans/$2.txt" 2>&1 || true' "$bin"
+python3 - "$out" "$time" <<'PY'
+import glob, json, math, os, re, statistics, sys
+out, limit = sys.argv[1], float(sys.argv[2])
+rows = {}
+for txt in sorted(glob.glob(f"{out}/plans/*.txt")):
+    name = os.path.basename(txt)[:-4]
+    arm, rest = name.split("_", 1)
+    design = rest.rsplit("_", 1)[0]
+    text = open(txt).read()
+    m = re.search(r"^solved in ([0-9.]+) s", text, re.M)
+    row = rows.setdefault((arm, design), {"runs": 0, "solved": 0, "times": [], "travel": []})
+    row["runs"] += 1
+    row["times"].append(float(m.group(1)) if m else limit)
+    if m:
+        row["solved"] += 1
+        plan = json.load(open(txt[:-4] + ".json"))
+        start = plan["start"]["objects"][0]
+        end = plan["controls"][-1]["state"]["objects"][0] if plan["controls"] else start
+        moved = math.hypot(end[0] - start[0], end[1] - start[1])
+        if moved > 0:
+            row["travel"].append(plan["metrics"]["after_shortcut"]["ee_length"] / moved)
+print(f"| arm | design | solved | median time to solve (s) | EE travel per metre the goal object moved (median) |")
+print("|---|---|---|---|---|")
+for (arm, design), r in sorted(rows.items()):
+    travel = f"{statistics.median(r['travel']):.1f}" if r["travel"] else "-"
+    print(f"| {arm} | {design} | {r['solved']} of {r['runs']} | {statistics.median(r['times']):.2f} | {travel} |")
+total = sum(r["runs"] for r in rows.values())
+solved = sum(r["solved"] for r in rows.values())
+print(f"\nall: {solved} of {total} solved within {limit:g} s")
+PY
