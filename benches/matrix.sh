@@ -4,7 +4,8 @@
 # occupied_goal, mixed_heights, walls), a set generated with SEED (default 2: held out;
 # the shipped sets, scenes/ARM/DESIGN, are seed 1, development) is planned once per scene
 # with `plan` (Push KPIECE, TIME s, default 10, one thread, the first solution as found:
-# --robust 0, the default shortcutting), JOBS runs at a time (default 2).
+# --robust 0, shortcutting for SHORTCUT s of work, default 3 as `plan`'s), JOBS runs at a
+# time (default 2).
 #
 #   benches/matrix.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -19,6 +20,8 @@ seed=${SEED:-2}
 time=${TIME:-10}
 jobs=${JOBS:-2}
 mkdir -p "$out/plans"
+# SUMMARY_ONLY=1: the table of the plans already in OUT_DIR.
+if [ -z "${SUMMARY_ONLY:-}" ]; then
 for arm in wam panda ur5e iiwa14; do
   for design in paper dense occupied_goal mixed_heights walls; do
     case $design in
@@ -34,8 +37,9 @@ ls "$out"/scenes/*/*/scene_*.yaml | while read -r scene; do
   design=$(basename "$(dirname "$scene")")
   arm=$(basename "$(dirname "$(dirname "$scene")")")
   echo "$scene ${arm}_${design}_$(basename "$scene" .yaml | sed 's/scene_//')"
-done | xargs -P "$jobs" -L 1 sh -c '"$0" plan "$1" --seed 1 --time '"$time"' --robust 0 --threads 1 --quiet \
+done | xargs -P "$jobs" -L 1 sh -c '"$0" plan "$1" --seed 1 --time '"$time"' --robust 0 --threads 1 --shortcut '"${SHORTCUT:-3}"' --quiet \
   --out "'"$out"'/plans/$2.json" > "'"$out"'/plans/$2.txt" 2>&1 || true' "$bin"
+fi
 python3 - "$out" "$time" <<'PY'
 import glob, json, math, os, re, statistics, sys
 out, limit = sys.argv[1], float(sys.argv[2])
@@ -46,7 +50,7 @@ for txt in sorted(glob.glob(f"{out}/plans/*.txt")):
     design = rest.rsplit("_", 1)[0]
     text = open(txt).read()
     m = re.search(r"^solved in ([0-9.]+) s", text, re.M)
-    row = rows.setdefault((arm, design), {"runs": 0, "solved": 0, "times": [], "travel": []})
+    row = rows.setdefault((arm, design), {"runs": 0, "solved": 0, "times": [], "travel": [], "raw": []})
     row["runs"] += 1
     row["times"].append(float(m.group(1)) if m else limit)
     if m:
@@ -57,12 +61,15 @@ for txt in sorted(glob.glob(f"{out}/plans/*.txt")):
         moved = math.hypot(end[0] - start[0], end[1] - start[1])
         if moved > 0:
             row["travel"].append(plan["metrics"]["after_shortcut"]["ee_length"] / moved)
-print(f"| arm | design | solved | median time to solve (s) | EE travel per metre the goal object moved (median) |")
+            row["raw"].append(plan["metrics"]["before_shortcut"]["ee_length"] / moved)
+print("| arm | design | solved | median time to solve (s) | EE travel per metre the goal object moved, as found / shortcut (medians) |")
 print("|---|---|---|---|---|")
+median = lambda v: f"{statistics.median(v):.1f}" if v else "-"
 for (arm, design), r in sorted(rows.items()):
-    travel = f"{statistics.median(r['travel']):.1f}" if r["travel"] else "-"
-    print(f"| {arm} | {design} | {r['solved']} of {r['runs']} | {statistics.median(r['times']):.2f} | {travel} |")
+    print(f"| {arm} | {design} | {r['solved']} of {r['runs']} | {statistics.median(r['times']):.2f} | {median(r['raw'])} / {median(r['travel'])} |")
+raw = [v for r in rows.values() for v in r["raw"]]
+cut = [v for r in rows.values() for v in r["travel"]]
 total = sum(r["runs"] for r in rows.values())
 solved = sum(r["solved"] for r in rows.values())
-print(f"\nall: {solved} of {total} solved within {limit:g} s")
+print(f"\nall: {solved} of {total} solved within {limit:g} s; EE travel per metre the goal object moved, median {median(raw)} as found, {median(cut)} after the default shortcutting")
 PY

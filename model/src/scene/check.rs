@@ -128,9 +128,9 @@ impl fmt::Display for SceneWarning {
             ),
             SceneWarning::GoalOverTableEdge { share } => write!(
                 f,
-                "{:.0} % of the goal region (the goal disc less its margin) lies where the goal \
+                "{} % of the goal region (the goal disc less its margin) lies where the goal \
                  object would hang over the table's edge at any yaw{}",
-                100.0 * share,
+                percent(*share),
                 if *share >= 1.0 {
                     ": the goal cannot be reached (objects must stand wholly on the table)"
                 } else {
@@ -142,7 +142,7 @@ impl fmt::Display for SceneWarning {
                 free_share,
             } => write!(
                 f,
-                "{} {} {} on the goal disc: the goal object can stand clear of {} in {:.0} % of \
+                "{} {} {} on the goal disc: the goal object can stand clear of {} in {} % of \
                  the goal region{}",
                 match objects.len() {
                     1 => "object",
@@ -157,7 +157,7 @@ impl fmt::Display for SceneWarning {
                     1 => "it",
                     _ => "them",
                 },
-                100.0 * free_share,
+                percent(*free_share),
                 if *free_share > 0.0 {
                     ""
                 } else {
@@ -169,6 +169,15 @@ impl fmt::Display for SceneWarning {
                 "the goal object starts in the goal region: the plan is the start alone"
             ),
         }
+    }
+}
+
+/// A share (0-1) in percent for a message: a share above zero never reads as 0.
+fn percent(share: f64) -> String {
+    match share {
+        s if s > 0.0 && s < 0.005 => "under 1".into(),
+        s if s < 1.0 && s > 0.995 => "over 99".into(),
+        s => format!("{:.0}", 100.0 * s),
     }
 }
 
