@@ -146,6 +146,47 @@ fn obj_and_collada_meshes_load_in_metres_with_z_up() {
     assert!(message.contains("broken.dae"), "{message}");
 }
 
+/// A COLLADA file whose indices point past its arrays (mesh-loader panics on it; the model
+/// catches the panic): the command refuses the robot naming the mesh, and prints no panic.
+#[test]
+fn a_collada_mesh_that_panics_its_reader_is_refused_without_a_panic_message() {
+    let scratch = common::Scratch::new("test-mesh-collada-panic");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    std::fs::create_dir_all(scratch.join("meshes/wam7")).unwrap();
+    for entry in std::fs::read_dir(root.join("robots/meshes/wam7")).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(
+            &path,
+            scratch.join("meshes/wam7").join(path.file_name().unwrap()),
+        )
+        .unwrap();
+    }
+    let good = dae_text(
+        &box_mesh([0.05, 0.05, 0.05]),
+        1.0,
+        "<up_axis>Z_UP</up_axis>",
+    );
+    let start = good.find("<p>").unwrap() + 3;
+    let end = good.find("</p>").unwrap();
+    // As many indices as the triangles need, the last past the 8 vertices.
+    let mut indices: Vec<&str> = good[start..end].split(' ').collect();
+    *indices.last_mut().unwrap() = "99999";
+    let bad = format!("{}{}{}", &good[..start], indices.join(" "), &good[end..]);
+    std::fs::write(scratch.join("meshes/wam7/wam_link2.dae"), bad).unwrap();
+    std::fs::copy(root.join("robots/wam7_mesh.urdf"), scratch.join("wam.urdf")).unwrap();
+    let scene = std::fs::read_to_string(root.join("scenes/herb_single_object.yaml"))
+        .unwrap()
+        .replace("urdf: ../robots/wam7.urdf", "urdf: wam.urdf");
+    std::fs::write(scratch.join("s.yaml"), scene).unwrap();
+    let (code, stdout, stderr) = common::pushplan_in(scratch.path(), &["check", "s.yaml"]);
+    assert_eq!(code, 2, "{stdout}{stderr}");
+    assert!(
+        stderr.contains("wam_link2.dae") && stderr.contains("COLLADA indices beyond the arrays"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
 /// A UV sphere of radius 0.06 m with 64 × 32 facets (1 986 vertices).
 fn fine_sphere() -> Vec<Point3<f64>> {
     let mut points = vec![Point3::new(0.0, 0.0, 0.06), Point3::new(0.0, 0.0, -0.06)];
