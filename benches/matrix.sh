@@ -3,23 +3,23 @@
 # table"): for every arm (wam, panda, ur5e, iiwa14) and design (paper, dense,
 # occupied_goal, mixed_heights, walls), a set generated with SEED (default 2: held out;
 # the shipped sets, scenes/ARM/DESIGN, are seed 1, development) is planned once per scene
-# with `plan` (Push KPIECE, TIME s, default 10, one thread, the first solution as found:
-# --robust 0, shortcutting for SHORTCUT s of work, default 3 as `plan`'s), JOBS runs at a
-# time (default 2).
+# with `plan` (each of PLANNERS, default push_kpiece; TIME s, default 10, one thread, the
+# first solution as found: --robust 0, shortcutting for SHORTCUT s of work, default 3 as
+# `plan`'s), JOBS runs at a time (default 2).
 #
 #   benches/matrix.sh OUT_DIR [PUSHPLAN_BINARY]
 #
-# Writes OUT_DIR/scenes/ARM/DESIGN/, OUT_DIR/plans/ARM_DESIGN_NN.{json,txt} and prints a
-# table per arm and design: scenes solved, median time to solve (unsolved counted at the
-# limit), and the end effector's travel per metre the goal object moved (after
-# shortcutting; median over the solved plans).
+# Writes OUT_DIR/scenes/ARM/DESIGN/, OUT_DIR/plans/PLANNER/ARM_DESIGN_NN.{json,txt} and
+# prints a table per arm, design and planner: scenes solved, median time to solve
+# (unsolved counted at the limit), and the end effector's travel per metre the goal object
+# moved (as found and after shortcutting; medians over the solved plans).
 set -eu
 out=${1:?usage: benches/matrix.sh OUT_DIR [PUSHPLAN_BINARY]}
 bin=${2:-target/release/pushplan}
 seed=${SEED:-2}
 time=${TIME:-10}
 jobs=${JOBS:-2}
-mkdir -p "$out/plans"
+planners=(${PLANNERS:-push_kpiece})
 # SUMMARY_ONLY=1: the table of the plans already in OUT_DIR.
 if [ -z "${SUMMARY_ONLY:-}" ]; then
 for arm in wam panda ur5e iiwa14; do
@@ -33,24 +33,28 @@ for arm in wam panda ur5e iiwa14; do
       --seed "$seed" --out "$out/scenes/$arm/$design" > /dev/null
   done
 done
-ls "$out"/scenes/*/*/scene_*.yaml | while read -r scene; do
-  design=$(basename "$(dirname "$scene")")
-  arm=$(basename "$(dirname "$(dirname "$scene")")")
-  echo "$scene ${arm}_${design}_$(basename "$scene" .yaml | sed 's/scene_//')"
-done | xargs -P "$jobs" -L 1 sh -c '"$0" plan "$1" --seed 1 --time '"$time"' --robust 0 --threads 1 --shortcut '"${SHORTCUT:-3}"' --quiet \
+for planner in "${planners[@]}"; do
+  mkdir -p "$out/plans/$planner"
+  ls "$out"/scenes/*/*/scene_*.yaml | while read -r scene; do
+    design=$(basename "$(dirname "$scene")")
+    arm=$(basename "$(dirname "$(dirname "$scene")")")
+    echo "$scene $planner/${arm}_${design}_$(basename "$scene" .yaml | sed 's/scene_//') $planner"
+  done
+done | xargs -P "$jobs" -L 1 sh -c '"$0" plan "$1" --planner "$3" --seed 1 --time '"$time"' --robust 0 --threads 1 --shortcut '"${SHORTCUT:-3}"' --quiet \
   --out "'"$out"'/plans/$2.json" > "'"$out"'/plans/$2.txt" 2>&1 || true' "$bin"
 fi
 python3 - "$out" "$time" <<'PY'
 import glob, json, math, os, re, statistics, sys
 out, limit = sys.argv[1], float(sys.argv[2])
 rows = {}
-for txt in sorted(glob.glob(f"{out}/plans/*.txt")):
+for txt in sorted(glob.glob(f"{out}/plans/*/*.txt")):
+    planner = os.path.basename(os.path.dirname(txt))
     name = os.path.basename(txt)[:-4]
     arm, rest = name.split("_", 1)
     design = rest.rsplit("_", 1)[0]
     text = open(txt).read()
     m = re.search(r"^solved in ([0-9.]+) s", text, re.M)
-    row = rows.setdefault((arm, design), {"runs": 0, "solved": 0, "times": [], "travel": [], "raw": []})
+    row = rows.setdefault((arm, design, planner), {"runs": 0, "solved": 0, "times": [], "travel": [], "raw": []})
     row["runs"] += 1
     row["times"].append(float(m.group(1)) if m else limit)
     if m:
@@ -62,14 +66,17 @@ for txt in sorted(glob.glob(f"{out}/plans/*.txt")):
         if moved > 0:
             row["travel"].append(plan["metrics"]["after_shortcut"]["ee_length"] / moved)
             row["raw"].append(plan["metrics"]["before_shortcut"]["ee_length"] / moved)
-print("| arm | design | solved | median time to solve (s) | EE travel per metre the goal object moved, as found / shortcut (medians) |")
-print("|---|---|---|---|---|")
+print("| arm | design | planner | solved | median time to solve (s) | EE travel per metre the goal object moved, as found / shortcut (medians) |")
+print("|---|---|---|---|---|---|")
 median = lambda v: f"{statistics.median(v):.1f}" if v else "-"
-for (arm, design), r in sorted(rows.items()):
-    print(f"| {arm} | {design} | {r['solved']} of {r['runs']} | {statistics.median(r['times']):.2f} | {median(r['raw'])} / {median(r['travel'])} |")
-raw = [v for r in rows.values() for v in r["raw"]]
-cut = [v for r in rows.values() for v in r["travel"]]
-total = sum(r["runs"] for r in rows.values())
-solved = sum(r["solved"] for r in rows.values())
-print(f"\nall: {solved} of {total} solved within {limit:g} s; EE travel per metre the goal object moved, median {median(raw)} as found, {median(cut)} after the default shortcutting")
+for (arm, design, planner), r in sorted(rows.items()):
+    print(f"| {arm} | {design} | {planner} | {r['solved']} of {r['runs']} | {statistics.median(r['times']):.2f} | {median(r['raw'])} / {median(r['travel'])} |")
+
+print()
+for planner in sorted({key[2] for key in rows}):
+    mine = [r for key, r in rows.items() if key[2] == planner]
+    raw = [v for r in mine for v in r["raw"]]
+    cut = [v for r in mine for v in r["travel"]]
+    print(f"{planner}: {sum(r['solved'] for r in mine)} of {sum(r['runs'] for r in mine)} solved within {limit:g} s; "
+          f"EE travel per metre the goal object moved, median {median(raw)} as found, {median(cut)} after shortcutting")
 PY
