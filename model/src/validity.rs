@@ -286,7 +286,7 @@ pub fn check_robot(
         let (Some(ba), Some(bb)) = (bounds.of(a), bounds.of(b)) else {
             continue;
         };
-        if ba.intersects(bb) && links_intersect(scene, poses, a, b) {
+        if ba.intersects(bb) && chain.links_intersect(poses, a, b) {
             return Err(Invalid::SelfCollision {
                 link_a: link_name(a),
                 link_b: link_name(b),
@@ -322,16 +322,6 @@ pub fn check_robot(
         }
     }
     Ok(())
-}
-
-fn links_intersect(scene: &Scene, poses: &[Isometry3<f64>], a: usize, b: usize) -> bool {
-    let links = &scene.robot.chain.links;
-    links[a].geometry.iter().any(|ga| {
-        links[b]
-            .geometry
-            .iter()
-            .any(|gb| intersects(ga, &poses[a], gb, &poses[b]))
-    })
 }
 
 /// Finds the arm-object contacts within the contact margin (objects' bounding boxes in

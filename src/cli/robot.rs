@@ -194,10 +194,7 @@ fn reach_configurations(
         let seed = if attempt == 0 {
             first.clone()
         } else {
-            DVector::from_iterator(
-                limits.len(),
-                limits.iter().map(|&(lo, hi)| rng.uniform(lo, hi)),
-            )
+            robot.chain.random_configuration(&mut rng)
         };
         let Some(q) = robot.reach_tool_pose(target, &seed, &settings) else {
             continue;

@@ -157,20 +157,17 @@ impl SearchCounter {
         if let Some(reason) = stopped_by {
             self.count_stop(reason.kind());
             if let Invalid::SelfCollision { link_a, link_b } = reason {
-                let pair = match link_a <= link_b {
+                let (a, b) = match link_a <= link_b {
                     true => (link_a, link_b),
                     false => (link_b, link_a),
                 };
-                match self
-                    .stats
-                    .self_collisions
-                    .get_mut(&(pair.0.clone(), pair.1.clone()))
-                {
-                    Some(n) => *n += 1,
+                // Found without building a key: no allocation once a pair has been seen
+                // (a robot has few pairs).
+                let pairs = &mut self.stats.self_collisions;
+                match pairs.iter_mut().find(|((x, y), _)| x == a && y == b) {
+                    Some((_, n)) => *n += 1,
                     None => {
-                        self.stats
-                            .self_collisions
-                            .insert((pair.0.clone(), pair.1.clone()), 1);
+                        pairs.insert((a.clone(), b.clone()), 1);
                     }
                 }
             }

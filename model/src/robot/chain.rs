@@ -5,7 +5,9 @@
 //! the joint frame (URDF convention: child link frame = parent frame * origin * motion).
 //! Jacobians are 6 x dof, rows (vx, vy, vz, wx, wy, wz) in the world frame.
 
+use super::super::collision::query::intersects;
 use super::super::collision::Geometry;
+use crate::random::SplitMix64;
 use nalgebra::{DMatrix, DVector, Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 
 /// How a joint moves its child link.
@@ -124,6 +126,27 @@ impl KinematicChain {
                 (j.lower, j.upper)
             })
             .collect()
+    }
+
+    /// A configuration drawn uniformly within the position limits, joint by joint in order.
+    pub fn random_configuration(&self, rng: &mut SplitMix64) -> DVector<f64> {
+        DVector::from_iterator(
+            self.dof(),
+            (0..self.dof()).map(|i| {
+                let j = self.dof_joint(i);
+                rng.uniform(j.lower, j.upper)
+            }),
+        )
+    }
+
+    /// Do links `a` and `b`, at their world `poses`, touch (any of their shapes)?
+    pub fn links_intersect(&self, poses: &[Isometry3<f64>], a: usize, b: usize) -> bool {
+        self.links[a].geometry.iter().any(|ga| {
+            self.links[b]
+                .geometry
+                .iter()
+                .any(|gb| intersects(ga, &poses[a], gb, &poses[b]))
+        })
     }
 
     /// World poses of all links at configuration `q`, written to `poses`.

@@ -10,7 +10,6 @@
 //! the samples missed would go unchecked. More samples make it rarer.
 
 use super::{non_adjacent_pairs, Robot};
-use crate::collision::query::intersects;
 use crate::random::SplitMix64;
 use nalgebra::DVector;
 
@@ -69,14 +68,6 @@ pub struct CollisionMatrix {
 pub fn collision_matrix(robot: &Robot, samples: usize, seed: u64) -> CollisionMatrix {
     let chain = &robot.chain;
     let candidates = non_adjacent_pairs(chain);
-    let collide = |poses: &[nalgebra::Isometry3<f64>], a: usize, b: usize| {
-        chain.links[a].geometry.iter().any(|ga| {
-            chain.links[b]
-                .geometry
-                .iter()
-                .any(|gb| intersects(ga, &poses[a], gb, &poses[b]))
-        })
-    };
     let limits = chain.limits();
     let zero = DVector::from_iterator(
         limits.len(),
@@ -86,20 +77,16 @@ pub fn collision_matrix(robot: &Robot, samples: usize, seed: u64) -> CollisionMa
     let mut counts = vec![0usize; candidates.len()];
     let mut rng = SplitMix64::new(seed);
     for _ in 0..samples {
-        let q = DVector::from_iterator(
-            limits.len(),
-            limits.iter().map(|&(lo, hi)| rng.uniform(lo, hi)),
-        );
-        let poses = robot.link_poses(&q);
+        let poses = robot.link_poses(&chain.random_configuration(&mut rng));
         for (count, &(a, b)) in counts.iter_mut().zip(&candidates) {
-            *count += usize::from(collide(&poses, a, b));
+            *count += usize::from(chain.links_intersect(&poses, a, b));
         }
     }
     let skipped = candidates
         .iter()
         .zip(&counts)
         .filter_map(|(&(a, b), &collisions)| {
-            let reason = if collide(&at_zero, a, b) {
+            let reason = if chain.links_intersect(&at_zero, a, b) {
                 SkipReason::AtZero
             } else if samples > 0 && collisions as f64 >= ALWAYS_SHARE * samples as f64 {
                 SkipReason::Always

@@ -72,6 +72,12 @@ impl Robot {
         }
     }
 
+    /// Leaves the link pairs `allowed` (either order) out of the self-collision checks.
+    pub fn skip_self_collisions(&mut self, allowed: &[(usize, usize)]) {
+        let allowed = |a: usize, b: usize| allowed.contains(&(a, b)) || allowed.contains(&(b, a));
+        self.self_collision_pairs.retain(|&(a, b)| !allowed(a, b));
+    }
+
     /// The number of joints the planner moves.
     pub fn dof(&self) -> usize {
         self.chain.dof()

@@ -214,6 +214,8 @@ fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize, on_chain: bool)
         file: path.to_path_buf(),
         message: format!("joint '{}': {message}", j.name),
     };
+    // As URDF writes it: `revolute`, `floating`, ...
+    let type_name = format!("{:?}", j.joint_type).to_lowercase();
     let (kind, lower, upper) = match j.joint_type {
         urdf_rs::JointType::Revolute => (JointKind::Revolute, j.limit.lower, j.limit.upper),
         urdf_rs::JointType::Continuous => (
@@ -224,10 +226,10 @@ fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize, on_chain: bool)
         urdf_rs::JointType::Prismatic => (JointKind::Prismatic, j.limit.lower, j.limit.upper),
         urdf_rs::JointType::Fixed => (JointKind::Fixed, 0.0, 0.0),
         _ if !on_chain => (JointKind::Fixed, 0.0, 0.0),
-        ref other => {
+        _ => {
             return Err(urdf_error(format!(
                 "{} joints are not supported between the root link and the end effector (off that chain they are held fixed)",
-                format!("{other:?}").to_lowercase()
+                type_name
             )))
         }
     };
@@ -258,8 +260,7 @@ fn convert_joint(path: &Path, j: &urdf_rs::Joint, parent: usize, on_chain: bool)
         JointKind::Fixed => Vector3::z_axis(),
         _ => Unit::try_new(Vector3::from(*j.axis.xyz), 1e-9).ok_or_else(|| {
             urdf_error(format!(
-                "axis must not be zero on a {} joint (it is the direction the joint moves about)",
-                format!("{:?}", j.joint_type).to_lowercase()
+                "axis must not be zero on a {type_name} joint (it is the direction the joint moves about)"
             ))
         })?,
     };

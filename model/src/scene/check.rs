@@ -15,15 +15,15 @@ use crate::math::Pose2;
 use crate::physics::Footprint;
 use crate::random::SplitMix64;
 use crate::robot::IkSettings;
-use nalgebra::{DVector, Vector2};
+use nalgebra::Vector2;
 use std::fmt;
 
 /// Headings (yaw about the world's z) tried for the tool over the goal's centre.
-const REACH_HEADINGS: usize = 8;
+pub const REACH_HEADINGS: usize = 8;
 
 /// Inverse-kinematics attempts per heading: from the start, then from random
 /// configurations within the limits.
-const REACH_TRIES: usize = 8;
+pub const REACH_TRIES: usize = 8;
 
 /// Points per side of the grid over the goal region's bounding square.
 const REGION_GRID: usize = 41;
@@ -52,12 +52,12 @@ pub enum SceneWarning {
         /// Is the plane above the tipping height of every side (its greatest lever)?
         every_side: bool,
     },
-    /// The tool cannot be put over the goal disc's centre on the pushing plane.
+    /// The tool cannot be put over the goal disc's centre on the pushing plane (no
+    /// inverse-kinematics solution in [`REACH_TRIES`] attempts at each of
+    /// [`REACH_HEADINGS`] headings).
     GoalOutOfReach {
         /// The disc's centre (m, world xy).
         center: Vector2<f64>,
-        /// Inverse-kinematics attempts made.
-        attempts: usize,
     },
     /// Part of the goal region (the disc less its margin) lies where the goal object's
     /// footprint would hang over the table's edge, whatever its yaw.
@@ -119,12 +119,14 @@ impl fmt::Display for SceneWarning {
                     "; pushed on its narrow side it tips, so pushes must find its wide sides"
                 }
             ),
-            SceneWarning::GoalOutOfReach { center, attempts } => write!(
+            SceneWarning::GoalOutOfReach { center } => write!(
                 f,
                 "the goal disc's centre ({:.3}, {:.3}) is out of the tool's reach on the pushing \
-                 plane: no joint configuration puts the tool there ({attempts} inverse-kinematics \
+                 plane: no joint configuration puts the tool there ({} inverse-kinematics \
                  attempts over {REACH_HEADINGS} headings); the arm cannot push the goal object in",
-                center.x, center.y
+                center.x,
+                center.y,
+                REACH_TRIES * REACH_HEADINGS
             ),
             SceneWarning::GoalOverTableEdge { share } => write!(
                 f,
@@ -192,10 +194,7 @@ pub fn check(scene: &Scene) -> Vec<SceneWarning> {
     } = &scene.goal
     {
         if !reaches(scene, *center) {
-            warnings.push(SceneWarning::GoalOutOfReach {
-                center: *center,
-                attempts: REACH_HEADINGS * REACH_TRIES,
-            });
+            warnings.push(SceneWarning::GoalOutOfReach { center: *center });
         }
         let room = room_in_region(scene, *object, *center, radius - margin);
         if room.over_edge > 0.0 {
@@ -256,7 +255,6 @@ fn tipping(scene: &Scene) -> Vec<SceneWarning> {
 /// fixed seed: the same scene, the same answer).
 fn reaches(scene: &Scene, center: Vector2<f64>) -> bool {
     let robot = &scene.robot;
-    let limits = robot.chain.limits();
     let mut rng = SplitMix64::new(1);
     let settings = IkSettings {
         position_tolerance: 1e-4,
@@ -271,10 +269,7 @@ fn reaches(scene: &Scene, center: Vector2<f64>) -> bool {
                 .tool_pose_at(&Pose2::new(center.x, center.y, yaw));
             let seed = match attempt {
                 0 => scene.start.q.clone(),
-                _ => DVector::from_iterator(
-                    limits.len(),
-                    limits.iter().map(|&(lo, hi)| rng.uniform(lo, hi)),
-                ),
+                _ => robot.chain.random_configuration(&mut rng),
             };
             robot.reach_tool_pose(&target, &seed, &settings).is_some()
         })

@@ -437,7 +437,7 @@ impl Loader<'_> {
                 };
             }
             match named {
-                [Named::Link(a), Named::Link(b)] => link_pairs.push((a.min(b), a.max(b))),
+                [Named::Link(a), Named::Link(b)] => link_pairs.push((a, b)),
                 [Named::Link(l), Named::Table] | [Named::Table, Named::Link(l)] => {
                     allowed.table.push(l)
                 }
@@ -455,9 +455,7 @@ impl Loader<'_> {
                 }
             }
         }
-        robot
-            .self_collision_pairs
-            .retain(|&(a, b)| !link_pairs.contains(&(a.min(b), a.max(b))));
+        robot.skip_self_collisions(&link_pairs);
         Ok(allowed)
     }
 
@@ -1215,10 +1213,8 @@ fn disable_collisions(robot: &mut Robot, srdf: &Srdf, path: &Path) -> Result<()>
             })
         };
         let (a, b) = (index(&pair.link1, "link1")?, index(&pair.link2, "link2")?);
-        pairs.push((a.min(b), a.max(b)));
+        pairs.push((a, b));
     }
-    robot
-        .self_collision_pairs
-        .retain(|&(a, b)| !pairs.contains(&(a.min(b), a.max(b))));
+    robot.skip_self_collisions(&pairs);
     Ok(())
 }

@@ -218,17 +218,14 @@ impl ManipulationGraph {
             .take()
             .unwrap_or_else(|| FuzzyRoadmap::new(qa, qb, settings.free_length, TRANSIT_RESOLUTION));
         let problem = &self.problem;
-        let limits = problem.scene.robot.chain.limits();
+        let chain = &problem.scene.robot.chain;
         let checks_before = roadmap.checks;
         let mut found = None;
         for _ in 0..settings.samples_per_round {
             if self.past_deadline() {
                 break;
             }
-            let q = DVector::from_iterator(
-                limits.len(),
-                limits.iter().map(|(lo, hi)| self.rng.uniform(*lo, *hi)),
-            );
+            let q = chain.random_configuration(&mut self.rng);
             roadmap.checks += 1;
             if problem.valid(motion, &q) {
                 roadmap.add_sample(q);

@@ -132,16 +132,9 @@ impl PickAndPlace {
     pub fn grasp_configuration(&self, placement: usize, grasp: usize) -> Option<DVector<f64>> {
         let target = self.x_0o(placement) * self.grasps[grasp];
         let robot = &self.scene.robot;
-        let limits = robot.chain.limits();
         let mut rng = SplitMix64::new(((placement as u64) << 32) ^ grasp as u64);
-        let random = |rng: &mut SplitMix64| {
-            DVector::from_iterator(
-                limits.len(),
-                limits.iter().map(|(lo, hi)| rng.uniform(*lo, *hi)),
-            )
-        };
         std::iter::once(self.start.q.clone())
-            .chain((0..IK_SEEDS).map(|_| random(&mut rng)))
+            .chain((0..IK_SEEDS).map(|_| robot.chain.random_configuration(&mut rng)))
             .filter_map(|seed| robot.reach_tool_pose(&target, &seed, &IkSettings::default()))
             .find(|q| self.transit_valid(placement, q) && self.transfer_valid(grasp, q))
     }
