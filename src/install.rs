@@ -7,6 +7,7 @@
 //! DIR/include/pushplan/...
 //! DIR/lib/pkgconfig/pushplan.pc              (relocatable: paths from ${pcfiledir})
 //! DIR/lib/cmake/pushplan/pushplan-config.cmake, pushplan-config-version.cmake
+//! DIR/share/pushplan/plan.schema.json         (the plan files' JSON Schema)
 //! ```
 //!
 //! The headers are compiled into the binary (an installed copy does not need the
@@ -22,6 +23,7 @@ include!(concat!(env!("OUT_DIR"), "/install_manifest.rs"));
 const CMAKE_CONFIG: &str = include_str!("../cpp/cmake/pushplan-config.cmake.in");
 const CMAKE_VERSION: &str = include_str!("../cpp/cmake/pushplan-config-version.cmake.in");
 const VERSION: &str = env!("CARGO_PKG_VERSION");
+const PLAN_SCHEMA: &str = include_str!("../docs/plan.schema.json");
 
 /// Installs into `prefix` the running `binary` and the `libpushplan.a` beside it.
 /// Returns the files written.
@@ -69,6 +71,10 @@ pub fn install(prefix: &Path, binary: &Path) -> Result<Vec<PathBuf>, String> {
     put(
         "lib/cmake/pushplan/pushplan-config-version.cmake",
         Contents::Text(fill(CMAKE_VERSION)),
+    )?;
+    put(
+        "share/pushplan/plan.schema.json",
+        Contents::Text(PLAN_SCHEMA.to_string()),
     )?;
     Ok(written)
 }

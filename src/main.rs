@@ -7,9 +7,10 @@ mod install;
 use clap::{Parser, Subcommand};
 use cli::within;
 use cli::{
-    allowed_collisions_of, bench, bench_merge, bench_scene, check, draw, execute, generate_scenes,
-    generate_shipped_scenes, install, pick_place, plan, plots, replan, robot, ClosedLoopFlags,
-    ExecuteOptions, PickPlaceOptions, PlanOptions, ReplanOptions, RobotQuery, SearchFlags,
+    allowed_collisions_of, bench, bench_merge, bench_scene, check, draw, execute, export,
+    generate_scenes, generate_shipped_scenes, install, pick_place, plan, plots, replan, robot,
+    ClosedLoopFlags, ExecuteOptions, PickPlaceOptions, PlanOptions, ReplanOptions, RobotQuery,
+    SearchFlags,
 };
 use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
@@ -310,6 +311,22 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         times: Vec<f64>,
     },
+    /// Write a plan's executable trajectory for other programs: a ROS
+    /// trajectory_msgs/JointTrajectory (YAML, as `ros2 topic pub` takes it) or CSV. The
+    /// trajectory is checked against the plan's controls in its scene first.
+    Export {
+        /// Plan file (JSON, written by `plan` or `replan`).
+        plan: PathBuf,
+        /// joint-trajectory: joint names, and per sample positions, velocities,
+        /// accelerations and time from start; csv: a header row, then per sample the time,
+        /// each joint's position, velocity and acceleration, and each object's predicted
+        /// pose.
+        #[arg(long)]
+        format: pushplan::planning::export::ExportFormat,
+        /// Where to write it (default: standard output).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Install the CLI, libpushplan.a, the C++ headers, pushplan.pc and the CMake package
     /// (find_package(pushplan) -> pushplan::pushplan) into a prefix.
     Install {
@@ -470,6 +487,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             },
         ),
         Command::Render { plan, out, times } => draw(&plan, &out, &times),
+        Command::Export { plan, format, out } => export(&plan, format, out.as_deref()),
         Command::PickPlace {
             scene,
             object,

@@ -1,4 +1,4 @@
-//! The small commands: `render`, `scenes generate`, `install`.
+//! The small commands: `render`, `export`, `scenes generate`, `install`.
 
 use pushplan::planning::plan_file::PlanFile;
 use std::path::Path;
@@ -9,6 +9,48 @@ pub fn draw(plan_path: &Path, dir: &Path, times: &[f64]) -> Result<ExitCode, Str
     let files = pushplan::render::render(&plan, plan_path, dir, times)?;
     for file in [&files.snapshots, &files.timeline, &files.animation] {
         println!("wrote {}", file.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `pushplan export PLAN --format F [--out FILE]`: the plan's trajectory, once it is
+/// shown to be the one its controls give in its scene.
+pub fn export(
+    plan_path: &Path,
+    format: pushplan::planning::export::ExportFormat,
+    out: Option<&Path>,
+) -> Result<ExitCode, String> {
+    let plan = PlanFile::read(plan_path)?;
+    let scene = plan.load_scene(plan_path)?;
+    plan.check_trajectory(&scene)
+        .map_err(|e| format!("{}: {e}", plan_path.display()))?;
+    if !plan.solved {
+        eprintln!(
+            "warning: {}: the plan does not reach the goal (solved: false); exporting it as it is",
+            plan_path.display()
+        );
+    }
+    let text = format.write(&plan);
+    match out {
+        Some(out) => {
+            pushplan::output::write_whole(out, text)?;
+            eprintln!(
+                "wrote {} ({} samples, {})",
+                out.display(),
+                plan.trajectory.times.len(),
+                format.name()
+            );
+        }
+        None => {
+            use std::io::Write;
+            match std::io::stdout().write_all(text.as_bytes()) {
+                // A reader that stopped early (`| head`) wanted no more.
+                Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                    return Err(format!("standard output: {e}"))
+                }
+                _ => {}
+            }
+        }
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -9,13 +9,14 @@
 //! - DARRT's primitives ([`darrt`]), straight joint-space lines ([`transit`]), reaching a
 //!   grasp ([`reach`]) and the manipulation graph ([`manipulation`]);
 //! - Static RRT's clutter as obstacles ([`static_clutter`]) and execution in an independent
-//!   3D engine ([`execute`]).
+//!   3D engine ([`execute`]); the trajectory in formats other programs read ([`export`]).
 //!
 //! Nothing here knows OMPL or the bridge: the searches themselves are C++ (`cpp/`).
 
 pub mod darrt;
 mod deadline;
 pub mod execute;
+pub mod export;
 mod finish;
 mod kind;
 pub mod manipulation;

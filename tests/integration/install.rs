@@ -76,6 +76,7 @@ fn an_installed_pushplan_builds_with_cmake_and_with_pkg_config() {
         "lib/pkgconfig/pushplan.pc",
         "lib/cmake/pushplan/pushplan-config.cmake",
         "lib/cmake/pushplan/pushplan-config-version.cmake",
+        "share/pushplan/plan.schema.json",
     ] {
         assert!(prefix.join(file).is_file(), "{file} not installed");
     }

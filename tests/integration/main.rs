@@ -10,6 +10,7 @@ mod cli;
 mod cpp_api;
 mod darrt;
 mod execute;
+mod export;
 mod fcl_oracle;
 mod fuzz;
 mod hostile;
