@@ -302,9 +302,9 @@ fn write_pkg_config(deps: &Dependencies) {
     let _ = std::fs::write(profile_dir.join("pushplan.pc"), pc);
 }
 
-/// `OUT_DIR/install_manifest.rs`, read by `src/install.rs`: every public header (so an
-/// installed copy does not depend on this checkout) and where OMPL and Eigen are (the
-/// installed library was built against them).
+/// `OUT_DIR/install_manifest.rs`, read by `src/install.rs`: every public header and the
+/// data installed under share/pushplan (so an installed copy does not depend on this
+/// checkout), and where OMPL and Eigen are (the installed library was built against them).
 fn write_install_manifest(deps: &Dependencies) {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
     let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets it"));
@@ -324,11 +324,6 @@ fn write_install_manifest(deps: &Dependencies) {
         }
     }
     headers.sort();
-    let ompl_library = ["libompl.so", "libompl.a", "libompl.dylib"]
-        .iter()
-        .map(|f| deps.ompl_lib.join(f))
-        .find(|p| p.exists())
-        .expect("found with the folder");
     let mut code = String::from(
         "/// The public headers: (path under the include folder, text).\n\
          pub const HEADERS: &[(&str, &str)] = &[\n",
@@ -344,16 +339,54 @@ fn write_install_manifest(deps: &Dependencies) {
         );
     }
     code += "];\n";
+    code += "/// The data installed under share/pushplan: (path there, bytes).\n\
+             pub const DATA: &[(&str, &[u8])] = &[\n";
+    for folder in DATA_FOLDERS {
+        println!("cargo:rerun-if-changed={}", root.join(folder).display());
+    }
+    for file in data_files(&root) {
+        code += &format!(
+            "    ({:?}, include_bytes!({:?})),\n",
+            file.strip_prefix(&root)
+                .expect("under the package root")
+                .display()
+                .to_string(),
+            file.display().to_string()
+        );
+    }
+    code += "];\n";
     code += &format!(
-        "/// OMPL's and Eigen's headers, and OMPL's library, as this build found them.\n\
-         pub const OMPL_INCLUDE_DIR: &str = {:?};\n\
-         pub const EIGEN_INCLUDE_DIR: &str = {:?};\n\
-         pub const OMPL_LIBRARY: &str = {:?};\n",
+        "/// OMPL's headers as this build found them.\n\
+         pub const OMPL_INCLUDE_DIR: &str = {:?};\n",
         deps.ompl_include.display().to_string(),
-        deps.eigen_include.display().to_string(),
-        ompl_library.display().to_string(),
     );
     std::fs::write(out.join("install_manifest.rs"), code).expect("OUT_DIR is writable");
+}
+
+/// The folders `pushplan install` puts under `share/pushplan`: the scenes, the robots they
+/// name, and the C++ examples, which run on the installed scenes without the checkout.
+const DATA_FOLDERS: [&str; 3] = ["scenes", "robots", "examples/cpp"];
+
+/// The files of [`DATA_FOLDERS`], sorted.
+fn data_files(root: &Path) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for top in DATA_FOLDERS {
+        let mut folders = vec![root.join(top)];
+        while let Some(dir) = folders.pop() {
+            let Ok(entries) = std::fs::read_dir(&dir) else {
+                continue;
+            };
+            for path in entries.flatten().map(|e| e.path()) {
+                if path.is_dir() {
+                    folders.push(path);
+                } else {
+                    files.push(path);
+                }
+            }
+        }
+    }
+    files.sort();
+    files
 }
 
 /// OMPL's version from `ompl/config.h`'s OMPL_MAJOR/MINOR/PATCH_VERSION ("" if unreadable).

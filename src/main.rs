@@ -327,8 +327,10 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Install the CLI, libpushplan.a, the C++ headers, pushplan.pc and the CMake package
-    /// (find_package(pushplan) -> pushplan::pushplan) into a prefix.
+    /// Install the CLI, libpushplan.so and libpushplan.a, the C++ headers, pushplan.pc, the
+    /// CMake package (find_package(pushplan) -> pushplan::pushplan, built with CMake, which
+    /// must be on the PATH) and share/pushplan (scenes, robots, C++ examples, the plan
+    /// files' JSON Schema) into a prefix.
     Install {
         /// Installation prefix (e.g. ~/.local or /usr/local).
         #[arg(long)]
