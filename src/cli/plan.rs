@@ -3,19 +3,15 @@
 use super::progress;
 use super::SearchFlags;
 use pushplan::limits::Front;
+use pushplan::planner::plan_scene::{plan_scene, PlanRequest, Planned};
 use pushplan::planner::{ReachSettings, Search};
-use pushplan::planning::plan_file::{
-    PlanFile, PlanSettings, ReachRecord, ReplanRecord, RobustnessRecord,
-};
+use pushplan::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, ReplanRecord};
 use pushplan::planning::shortcut::ShortcutProgress;
-use pushplan::planning::{
-    FinishSettings, PlannerKind, Problem, RobustRequirement, RunSettings, PLAN_ROBUST_TRIALS,
-};
+use pushplan::planning::{CommandDeadline, PlannerKind, RunSettings, PLAN_ROBUST_TRIALS};
 use pushplan::state::State;
 use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
-use std::time::Instant;
 
 /// The `plan` command's options: the search's settings as the flags set them, and what
 /// the command does around the search.
@@ -64,7 +60,7 @@ fn reach(
     from: Option<&State>,
     run: &PlanOptions,
     search_settings: &RunSettings,
-    deadline: &Deadline,
+    deadline: &CommandDeadline,
 ) -> Result<Option<ReachRecord>, String> {
     if !(0.0..=1.0).contains(&run.sample_probability) {
         return Err(format!(
@@ -96,65 +92,6 @@ fn reach(
             .map(|q| q.as_slice().to_vec())
             .collect(),
     }))
-}
-
-/// How `--time` is spent: it bounds the whole command (loading, search, robustness checks,
-/// shortcutting, a reach with `--grasp`, writing). Each part stops a reserve before the
-/// limit, for what must follow it: re-simulating the path (the check every plan passes)
-/// and writing it, whose cost grows with the path's steps. With `--grasp` the pushing has
-/// half of the limit, the reach what is left.
-struct Deadline {
-    /// When the pushing's search and finishing stop.
-    pushing: Instant,
-    /// When the last part (the reach, or the pushing without one) stops.
-    last: Instant,
-}
-
-impl Deadline {
-    /// Propagation steps a second of re-simulating takes at least (a few times slower than
-    /// this machine: BENCHMARKS.md, "Propagation").
-    const STEPS_PER_SECOND: f64 = 50_000.0;
-
-    /// The deadlines of a command started at `started` with `--time seconds` in `scene`,
-    /// reaching a grasp after pushing if `then_reach`. The reserve is what ten of the
-    /// scene's longest controls take to re-simulate, at most a fifth of the limit: 10 ms
-    /// at the default `planner.step` and `max_duration`, and the fifth when a control has
-    /// thousands of steps (a path of 24 000 steps of `step: 0.0001` took 0.29 s to
-    /// re-simulate after a 1 s search).
-    fn new(started: Instant, seconds: f64, scene: &Scene, then_reach: bool) -> Deadline {
-        let longest = scene.planner.max_duration / scene.planner.step;
-        let reserve = (10.0 * longest / Self::STEPS_PER_SECOND).min(0.2 * seconds);
-        // `options.check` bounds `seconds` by a day: never `None`.
-        let at = |seconds: f64| pushplan::planning::deadline(started, seconds).unwrap_or(started);
-        let last = at(seconds - reserve);
-        Deadline {
-            pushing: if then_reach {
-                at(0.5 * seconds - reserve)
-            } else {
-                last
-            },
-            last,
-        }
-    }
-
-    /// The time left for the pushing's search (s).
-    fn search_time(&self) -> f64 {
-        Self::left(self.pushing)
-    }
-
-    /// The time left for a reach (s).
-    fn reach_time(&self) -> f64 {
-        Self::left(self.last)
-    }
-
-    /// The time left until `until` (s): at least a millisecond, for a search to report on
-    /// what it had.
-    fn left(until: Instant) -> f64 {
-        until
-            .saturating_duration_since(Instant::now())
-            .as_secs_f64()
-            .max(1e-3)
-    }
 }
 
 /// `pushplan plan`: searches the scene with `search`, finishes the path and writes the plan
@@ -189,7 +126,6 @@ pub fn plan(
         options.robust_trials = PLAN_ROBUST_TRIALS;
     }
     let (planner, quiet) = (options.planner, run.quiet);
-    let seed = options.seed;
     if options.fallback_steps > 0 && planner.fallback_steps() == 0 {
         return Err(format!(
             "--fallback {}: only {} falls back (to {}), not {}",
@@ -213,7 +149,7 @@ pub fn plan(
         );
     }
     let settings = PlanSettings::from(&options);
-    let deadline = Deadline::new(started, options.time_limit, &scene, run.grasp_after);
+    let deadline = CommandDeadline::new(started, options.time_limit, &scene, run.grasp_after);
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
         // Reaching a grasp only: no controls, the reach from the start.
@@ -255,39 +191,28 @@ pub fn plan(
             pushplan::scene::Goal::Grasp { .. } => "(m and rad)",
         });
     }
-    let solution = search
-        .solve(
+    let planned = plan_scene(
+        search,
+        &PlanRequest {
             scene_path,
-            run.from.as_ref().map(|_| &scene.start),
-            &RunSettings {
-                time_limit: deadline.search_time(),
-                ..options
-            },
-            (!quiet).then_some(progress::search as _),
-        )
-        .inspect_err(|_| progress::finish())?;
-    let problem = Problem::new(scene.clone(), planner);
-    let dof = scene.robot.dof();
-    let found = &solution.controls;
-    let finish_settings = FinishSettings {
-        shortcut: options.shortcut,
-        seed,
-        robust: (options.robust_trials > 0).then_some(RobustRequirement {
-            trials: options.robust_trials as usize,
-            rate: options.robust_rate,
-        }),
-        found_rate: solution.robustness,
-        deadline: Some(deadline.pushing),
-        progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
-    };
-    let path = problem.finish(
-        found,
-        &solution.states,
-        solution.summary.exact,
-        &finish_settings,
+            scene: &scene,
+            start: run.from.as_ref().map(|_| &scene.start),
+            options: &options,
+            deadline: deadline.pushing,
+            reference: &reference,
+            search_progress: (!quiet).then_some(progress::search as _),
+            shortcut_progress: (!quiet).then_some(progress::shortcut as fn(&ShortcutProgress)),
+        },
     );
     progress::finish();
-    let path = path?;
+    let Planned {
+        mut file,
+        found: solution,
+        path,
+        problem,
+    } = planned?;
+    let dof = scene.robot.dof();
+    let found = &solution.controls;
     if !quiet && path.shortcut.attempts > 0 {
         eprintln!(
             "shortcutting: {} of {} attempts accepted",
@@ -300,21 +225,7 @@ pub fn plan(
             eprintln!("shortcutting: the shortcut path is less robust; the path as found is kept");
         }
     }
-    let mut file = PlanFile::from_simulation(
-        &reference,
-        &scene,
-        &settings,
-        &path.controls,
-        &path.simulation,
-        Some(path.before),
-    )?;
     file.replanned = run.from.as_ref().map(|from| from.record.clone());
-    file.robustness = path.robustness.map(|measured| RobustnessRecord {
-        trials: measured.trials,
-        required_rate: options.robust_rate,
-        success_rate: measured.rate,
-        particles: options.robust_particles,
-    });
     let mut solved = solution.summary.exact;
     if run.grasp_after && solution.summary.exact {
         let goal_object = problem.scene().goal.object().expect("checked above");

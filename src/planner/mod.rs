@@ -1,12 +1,14 @@
 //! The search's side of the model: the planners' trees' nearest neighbours in the model's
 //! metric ([`NearestTree`]), push headings, perturbed worlds, the tool points of recent
 //! propagations and search statistics, which the bridge hands to C++; and the search
-//! the applications call ([`Search`]), which the bridge implements.
+//! the applications call ([`Search`]), which the bridge implements, and a scene planned
+//! end to end with it ([`plan_scene`]).
 
 pub mod closed_loop;
 mod heading;
 mod nearest;
 mod particles;
+pub mod plan_scene;
 mod recent_tools;
 mod search;
 mod stats;

@@ -1,0 +1,103 @@
+//! A scene planned end to end into a plan file, as `pushplan plan` and the Python module
+//! do: the search, then the one way a found path is finished (shortcut, re-simulated,
+//! measured for robustness), written as a [`PlanFile`].
+
+use crate::planner::{Found, Search, SearchProgress};
+use crate::planning::plan_file::{PlanFile, PlanSettings, RobustnessRecord};
+use crate::planning::shortcut::ShortcutProgress;
+use crate::planning::{FinishSettings, FinishedPath, Problem, RobustRequirement, RunSettings};
+use crate::scene::Scene;
+use crate::state::State;
+use std::path::Path;
+use std::time::Instant;
+
+/// What to plan and how.
+pub struct PlanRequest<'a> {
+    /// The scene file the search loads.
+    pub scene_path: &'a Path,
+    /// The same scene, loaded (and, for a re-plan, starting where the plan starts).
+    pub scene: &'a Scene,
+    /// The search's start: `None` for the scene file's, else `scene.start` (a re-plan).
+    pub start: Option<&'a State>,
+    /// The settings; the search gets the time `deadline` leaves, not `time_limit`.
+    pub options: &'a RunSettings,
+    /// When the search and the finishing stop.
+    pub deadline: Instant,
+    /// The plan file's `scene` field ([`PlanFile::scene_reference`]).
+    pub reference: &'a str,
+    /// Progress reports of the search and of shortcutting, if wanted.
+    pub search_progress: Option<fn(&SearchProgress, &str)>,
+    /// See `search_progress`.
+    pub shortcut_progress: Option<fn(&ShortcutProgress)>,
+}
+
+/// A planned scene: the plan file, and how the search and the finishing went.
+pub struct Planned {
+    /// The plan file (not yet written; no reach, no re-plan record).
+    pub file: PlanFile,
+    /// The search's answer: its summary, statistics and the path as found.
+    pub found: Found,
+    /// The path as finished.
+    pub path: FinishedPath,
+    /// The problem the path was finished in.
+    pub problem: Problem,
+}
+
+/// Searches `request.scene` with `search` and finishes what it finds into a plan file. The
+/// plan is robust when `options.robust_trials` > 0: a solution is kept when that share of
+/// perturbed worlds reaches the goal, else the most robust one found by the deadline.
+pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned, String> {
+    let options = request.options;
+    let left = request
+        .deadline
+        .saturating_duration_since(Instant::now())
+        .as_secs_f64()
+        .max(1e-3);
+    let found = search.solve(
+        request.scene_path,
+        request.start,
+        &RunSettings {
+            time_limit: left,
+            ..*options
+        },
+        request.search_progress,
+    )?;
+    let problem = Problem::new(request.scene.clone(), options.planner);
+    let finish_settings = FinishSettings {
+        shortcut: options.shortcut,
+        seed: options.seed,
+        robust: (options.robust_trials > 0).then_some(RobustRequirement {
+            trials: options.robust_trials as usize,
+            rate: options.robust_rate,
+        }),
+        found_rate: found.robustness,
+        deadline: Some(request.deadline),
+        progress: request.shortcut_progress,
+    };
+    let path = problem.finish(
+        &found.controls,
+        &found.states,
+        found.summary.exact,
+        &finish_settings,
+    )?;
+    let mut file = PlanFile::from_simulation(
+        request.reference,
+        request.scene,
+        &PlanSettings::from(options),
+        &path.controls,
+        &path.simulation,
+        Some(path.before),
+    )?;
+    file.robustness = path.robustness.map(|measured| RobustnessRecord {
+        trials: measured.trials,
+        required_rate: options.robust_rate,
+        success_rate: measured.rate,
+        particles: options.robust_particles,
+    });
+    Ok(Planned {
+        file,
+        found,
+        path,
+        problem,
+    })
+}
