@@ -37,6 +37,8 @@ pub enum Front {
     CppOptions,
     /// A field of a plan file (its settings, as `plan` recorded them).
     PlanFile,
+    /// A keyword argument of the Python module (named as the plan file's field).
+    Python,
 }
 
 impl Limit {
@@ -75,9 +77,11 @@ impl Limit {
     pub fn name(&self, front: Front) -> String {
         match front {
             Front::CommandLine => self.option.to_string(),
-            Front::CppOptions | Front::PlanFile if self.field.is_empty() => self.option.to_string(),
+            Front::CppOptions | Front::PlanFile | Front::Python if self.field.is_empty() => {
+                self.option.to_string()
+            }
             Front::CppOptions => format!("Options::{}", self.field),
-            Front::PlanFile => self.field.to_string(),
+            Front::PlanFile | Front::Python => self.field.to_string(),
         }
     }
 

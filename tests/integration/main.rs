@@ -21,6 +21,7 @@ mod meshes;
 mod nearest;
 mod particles;
 mod planner;
+mod python;
 mod reach;
 mod render;
 mod replan;
