@@ -1,8 +1,11 @@
 //! The paper's plots from benchmark logs, as SVG drawn with `plotters`: success rate
-//! against time budget (Fig. 7), plan time of solved runs (Fig. 4b), manipulator path
-//! length and object displacement before and after shortcutting (Fig. 8), and success
-//! against the number of objects. Every plot says how many runs it shows; planners carry
-//! the papers' names; an anytime planner (SST, whose time is the whole budget) is marked.
+//! against time budget (Fig. 7), over all scenes and per scene in panels (as Planner
+//! Arena shows each problem), plan time of solved runs (Fig. 4b), manipulator path length
+//! and object displacement before and after shortcutting (Fig. 8), and success against
+//! the number of objects. Every plot says how many runs it shows and the spread of what
+//! it summarises (quartiles, 95 % confidence intervals); time axes are logarithmic with
+//! ticks at 1, 2 and 5 of each decade; planners carry the papers' names; an anytime
+//! planner (SST, whose time is the whole budget) is marked.
 
 use super::BenchmarkLog;
 use crate::planning::PlannerKind;
@@ -133,15 +136,80 @@ pub fn quantile(sorted: &[f64], p: f64) -> f64 {
     }
 }
 
+/// z of a two-sided 95 % interval of the normal distribution.
+const Z95: f64 = 1.959_963_984_540_054;
+
+/// The mean of `values` and the half-width of its 95 % confidence interval (normal
+/// approximation, `z s / sqrt(n)` with the sample standard deviation; 0 for one value).
+pub fn mean_interval(values: &[f64]) -> Option<(f64, f64)> {
+    if values.is_empty() {
+        return None;
+    }
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    if values.len() == 1 {
+        return Some((mean, 0.0));
+    }
+    let variance = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    Some((mean, Z95 * (variance / n).sqrt()))
+}
+
+/// Wilson's 95 % score interval of a success rate: `successes` of `n` (n > 0), as
+/// `(low, high)` fractions. Unlike the normal approximation it stays within [0, 1] and
+/// is not empty at 0 or n successes.
+pub fn wilson_interval(successes: usize, n: usize) -> (f64, f64) {
+    let (n, p) = (n as f64, successes as f64 / n as f64);
+    let z2 = Z95 * Z95;
+    let centre = (p + z2 / (2.0 * n)) / (1.0 + z2 / n);
+    let half = Z95 / (1.0 + z2 / n) * (p * (1.0 - p) / n + z2 / (4.0 * n * n)).sqrt();
+    ((centre - half).max(0.0), (centre + half).min(1.0))
+}
+
+/// Ticks of a logarithmic axis from `low` to `high`: 1, 2 and 5 of every decade between,
+/// and `high` itself (the time limit).
+fn log_ticks(low: f64, high: f64) -> Vec<f64> {
+    let mut ticks = Vec::new();
+    let mut decade = 10f64.powf(low.log10().floor());
+    while decade <= high {
+        for m in [1.0, 2.0, 5.0] {
+            let t = m * decade;
+            if t >= low * (1.0 - 1e-9) && t <= high * 0.8 {
+                ticks.push(t);
+            }
+        }
+        decade *= 10.0;
+    }
+    ticks.push(high);
+    ticks
+}
+
+/// A time axis label: the decimal digits the value has, no more (`0.01`, `0.5`, `2`, `60`).
+fn time_label(t: &f64) -> String {
+    let decimals = (-t.log10().floor()).max(0.0) as usize;
+    let text = format!("{t:.decimals$}");
+    match text.contains('.') {
+        true => text.trim_end_matches('0').trim_end_matches('.').to_string(),
+        false => text,
+    }
+}
+
 fn plot_error(e: impl std::fmt::Display) -> String {
     format!("drawing a plot: {e}")
 }
 
-/// Draws into an SVG string with `draw`.
+/// Draws into an SVG string of the usual size with `draw`.
 fn svg(draw: impl FnOnce(&Area) -> Result<(), String>) -> Result<String, String> {
+    svg_of_size(SIZE, draw)
+}
+
+/// Draws into an SVG string of `size` (px) with `draw`.
+fn svg_of_size(
+    size: (u32, u32),
+    draw: impl FnOnce(&Area) -> Result<(), String>,
+) -> Result<String, String> {
     let mut out = String::new();
     {
-        let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
+        let root = SVGBackend::with_string(&mut out, size).into_drawing_area();
         root.fill(&WHITE).map_err(plot_error)?;
         draw(&root)?;
         root.present().map_err(plot_error)?;
@@ -165,49 +233,124 @@ fn time_limit(logs: &[BenchmarkLog], all: &[Planner]) -> f64 {
 }
 
 /// Fig. 7: the share of runs solved within each time budget, on a log time axis (most
-/// runs finish in the first seconds).
+/// runs finish in the first seconds), over every scene of the logs.
 pub fn success_vs_time(logs: &[BenchmarkLog]) -> Result<String, String> {
     let all = planners(logs);
     let t_max = time_limit(logs, &all);
     svg(|root| {
-        let mut chart = chart(root, "Runs solved within a time budget", true)
-            .build_cartesian_2d((MIN_TIME..t_max).log_scale(), 0.0..100.0)
-            .map_err(plot_error)?;
-        chart
-            .configure_mesh()
-            .x_desc("time budget (s, log scale)")
-            .y_desc("runs solved (%)")
-            .draw()
-            .map_err(plot_error)?;
-        let mut entries = Vec::new();
-        for (k, planner) in all.iter().enumerate() {
-            let runs = runs(logs, planner);
-            let mut times: Vec<f64> = runs.iter().filter(|r| r.solved).map(|r| r.time).collect();
-            times.sort_by(f64::total_cmp);
-            let share = |i: usize| 100.0 * i as f64 / runs.len().max(1) as f64;
-            let mut points = vec![(MIN_TIME, 0.0)];
-            for (i, t) in times.iter().enumerate() {
-                let t = t.max(MIN_TIME);
-                points.push((t, share(i)));
-                points.push((t, share(i + 1)));
-            }
-            points.push((t_max, share(times.len())));
-            let colour = planner.colour(k);
-            chart
-                .draw_series(LineSeries::new(points, colour.stroke_width(2)))
-                .map_err(plot_error)?;
-            entries.push((planner.label(runs.len()), colour, Glyph::Line));
-            // A marker where the curve ends: the share solved at the time limit.
-            chart
-                .draw_series(std::iter::once(Circle::new(
-                    (t_max, share(times.len())),
-                    4,
-                    colour.filled(),
-                )))
-                .map_err(plot_error)?;
-        }
+        let chart = chart(root, "Runs solved within a time budget", true);
+        let entries = success_curves(chart, logs, &all, t_max, true)?;
         side_legend(root, &entries)
     })
+}
+
+/// Fig. 7 per scene, in panels of four to a row as Planner Arena shows each problem: the
+/// same curves and colours, each panel with its scene's name and run count, and one
+/// legend for all.
+pub fn success_vs_time_per_scene(logs: &[BenchmarkLog]) -> Result<String, String> {
+    let all = planners(logs);
+    let t_max = time_limit(logs, &all);
+    let mut scenes: Vec<&str> = Vec::new();
+    for log in logs {
+        if !scenes.contains(&log.experiment.as_str()) {
+            scenes.push(&log.experiment);
+        }
+    }
+    let columns = scenes.len().clamp(1, 4);
+    let rows = scenes.len().div_ceil(columns).max(1);
+    let size = (SIZE.0 + 300, 40 + 230 * rows as u32);
+    svg_of_size(size, |root| {
+        root.titled(
+            "Runs solved within a time budget, per scene",
+            ("sans-serif", 17),
+        )
+        .map_err(plot_error)?;
+        let (plots, _) = root.split_horizontally(size.0 - LEGEND_WIDTH);
+        let plots = plots.margin(30, 0, 0, 0);
+        let panels = plots.split_evenly((rows, columns));
+        let mut entries = Vec::new();
+        for (panel, scene) in panels.iter().zip(&scenes) {
+            let of_scene: Vec<BenchmarkLog> = logs
+                .iter()
+                .filter(|l| l.experiment == *scene)
+                .cloned()
+                .collect();
+            let runs = all
+                .iter()
+                .map(|p| runs(&of_scene, p).len())
+                .max()
+                .unwrap_or(0);
+            let mut builder = ChartBuilder::on(panel);
+            builder
+                .caption(format!("{scene} (n = {runs})"), ("sans-serif", 13))
+                .margin(6)
+                .x_label_area_size(28)
+                .y_label_area_size(36);
+            entries = success_curves(builder, &of_scene, &all, t_max, false)?;
+        }
+        let legend_x = size.0 as i32 - LEGEND_WIDTH as i32 + 8;
+        let entries: Vec<(String, RGBColor, Glyph)> = entries
+            .into_iter()
+            .zip(&all)
+            .map(|((_, colour, glyph), p)| (p.name(), colour, glyph))
+            .collect();
+        side_legend_at(root, legend_x, &entries)
+    })
+}
+
+/// Draws the success-vs-time curves of `logs` (one per planner of `all`, up to `t_max`)
+/// in the chart `builder` makes, with axis names when `described`; returns the legend's
+/// entries.
+fn success_curves(
+    mut builder: ChartBuilder<'_, '_, SVGBackend<'_>>,
+    logs: &[BenchmarkLog],
+    all: &[Planner],
+    t_max: f64,
+    described: bool,
+) -> Result<Vec<(String, RGBColor, Glyph)>, String> {
+    let mut chart = builder
+        .build_cartesian_2d(
+            (MIN_TIME..t_max)
+                .log_scale()
+                .with_key_points(log_ticks(MIN_TIME, t_max)),
+            0.0..100.0,
+        )
+        .map_err(plot_error)?;
+    let mut mesh = chart.configure_mesh();
+    mesh.x_label_formatter(&time_label);
+    if described {
+        mesh.x_desc("time budget (s, log scale)")
+            .y_desc("runs solved (%)");
+    }
+    mesh.draw().map_err(plot_error)?;
+    let mut entries = Vec::new();
+    for (k, planner) in all.iter().enumerate() {
+        let runs = runs(logs, planner);
+        let mut times: Vec<f64> = runs.iter().filter(|r| r.solved).map(|r| r.time).collect();
+        times.sort_by(f64::total_cmp);
+        let share = |i: usize| 100.0 * i as f64 / runs.len().max(1) as f64;
+        let mut points = vec![(MIN_TIME, 0.0)];
+        for (i, t) in times.iter().enumerate() {
+            let t = t.max(MIN_TIME);
+            points.push((t, share(i)));
+            points.push((t, share(i + 1)));
+        }
+        points.push((t_max, share(times.len())));
+        let colour = planner.colour(k);
+        chart
+            .draw_series(LineSeries::new(points, colour.stroke_width(2)))
+            .map_err(plot_error)?;
+        entries.push((planner.label(runs.len()), colour, Glyph::Line));
+        // A marker where the curve ends: the share solved at the time limit.
+        chart
+            .draw_series(std::iter::once(Circle::new(
+                (t_max, share(times.len())),
+                4,
+                colour.filled(),
+            )))
+            .map_err(plot_error)?;
+    }
+    Ok(entries)
 }
 
 /// A chart with its title, leaving room right of it for a legend if it has one.
@@ -236,7 +379,15 @@ enum Glyph {
 /// The legend in the room right of the plot (`LEGEND_WIDTH`), drawn on the whole
 /// picture (a chart clips what lies outside its plot).
 fn side_legend(root: &Area, entries: &[(String, RGBColor, Glyph)]) -> Result<(), String> {
-    let x = SIZE.0 as i32 - LEGEND_WIDTH as i32 + 8;
+    side_legend_at(root, SIZE.0 as i32 - LEGEND_WIDTH as i32 + 8, entries)
+}
+
+/// A legend whose entries start at `x` (px), one below the other.
+fn side_legend_at(
+    root: &Area,
+    x: i32,
+    entries: &[(String, RGBColor, Glyph)],
+) -> Result<(), String> {
     for (i, (label, colour, glyph)) in entries.iter().enumerate() {
         let y = 50 + 20 * i as i32;
         match glyph {
@@ -308,7 +459,9 @@ pub fn plan_time(logs: &[BenchmarkLog]) -> Result<String, String> {
         )
         .build_cartesian_2d(
             -0.5..count as f64 - 0.5,
-            (MIN_TIME..t_max * 1.2).log_scale(),
+            (MIN_TIME..t_max * 1.2)
+                .log_scale()
+                .with_key_points(log_ticks(MIN_TIME, t_max)),
         )
         .map_err(plot_error)?;
         chart
@@ -316,6 +469,7 @@ pub fn plan_time(logs: &[BenchmarkLog]) -> Result<String, String> {
             .disable_x_mesh()
             .x_labels(count)
             .x_label_formatter(&category_labels(names))
+            .y_label_formatter(&time_label)
             .y_desc("time (s, log scale)")
             .draw()
             .map_err(plot_error)?;
@@ -363,8 +517,9 @@ pub fn plan_time(logs: &[BenchmarkLog]) -> Result<String, String> {
 }
 
 /// Fig. 8: the mean of a path measure over solved runs, before (dark) and after (light)
-/// shortcutting, per planner. A planner whose paths are not shortcut (DARRT's primitive
-/// paths) has the dark bar only.
+/// shortcutting, per planner, each bar with the 95 % confidence interval of its mean
+/// ([`mean_interval`]). A planner whose paths are not shortcut (DARRT's primitive paths)
+/// has the dark bar only.
 pub fn shortcutting(
     logs: &[BenchmarkLog],
     before: &str,
@@ -380,10 +535,14 @@ pub fn shortcutting(
             .filter_map(|r| r.value(column))
             .collect()
     };
-    let mean = |v: &[f64]| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
-    let bars: Vec<[Option<f64>; 2]> = all
+    let bars: Vec<[Option<(f64, f64)>; 2]> = all
         .iter()
-        .map(|p| [mean(&values(p, before)), mean(&values(p, after))])
+        .map(|p| {
+            [
+                mean_interval(&values(p, before)),
+                mean_interval(&values(p, after)),
+            ]
+        })
         .collect();
     let names: Vec<String> = all
         .iter()
@@ -393,7 +552,7 @@ pub fn shortcutting(
         .iter()
         .flatten()
         .flatten()
-        .fold(1e-9f64, |a, b| a.max(*b))
+        .fold(1e-9f64, |a, (mean, half)| a.max(mean + half))
         * 1.15;
     let count = all.len().max(1);
     svg(|root| {
@@ -405,20 +564,36 @@ pub fn shortcutting(
             .disable_x_mesh()
             .x_labels(count)
             .x_label_formatter(&category_labels(names))
-            .y_desc(format!("mean {unit} (n: solved runs)"))
+            .y_desc(format!(
+                "mean {unit}, 95 % confidence interval (n: solved runs)"
+            ))
             .draw()
             .map_err(plot_error)?;
         for (k, (planner, b)) in all.iter().zip(&bars).enumerate() {
             let colour = planner.colour(k);
-            for (j, value) in b.iter().enumerate() {
-                let Some(value) = *value else { continue };
+            for (j, bar) in b.iter().enumerate() {
+                let Some((mean, half)) = *bar else { continue };
                 let (x0, style) = if j == 0 {
                     (k as f64 - 0.35, colour.mix(0.9).filled())
                 } else {
                     (k as f64, colour.mix(0.35).filled())
                 };
                 chart
-                    .draw_series([Rectangle::new([(x0, 0.0), (x0 + 0.33, value)], style)])
+                    .draw_series([Rectangle::new([(x0, 0.0), (x0 + 0.33, mean)], style)])
+                    .map_err(plot_error)?;
+                let (x, low, high) = (x0 + 0.165, (mean - half).max(0.0), mean + half);
+                chart
+                    .draw_series([
+                        PathElement::new(vec![(x, low), (x, high)], BLACK.stroke_width(1)),
+                        PathElement::new(
+                            vec![(x - 0.05, low), (x + 0.05, low)],
+                            BLACK.stroke_width(1),
+                        ),
+                        PathElement::new(
+                            vec![(x - 0.05, high), (x + 0.05, high)],
+                            BLACK.stroke_width(1),
+                        ),
+                    ])
                     .map_err(plot_error)?;
             }
         }
@@ -427,8 +602,9 @@ pub fn shortcutting(
 }
 
 /// Success rate against the number of objects in the scene: a marker per measured
-/// count, lines only between neighbouring counts that both have runs, planners spread a
-/// little apart so that equal rates stay visible.
+/// count with its 95 % Wilson interval ([`wilson_interval`]), lines only between
+/// neighbouring counts that both have runs, planners spread a little apart so that equal
+/// rates stay visible.
 pub fn success_vs_objects(logs: &[BenchmarkLog]) -> Result<String, String> {
     let all = planners(logs);
     let most = logs
@@ -441,7 +617,7 @@ pub fn success_vs_objects(logs: &[BenchmarkLog]) -> Result<String, String> {
     svg(|root| {
         let mut chart = chart(
             root,
-            "Runs solved by number of objects (n: runs per object count)",
+            "Runs solved by number of objects (n: runs per count; bars: 95 % Wilson intervals)",
             true,
         )
         .build_cartesian_2d(0.5..most as f64 + 0.5, -2.0..104.0)
@@ -459,17 +635,28 @@ pub fn success_vs_objects(logs: &[BenchmarkLog]) -> Result<String, String> {
         let mut entries = Vec::new();
         for (k, planner) in all.iter().enumerate() {
             let runs = runs(logs, planner);
-            let points: Vec<(usize, f64, usize)> = (1..=most)
+            // Per object count: (count, % solved, runs, the interval's % low and high).
+            let points: Vec<(usize, f64, usize, f64, f64)> = (1..=most)
                 .filter_map(|n| {
                     let of_n: Vec<&Run> = runs.iter().filter(|r| r.objects == Some(n)).collect();
                     (!of_n.is_empty()).then(|| {
                         let solved = of_n.iter().filter(|r| r.solved).count();
-                        (n, 100.0 * solved as f64 / of_n.len() as f64, of_n.len())
+                        let (low, high) = wilson_interval(solved, of_n.len());
+                        let rate = 100.0 * solved as f64 / of_n.len() as f64;
+                        (n, rate, of_n.len(), 100.0 * low, 100.0 * high)
                     })
                 })
                 .collect();
             let colour = planner.colour(k);
-            let at = |(n, rate, _): &(usize, f64, usize)| (*n as f64 + spread(k), *rate);
+            let x = |n: usize| n as f64 + spread(k);
+            let at = |p: &(usize, f64, usize, f64, f64)| (x(p.0), p.1);
+            let intervals = points.iter().map(|p| {
+                PathElement::new(
+                    vec![(x(p.0), p.3), (x(p.0), p.4)],
+                    colour.mix(0.6).stroke_width(1),
+                )
+            });
+            chart.draw_series(intervals).map_err(plot_error)?;
             let segments = points
                 .windows(2)
                 .filter(|w| w[1].0 == w[0].0 + 1)
@@ -494,11 +681,15 @@ pub fn success_vs_objects(logs: &[BenchmarkLog]) -> Result<String, String> {
     })
 }
 
-/// Writes the five plots into `dir` from the logs; returns the files.
+/// Writes the six plots into `dir` from the logs; returns the files.
 pub fn write_plots(logs: &[BenchmarkLog], dir: &Path) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let plots = [
         ("success_vs_time.svg", success_vs_time(logs)?),
+        (
+            "success_vs_time_per_scene.svg",
+            success_vs_time_per_scene(logs)?,
+        ),
         ("plan_time.svg", plan_time(logs)?),
         (
             "shortcut_path_length.svg",
@@ -534,7 +725,39 @@ pub fn write_plots(logs: &[BenchmarkLog], dir: &Path) -> Result<Vec<PathBuf>, St
 
 #[cfg(test)]
 mod tests {
-    use super::quantile;
+    use super::{log_ticks, mean_interval, quantile, time_label, wilson_interval};
+
+    /// Wilson's intervals as published tables give them (Newcombe 1998, Table I: 0 of 10
+    /// and 5 of 10 at 95 %), to four places.
+    #[test]
+    fn wilson_intervals_match_the_published_values() {
+        let round = |(a, b): (f64, f64)| ((a * 1e4).round() / 1e4, (b * 1e4).round() / 1e4);
+        assert_eq!(round(wilson_interval(0, 10)), (0.0, 0.2775));
+        assert_eq!(round(wilson_interval(5, 10)), (0.2366, 0.7634));
+        assert_eq!(round(wilson_interval(10, 10)), (0.7225, 1.0));
+    }
+
+    /// 1..5: mean 3, sample standard deviation sqrt(2.5), so 1.96 sqrt(2.5 / 5) = 1.386.
+    #[test]
+    fn a_mean_comes_with_its_confidence_interval() {
+        let (mean, half) = mean_interval(&[1.0, 2.0, 3.0, 4.0, 5.0]).unwrap();
+        assert_eq!(mean, 3.0);
+        assert!((half - 1.385_904).abs() < 1e-6, "{half}");
+        assert_eq!(mean_interval(&[7.0]), Some((7.0, 0.0)));
+        assert_eq!(mean_interval(&[]), None);
+    }
+
+    #[test]
+    fn log_axes_are_ticked_at_1_2_and_5_and_labelled_without_noise() {
+        let ticks: Vec<String> = log_ticks(0.01, 30.0).iter().map(time_label).collect();
+        assert_eq!(
+            ticks,
+            ["0.01", "0.02", "0.05", "0.1", "0.2", "0.5", "1", "2", "5", "10", "20", "30"]
+        );
+        // The limit itself, without a tick crowding it.
+        assert_eq!(log_ticks(0.01, 60.0).last(), Some(&60.0));
+        assert!(!log_ticks(0.01, 60.0).contains(&50.0));
+    }
 
     /// Type-7 quantiles computed by hand (R: quantile(x, type = 7)).
     #[test]

@@ -281,6 +281,39 @@ fn bench_runs_planners_on_scenes_and_merges_a_database() {
     ] {
         assert!(plots.join(plot).is_file(), "{plot} missing");
     }
+    // Log axes labelled at 1, 2 and 5 of each decade, up to the 2 s limit.
+    for tick in ["0.01", "0.02", "0.05", "0.1", "0.5", "1", "2"] {
+        assert!(
+            curves.contains(&format!(">\n{tick}\n</text>")),
+            "no tick {tick} on the time axis"
+        );
+    }
+    // A panel per scene, each named with its runs; every bar with its spread.
+    let panels = std::fs::read_to_string(plots.join("success_vs_time_per_scene.svg")).unwrap();
+    for scene in ["benchmark-00", "benchmark-10", "benchmark-20"] {
+        assert!(
+            panels.contains(&format!("{scene} (n = 2)")),
+            "no panel of {scene}"
+        );
+    }
+    let bars = std::fs::read_to_string(plots.join("shortcut_path_length.svg")).unwrap();
+    assert!(bars.contains("95 % confidence interval"));
+    let rates = std::fs::read_to_string(plots.join("success_vs_objects.svg")).unwrap();
+    assert!(rates.contains("95 % Wilson intervals"));
+    // A log that is not a benchmark log is refused, named; the plots are left as they were.
+    std::fs::write(out.join("notes.log"), "shortcutting took long\n").unwrap();
+    let refused = Command::new(env!("CARGO_BIN_EXE_pushplan"))
+        .arg("plots")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("notes.log: not an OMPL benchmark log"),
+        "{stderr}"
+    );
+    std::fs::remove_file(out.join("notes.log")).unwrap();
 
     // Read the database as Planner Arena would (ompl_benchmark_statistics is Python, so
     // Python's sqlite3 is there wherever the pipeline runs).

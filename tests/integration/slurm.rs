@@ -234,6 +234,43 @@ fn the_slurm_example_runs_shards_and_merges_them_as_one_benchmark() {
     );
     assert_eq!(sharded.len(), 2 * 2 * 3, "{sharded:?}");
     assert_eq!(sharded, unsharded);
+
+    // A task submitted again with RESUME=1 keeps the runs its shard holds (their logs stay
+    // byte for byte: nothing ran again).
+    let shard = out.join("shard_1");
+    // Each run's log: SHARD/cells/CELL/PLANNER_RUN.log.
+    let logs = |dir: &Path| -> Vec<(PathBuf, Vec<u8>)> {
+        let mut logs: Vec<(PathBuf, Vec<u8>)> = std::fs::read_dir(dir.join("cells"))
+            .unwrap()
+            .flatten()
+            .flat_map(|cell| std::fs::read_dir(cell.path()).unwrap().flatten())
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|e| e == "log"))
+            .map(|p| (p.clone(), std::fs::read(&p).unwrap()))
+            .collect();
+        logs.sort();
+        logs
+    };
+    let before = logs(&shard);
+    assert!(!before.is_empty());
+    let resumed = Command::new("bash")
+        .arg("examples/slurm/bench.sbatch")
+        .env("OUT", &out)
+        .env("PUSHPLAN", pushplan)
+        .env("SCENES", scenes)
+        .envs(settings)
+        .env("SLURM_ARRAY_TASK_ID", "1")
+        .env("SLURM_ARRAY_TASK_COUNT", "3")
+        .env("RESUME", "1")
+        .output()
+        .unwrap();
+    assert!(
+        resumed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    assert_eq!(logs(&shard), before, "RESUME=1 ran kept runs again");
+    assert!(String::from_utf8_lossy(&resumed.stderr).contains("kept from before"));
     drop(cluster);
     let _ = std::fs::remove_dir_all(&base);
 }
