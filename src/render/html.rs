@@ -1,5 +1,7 @@
-//! A self-contained HTML page that animates the plan: play / pause and a time slider, no
-//! network needed. Frames are precomputed (outlines in pixels) and embedded as JSON.
+//! A self-contained HTML page that animates the plan, no network needed: a 3D view (the
+//! project's own WebGL viewer, [`super::webgl`]) with the objects' names, a legend, a scale
+//! bar and trails, and a top view below it; play / pause at true speed or at a chosen
+//! speed, a time slider and a time readout. Frames are precomputed and embedded as JSON.
 
 use super::svg::{escape, object_colour, View};
 use super::Film;
@@ -73,6 +75,40 @@ pub fn animation(film: &Film) -> String {
         .map(|i| js_string(object_colour(film, i)))
         .collect();
     let title = escape(&film.scene.name);
+    let scene3d = super::webgl::scene_json(film, &indices);
+    let goal_object = film.scene.goal.object();
+    let mut legend3d =
+        String::from("<li><span class=\"swatch\" style=\"background:#9aa3ad\"></span>arm</li>");
+    let _ = write!(
+        legend3d,
+        "<li><span class=\"swatch\" style=\"background:{}\"></span>a link pushing an object; the line: the tool's path</li>",
+        super::svg::CONTACT_COLOUR
+    );
+    for (i, o) in film.scene.objects.iter().enumerate() {
+        let _ = write!(
+            legend3d,
+            "<li><span class=\"swatch\" style=\"background:{}\"></span>{}{}</li>",
+            object_colour(film, i),
+            escape(&o.name),
+            if goal_object == Some(i) {
+                " (the goal object)"
+            } else {
+                ""
+            }
+        );
+    }
+    if film.goal_disc().is_some() {
+        let _ = write!(
+            legend3d,
+            "<li><span class=\"swatch\" style=\"background:{};opacity:0.4\"></span>the goal region</li>",
+            super::svg::GOAL_REGION_COLOUR
+        );
+    }
+    if !film.executed.is_empty() {
+        legend3d.push_str("<li><span class=\"swatch\" style=\"background:#1a1a1a;opacity:0.4\"></span>where the 3D execution took the objects</li>");
+    }
+    legend3d.push_str("<li><span class=\"swatch\" style=\"background:#1a1a1a;height:3px\"></span>the objects' paths so far (lines on the table); the black bar is 20 cm</li>");
+    let duration = film.states.len().saturating_sub(1) as f64 * film.dt;
     format!(
         r##"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>{title}: plan</title>
@@ -80,10 +116,20 @@ pub fn animation(film: &Film) -> String {
 body {{ font-family: sans-serif; margin: 16px; }}
 #controls {{ display: flex; gap: 12px; align-items: center; margin-bottom: 8px; }}
 #time {{ width: 420px; }}
+#stage {{ position: relative; width: 900px; height: 520px; border: 1px solid #ccc; }}
+#view3d {{ cursor: grab; }}
+.label {{ position: absolute; transform: translate(-50%, -100%); font-size: 12px; background: rgba(255,255,255,0.75); padding: 0 3px; pointer-events: none; white-space: nowrap; }}
+.legend {{ list-style: none; padding: 0; columns: 2; font-size: 13px; }}
+.swatch {{ display: inline-block; width: 14px; height: 10px; margin-right: 6px; border: 1px solid #555; vertical-align: middle; }}
 </style></head>
 <body>
 <h3>{title}</h3>{legend}
-<div id="controls"><button id="play">Play</button><input id="time" type="range" min="0" max="{last}" value="0" step="1"><span id="clock">0.00 s</span></div>
+<div id="controls"><button id="play">Play</button><input id="time" type="range" min="0" max="{last}" value="0" step="1"><span id="clock">0.00 s</span>
+<label>speed <select id="speed"><option value="0.25">0.25x</option><option value="0.5">0.5x</option><option value="1" selected>1x (true speed)</option><option value="2">2x</option><option value="4">4x</option></select></label></div>
+<div id="stage"><canvas id="view3d" width="900" height="520"></canvas><div id="labels"></div></div>
+<p id="view3d-note">3D view: drag to turn, the wheel to come closer.</p>
+<ul class="legend">{legend3d}</ul>
+<h4>Top view</h4>
 <svg id="view" xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}"></svg>
 <script>
 const frames = {frames};
@@ -91,6 +137,10 @@ const table = "{table}";
 const goal = {goal};
 const names = [{names}];
 const colours = [{colours}];
+const CONTACT = "{contact}";
+const GOAL_REGION = "{goal_colour}";
+const S3 = {scene3d};
+{viewer}
 const svg = document.getElementById("view");
 const NS = "http://www.w3.org/2000/svg";
 function add(tag, attrs) {{
@@ -99,7 +149,9 @@ function add(tag, attrs) {{
   svg.appendChild(e);
   return e;
 }}
+let current = 0;
 function draw(n) {{
+  current = n;
   const f = frames[n];
   while (svg.firstChild) svg.removeChild(svg.firstChild);
   add("polygon", {{class: "table", points: table, fill: "#f2ead8", stroke: "#b9a77f"}});
@@ -107,22 +159,34 @@ function draw(n) {{
   f.objects.forEach((p, i) => add("polygon", {{class: "object", "data-object": names[i], points: p, fill: colours[i], "fill-opacity": 0.85, stroke: "#222"}}));
   f.executed.forEach((p, i) => add("polygon", {{class: "executed", "data-object": names[i], points: p, fill: "none", stroke: "#111", "stroke-width": 1.5, "stroke-dasharray": "5 3"}}));
   f.links.forEach(([p, hot]) => add("polygon", {{class: hot ? "link contact" : "link", points: p, fill: hot ? "{contact}" : "#9aa3ad", "fill-opacity": 0.75, stroke: "#333"}}));
-  document.getElementById("clock").textContent = f.t.toFixed(2) + " s";
+  view3d(n);
+  document.getElementById("clock").textContent = f.t.toFixed(2) + " s of {duration:.2} s";
   document.getElementById("time").value = n;
   document.body.dataset.frame = n;
 }}
-let playing = null;
-const button = document.getElementById("play");
-function stop() {{ clearInterval(playing); playing = null; button.textContent = "Play"; }}
+// Playback in real time times the chosen speed: the frame shown is the last one due.
+let playing = false, started = 0, from = 0;
+const button = document.getElementById("play"), speed = document.getElementById("speed");
+function due(t) {{ let n = current; while (n + 1 < frames.length && frames[n + 1].t <= t) n++; return n; }}
+function tick(now) {{
+  if (!playing) return;
+  const n = due(from + (now - started) / 1000 * Number(speed.value));
+  if (n !== current) draw(n);
+  if (n >= frames.length - 1) return stop();
+  requestAnimationFrame(tick);
+}}
+function stop() {{ playing = false; button.textContent = "Play"; }}
+function restart() {{ from = frames[current].t; started = performance.now(); }}
 button.addEventListener("click", () => {{
   if (playing) return stop();
-  let n = Number(document.getElementById("time").value);
-  if (n >= frames.length - 1) n = 0;
-  button.textContent = "Pause";
-  playing = setInterval(() => {{ draw(n); if (++n >= frames.length) stop(); }}, 40);
+  if (current >= frames.length - 1) draw(0);
+  playing = true; button.textContent = "Pause"; restart(); requestAnimationFrame(tick);
 }});
+speed.addEventListener("change", restart);
 document.getElementById("time").addEventListener("input", e => {{ stop(); draw(Number(e.target.value)); }});
-draw(0);
+// animation.html#t=2.5 opens at 2.5 s.
+const opening = /t=([0-9.]+)/.exec(location.hash);
+draw(opening ? due(Number(opening[1])) : 0);
 </script>
 </body></html>
 "##,
@@ -139,5 +203,6 @@ draw(0);
         colours = colours.join(","),
         contact = super::svg::CONTACT_COLOUR,
         goal_colour = super::svg::GOAL_REGION_COLOUR,
+        viewer = super::webgl::VIEWER,
     )
 }

@@ -1,5 +1,5 @@
 //! Pictures of a plan (Fig. 2 of the whole-arm paper): top-down snapshots, a contact
-//! timeline, and a self-contained HTML animation.
+//! timeline, and a self-contained HTML animation (a 3D view and a top view).
 //!
 //! The renderer re-simulates the plan from its file, recording every step, so it draws
 //! exactly what the model predicts. Times are plan time: step index x the propagation step;
@@ -9,6 +9,7 @@
 mod html;
 pub mod outline;
 mod svg;
+mod webgl;
 
 use crate::planning::plan_file::PlanFile;
 use crate::planning::trajectory::paced;
@@ -187,14 +188,7 @@ impl Film {
         let state = &self.states[k];
         let robot = &self.scene.robot;
         let poses = robot.link_poses(&state.q);
-        let touching = |link: usize| {
-            let around = [k.checked_sub(1), Some(k)];
-            around.iter().flatten().any(|&s| {
-                self.contacts
-                    .get(s)
-                    .is_some_and(|p| p.iter().any(|&(l, _)| l == link))
-            })
-        };
+        let touching = |link: usize| self.link_touching(k, link);
         Frame {
             time: k as f64 * self.dt,
             links: robot
@@ -225,6 +219,16 @@ impl Film {
                     .collect()
             }),
         }
+    }
+
+    /// Whether `link` pushes an object in the step into or out of state `k`.
+    pub fn link_touching(&self, k: usize, link: usize) -> bool {
+        let around = [k.checked_sub(1), Some(k)];
+        around.iter().flatten().any(|&s| {
+            self.contacts
+                .get(s)
+                .is_some_and(|p| p.iter().any(|&(l, _)| l == link))
+        })
     }
 
     /// The goal disc, if the goal is an object goal.

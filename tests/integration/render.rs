@@ -175,6 +175,38 @@ fn the_animation_draws_the_arm_and_the_objects_in_a_browser() {
     assert_eq!(dom.matches("class=\"object\"").count(), scene.objects.len());
     assert_eq!(dom.matches("class=\"link").count(), shapes);
     assert!(dom.contains("id=\"play\"") && dom.contains("type=\"range\""));
+    // The 3D view drew without a WebGL error and covers part of its canvas (of 256 pixels
+    // sampled, the table, the arm and the objects take more than a tenth); each object
+    // has its name over it, and the scale bar its length.
+    assert!(
+        dom.contains("data-webgl=\"drawn\""),
+        "{}",
+        &dom[..dom.len().min(600)]
+    );
+    let painted: usize = dom
+        .split("data-painted=\"")
+        .nth(1)
+        .and_then(|rest| rest.split('"').next())
+        .and_then(|n| n.parse().ok())
+        .expect("the page counts its painted pixels");
+    assert!(
+        (26..256).contains(&painted),
+        "{painted} of 256 sampled pixels painted"
+    );
+    assert_eq!(
+        dom.matches("<div class=\"label\"").count(),
+        scene.objects.len()
+    );
+    assert!(dom.contains(">20 cm</div>"));
+    // True speed unless the reader chooses otherwise; a legend names every object.
+    assert!(dom.contains("<option value=\"1\" selected=\"\">1x (true speed)</option>"));
+    for object in &scene.objects {
+        assert!(
+            dom.contains(&format!("</span>{}", object.name)),
+            "{}",
+            object.name
+        );
+    }
 }
 
 #[test]
