@@ -82,20 +82,26 @@ for row in c.execute("""select e.name, e.seed, e.runcount, p.name, r.run from ru
 /// What a Python `script` prints about the database `db` (its `sys.argv[1]`), line by
 /// line: benchmark databases read by another program than the one that wrote them.
 pub fn query_database(script: &str, db: &Path) -> Vec<String> {
-    let answer = std::process::Command::new("python3")
+    python_prints("python3", script, &[db.as_os_str()])
+        .lines()
+        .map(str::to_string)
+        .collect()
+}
+
+/// What `script` prints, run by the Python interpreter `python` with `args` as its
+/// `sys.argv[1:]`; the script must succeed.
+pub fn python_prints(python: &str, script: &str, args: &[&std::ffi::OsStr]) -> String {
+    let answer = std::process::Command::new(python)
         .args(["-c", script])
-        .arg(db)
+        .args(args)
         .output()
-        .expect("python3 runs");
+        .unwrap_or_else(|e| panic!("{python}: {e} (install it with .ci/install-packages)"));
     assert!(
         answer.status.success(),
         "{}",
         String::from_utf8_lossy(&answer.stderr)
     );
-    String::from_utf8_lossy(&answer.stdout)
-        .lines()
-        .map(str::to_string)
-        .collect()
+    String::from_utf8_lossy(&answer.stdout).into_owned()
 }
 
 /// Runs the `pushplan` command in `dir`: its exit code (-1 when a signal ended it),

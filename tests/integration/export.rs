@@ -65,17 +65,8 @@ for p in m["points"]:
 assert all(type(n) is str for n in m["joint_names"])
 print(json.dumps(m))
 "#;
-    let out = std::process::Command::new(DEBIAN_PYTHON)
-        .args(["-c", script])
-        .arg(path)
-        .output()
-        .expect("python3 runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+    let message = common::python_prints(DEBIAN_PYTHON, script, &[path.as_os_str()]);
+    serde_json::from_str(&message).unwrap()
 }
 
 /// The time `d` stands for (s).
@@ -283,18 +274,11 @@ for path in sys.argv[2:]:
     errors = sorted(validator.iter_errors(json.load(open(path))), key=str)
     print(json.dumps(errors[0].message if errors else None))
 "#;
-    let out = std::process::Command::new(DEBIAN_PYTHON)
-        .args(["-c", script])
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/plan.schema.json"))
-        .args(plans)
-        .output()
-        .expect("python3 runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout)
+    let schema = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/plan.schema.json");
+    let args: Vec<&std::ffi::OsStr> = std::iter::once(schema.as_os_str())
+        .chain(plans.iter().map(|p| p.as_os_str()))
+        .collect();
+    common::python_prints(DEBIAN_PYTHON, script, &args)
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
         .collect()
