@@ -213,11 +213,10 @@ fn cmake(args: &[&std::ffi::OsStr]) -> Result<(), String> {
         return Ok(());
     }
     let text = String::from_utf8_lossy(&out.stdout) + String::from_utf8_lossy(&out.stderr);
-    let tail: Vec<&str> = text.lines().rev().take(15).collect();
-    let tail: Vec<&str> = tail.into_iter().rev().collect();
+    let lines: Vec<&str> = text.lines().collect();
     Err(format!(
         "cmake {} failed (the shared library and the CMake package):\n{}",
         args.first().map_or("".into(), |a| a.to_string_lossy()),
-        tail.join("\n")
+        lines[lines.len().saturating_sub(15)..].join("\n")
     ))
 }

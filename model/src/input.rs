@@ -137,6 +137,23 @@ pub fn relative_path(from: &Path, to: &Path) -> Result<String, String> {
     Ok(parts.join("/"))
 }
 
+/// The member of the closed set `all` that `name_of` calls `name` (a command-line value,
+/// a file's field); else an error naming `what` and every known name, in `all`'s order.
+pub fn by_name<T: Copy>(
+    all: &[T],
+    name_of: impl Fn(T) -> &'static str,
+    what: &str,
+    name: &str,
+) -> Result<T, String> {
+    all.iter()
+        .copied()
+        .find(|&v| name_of(v) == name)
+        .ok_or_else(|| {
+            let known: Vec<&str> = all.iter().map(|&v| name_of(v)).collect();
+            format!("unknown {what} '{name}' (known: {})", known.join(", "))
+        })
+}
+
 /// Names for a message: the first ten, quoted, and how many more ("none" for none).
 pub fn name_list<'a>(names: impl Iterator<Item = &'a str>) -> String {
     let names: Vec<&str> = names.collect();

@@ -268,7 +268,6 @@ pub fn success_vs_time_per_scene(logs: &[BenchmarkLog]) -> Result<String, String
         let (plots, _) = root.split_horizontally(size.0 - LEGEND_WIDTH);
         let plots = plots.margin(30, 0, 0, 0);
         let panels = plots.split_evenly((rows, columns));
-        let mut entries = Vec::new();
         for (panel, scene) in panels.iter().zip(&scenes) {
             let of_scene: Vec<BenchmarkLog> = logs
                 .iter()
@@ -286,13 +285,13 @@ pub fn success_vs_time_per_scene(logs: &[BenchmarkLog]) -> Result<String, String
                 .margin(6)
                 .x_label_area_size(28)
                 .y_label_area_size(36);
-            entries = success_curves(builder, &of_scene, &all, t_max, false)?;
+            success_curves(builder, &of_scene, &all, t_max, false)?;
         }
         let legend_x = size.0 as i32 - LEGEND_WIDTH as i32 + 8;
-        let entries: Vec<(String, RGBColor, Glyph)> = entries
-            .into_iter()
-            .zip(&all)
-            .map(|((_, colour, glyph), p)| (p.name(), colour, glyph))
+        let entries: Vec<(String, RGBColor, Glyph)> = all
+            .iter()
+            .enumerate()
+            .map(|(k, p)| (p.name(), p.colour(k), Glyph::Line))
             .collect();
         side_legend_at(root, legend_x, &entries)
     })

@@ -5,7 +5,9 @@
 use crate::planner::{Found, Search, SearchProgress};
 use crate::planning::plan_file::{PlanFile, PlanSettings, RobustnessRecord};
 use crate::planning::shortcut::ShortcutProgress;
-use crate::planning::{FinishSettings, FinishedPath, Problem, RobustRequirement, RunSettings};
+use crate::planning::{
+    time_left, FinishSettings, FinishedPath, Problem, RobustRequirement, RunSettings,
+};
 use crate::scene::Scene;
 use crate::state::State;
 use std::path::Path;
@@ -48,16 +50,11 @@ pub struct Planned {
 /// perturbed worlds reaches the goal, else the most robust one found by the deadline.
 pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned, String> {
     let options = request.options;
-    let left = request
-        .deadline
-        .saturating_duration_since(Instant::now())
-        .as_secs_f64()
-        .max(1e-3);
     let found = search.solve(
         request.scene_path,
         request.start,
         &RunSettings {
-            time_limit: left,
+            time_limit: time_left(request.deadline),
             ..*options
         },
         request.search_progress,

@@ -9,6 +9,15 @@ pub fn deadline(start: Instant, seconds: f64) -> Option<Instant> {
     start.checked_add(span)
 }
 
+/// The time left until `until` (s): at least a millisecond, for a search to report on
+/// what it had.
+pub fn time_left(until: Instant) -> f64 {
+    until
+        .saturating_duration_since(Instant::now())
+        .as_secs_f64()
+        .max(1e-3)
+}
+
 /// Whether `deadline` has come (never, without one).
 pub fn passed(deadline: Option<Instant>) -> bool {
     deadline.is_some_and(|d| Instant::now() >= d)
@@ -60,20 +69,11 @@ impl CommandDeadline {
 
     /// The time left for the pushing's search (s).
     pub fn search_time(&self) -> f64 {
-        Self::left(self.pushing)
+        time_left(self.pushing)
     }
 
     /// The time left for a reach (s).
     pub fn reach_time(&self) -> f64 {
-        Self::left(self.last)
-    }
-
-    /// The time left until `until` (s): at least a millisecond, for a search to report on
-    /// what it had.
-    fn left(until: Instant) -> f64 {
-        until
-            .saturating_duration_since(Instant::now())
-            .as_secs_f64()
-            .max(1e-3)
+        time_left(self.last)
     }
 }

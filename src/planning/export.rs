@@ -47,13 +47,7 @@ impl std::str::FromStr for ExportFormat {
     type Err = String;
 
     fn from_str(name: &str) -> Result<Self, String> {
-        ExportFormat::ALL
-            .into_iter()
-            .find(|f| f.name() == name)
-            .ok_or_else(|| {
-                let names: Vec<&str> = ExportFormat::ALL.iter().map(|f| f.name()).collect();
-                format!("unknown format '{name}' (one of: {})", names.join(", "))
-            })
+        crate::input::by_name(&ExportFormat::ALL, ExportFormat::name, "format", name)
     }
 }
 

@@ -163,21 +163,13 @@ impl PlannerKind {
     pub fn cut_at_time_limit(self) -> bool {
         !matches!(self, PlannerKind::Pdst)
     }
-
-    /// The names, comma-separated (for messages).
-    pub fn names() -> String {
-        PlannerKind::ALL.map(PlannerKind::name).join(", ")
-    }
 }
 
 impl FromStr for PlannerKind {
     type Err = String;
 
     fn from_str(name: &str) -> Result<Self, String> {
-        PlannerKind::ALL
-            .into_iter()
-            .find(|k| k.name() == name)
-            .ok_or_else(|| format!("unknown planner '{name}' (known: {})", PlannerKind::names()))
+        crate::input::by_name(&PlannerKind::ALL, PlannerKind::name, "planner", name)
     }
 }
 

@@ -32,7 +32,7 @@ pub mod static_clutter;
 pub mod trajectory;
 pub mod transit;
 
-pub use deadline::{deadline, passed, CommandDeadline};
+pub use deadline::{deadline, passed, time_left, CommandDeadline};
 pub use finish::{
     finish, FinishSettings, FinishedPath, MeasuredRate, RobustRequirement, ShortcutReport,
 };

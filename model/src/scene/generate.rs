@@ -151,10 +151,7 @@ impl std::str::FromStr for Arm {
     type Err = String;
 
     fn from_str(name: &str) -> Result<Arm, String> {
-        Arm::ALL
-            .into_iter()
-            .find(|arm| arm.name() == name)
-            .ok_or_else(|| format!("unknown robot '{name}' (known: wam, panda, ur5e, iiwa14)"))
+        crate::input::by_name(&Arm::ALL, Arm::name, "robot", name)
     }
 }
 
@@ -310,14 +307,7 @@ impl std::str::FromStr for Design {
     type Err = String;
 
     fn from_str(name: &str) -> Result<Design, String> {
-        Design::ALL
-            .into_iter()
-            .find(|design| design.name() == name)
-            .ok_or_else(|| {
-                format!(
-                    "unknown design '{name}' (known: paper, dense, occupied_goal, mixed_heights, walls)"
-                )
-            })
+        crate::input::by_name(&Design::ALL, Design::name, "design", name)
     }
 }
 

@@ -65,10 +65,7 @@ impl FromStr for EngineKind {
     type Err = String;
 
     fn from_str(name: &str) -> Result<Self, String> {
-        EngineKind::ALL
-            .into_iter()
-            .find(|k| k.name() == name)
-            .ok_or_else(|| format!("unknown engine '{name}' (known: rapier, mujoco)"))
+        crate::input::by_name(&EngineKind::ALL, EngineKind::name, "engine", name)
     }
 }
 
