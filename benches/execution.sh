@@ -38,7 +38,7 @@ for scene in "${scenes[@]}"; do
     "$bin" plan "$scene" --seed "${SEED:-1}" --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
   fi
   if grep -v '^warning:' "$out/$n.plan.txt" | head -1 | grep -q '^solved'; then
-    "$bin" check "$out/$n.json" --noise "$trials" > "$out/$n.check.txt" 2>&1
+    "$bin" check "$out/$n.json" --noise "$trials" --path-only > "$out/$n.check.txt" 2>&1
     echo "$n: $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
     for e in "${engines[@]}"; do
       if [ "${OPEN_LOOP:-1}" != 0 ]; then

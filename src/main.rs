@@ -86,8 +86,10 @@ enum Command {
         search: SearchFlags,
     },
     /// Re-simulate a plan file and report whether every state is valid and the goal is
-    /// reached; with --noise, also how often perturbed re-simulations still reach it. Given
-    /// a scene file, check the scene: what cannot work or will be slow, with the numbers.
+    /// reached, then make it again from its scene, settings and seed and compare ("plan OK"
+    /// when both agree with the file); with --noise, also how often perturbed
+    /// re-simulations still reach the goal. Given a scene file, check the scene: what
+    /// cannot work or will be slow, with the numbers.
     Check {
         /// Plan file (JSON, written by `plan`), or a scene file (.yaml, .yml): the scene is
         /// loaded and checked for what cannot work or will be slow (an object the tool tips
@@ -102,6 +104,10 @@ enum Command {
         /// Seed of the perturbations.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Check the path only: re-simulate it, but do not make the plan again from its
+        /// settings and seed (how it was made stays unconfirmed: "path OK", not "plan OK").
+        #[arg(long)]
+        path_only: bool,
     },
     /// Play a plan's trajectory open loop in a 3D rigid-body engine (rapier or MuJoCo): the arm's
     /// links follow the trajectory, the objects slide, turn and tip freely. Reports how
@@ -452,7 +458,12 @@ fn run(command: Command) -> Result<ExitCode, String> {
             ReplanOptions { at, search, quiet },
             &out,
         ),
-        Command::Check { plan, noise, seed } => check(&plan, noise, seed),
+        Command::Check {
+            plan,
+            noise,
+            seed,
+            path_only,
+        } => check(&OmplSearch, &plan, noise, seed, path_only),
         Command::Execute {
             plan,
             trials,

@@ -348,18 +348,41 @@ impl Plan {
         from_json(py, &text)
     }
 
-    /// Re-simulates the plan from its scene's start, independently of the planner, as
-    /// `pushplan check` does: a dict of `passed`, `all_valid`, `states_match`,
-    /// `goal_reached`, `record_matches` and the `problems` found.
-    fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let report = py.detach(|| self.file.check(&self.path)).map_err(error)?;
+    /// Re-simulates the plan from its scene's start, independently of the planner, then
+    /// (unless `path_only`) makes it again from its scene, settings and seed, as
+    /// `pushplan check` does: a dict of `passed` (the path checks, and the plan made again
+    /// the same), `all_valid`, `states_match`, `goal_reached`, `record_matches`, the
+    /// `problems` found, and `remade` (`"same"`, `"differs: FIELD"`, `"not made again:
+    /// WHY"`, or None when the path fails or with `path_only`).
+    #[pyo3(signature = (*, path_only = false))]
+    fn check<'py>(&self, py: Python<'py>, path_only: bool) -> PyResult<Bound<'py, PyDict>> {
+        use pushplan::planner::remake::{remake, Remade};
+        let (report, remade) = py
+            .detach(|| -> Result<_, String> {
+                let report = self.file.check(&self.path)?;
+                let remade = match report.passed() && !path_only {
+                    true => Some(remake(&OmplSearch, &self.file, &self.path)?),
+                    false => None,
+                };
+                Ok((report, remade))
+            })
+            .map_err(error)?;
         let dict = PyDict::new(py);
-        dict.set_item("passed", report.passed())?;
+        let same = remade.as_ref().is_none_or(|r| *r == Remade::Same);
+        dict.set_item("passed", report.passed() && same)?;
         dict.set_item("all_valid", report.all_valid)?;
         dict.set_item("states_match", report.states_match)?;
         dict.set_item("goal_reached", report.goal_reached)?;
         dict.set_item("record_matches", report.record_matches)?;
         dict.set_item("problems", report.problems)?;
+        dict.set_item(
+            "remade",
+            remade.map(|r| match r {
+                Remade::Same => "same".to_string(),
+                Remade::Differs(field) => format!("differs: {field}"),
+                Remade::Cannot(why) => format!("not made again: {why}"),
+            }),
+        )?;
         Ok(dict)
     }
 

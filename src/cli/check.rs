@@ -1,6 +1,8 @@
 //! `pushplan check`: re-simulate a plan file, optionally under parameter noise.
 
 use pushplan::input::MAX_PLAN_BYTES;
+use pushplan::planner::remake::{remake, Remade};
+use pushplan::planner::Search;
 use pushplan::planning::plan_file::PlanFile;
 use pushplan::planning::robustness::Noise;
 use pushplan::planning::Problem;
@@ -58,7 +60,16 @@ fn check_scene(path: &Path) -> Result<ExitCode, String> {
     })
 }
 
-pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
+/// `pushplan check PLAN`: re-simulates the plan (and with `noise`, perturbed worlds with
+/// `seed`), then, unless `path_only`, makes it again with `search` from what it records of
+/// how it was made. Exit 0 for "plan OK" (or "path OK" with `path_only`), 1 otherwise.
+pub fn check(
+    search: &dyn Search,
+    path: &Path,
+    noise: usize,
+    seed: u64,
+    path_only: bool,
+) -> Result<ExitCode, String> {
     if is_scene_file(path) {
         if noise > 0 {
             return Err("--noise applies to plans, not to scene files".into());
@@ -124,37 +135,54 @@ pub fn check(path: &Path, noise: usize, seed: u64) -> Result<ExitCode, String> {
     for problem in &report.problems {
         println!("  {problem}");
     }
-    // What a re-simulation cannot confirm is said, not passed over: the search that made
-    // the plan (its settings are only checked to be within their limits).
-    println!(
-        "  as recorded, not re-planned: made by {} with seed {}, k {}, {} s, {} thread(s){}{}",
+    let made = format!(
+        "made by {} with seed {}, k {}, {:?} s, {} thread(s){}",
         plan.settings.planner.name(),
         plan.settings.seed,
         plan.settings.k,
         plan.settings.time_limit,
         plan.settings.threads,
         plan.robustness.as_ref().map_or(String::new(), |r| format!(
-            ", {:.0} % of the perturbed re-simulations required, {} perturbed worlds carried",
+            ", {:.0} % of {} perturbed re-simulations required, {} perturbed worlds carried",
             100.0 * r.required_rate,
+            r.trials,
             r.particles
         )),
-        match plan.settings.shortcut > 0.0 {
-            true => "; the metrics before shortcutting likewise",
-            false => "",
-        }
     );
-    println!(
-        "{}",
-        if report.passed() {
+    if !report.passed() {
+        println!("plan FAILED");
+        return Ok(ExitCode::FAILURE);
+    }
+    if path_only {
+        // What a re-simulation cannot confirm is said, not passed over.
+        println!("  as recorded, not made again (--path-only): {made}");
+        println!("path OK");
+        return Ok(ExitCode::SUCCESS);
+    }
+    let started = std::time::Instant::now();
+    let remade = remake(search, &plan, path)?;
+    let took = started.elapsed().as_secs_f64();
+    let verdict = match remade {
+        Remade::Same => {
+            println!("  made again ({made}) in {took:.2} s: the same plan, byte for byte");
             "plan OK"
-        } else {
+        }
+        Remade::Differs(field) => {
+            println!(
+                "  made again ({made}) in {took:.2} s: {field}: differs from the plan made again \
+                 (the file was changed, or made by another version of pushplan)"
+            );
             "plan FAILED"
         }
-    );
-    Ok(if report.passed() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
+        Remade::Cannot(why) => {
+            println!("  not made again: {why}; how it was made ({made}) is not confirmed");
+            "path OK, plan not confirmed"
+        }
+    };
+    println!("{verdict}");
+    Ok(match verdict {
+        "plan OK" => ExitCode::SUCCESS,
+        _ => ExitCode::FAILURE,
     })
 }
 

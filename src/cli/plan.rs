@@ -3,7 +3,7 @@
 use super::progress;
 use super::SearchFlags;
 use pushplan::limits::Front;
-use pushplan::planner::plan_scene::{plan_scene, PlanRequest, Planned};
+use pushplan::planner::plan_scene::{plan_scene, reach_record, PlanRequest, Planned};
 use pushplan::planner::{ReachSettings, Search};
 use pushplan::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, ReplanRecord};
 use pushplan::planning::shortcut::ShortcutProgress;
@@ -83,15 +83,7 @@ fn reach(
             found.tree_size
         );
     }
-    Ok(found.solved.then(|| ReachRecord {
-        object: object.to_string(),
-        sample_probability: run.sample_probability,
-        waypoints: found
-            .waypoints
-            .iter()
-            .map(|q| q.as_slice().to_vec())
-            .collect(),
-    }))
+    Ok(reach_record(&found, object, run.sample_probability))
 }
 
 /// `pushplan plan`: searches the scene with `search`, finishes the path and writes the plan
@@ -126,15 +118,6 @@ pub fn plan(
         options.robust_trials = PLAN_ROBUST_TRIALS;
     }
     let (planner, quiet) = (options.planner, run.quiet);
-    if options.fallback_steps > 0 && planner.fallback_steps() == 0 {
-        return Err(format!(
-            "--fallback {}: only {} falls back (to {}), not {}",
-            options.fallback_steps,
-            PlannerKind::PushKpiece.name(),
-            PlannerKind::PcRrt.name(),
-            planner.name()
-        ));
-    }
     options.check(Front::CommandLine)?;
     if run.search.k.is_some() && !planner.takes_best_of_k() {
         let takers: Vec<&str> = PlannerKind::ALL

@@ -7,7 +7,6 @@ use super::SearchFlags;
 use pushplan::planner::Search;
 use pushplan::planning::observed::ObservedState;
 use pushplan::planning::plan_file::{PlanFile, ReplanRecord};
-use pushplan::planning::Problem;
 use pushplan::{DistanceMetric, Scene};
 use std::path::Path;
 use std::process::ExitCode;
@@ -41,14 +40,13 @@ pub fn replan(
     let from = scene
         .with_start(&observed, observed_path)
         .map_err(|e| e.to_string())?;
-    let controls = old.path_controls();
+    let count = old.controls.len();
     let at = match options.at {
-        Some(at) if at <= controls.len() => at,
+        Some(at) if at <= count => at,
         Some(at) => {
             return Err(format!(
                 "--at {at}: the plan has {} controls (0 to {} may be given)",
-                controls.len(),
-                controls.len()
+                count, count
             ))
         }
         None => nearest_recorded_state(&old, &from),
@@ -61,28 +59,20 @@ pub fn replan(
     };
 
     // The rest of the plan, as it is, from where the world is.
-    let rest = &controls[at..];
-    let problem = Problem::new(from.clone(), old.settings.planner);
-    let simulated = problem.simulate(rest, false);
-    let why_not = match &simulated.stopped_by {
-        Some((i, reason)) => Some(format!("control {} stops: {reason}", at + i)),
-        None if !from.goal.is_satisfied(simulated.final_state()) => Some(format!(
-            "the goal is missed by {:.1} mm",
-            1e3 * from.goal.task_distance(simulated.final_state()).max(0.0)
-        )),
-        None => None,
-    };
-    let Some(why_not) = why_not else {
-        let reference = PlanFile::scene_reference(&scene_path, out);
-        let mut file = PlanFile::build(&reference, from, &old.settings, rest, None)?;
-        file.replanned = Some(record(true));
-        pushplan::output::write_whole(out, file.to_json())?;
-        println!(
-            "kept: the plan's controls {at} to {} still reach the goal from the observed state ({} written)",
-            controls.len(),
-            out.display()
-        );
-        return Ok(ExitCode::SUCCESS);
+    let why_not = match old.rest_from(at, &from) {
+        Ok(rest) => {
+            let reference = PlanFile::scene_reference(&scene_path, out);
+            let mut file = PlanFile::build(&reference, from, &old.settings, &rest, None)?;
+            file.replanned = Some(record(true));
+            pushplan::output::write_whole(out, file.to_json())?;
+            println!(
+                "kept: the plan's controls {at} to {} still reach the goal from the observed state ({} written)",
+                count,
+                out.display()
+            );
+            return Ok(ExitCode::SUCCESS);
+        }
+        Err(why_not) => why_not,
     };
     if !options.quiet {
         eprintln!("the rest of the plan from control {at} no longer works ({why_not}): searching from the observed state");

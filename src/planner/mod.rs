@@ -2,7 +2,8 @@
 //! metric ([`NearestTree`]), push headings, perturbed worlds, the tool points of recent
 //! propagations and search statistics, which the bridge hands to C++; and the search
 //! the applications call ([`Search`]), which the bridge implements, and a scene planned
-//! end to end with it ([`plan_scene`]).
+//! end to end with it ([`plan_scene`]) and a plan file made again from what it records
+//! ([`remake`]).
 
 pub mod closed_loop;
 mod heading;
@@ -10,6 +11,7 @@ mod nearest;
 mod particles;
 pub mod plan_scene;
 mod recent_tools;
+pub mod remake;
 mod search;
 mod stats;
 

@@ -2,8 +2,8 @@
 //! do: the search, then the one way a found path is finished (shortcut, re-simulated,
 //! measured for robustness), written as a [`PlanFile`].
 
-use crate::planner::{Found, Search, SearchProgress};
-use crate::planning::plan_file::{PlanFile, PlanSettings, RobustnessRecord};
+use crate::planner::{Found, Reached, Search, SearchProgress};
+use crate::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
 use crate::planning::shortcut::ShortcutProgress;
 use crate::planning::{
     time_left, FinishSettings, FinishedPath, Problem, RobustRequirement, RunSettings,
@@ -90,11 +90,28 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
         required_rate: options.robust_rate,
         success_rate: measured.rate,
         particles: options.robust_particles,
+        shortcut: options.robust_shortcut,
+        asked: (measured.trials < options.robust_trials as usize)
+            .then_some(options.robust_trials as usize),
     });
     Ok(Planned {
         file,
         found,
         path,
         problem,
+    })
+}
+
+/// What a plan file records of IK-BiRRT's reach of a grasp of `object` with P_sample
+/// `sample_probability`: `None` when it found none.
+pub fn reach_record(found: &Reached, object: &str, sample_probability: f64) -> Option<ReachRecord> {
+    found.solved.then(|| ReachRecord {
+        object: object.to_string(),
+        sample_probability,
+        waypoints: found
+            .waypoints
+            .iter()
+            .map(|q| q.as_slice().to_vec())
+            .collect(),
     })
 }

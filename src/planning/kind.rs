@@ -148,6 +148,20 @@ impl PlannerKind {
         }
     }
 
+    /// Refuses `steps` > 0 of patience for a planner that does not fall back; `name` is the
+    /// setting's (`--fallback`, `fallback_steps`).
+    pub fn check_fallback(self, steps: u64, name: &str) -> Result<(), String> {
+        match steps > 0 && self.fallback_steps() == 0 {
+            true => Err(format!(
+                "{name} {steps}: only {} falls back (to {}), not {}",
+                PlannerKind::PushKpiece.name(),
+                PlannerKind::PcRrt.name(),
+                self.name()
+            )),
+            false => Ok(()),
+        }
+    }
+
     /// Whether the threads of a plan share one search, its propagations running in
     /// parallel (`ParallelKPIECE`, `cpp/search/parallel_kpiece.h`), rather than each running a
     /// search of its own (`Portfolio`, `cpp/search/portfolio.h`).

@@ -50,6 +50,10 @@ pub struct PlanSettings {
     /// never (absent in files from before the fallback: 0).
     #[serde(default)]
     pub fallback_steps: u64,
+    /// Every propagation step added to the tree (OMPL RRT's intermediate states; written
+    /// only when true).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub intermediate_states: bool,
 }
 
 impl PlanSettings {
@@ -62,7 +66,35 @@ impl PlanSettings {
         TIME_LIMIT.check(file, self.time_limit)?;
         SHORTCUT.check(file, self.shortcut)?;
         GOAL_BIAS.check(file, self.goal_bias)?;
-        Ok(())
+        self.planner
+            .check_fallback(self.fallback_steps, "fallback_steps")
+    }
+
+    /// The search settings these record, to make the plan again (`check`): robust as
+    /// `robustness` records it (none without a record), with `time_limit` (s).
+    pub fn run_settings(
+        &self,
+        params: &crate::scene::PlannerParams,
+        robustness: Option<&RobustnessRecord>,
+        time_limit: f64,
+    ) -> RunSettings {
+        let own = RunSettings::of_scene(self.planner, params);
+        RunSettings {
+            planner: self.planner,
+            intermediate_states: self.intermediate_states,
+            k: self.k,
+            threads: self.threads,
+            robust_trials: robustness.map_or(0, |r| r.asked.unwrap_or(r.trials) as u32),
+            robust_particles: robustness.map_or(0, |r| r.particles),
+            time_limit,
+            seed: self.seed,
+            goal_bias: self.goal_bias,
+            shortcut: self.shortcut,
+            robust_rate: robustness.map_or(own.robust_rate, |r| r.required_rate),
+            robust_shortcut: robustness.map_or(own.robust_shortcut, |r| r.shortcut),
+            restart_steps: self.restart_steps,
+            fallback_steps: self.fallback_steps,
+        }
     }
 }
 
@@ -84,6 +116,7 @@ impl From<&RunSettings> for PlanSettings {
             threads: run.threads,
             restart_steps: run.restart_steps,
             fallback_steps: run.fallback_steps,
+            intermediate_states: run.intermediate_states,
         }
     }
 }
@@ -205,14 +238,39 @@ pub struct RobustnessRecord {
     /// Perturbed worlds the search carried along its states (absent in older files: 0).
     #[serde(default)]
     pub particles: u32,
+    /// Shortcutting budget toward robustness for each solution not robust enough (s of
+    /// work, `plan --robust-shortcut`; absent in older files: the default, 3).
+    #[serde(default = "default_robust_shortcut")]
+    pub shortcut: f64,
+    /// The re-simulations asked for, when the time limit cut the check short of them
+    /// (`trials` below it; absent otherwise: `trials` were asked).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub asked: Option<usize>,
+}
+
+fn default_robust_shortcut() -> f64 {
+    crate::planning::DEFAULT_ROBUST_SHORTCUT
 }
 
 impl RobustnessRecord {
     /// Within the limits robust planning has (`check` measures the rate again over
     /// `trials`: a count from the file must not be a loop without end).
     fn check(&self) -> Result<(), String> {
-        use crate::limits::{ROBUST_PARTICLES, ROBUST_TRIALS};
+        use crate::limits::{Front, ROBUST_PARTICLES, ROBUST_SHORTCUT, ROBUST_TRIALS};
         let named = |field: &str, e: String| format!("robustness.{field}: {e}");
+        if ROBUST_SHORTCUT
+            .check(Front::PlanFile, self.shortcut)
+            .is_err()
+        {
+            return Err(named(
+                "shortcut",
+                format!(
+                    "must be in {}, got {}",
+                    ROBUST_SHORTCUT.range(),
+                    self.shortcut
+                ),
+            ));
+        }
         if !(1..=ROBUST_TRIALS.most as usize).contains(&self.trials) {
             return Err(named(
                 "trials",
@@ -221,6 +279,17 @@ impl RobustnessRecord {
                     ROBUST_TRIALS.most, self.trials
                 ),
             ));
+        }
+        if let Some(asked) = self.asked {
+            if !(self.trials < asked && asked <= ROBUST_TRIALS.most as usize) {
+                return Err(named(
+                    "asked",
+                    format!(
+                        "must be in ({}, {}] (more than the trials run), got {asked}",
+                        self.trials, ROBUST_TRIALS.most
+                    ),
+                ));
+            }
         }
         if self.particles > ROBUST_PARTICLES.most as u32 {
             return Err(named(
@@ -374,7 +443,7 @@ impl CheckReport {
 }
 
 /// The first field (a path such as `trajectory.q[10][0]`) where two plan files differ.
-fn first_difference(a: &PlanFile, b: &PlanFile) -> Option<String> {
+pub fn first_difference(a: &PlanFile, b: &PlanFile) -> Option<String> {
     use serde_json::Value;
     fn walk(a: &Value, b: &Value, field: String) -> Option<String> {
         match (a, b) {
@@ -767,6 +836,22 @@ impl PlanFile {
             t.objects.push(motion.objects[k].clone());
         }
         Ok(self)
+    }
+
+    /// The plan's controls from `at` on (at most the control count), if re-simulated from
+    /// where `from` starts they still reach its goal; else why not. `replan` keeps them as
+    /// the new plan, or searches anew.
+    pub fn rest_from(&self, at: usize, from: &Scene) -> Result<Vec<PathControl>, String> {
+        let rest = self.path_controls().split_off(at.min(self.controls.len()));
+        let simulated = Problem::new(from.clone(), self.settings.planner).simulate(&rest, false);
+        match &simulated.stopped_by {
+            Some((i, reason)) => Err(format!("control {} stops: {reason}", at + i)),
+            None if !from.goal.is_satisfied(simulated.final_state()) => Err(format!(
+                "the goal is missed by {:.1} mm",
+                1e3 * from.goal.task_distance(simulated.final_state()).max(0.0)
+            )),
+            None => Ok(rest),
+        }
     }
 
     /// The controls of the plan.

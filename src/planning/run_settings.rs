@@ -59,6 +59,10 @@ pub struct RunSettings {
 /// re-plan is wanted fast, and a benchmark measures the search ([`RunSettings::of_scene`]).
 pub const PLAN_ROBUST_TRIALS: u32 = 20;
 
+/// Shortcutting toward robustness, per solution not robust enough, when none is asked for
+/// (s of work).
+pub const DEFAULT_ROBUST_SHORTCUT: f64 = 3.0;
+
 impl RunSettings {
     /// Refuses a value outside the limits table ([`crate::limits`]), or particles without
     /// a robustness check or a planner that pushes: named as `front` names it (`--k`,
@@ -74,6 +78,14 @@ impl RunSettings {
         ROBUST_SHORTCUT.check(front, self.robust_shortcut)?;
         GOAL_BIAS.check(front, self.goal_bias)?;
         ROBUST_RATE.check(front, self.robust_rate)?;
+        self.planner.check_fallback(
+            self.fallback_steps,
+            match front {
+                Front::CommandLine => "--fallback",
+                Front::CppOptions => "Options::fallback_steps",
+                Front::PlanFile | Front::Python => "fallback_steps",
+            },
+        )?;
         if self.robust_particles > 0
             && (self.robust_trials == 0 || self.planner == PlannerKind::StaticRrt)
         {
@@ -106,7 +118,7 @@ impl RunSettings {
             goal_bias: params.goal_bias,
             shortcut: 3.0,
             robust_rate: 0.95,
-            robust_shortcut: 3.0,
+            robust_shortcut: DEFAULT_ROBUST_SHORTCUT,
             restart_steps: planner.restart_steps(),
             fallback_steps: planner.fallback_steps(),
         }

@@ -60,6 +60,7 @@ pub fn plan_settings(
         threads: 1,
         restart_steps: 0,
         fallback_steps: 0,
+        intermediate_states: false,
     }
 }
 

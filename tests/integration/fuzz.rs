@@ -9,7 +9,9 @@
 
 use crate::common;
 
-use pushplan::planning::plan_file::PlanFile;
+use pushplan::bridge::OmplSearch;
+use pushplan::planner::remake::{remake, Remade};
+use pushplan::planning::plan_file::{first_difference, PlanFile};
 use pushplan::random::SplitMix64;
 use pushplan::robot::urdf::load_urdf;
 use pushplan::{EeAction, Propagator, Scene};
@@ -196,14 +198,15 @@ fn mutated_urdfs_load_or_fail_naming_the_file_and_never_panic() {
 fn mutated_plan_files_are_read_and_checked_without_panics() {
     let scratch = common::Scratch::new("fuzz-plans");
     let base = scratch.join("base.json");
-    common::plan_solved("scenes/herb_single_object.yaml", &base, &[]);
+    const SCENE: &str = "scenes/herb_single_object.yaml";
+    common::plan_solved(SCENE, &base, &[]);
     let text = std::fs::read_to_string(&base).unwrap();
     let path = scratch.join("fuzzed.json");
     let mut rng = SplitMix64::new(3000);
     let mut read = 0;
     let value: serde_json::Value = serde_json::from_str(&text).unwrap();
     let base_plan = PlanFile::read(&base).unwrap();
-    let mut passed = 0;
+    let (mut passed, mut remade_otherwise) = (0, 0);
     for case in 0..300 {
         // Half the cases break the JSON; half change a value and stay JSON.
         let mutated = if case % 2 == 0 {
@@ -224,21 +227,26 @@ fn mutated_plan_files_are_read_and_checked_without_panics() {
                         e.contains("fuzzed.json") || e.contains(".yaml"),
                         "{what}: {e}"
                     ),
-                    // No false "plan OK": a plan that passes says what the plan made
-                    // says, but for how it was made (its settings, and the rate and worlds
-                    // robust planning was asked for: only within limits, and `check`
-                    // says they are as recorded).
+                    // No false "plan OK": a plan whose path passes is made again from its
+                    // settings; when that gives the file, it holds what the plan made
+                    // says, and its settings, where changed, make it through the command
+                    // line's `plan` too.
                     Ok(report) if report.problems.is_empty() => {
+                        match no_panic(&what, || remake(&OmplSearch, &plan, &path)) {
+                            Err(e) => panic!("{what}: a plan that re-simulates is made again: {e}"),
+                            Ok(Remade::Same) => {}
+                            Ok(_) => {
+                                remade_otherwise += 1;
+                                continue;
+                            }
+                        }
                         let settings = serde_json::to_value(&base_plan.settings).unwrap();
                         let claims = |text: &str| {
                             let mut v: serde_json::Value = serde_json::from_str(text).unwrap();
                             for key in settings.as_object().unwrap().keys() {
                                 v.as_object_mut().unwrap().remove(key);
                             }
-                            if let Some(r) = v["robustness"].as_object_mut() {
-                                r.remove("required_rate");
-                                r.remove("particles");
-                            }
+                            v.as_object_mut().unwrap().remove("robustness");
                             v
                         };
                         let (made, read) = (claims(&base_plan.to_json()), claims(&plan.to_json()));
@@ -257,6 +265,15 @@ fn mutated_plan_files_are_read_and_checked_without_panics() {
                             changed.is_empty(),
                             "{what}: checked OK but not the plan made: {changed:?}"
                         );
+                        if plan != base_plan {
+                            let mut cli = planned_as(&plan, SCENE, &scratch.join("cli.json"));
+                            cli.settings.time_limit = plan.settings.time_limit;
+                            assert_eq!(
+                                first_difference(&plan, &cli),
+                                None,
+                                "{what}: checked OK, and `plan` with its settings makes it"
+                            );
+                        }
                         passed += 1;
                     }
                     Ok(_) => {}
@@ -266,9 +283,50 @@ fn mutated_plan_files_are_read_and_checked_without_panics() {
     }
     assert!(read > 10, "only {read} mutated plans were read");
     assert!(
-        passed > 0,
-        "no mutated plan passed its check (a change of settings does)"
+        passed > 0 && remade_otherwise > 0,
+        "{passed} mutated plans passed their check, {remade_otherwise} re-simulated but were made otherwise \
+         (changes of settings give both)"
     );
+}
+
+/// The plan file `pushplan plan` writes to `out` from `scene` with the settings `plan`
+/// records (its robustness record's too), with at least 30 s: a plan that is made again
+/// within its time limit is the same with more.
+fn planned_as(plan: &PlanFile, scene: &str, out: &Path) -> PlanFile {
+    let s = &plan.settings;
+    let mut args: Vec<String> = vec![
+        "plan".into(),
+        scene.into(),
+        "--quiet".into(),
+        "--out".into(),
+        out.to_string_lossy().into_owned(),
+    ];
+    let mut flag = |name: &str, value: String| args.extend([format!("--{name}"), value]);
+    flag("planner", s.planner.name().into());
+    flag("seed", s.seed.to_string());
+    flag("k", s.k.to_string());
+    flag("goal-bias", s.goal_bias.to_string());
+    flag("time", s.time_limit.max(30.0).to_string());
+    flag("shortcut", s.shortcut.to_string());
+    flag("threads", s.threads.to_string());
+    flag("restart", s.restart_steps.to_string());
+    flag("fallback", s.fallback_steps.to_string());
+    match &plan.robustness {
+        Some(r) => {
+            flag("robust", r.trials.to_string());
+            flag("robust-rate", r.required_rate.to_string());
+            flag("particles", r.particles.to_string());
+            flag("robust-shortcut", r.shortcut.to_string());
+        }
+        None => flag("robust", "0".into()),
+    }
+    if s.intermediate_states {
+        args.push("--intermediate-states".into());
+    }
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, stdout, stderr) = common::pushplan_in(Path::new("."), &args);
+    assert!(code <= 1, "{args:?}: {stdout}{stderr}");
+    PlanFile::read(out).unwrap()
 }
 
 /// A binary STL of a box with half extents 5 cm: 12 triangles.

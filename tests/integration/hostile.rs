@@ -230,6 +230,103 @@ fn check_compares_everything_a_plan_file_claims_with_the_re_simulation() {
 }
 
 #[test]
+fn check_makes_the_plan_again_and_names_what_its_settings_do_not_make() {
+    // A shortcut plan: its path as found (the metrics before shortcutting) is not in the
+    // file, and no re-simulation can say which planner, seed or settings made it.
+    let scratch = common::Scratch::new("hostile-remade-plans");
+    let path = scratch.join("base.json");
+    let (code, stdout, stderr) = pushplan(&[
+        "plan",
+        "scenes/herb_single_object.yaml",
+        "--seed",
+        "3",
+        "--time",
+        "30",
+        "--shortcut",
+        "0.5",
+        "--threads",
+        "1",
+        "--quiet",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let plan: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let (before, after) = (
+        &plan["metrics"]["before_shortcut"],
+        &plan["metrics"]["after_shortcut"],
+    );
+    assert_ne!(
+        before, after,
+        "shortcutting changed the path: {before} {after}"
+    );
+    let (code, stdout, _) = pushplan(&["check", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stdout}");
+    assert!(
+        stdout.contains("the same plan, byte for byte") && stdout.ends_with("plan OK\n"),
+        "{stdout}"
+    );
+    // Each edit passes the re-simulation (it said "plan OK"), and what the file's
+    // settings make is another plan: `check` names the first field where they part.
+    let cases: [(&str, &str, Edit); 4] = [
+        (
+            "seed.json",
+            "controls",
+            Box::new(|p| p["seed"] = Value::from(2)),
+        ),
+        (
+            "planner.json",
+            "controls",
+            Box::new(|p| {
+                p["planner"] = Value::from("pcrrt");
+                p["fallback_steps"] = Value::from(0);
+            }),
+        ),
+        (
+            "before_huge.json",
+            "metrics.before_shortcut.ee_length",
+            Box::new(|p| p["metrics"]["before_shortcut"]["ee_length"] = Value::from(1e300)),
+        ),
+        (
+            "before_zero.json",
+            "metrics.before_shortcut.joint_length",
+            Box::new(|p| p["metrics"]["before_shortcut"]["joint_length"] = Value::from(0.0)),
+        ),
+    ];
+    for (name, field, edit) in cases {
+        let edited = tampered(scratch.path(), &plan, name, edit);
+        let edited = edited.to_str().unwrap();
+        let (code, stdout, stderr) = pushplan(&["check", edited]);
+        assert_eq!(code, 1, "{name}: {stdout}{stderr}");
+        assert!(
+            stdout.contains("states reproduced: yes; goal reached: yes")
+                && stdout.contains(&format!("s: {field}"))
+                && stdout.contains(": differs from the plan made again")
+                && stdout.ends_with("plan FAILED\n"),
+            "{name}: names {field}: {stdout}"
+        );
+        // Re-simulated only, the path passes, and check says what it did not confirm.
+        let (code, stdout, _) = pushplan(&["check", edited, "--path-only"]);
+        assert_eq!(code, 0, "{name}: {stdout}");
+        assert!(
+            stdout.contains("as recorded, not made again (--path-only)")
+                && stdout.ends_with("path OK\n"),
+            "{name}: {stdout}"
+        );
+    }
+    // A setting for another planner is refused as the file is read, naming it.
+    let fallback = tampered(scratch.path(), &plan, "fallback.json", |p| {
+        p["planner"] = Value::from("kpiece")
+    });
+    let (code, _, stderr) = pushplan(&["check", fallback.to_str().unwrap()]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("fallback.json: fallback_steps 1000000: only push_kpiece falls back"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn a_plan_reads_its_scene_relative_to_itself_and_no_other_file() {
     let scratch = common::Scratch::new("hostile-scene-path");
     let folder = scratch.join("plans");

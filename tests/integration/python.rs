@@ -38,7 +38,8 @@ assert np.hypot(x - 0.85, y + 0.25) <= 0.07 + 1e-9, (x, y)
 assert plan.metrics["after_shortcut"]["objects_moved"] == 1
 
 report = plan.check()
-assert report["passed"] and report["problems"] == [], report
+assert report["passed"] and report["problems"] == [] and report["remade"] == "same", report
+assert plan.check(path_only=True)["remade"] is None
 plan.save(out / "python.json")
 again = pushplan.Plan.load(out / "python.json")
 assert again.to_json() == plan.to_json()

@@ -98,6 +98,10 @@ fn push_then_grasp_solves_the_default_scene() {
         "1",
         "--shortcut",
         "0",
+        // The first solution: a robust search that ends on the clock with the most robust
+        // one found is a plan `check` cannot make again.
+        "--robust",
+        "0",
         "--time",
         "60",
         "--quiet",
@@ -115,6 +119,10 @@ fn push_then_grasp_solves_the_default_scene() {
     check_reach(&scene, &end, green, &plan.reach_waypoints()).unwrap();
     let (code, stdout, _) = pushplan(&["check", plan_path.to_str().unwrap()]);
     assert_eq!(code, 0, "{stdout}");
+    assert!(
+        stdout.contains("the same plan, byte for byte"),
+        "made again: {stdout}"
+    );
 
     // A reach that ends outside the grasp region does not check.
     let mut broken = plan.clone();

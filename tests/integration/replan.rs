@@ -119,7 +119,29 @@ fn a_moved_object_gets_a_new_search_from_where_it_is() {
         new.start.objects[0], expected.objects[&new.objects[0]],
         "the new plan starts where the box was observed"
     );
-    checks(&path.with_file_name("replanned.json"));
+    let replanned = path.with_file_name("replanned.json");
+    checks(&replanned);
+    // `check` makes a re-plan again from the plan and observation it names: a record
+    // claiming the rest was kept is not so; without the observation it cannot say.
+    let text = std::fs::read_to_string(&replanned).unwrap();
+    let claimed = path.with_file_name("claims-kept.json");
+    std::fs::write(&claimed, text.replace("\"kept\": false", "\"kept\": true")).unwrap();
+    let check = |file: &Path| pushplan_in(Path::new("."), &["check", file.to_str().unwrap()]);
+    let (code, stdout, stderr) = check(&claimed);
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(
+        stdout.contains("replanned.kept: the rest of") && stdout.ends_with("plan FAILED\n"),
+        "{stdout}"
+    );
+    std::fs::remove_file(&observed).unwrap();
+    let (code, stdout, stderr) = check(&replanned);
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(
+        stdout.contains("not made again: replanned: ")
+            && stdout.contains("observed-")
+            && stdout.ends_with("path OK, plan not confirmed\n"),
+        "{stdout}"
+    );
 }
 
 #[test]

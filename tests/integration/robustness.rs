@@ -74,6 +74,7 @@ fn the_plan_executed_in_3d_reaches_the_goal_and_matches_the_prediction() {
         threads: 1,
         restart_steps: 0,
         fallback_steps: 0,
+        intermediate_states: false,
     };
     let plan = PlanFile::build(SCENE, scene.clone(), &settings, &controls(), None).unwrap();
     assert!(plan.solved);

@@ -63,9 +63,18 @@ fn the_time_limit_bounds_the_whole_plan_command() {
         2.0,
     );
     assert_eq!(code, 0, "{stdout}");
-    // Its robustness record, over the trials the limit left, is what `check` measures.
-    let (code, checked, stderr) = pushplan(&["check", out]);
+    // Its robustness record, over the trials the limit left, is what `check` measures; the
+    // clock cut it, so the plan cannot be made again, and `check` says so.
+    let (code, checked, stderr) = pushplan(&["check", out, "--path-only"]);
     assert_eq!(code, 0, "{checked}{stderr}");
+    let (code, checked, stderr) = pushplan(&["check", out]);
+    assert_eq!(code, 1, "{checked}{stderr}");
+    assert!(
+        checked.contains("the time limit cut its robustness check short, at ")
+            && checked.contains(" of the 1000 perturbed worlds asked")
+            && checked.ends_with("path OK, plan not confirmed\n"),
+        "{checked}"
+    );
     // With --grasp, a reach follows the pushing within the same limit.
     within(
         &[
