@@ -117,9 +117,9 @@ pub enum Arm {
     Wam,
     /// The Franka Emika Panda (`robots/panda7.urdf`) on the table's near edge.
     Panda,
-    /// The Universal Robots UR5e (`robots/ur5e.urdf`) with a pusher rod.
+    /// The Universal Robots UR5e (`robots/ur5e.urdf`) with a square pusher.
     Ur5e,
-    /// The KUKA LBR iiwa 14 R820 (`robots/iiwa14.urdf`) with a pusher rod.
+    /// The KUKA LBR iiwa 14 R820 (`robots/iiwa14.urdf`) with a square pusher.
     Iiwa14,
 }
 
