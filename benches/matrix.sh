@@ -5,7 +5,8 @@
 # the shipped sets, scenes/ARM/DESIGN, are seed 1, development) is planned once per scene
 # with `plan` (each of PLANNERS, default push_kpiece; TIME s, default 10, one thread, the
 # first solution as found: --robust 0, shortcutting for SHORTCUT s of work, default 3 as
-# `plan`'s), JOBS runs at a time (default 2).
+# `plan`'s), JOBS runs at a time (default 2). COUNT sets the scenes per set (default: four,
+# two dense).
 #
 #   benches/matrix.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -29,6 +30,7 @@ for arm in wam panda ur5e iiwa14; do
       dense) count=2; objects=8..14;;
       *) count=4; objects=2..7;;
     esac
+    count=${COUNT:-$count}
     "$bin" scenes generate --robot $arm --design $design --count $count --objects $objects \
       --seed "$seed" --out "$out/scenes/$arm/$design" > /dev/null
   done
