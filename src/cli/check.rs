@@ -162,27 +162,27 @@ pub fn check(
     let started = std::time::Instant::now();
     let remade = remake(search, &plan, path)?;
     let took = started.elapsed().as_secs_f64();
-    let verdict = match remade {
+    let (verdict, confirmed) = match remade {
         Remade::Same => {
             println!("  made again ({made}) in {took:.2} s: the same plan, byte for byte");
-            "plan OK"
+            ("plan OK", true)
         }
         Remade::Differs(field) => {
             println!(
                 "  made again ({made}) in {took:.2} s: {field}: differs from the plan made again \
                  (the file was changed, or made by another version of pushplan)"
             );
-            "plan FAILED"
+            ("plan FAILED", false)
         }
         Remade::Cannot(why) => {
             println!("  not made again: {why}; how it was made ({made}) is not confirmed");
-            "path OK, plan not confirmed"
+            ("path OK, plan not confirmed", false)
         }
     };
     println!("{verdict}");
-    Ok(match verdict {
-        "plan OK" => ExitCode::SUCCESS,
-        _ => ExitCode::FAILURE,
+    Ok(match confirmed {
+        true => ExitCode::SUCCESS,
+        false => ExitCode::FAILURE,
     })
 }
 

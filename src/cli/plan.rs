@@ -3,8 +3,8 @@
 use super::progress;
 use super::SearchFlags;
 use pushplan::limits::Front;
-use pushplan::planner::plan_scene::{plan_scene, reach_record, PlanRequest, Planned};
-use pushplan::planner::{ReachSettings, Search};
+use pushplan::planner::plan_scene::{plan_scene, reach_grasp, PlanRequest, Planned};
+use pushplan::planner::Search;
 use pushplan::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, ReplanRecord};
 use pushplan::planning::shortcut::ShortcutProgress;
 use pushplan::planning::{CommandDeadline, PlannerKind, RunSettings, PLAN_ROBUST_TRIALS};
@@ -68,12 +68,15 @@ fn reach(
             run.sample_probability
         ));
     }
-    let settings = ReachSettings {
-        time_limit: deadline.reach_time(),
-        seed: search_settings.seed,
-        sample_probability: run.sample_probability,
-    };
-    let found = search.reach(scene_path, object, from, &settings)?;
+    let (record, found) = reach_grasp(
+        search,
+        scene_path,
+        object,
+        from,
+        search_settings.seed,
+        run.sample_probability,
+        deadline,
+    )?;
     if !run.quiet {
         eprintln!(
             "reaching a grasp of '{object}' with IK-BiRRT: {} in {:.2} s, {} IK solutions, trees of {} states",
@@ -83,7 +86,7 @@ fn reach(
             found.tree_size
         );
     }
-    Ok(reach_record(&found, object, run.sample_probability))
+    Ok(record)
 }
 
 /// `pushplan plan`: searches the scene with `search`, finishes the path and writes the plan

@@ -2,11 +2,12 @@
 //! do: the search, then the one way a found path is finished (shortcut, re-simulated,
 //! measured for robustness), written as a [`PlanFile`].
 
-use crate::planner::{Found, Reached, Search, SearchProgress};
+use crate::planner::{Found, ReachSettings, Reached, Search, SearchProgress};
 use crate::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
 use crate::planning::shortcut::ShortcutProgress;
 use crate::planning::{
-    time_left, FinishSettings, FinishedPath, Problem, RobustRequirement, RunSettings,
+    time_left, CommandDeadline, FinishSettings, FinishedPath, Problem, RobustRequirement,
+    RunSettings,
 };
 use crate::scene::Scene;
 use crate::state::State;
@@ -102,10 +103,25 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
     })
 }
 
-/// What a plan file records of IK-BiRRT's reach of a grasp of `object` with P_sample
-/// `sample_probability`: `None` when it found none.
-pub fn reach_record(found: &Reached, object: &str, sample_probability: f64) -> Option<ReachRecord> {
-    found.solved.then(|| ReachRecord {
+/// IK-BiRRT's reach of a grasp of `object` from `from` (`None`: the scene's start), with
+/// `seed` and P_sample `sample_probability`, until `deadline`'s last part: what the plan
+/// file records of it (`None` when none was found) and how the search went.
+pub fn reach_grasp(
+    search: &dyn Search,
+    scene_path: &Path,
+    object: &str,
+    from: Option<&State>,
+    seed: u64,
+    sample_probability: f64,
+    deadline: &CommandDeadline,
+) -> Result<(Option<ReachRecord>, Reached), String> {
+    let settings = ReachSettings {
+        time_limit: deadline.reach_time(),
+        seed,
+        sample_probability,
+    };
+    let found = search.reach(scene_path, object, from, &settings)?;
+    let record = found.solved.then(|| ReachRecord {
         object: object.to_string(),
         sample_probability,
         waypoints: found
@@ -113,5 +129,6 @@ pub fn reach_record(found: &Reached, object: &str, sample_probability: f64) -> O
             .iter()
             .map(|q| q.as_slice().to_vec())
             .collect(),
-    })
+    });
+    Ok((record, found))
 }

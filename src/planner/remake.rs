@@ -11,8 +11,8 @@
 //! confirmed (nor refuted). A plan the clock did shape (unsolved, or the most robust
 //! solution found by the time limit) cannot be made again, and says so.
 
-use crate::planner::plan_scene::{plan_scene, reach_record, PlanRequest};
-use crate::planner::{ReachSettings, Search};
+use crate::planner::plan_scene::{plan_scene, reach_grasp, PlanRequest};
+use crate::planner::Search;
 use crate::planning::observed::ObservedState;
 use crate::planning::plan_file::{first_difference, PlanFile};
 use crate::planning::CommandDeadline;
@@ -189,28 +189,23 @@ fn search_again(
     let started = Instant::now();
     let options = plan
         .settings
-        .run_settings(&scene.planner, plan.robustness.as_ref(), time_limit);
+        .run_settings(plan.robustness.as_ref(), time_limit);
     // `plan --goal grasp:OBJECT` has no controls and a reach; `plan --grasp` both.
     let grasp = plan.reach.as_ref();
     let grasp_only = grasp.is_some() && plan.controls.is_empty();
     let deadline = CommandDeadline::new(started, time_limit, scene, grasp.is_some() && !grasp_only);
-    let reach = |from: Option<&crate::State>| -> Result<Option<_>, String> {
+    let reach = |from: Option<&crate::State>| {
         let record = grasp.expect("asked only with a reach");
-        let found = search.reach(
+        let (found, _) = reach_grasp(
+            search,
             scene_path,
             &record.object,
             from,
-            &ReachSettings {
-                time_limit: deadline.reach_time(),
-                seed: options.seed,
-                sample_probability: record.sample_probability,
-            },
-        )?;
-        Ok(reach_record(
-            &found,
-            &record.object,
+            options.seed,
             record.sample_probability,
-        ))
+            &deadline,
+        )?;
+        Ok::<_, String>(found)
     };
     if grasp_only {
         let file = PlanFile::build(&plan.scene, scene.clone(), &plan.settings, &[], None)?;

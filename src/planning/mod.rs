@@ -38,4 +38,6 @@ pub use finish::{
 };
 pub use kind::PlannerKind;
 pub use problem::Problem;
-pub use run_settings::{RunSettings, DEFAULT_ROBUST_SHORTCUT, PLAN_ROBUST_TRIALS};
+pub use run_settings::{
+    RunSettings, DEFAULT_ROBUST_RATE, DEFAULT_ROBUST_SHORTCUT, PLAN_ROBUST_TRIALS,
+};

@@ -9,7 +9,9 @@ use crate::planning::path::{PathControl, PathMetrics, SimulatedPath};
 use crate::planning::robustness::Noise;
 pub use crate::planning::trajectory::TRAJECTORY_RATE;
 use crate::planning::trajectory::{executable, Trajectory};
-use crate::planning::{PlannerKind, Problem, RunSettings};
+use crate::planning::{
+    PlannerKind, Problem, RunSettings, DEFAULT_ROBUST_RATE, DEFAULT_ROBUST_SHORTCUT,
+};
 use crate::scene::Scene;
 use crate::state::State;
 use serde::{Deserialize, Serialize};
@@ -57,28 +59,21 @@ pub struct PlanSettings {
 }
 
 impl PlanSettings {
-    /// Each setting within the limits table ([`crate::limits`]), named as the file names it.
+    /// Each setting within the limits table ([`crate::limits`]) and the rules between
+    /// them, as every front door checks them ([`RunSettings::check`]), named as the file
+    /// names it (the robustness record is checked as its own part).
     fn check(&self) -> Result<(), String> {
-        use crate::limits::{Front, GOAL_BIAS, K, SHORTCUT, THREADS, TIME_LIMIT};
-        let file = Front::PlanFile;
-        K.check(file, self.k)?;
-        THREADS.check(file, self.threads)?;
-        TIME_LIMIT.check(file, self.time_limit)?;
-        SHORTCUT.check(file, self.shortcut)?;
-        GOAL_BIAS.check(file, self.goal_bias)?;
-        self.planner
-            .check_fallback(self.fallback_steps, "fallback_steps")
+        self.run_settings(None, self.time_limit)
+            .check(crate::limits::Front::PlanFile)
     }
 
     /// The search settings these record, to make the plan again (`check`): robust as
     /// `robustness` records it (none without a record), with `time_limit` (s).
     pub fn run_settings(
         &self,
-        params: &crate::scene::PlannerParams,
         robustness: Option<&RobustnessRecord>,
         time_limit: f64,
     ) -> RunSettings {
-        let own = RunSettings::of_scene(self.planner, params);
         RunSettings {
             planner: self.planner,
             intermediate_states: self.intermediate_states,
@@ -90,8 +85,8 @@ impl PlanSettings {
             seed: self.seed,
             goal_bias: self.goal_bias,
             shortcut: self.shortcut,
-            robust_rate: robustness.map_or(own.robust_rate, |r| r.required_rate),
-            robust_shortcut: robustness.map_or(own.robust_shortcut, |r| r.shortcut),
+            robust_rate: robustness.map_or(DEFAULT_ROBUST_RATE, |r| r.required_rate),
+            robust_shortcut: robustness.map_or(DEFAULT_ROBUST_SHORTCUT, |r| r.shortcut),
             restart_steps: self.restart_steps,
             fallback_steps: self.fallback_steps,
         }
@@ -249,7 +244,7 @@ pub struct RobustnessRecord {
 }
 
 fn default_robust_shortcut() -> f64 {
-    crate::planning::DEFAULT_ROBUST_SHORTCUT
+    DEFAULT_ROBUST_SHORTCUT
 }
 
 impl RobustnessRecord {

@@ -63,6 +63,10 @@ pub const PLAN_ROBUST_TRIALS: u32 = 20;
 /// (s of work).
 pub const DEFAULT_ROBUST_SHORTCUT: f64 = 3.0;
 
+/// The share of perturbed re-simulations a robust plan must reach the goal in, when none
+/// is asked for: one world in 20 may miss.
+pub const DEFAULT_ROBUST_RATE: f64 = 0.95;
+
 impl RunSettings {
     /// Refuses a value outside the limits table ([`crate::limits`]), or particles without
     /// a robustness check or a planner that pushes: named as `front` names it (`--k`,
@@ -117,7 +121,7 @@ impl RunSettings {
             seed: params.seed,
             goal_bias: params.goal_bias,
             shortcut: 3.0,
-            robust_rate: 0.95,
+            robust_rate: DEFAULT_ROBUST_RATE,
             robust_shortcut: DEFAULT_ROBUST_SHORTCUT,
             restart_steps: planner.restart_steps(),
             fallback_steps: planner.fallback_steps(),
