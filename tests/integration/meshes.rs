@@ -4,8 +4,12 @@ use crate::common;
 
 use nalgebra::{Isometry3, Point3, Vector3};
 use parry3d_f64::bounding_volume::BoundingVolume;
+use parry3d_f64::query::PointQuery;
+use parry3d_f64::shape::ConvexPolyhedron;
 use pushplan::collision::Primitive;
-use pushplan::robot::mesh::{load_convex_mesh, simplify_hull, HULL_TOLERANCE, MAX_HULL_VERTICES};
+use pushplan::robot::mesh::{
+    load_collision_mesh, load_convex_mesh, simplify_hull, HULL_TOLERANCE, MAX_HULL_VERTICES,
+};
 use pushplan::robot::urdf::load_urdf;
 use std::path::Path;
 
@@ -144,6 +148,129 @@ fn obj_and_collada_meshes_load_in_metres_with_z_up() {
     std::fs::write(&broken, "<COLLADA><library_geometries>").unwrap();
     let message = load_convex_mesh(&broken, [1.0; 3]).unwrap_err().to_string();
     assert!(message.contains("broken.dae"), "{message}");
+}
+
+/// A U-shaped block, 0.1 m high: a 0.3 x 0.2 m outline with a 0.1 m wide, 0.15 m deep
+/// notch from its far side (counter-clockwise from (-0.15, 0)), extruded as a closed mesh
+/// whose triangles face outward. With `caps: false`, only its walls (an open surface).
+fn u_block(caps: bool) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
+    let outline = [
+        [-0.15, 0.0],
+        [0.15, 0.0],
+        [0.15, 0.2],
+        [0.05, 0.2],
+        [0.05, 0.05],
+        [-0.05, 0.05],
+        [-0.05, 0.2],
+        [-0.15, 0.2],
+    ];
+    let n = outline.len();
+    // Bottom ring 0..n at z = 0, top ring n..2n at z = 0.1.
+    let vertices = [0.0, 0.1]
+        .iter()
+        .flat_map(|&z| outline.iter().map(move |p| [p[0], p[1], z]))
+        .collect();
+    let mut faces = Vec::new();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        faces.push([i, j, n + j]);
+        faces.push([i, n + j, n + i]);
+    }
+    if caps {
+        // The outline cut into six triangles by hand (each inside the U), counter-clockwise.
+        for [a, b, c] in [
+            [0, 1, 4],
+            [1, 2, 4],
+            [2, 3, 4],
+            [0, 4, 5],
+            [0, 5, 7],
+            [5, 6, 7],
+        ] {
+            faces.push([n + a, n + b, n + c]);
+            faces.push([a, c, b]);
+        }
+    }
+    (vertices, faces)
+}
+
+/// A concave mesh collides as convex parts that keep out of its notch and still cover it;
+/// a convex mesh, and an open surface whose enclosed volume means nothing, as their hull.
+/// The oracle is the U's construction: its notch, its vertices, its volume.
+#[test]
+fn a_concave_mesh_collides_as_convex_parts_that_leave_its_notch_free() {
+    let scratch = common::Scratch::new("test-mesh-concave");
+    let u = scratch.join("u.obj");
+    std::fs::write(&u, obj_text(&u_block(true))).unwrap();
+    let parts = load_collision_mesh(&u, [1.0; 3]).unwrap();
+    assert!(parts.len() >= 2, "{} part(s)", parts.len());
+    let polyhedra: Vec<ConvexPolyhedron> = parts
+        .iter()
+        .map(|part| {
+            let Primitive::ConvexHull { points } = part else {
+                panic!("a part is a convex hull");
+            };
+            assert!(points.len() <= MAX_HULL_VERTICES);
+            ConvexPolyhedron::from_convex_hull(points).unwrap()
+        })
+        .collect();
+    let distance = |p: Point3<f64>| {
+        polyhedra
+            .iter()
+            .map(|h| h.distance_to_local_point(&p, true))
+            .fold(f64::INFINITY, f64::min)
+    };
+    // The notch's middle, 5 cm from either arm: inside the U's hull, outside every part.
+    let notch = Point3::new(0.0, 0.15, 0.05);
+    let Primitive::ConvexHull { points } = load_convex_mesh(&u, [1.0; 3]).unwrap() else {
+        panic!("a mesh loads as a convex hull");
+    };
+    let hull = ConvexPolyhedron::from_convex_hull(&points).unwrap();
+    assert!(hull.contains_local_point(&notch));
+    assert!(distance(notch) > 0.03, "{} m", distance(notch));
+    // Every corner of the U lies in a part (within the simplification's tolerance).
+    for v in &u_block(true).0 {
+        let d = distance(Point3::from(*v));
+        assert!(d <= HULL_TOLERANCE + 1e-9, "corner {v:?} is {d} m outside");
+    }
+    // The parts enclose little more than the U's own 0.0045 m^3 (hull: 0.006 m^3).
+    let volume: f64 = polyhedra
+        .iter()
+        .map(|h| {
+            use parry3d_f64::shape::Shape;
+            h.mass_properties(1.0).mass()
+        })
+        .sum();
+    assert!((0.0044..0.0052).contains(&volume), "{volume} m^3");
+    // The same file twice: the same parts, bit for bit.
+    assert_eq!(parts, load_collision_mesh(&u, [1.0; 3]).unwrap());
+
+    // A box is its hull; so are the U's walls without their caps (an open surface).
+    let cuboid = scratch.join("box.obj");
+    std::fs::write(&cuboid, obj_text(&box_mesh([0.05, 0.1, 0.2]))).unwrap();
+    let walls = scratch.join("walls.obj");
+    std::fs::write(&walls, obj_text(&u_block(false))).unwrap();
+    for path in [&cuboid, &walls] {
+        assert_eq!(
+            load_collision_mesh(path, [1.0; 3]).unwrap(),
+            vec![load_convex_mesh(path, [1.0; 3]).unwrap()],
+            "{}",
+            path.display()
+        );
+    }
+
+    // In a URDF, the link holds one geometry per part.
+    let urdf = scratch.join("u.urdf");
+    std::fs::write(
+        &urdf,
+        r#"<robot name="u"><link name="base"><collision><geometry><mesh filename="u.obj"/></geometry></collision></link>
+<link name="tip"><collision><geometry><sphere radius="0.01"/></geometry></collision></link>
+<joint name="j" type="revolute"><parent link="base"/><child link="tip"/><axis xyz="0 0 1"/><origin xyz="0 0 0.3"/>
+<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>"#,
+    )
+    .unwrap();
+    let chain = load_urdf(&urdf, "tip", Isometry3::identity()).unwrap();
+    let base = chain.links.iter().find(|l| l.name == "base").unwrap();
+    assert_eq!(base.geometry.len(), parts.len());
 }
 
 /// A COLLADA file whose indices point past its arrays (mesh-loader panics on it; the model

@@ -1,7 +1,7 @@
 //! Robots from URDF: the kinematic tree, joint limits and collision geometry.
 
 use super::chain::{Joint, JointKind, KinematicChain, Link};
-use super::mesh::{load_convex_mesh, resolve_mesh_path};
+use super::mesh::{load_collision_mesh, resolve_mesh_path};
 use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
 use crate::input::name_list;
@@ -290,32 +290,36 @@ fn link_geometry(path: &Path, link: &urdf_rs::Link) -> Result<Vec<Geometry>> {
     };
     let mut out = Vec::new();
     for c in &link.collision {
-        let primitive = match &c.geometry {
-            urdf_rs::Geometry::Box { size } => Primitive::Box {
+        let primitives = match &c.geometry {
+            urdf_rs::Geometry::Box { size } => vec![Primitive::Box {
                 size: Vector3::from(**size),
-            },
-            urdf_rs::Geometry::Cylinder { radius, length } => Primitive::Cylinder {
+            }],
+            urdf_rs::Geometry::Cylinder { radius, length } => vec![Primitive::Cylinder {
                 radius: *radius,
                 length: *length,
-            },
-            urdf_rs::Geometry::Sphere { radius } => Primitive::Sphere { radius: *radius },
-            urdf_rs::Geometry::Capsule { radius, length } => Primitive::Capsule {
+            }],
+            urdf_rs::Geometry::Sphere { radius } => vec![Primitive::Sphere { radius: *radius }],
+            urdf_rs::Geometry::Capsule { radius, length } => vec![Primitive::Capsule {
                 radius: *radius,
                 length: *length,
-            },
+            }],
             urdf_rs::Geometry::Mesh { filename, scale } => {
                 let mesh_path = resolve_mesh_path(filename, path).map_err(|why| Error::Mesh {
                     file: path.to_path_buf(),
                     message: format!("link '{}': mesh '{filename}' not found: {why}", link.name),
                 })?;
-                load_convex_mesh(&mesh_path, scale.as_ref().map_or([1.0; 3], |s| **s))?
+                // A concave mesh collides as several convex parts, each a geometry of
+                // the link as a URDF's several <collision> elements are.
+                load_collision_mesh(&mesh_path, scale.as_ref().map_or([1.0; 3], |s| **s))?
             }
         };
-        check_dimensions(&primitive).map_err(urdf_error)?;
         let local = isometry_from_xyz_rpy(*c.origin.xyz, *c.origin.rpy);
-        let geometry = Geometry::new(&primitive, local)
-            .ok_or_else(|| urdf_error("collision mesh is flat (no convex hull)".into()))?;
-        out.push(geometry);
+        for primitive in &primitives {
+            check_dimensions(primitive).map_err(urdf_error)?;
+            let geometry = Geometry::new(primitive, local)
+                .ok_or_else(|| urdf_error("collision mesh is flat (no convex hull)".into()))?;
+            out.push(geometry);
+        }
     }
     Ok(out)
 }
