@@ -12,8 +12,11 @@ use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::ConvexPolyhedron;
 use parry3d_f64::transformation::vhacd::{VHACDParameters, VHACD};
 use std::cmp::Ordering;
+use std::collections::hash_map::DefaultHasher;
 use std::collections::{BinaryHeap, HashMap, HashSet};
+use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 /// Resolves a URDF mesh reference (`package://pkg/rel`, `file:///abs` or a relative path)
 /// without ROS: `package://pkg` is searched for as a folder named `pkg` next to the URDF
@@ -154,18 +157,48 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
 /// (at most [`MAX_CONVEX_PARTS`], each the hull of the mesh's own triangles clipped to a
 /// part, so no part reaches past the mesh's hull), each simplified to within
 /// [`HULL_TOLERANCE`].
+///
+/// A process keeps what it decomposed, by the file's bytes, format and scale: `plan` loads
+/// its scene more than once (Baxter's torso costs 0.2 s each time).
 pub fn load_collision_mesh(path: &Path, scale: [f64; 3]) -> Result<Vec<Primitive>> {
-    let mesh = read_mesh(path, scale)?;
+    static DECOMPOSED: Mutex<Vec<(u64, [u64; 3], Vec<Primitive>)>> = Mutex::new(Vec::new());
+    let bytes = read_mesh_bytes(path)?;
+    // The format is read from the extension: the same bytes may be another mesh.
+    let mut hasher = DefaultHasher::new();
+    bytes.hash(&mut hasher);
+    path.extension()
+        .map(|e| e.to_ascii_lowercase())
+        .hash(&mut hasher);
+    let key = (hasher.finish(), scale.map(f64::to_bits));
+    let known = |cache: &[(u64, [u64; 3], Vec<Primitive>)]| {
+        cache
+            .iter()
+            .find(|(hash, scale, _)| (*hash, *scale) == key)
+            .map(|(_, _, parts)| parts.clone())
+    };
+    // A poisoned lock only means another thread panicked while holding it: the list is
+    // whole (each entry is pushed complete), so it stays usable.
+    let lock = || {
+        DECOMPOSED
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+    };
+    if let Some(parts) = known(&lock()) {
+        return Ok(parts);
+    }
+    let mesh = parse_mesh(path, &bytes, scale)?;
     let hull = convex_hull(path, &mesh.points)?;
     let parts = mesh
         .concave_volume_share()
         .filter(|share| *share < CONVEX_ENOUGH)
         .map(|_| mesh.convex_parts())
         .unwrap_or_default();
-    Ok(match parts.is_empty() {
+    let parts = match parts.is_empty() {
         true => vec![hull],
         false => parts,
-    })
+    };
+    lock().push((key.0, key.1, parts.clone()));
+    Ok(parts)
 }
 
 /// A mesh's vertices (scaled, z up) and triangles, as its file lists them.
@@ -260,6 +293,17 @@ fn convex_hull(path: &Path, points: &[Point3<f64>]) -> Result<Primitive> {
 
 /// Reads a mesh file's vertices and triangles (see [`load_convex_mesh`]).
 fn read_mesh(path: &Path, scale: [f64; 3]) -> Result<TriangleMesh> {
+    parse_mesh(path, &read_mesh_bytes(path)?, scale)
+}
+
+/// A mesh file's bytes (a regular file within the mesh size limit).
+fn read_mesh_bytes(path: &Path) -> Result<Vec<u8>> {
+    crate::input::read_bytes(path, crate::input::MAX_MESH_BYTES)
+        .map_err(|message| Error::io(path, message))
+}
+
+/// The vertices and triangles of mesh file `path`'s `bytes` (see [`load_convex_mesh`]).
+fn parse_mesh(path: &Path, bytes: &[u8], scale: [f64; 3]) -> Result<TriangleMesh> {
     let mesh_error = |message: String| Error::Mesh {
         file: path.to_path_buf(),
         message,
@@ -268,8 +312,6 @@ fn read_mesh(path: &Path, scale: [f64; 3]) -> Result<TriangleMesh> {
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let bytes = crate::input::read_bytes(path, crate::input::MAX_MESH_BYTES)
-        .map_err(|message| Error::io(path, message))?;
     let scene = match extension.as_deref() {
         Some("stl") => {
             check_stl_size(&bytes).map_err(mesh_error)?;

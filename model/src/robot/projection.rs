@@ -192,7 +192,10 @@ impl std::fmt::Display for ProjectionFailure {
                 tilt_error,
             } => write!(
                 f,
-                "tool left its plane by {:.4} m / {tilt_error:.4} rad",
+                // Three significant digits: a start is held to a thousandth of a step's
+                // tolerance, and a residual of 2 um printed as "0.0000 m" read as none.
+                "the tool stays {:.3e} m / {tilt_error:.3e} rad off its plane after \
+                 {NEWTON_ITERATIONS} Newton corrections",
                 height_error.abs()
             ),
             Self::NotFinite => write!(f, "the configuration or the action is not finite"),

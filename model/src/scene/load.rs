@@ -858,7 +858,7 @@ impl Loader<'_> {
                 let mut q = DVector::from_column_slice(start_joints);
                 let written = q.clone();
                 if let Err(failure) = robot.start_on_plane(&mut q) {
-                    self.start_problem(self.invalid("robot.start_joints", format!("the tool cannot be brought onto its pushing plane from here: {failure}")))?;
+                    self.start_problem(self.invalid("robot.start_joints", format!("the tool cannot be brought onto its pushing plane from here ({failure}); `pushplan robot SCENE --reach X,Y` prints starts on it")))?;
                     q = written.clone();
                 }
                 if let Err(problem) =

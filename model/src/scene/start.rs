@@ -120,7 +120,7 @@ impl Scene {
         let chain = &self.robot.chain;
         for _ in 0..4 {
             self.robot.start_on_plane(q).map_err(|failure| {
-                format!("the tool cannot be brought onto its pushing plane from here: {failure}")
+                format!("the tool cannot be brought onto its pushing plane from here ({failure}); `pushplan robot SCENE --reach X,Y` prints starts on it")
             })?;
             let mut clamped = false;
             for i in 0..q.len() {
