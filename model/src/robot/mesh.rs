@@ -161,7 +161,7 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
 /// A process keeps what it decomposed, by the file's bytes, format and scale: `plan` loads
 /// its scene more than once (Baxter's torso costs 0.2 s each time).
 pub fn load_collision_mesh(path: &Path, scale: [f64; 3]) -> Result<Vec<Primitive>> {
-    static DECOMPOSED: Mutex<Vec<(u64, [u64; 3], Vec<Primitive>)>> = Mutex::new(Vec::new());
+    static DECOMPOSED: Mutex<Vec<Decomposed>> = Mutex::new(Vec::new());
     let bytes = read_mesh_bytes(path)?;
     // The format is read from the extension: the same bytes may be another mesh.
     let mut hasher = DefaultHasher::new();
@@ -170,7 +170,7 @@ pub fn load_collision_mesh(path: &Path, scale: [f64; 3]) -> Result<Vec<Primitive
         .map(|e| e.to_ascii_lowercase())
         .hash(&mut hasher);
     let key = (hasher.finish(), scale.map(f64::to_bits));
-    let known = |cache: &[(u64, [u64; 3], Vec<Primitive>)]| {
+    let known = |cache: &[Decomposed]| {
         cache
             .iter()
             .find(|(hash, scale, _)| (*hash, *scale) == key)
@@ -200,6 +200,10 @@ pub fn load_collision_mesh(path: &Path, scale: [f64; 3]) -> Result<Vec<Primitive
     lock().push((key.0, key.1, parts.clone()));
     Ok(parts)
 }
+
+/// A decomposed mesh a process keeps: its bytes' and format's hash, its scale's bits and
+/// its parts.
+type Decomposed = (u64, [u64; 3], Vec<Primitive>);
 
 /// A mesh's vertices (scaled, z up) and triangles, as its file lists them.
 struct TriangleMesh {
@@ -314,17 +318,17 @@ fn parse_mesh(path: &Path, bytes: &[u8], scale: [f64; 3]) -> Result<TriangleMesh
         .map(str::to_ascii_lowercase);
     let scene = match extension.as_deref() {
         Some("stl") => {
-            check_stl_size(&bytes).map_err(mesh_error)?;
-            mesh_loader::stl::from_slice(&bytes)
+            check_stl_size(bytes).map_err(mesh_error)?;
+            mesh_loader::stl::from_slice(bytes)
         }
-        Some("obj") => mesh_loader::obj::from_slice(&bytes, Some(path), |_: &Path| {
+        Some("obj") => mesh_loader::obj::from_slice(bytes, Some(path), |_: &Path| {
             // Materials do not collide: the `.mtl` file is neither needed nor read.
             Err::<Vec<u8>, _>(std::io::Error::other("not read"))
         }),
         // mesh-loader 0.1.13 indexes a COLLADA file's arrays as its indices say: a file
         // whose indices point past its arrays panicked (found by tests/integration/fuzz.rs).
         // The panic is caught and the file refused like any malformed one.
-        Some("dae") => std::panic::catch_unwind(|| mesh_loader::collada::from_slice(&bytes))
+        Some("dae") => std::panic::catch_unwind(|| mesh_loader::collada::from_slice(bytes))
             .unwrap_or_else(|_| {
                 Err(std::io::Error::other(
                     "COLLADA indices beyond the arrays they index",
@@ -335,7 +339,7 @@ fn parse_mesh(path: &Path, bytes: &[u8], scale: [f64; 3]) -> Result<TriangleMesh
     .map_err(|e| mesh_error(e.to_string()))?;
     check_triangles(scene.meshes.iter().map(|m| m.faces.len() as u64).sum()).map_err(mesh_error)?;
     let up = match extension.as_deref() {
-        Some("dae") => collada_up_axis(&bytes),
+        Some("dae") => collada_up_axis(bytes),
         _ => UpAxis::Z,
     };
     let mut points = Vec::new();
