@@ -2,7 +2,8 @@
 //! will be slow. A scene that breaks a rule is refused when it loads ([`Scene::load`]);
 //! these are the scenes that are valid and still ask the impossible of the planner: an
 //! object the tool tips whenever it pushes it, a goal the tool cannot reach or the goal
-//! object cannot stand in, a goal region that must first be cleared.
+//! object cannot stand in, a goal region that must first be cleared, a goal object the
+//! hand cannot get behind to push it toward the goal.
 //!
 //! The check costs a few inverse-kinematics searches (milliseconds), so it is run by the
 //! commands that start work on a scene (`plan`, `check SCENE.yaml`), not by every load.
@@ -14,7 +15,7 @@ use crate::collision::footprint::gap;
 use crate::math::Pose2;
 use crate::physics::Footprint;
 use crate::random::SplitMix64;
-use crate::robot::IkSettings;
+use crate::robot::{IkSettings, RobotKind};
 use nalgebra::Vector2;
 use std::fmt;
 
@@ -77,6 +78,21 @@ pub enum SceneWarning {
     },
     /// The goal object starts in the goal region: the plan is the start alone.
     GoalReachedAtStart,
+    /// The hand cannot stand behind the goal object to push it straight toward the goal:
+    /// the tool point there (`standoff` from the object's centre, away from the goal
+    /// centre: the object's bounding radius and the end effector's reach) is out of reach
+    /// on the pushing plane, as [`SceneWarning::GoalOutOfReach`] tries it. The object
+    /// must go sideways first, or be moved by the arm's links. On 240 held-out scenes of
+    /// four arms and five designs (docs/notes/any-arm.md) the searches of such scenes
+    /// were the slow ones.
+    GoalObjectBehindOutOfReach {
+        /// The goal object.
+        object: String,
+        /// The tool point behind it (m, world xy).
+        point: Vector2<f64>,
+        /// Its distance from the object's centre (m).
+        standoff: f64,
+    },
 }
 
 impl SceneWarning {
@@ -90,7 +106,9 @@ impl SceneWarning {
             } => *goal_object && *every_side,
             SceneWarning::GoalOutOfReach { .. } => true,
             SceneWarning::GoalOverTableEdge { share } => *share >= 1.0,
-            SceneWarning::ObjectsOnGoal { .. } | SceneWarning::GoalReachedAtStart => false,
+            SceneWarning::ObjectsOnGoal { .. }
+            | SceneWarning::GoalReachedAtStart
+            | SceneWarning::GoalObjectBehindOutOfReach { .. } => false,
         }
     }
 }
@@ -170,6 +188,22 @@ impl fmt::Display for SceneWarning {
                 f,
                 "the goal object starts in the goal region: the plan is the start alone"
             ),
+            SceneWarning::GoalObjectBehindOutOfReach {
+                object,
+                point,
+                standoff,
+            } => write!(
+                f,
+                "the hand cannot get behind the goal object '{object}' to push it toward the \
+                 goal: the tool point ({:.3}, {:.3}), {standoff:.3} m from its centre on the \
+                 side away from the goal, is out of reach on the pushing plane ({} \
+                 inverse-kinematics attempts over {REACH_HEADINGS} headings); it must be \
+                 pushed sideways first or moved by the arm's links (searches for such scenes \
+                 are slower)",
+                point.x,
+                point.y,
+                REACH_TRIES * REACH_HEADINGS
+            ),
         }
     }
 }
@@ -219,9 +253,30 @@ pub fn check(scene: &Scene) -> Vec<SceneWarning> {
         }
         if scene.goal.is_satisfied(&scene.start) {
             warnings.push(SceneWarning::GoalReachedAtStart);
+        } else if let Some(behind) = behind_out_of_reach(scene, *object, *center) {
+            warnings.push(behind);
         }
     }
     warnings
+}
+
+/// [`SceneWarning::GoalObjectBehindOutOfReach`] for an arm whose hand cannot stand behind
+/// `object` for a push toward `center`, None otherwise (a planar hand reaches anywhere).
+fn behind_out_of_reach(scene: &Scene, object: usize, center: Vector2<f64>) -> Option<SceneWarning> {
+    if scene.robot.kind != RobotKind::Arm {
+        return None;
+    }
+    #[allow(non_snake_case)] // the goal object's centre in the world frame
+    let p_WO = scene.start.objects[object].translation();
+    let away = (p_WO - center).try_normalize(1e-9)?;
+    // The hand's standoff behind an object, as the push headings place it.
+    let standoff = scene.objects[object].bounding_radius + scene.robot.tool_reach();
+    let point = p_WO + away * standoff;
+    (!reaches(scene, point)).then(|| SceneWarning::GoalObjectBehindOutOfReach {
+        object: scene.objects[object].name.clone(),
+        point,
+        standoff,
+    })
 }
 
 /// Objects a sliding push at the plane's height tips, the goal object first. Objects no
