@@ -133,9 +133,12 @@ pub const CONVEX_ENOUGH: f64 = 0.8;
 /// its parts) and encloses half its hull; a mesh of loose faces is far above.
 pub const MAX_OPEN_EDGES: f64 = 0.1;
 
-/// Most convex parts a decomposed mesh becomes: each is a shape every collision query of
-/// its link visits.
-pub const MAX_CONVEX_PARTS: u32 = 16;
+/// The convex parts V-HACD is asked for (each a shape every collision query of its link
+/// visits). Its binary splits go as deep as this number needs and one level more, and
+/// parry's V-HACD does not merge them back: a mesh may become up to twice as many (a
+/// Baxter elbow's visual mesh, 13 124 triangles: 25). Baxter's torso becomes 11, its
+/// pedestal 9.
+pub const CONVEX_PARTS: u32 = 16;
 
 /// V-HACD's voxel grid (cells along the mesh's longest side). 32 cells decompose Baxter's
 /// torso (9 159 triangles) into 11 parts enclosing 0.085 m^3 of the mesh's 0.069 in
@@ -154,8 +157,8 @@ pub fn load_convex_mesh(path: &Path, scale: [f64; 3]) -> Result<Primitive> {
 /// Reads a link's collision mesh as [`load_convex_mesh`] does and returns the convex
 /// shapes it collides as: its hull when the mesh is open or encloses at least
 /// [`CONVEX_ENOUGH`] of the hull's volume, else the exact hulls of a V-HACD decomposition
-/// (at most [`MAX_CONVEX_PARTS`], each the hull of the mesh's own triangles clipped to a
-/// part, so no part reaches past the mesh's hull), each simplified to within
+/// (about [`CONVEX_PARTS`], each the hull of the mesh's own triangles clipped to a part,
+/// so no part reaches past the mesh's hull), each simplified to within
 /// [`HULL_TOLERANCE`].
 ///
 /// A process keeps what it decomposed, by the file's bytes, format and scale: `plan` loads
@@ -250,7 +253,7 @@ impl TriangleMesh {
     fn convex_parts(&self) -> Vec<Primitive> {
         let parameters = VHACDParameters {
             resolution: DECOMPOSITION_RESOLUTION,
-            max_convex_hulls: MAX_CONVEX_PARTS,
+            max_convex_hulls: CONVEX_PARTS,
             ..VHACDParameters::default()
         };
         // parry's decomposition asserts on inputs it cannot voxelize: a mesh that trips
