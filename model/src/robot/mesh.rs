@@ -190,14 +190,14 @@ pub fn load_collision_mesh(path: &Path, scale: [f64; 3]) -> Result<Vec<Primitive
         return Ok(parts);
     }
     let mesh = parse_mesh(path, &bytes, scale)?;
-    let hull = convex_hull(path, &mesh.points)?;
     let parts = mesh
         .concave_volume_share()
         .filter(|share| *share < CONVEX_ENOUGH)
         .map(|_| mesh.convex_parts())
         .unwrap_or_default();
+    // The single hull only where no parts replace it (a flat mesh is refused here).
     let parts = match parts.is_empty() {
-        true => vec![hull],
+        true => vec![convex_hull(path, &mesh.points)?],
         false => parts,
     };
     lock().push((key.0, key.1, parts.clone()));

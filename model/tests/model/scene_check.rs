@@ -258,15 +258,12 @@ fn a_goal_object_already_in_the_region_is_said() {
     assert!(check(&scene).contains(&SceneWarning::GoalReachedAtStart));
 }
 
-#[test]
-fn a_goal_beyond_the_arms_reach_is_out_of_reach_and_one_within_it_is_not() {
-    // The WAM's shoulder is 0.346 m above its base; upper arm, forearm and hand reach
-    // about 1.1 m. On a table 2.6 m deep, (0.7, -0.3) is within reach, (2.5, 0) is not, nor
-    // is (0.85, -0.6) with the arm mounted this low (`pushplan robot --reach` finds no
-    // configuration there at any of 13 headings with 200 tries each).
-    let scene = |center: [f64; 2]| {
-        let yaml = format!(
-            "robot:
+/// The WAM mounted low (its base 0.346 m up, under a table 2.6 m deep) starting with its
+/// hand near the table, the goal box at `pose` (yaw 0) and the goal disc (radius 0.1) at
+/// `center`: the reach tests' scene.
+fn low_wam_scene(pose: [f64; 2], center: [f64; 2]) -> Scene {
+    let yaml = format!(
+        "robot:
   type: arm
   urdf: ../robots/wam7.urdf
   base_pose: {{xyz: [0.1, 0.14, 0.346]}}
@@ -275,11 +272,20 @@ fn a_goal_beyond_the_arms_reach_is_out_of_reach_and_one_within_it_is_not() {
   pushing_plane: {{height: 0.08, orientation_rpy: [0, 2.0, 0]}}
 table: {{height: 0.76, x: [0.27, 2.6], y: [-0.93, 0.93]}}
 objects:
-  - {{name: goal, shape: {{type: box, size: [0.102, 0.102, 0.215]}}, pose: [0.5, -0.6, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}}
-goal: {{object: goal, center: {center:?}, radius: 0.1}}"
-        );
-        Scene::from_yaml(&yaml, Path::new("scenes/reach-test.yaml")).unwrap()
-    };
+  - {{name: goal, shape: {{type: box, size: [0.102, 0.102, 0.215]}}, pose: [{}, {}, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}}
+goal: {{object: goal, center: {center:?}, radius: 0.1}}",
+        pose[0], pose[1]
+    );
+    Scene::from_yaml(&yaml, Path::new("scenes/reach-test.yaml")).unwrap()
+}
+
+#[test]
+fn a_goal_beyond_the_arms_reach_is_out_of_reach_and_one_within_it_is_not() {
+    // The WAM's shoulder is 0.346 m above its base; upper arm, forearm and hand reach
+    // about 1.1 m. On a table 2.6 m deep, (0.7, -0.3) is within reach, (2.5, 0) is not, nor
+    // is (0.85, -0.6) with the arm mounted this low (`pushplan robot --reach` finds no
+    // configuration there at any of 13 headings with 200 tries each).
+    let scene = |center: [f64; 2]| low_wam_scene([0.5, -0.6], center);
     let out_of_reach = |center| {
         check(&scene(center))
             .into_iter()
@@ -347,23 +353,7 @@ fn a_goal_object_the_hand_cannot_get_behind_is_named_and_one_it_can_is_not() {
     // point, which a configuration (the start) puts there, and (b) 2.4 m from the base,
     // beyond the arm's whole length (shoulder 0.346 m up, about 1.1 m of links).
     let center = Vector2::new(0.7, -0.3);
-    let scene = |pose: Vector2<f64>| {
-        let yaml = format!(
-            "robot:
-  type: arm
-  urdf: ../robots/wam7.urdf
-  base_pose: {{xyz: [0.1, 0.14, 0.346]}}
-  end_effector: hand
-  start_joints: {HAND_NEAR:?}
-  pushing_plane: {{height: 0.08, orientation_rpy: [0, 2.0, 0]}}
-table: {{height: 0.76, x: [0.27, 2.6], y: [-0.93, 0.93]}}
-objects:
-  - {{name: goal, shape: {{type: box, size: [0.102, 0.102, 0.215]}}, pose: [{}, {}, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}}
-goal: {{object: goal, center: [{}, {}], radius: 0.1}}",
-            pose.x, pose.y, center.x, center.y
-        );
-        Scene::from_yaml(&yaml, Path::new("scenes/behind-test.yaml")).unwrap()
-    };
+    let scene = |pose: Vector2<f64>| low_wam_scene([pose.x, pose.y], [center.x, center.y]);
     let behind = |scene: &Scene| {
         check(scene)
             .into_iter()
