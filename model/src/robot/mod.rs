@@ -95,16 +95,26 @@ impl Robot {
         poses
     }
 
-    /// How far the end effector's collision geometry reaches from the tool point (m): the
-    /// bounding spheres of the end-effector link's shapes, about the tool point.
+    /// How far the end effector's collision geometry reaches across the tool's axis (m):
+    /// the bounding spheres of the shapes of every link rigidly joined to the
+    /// end-effector link (a tool frame on a link of its own, below the pusher that
+    /// carries the geometry, reaches as far as the pusher), each its centre's distance
+    /// from the tool's z axis plus its radius. On the pushing plane the tool's z axis is
+    /// vertical: this is how far from the tool point the end effector meets an object.
+    #[allow(non_snake_case)] // X_WT: the tool frame in the world frame
     pub fn tool_reach(&self) -> f64 {
-        let tool = self.tool.translation.vector; // in the end-effector link frame
-        self.chain.links[self.ee_link]
-            .geometry
-            .iter()
-            .map(|g| {
-                let sphere = g.shape.compute_bounding_sphere(&g.local);
-                (sphere.center().coords - tool).norm() + sphere.radius()
+        let chain = &self.chain;
+        // Any configuration: the links measured move as one body.
+        let poses = self.link_poses(&DVector::zeros(self.dof()));
+        let X_WT = poses[self.ee_link] * self.tool;
+        let body = rigid_body(chain, self.ee_link);
+        (0..chain.links.len())
+            .filter(|&l| rigid_body(chain, l) == body)
+            .flat_map(|l| chain.links[l].geometry.iter().map(move |g| (l, g)))
+            .map(|(l, g)| {
+                let sphere = g.shape.compute_bounding_sphere(&(poses[l] * g.local));
+                let p_TC = X_WT.inverse_transform_point(sphere.center());
+                p_TC.xy().coords.norm() + sphere.radius()
             })
             .fold(0.0, f64::max)
     }
@@ -147,16 +157,18 @@ pub(crate) fn non_adjacent_pairs(chain: &KinematicChain) -> Vec<(usize, usize)> 
 
 /// Are the two links connected by fixed joints (or held joints) only?
 fn rigidly_joined(chain: &KinematicChain, a: usize, b: usize) -> bool {
-    let path_is_rigid = |from: usize, to: usize| {
-        let mut current = to;
-        while current != from {
-            match &chain.links[current].joint {
-                Some(j) if j.dof.is_none() => current = j.parent,
-                _ => return false,
-            }
+    rigid_body(chain, a) == rigid_body(chain, b)
+}
+
+/// The rigid body `link` belongs to, named by its first link: up from `link` over fixed
+/// (and held) joints to the link a moving joint drives, or the root.
+fn rigid_body(chain: &KinematicChain, link: usize) -> usize {
+    let mut current = link;
+    while let Some(j) = &chain.links[current].joint {
+        if j.dof.is_some() {
+            break;
         }
-        true
-    };
-    (chain.is_ancestor(a, b) && path_is_rigid(a, b))
-        || (chain.is_ancestor(b, a) && path_is_rigid(b, a))
+        current = j.parent;
+    }
+    current
 }

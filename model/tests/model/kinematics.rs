@@ -240,3 +240,26 @@ fn non_finite_actions_are_refused_not_panicked_on() {
     assert_eq!(run.steps, 0);
     assert!(run.stopped_by.is_some());
 }
+
+#[test]
+fn the_tool_reaches_as_far_as_the_end_effector_it_is_fixed_to() {
+    // The Panda's, the UR5e's and the iiwa's tool frames are links of their own, without
+    // geometry, fixed below the pusher that carries it; the WAM's is its hand's centre.
+    // Each pusher is a box centred on the tool's axis: it meets an object as far from the
+    // tool point as its bounding sphere's radius, half its diagonal (box sizes from the
+    // URDFs). The wrist flanges rigidly above them are narrower.
+    let half_diagonal = |x: f64, y: f64, z: f64| 0.5 * (x * x + y * y + z * z).sqrt();
+    for (arm, pusher) in [
+        ("iiwa14", half_diagonal(0.12, 0.12, 0.15)),
+        ("ur5e", half_diagonal(0.09, 0.09, 0.15)),
+        ("panda", half_diagonal(0.06, 0.2, 0.08)),
+        ("wam", half_diagonal(0.08, 0.12, 0.16)),
+    ] {
+        let scene = Scene::load(format!("scenes/{arm}/walls/scene_00.yaml")).unwrap();
+        let reach = scene.robot.tool_reach();
+        assert!(
+            (reach - pusher).abs() < 1e-9,
+            "{arm}: the tool reaches {reach} m, its pusher {pusher} m"
+        );
+    }
+}
