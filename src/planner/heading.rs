@@ -10,6 +10,7 @@
 
 use crate::math::{closest_on_segment, Pose2};
 use crate::robot::RobotKind;
+use crate::scene::check::reach_behind_goal_object;
 use crate::scene::{within_extent, Goal, Scene};
 use crate::state::State;
 use nalgebra::Vector2;
@@ -24,6 +25,13 @@ const PUSH_RANGE: f64 = 0.1;
 
 /// How much room (m) a blocker is given beyond touching the goal object's way.
 const CLEAR_BY: f64 = 0.05;
+
+/// Where the hand cannot stand straight behind an object, the tool stands this much
+/// (rad) farther round it at a time, up to a right angle (`STAND_TURNS` steps): from
+/// its side, a push toward the target slides along the object and drags it along the
+/// edge of the friction cone, partly toward the target.
+const STAND_TURN: f64 = std::f64::consts::PI / 12.0;
+const STAND_TURNS: usize = 6;
 
 /// The geometry push headings need, fixed per scene.
 #[derive(Clone, Debug)]
@@ -44,7 +52,8 @@ pub struct PushHeading {
 
 /// Where the hand can stand behind an object (world xy, m): over the table's extent, or
 /// on the arm's side of the object (beyond the table's far edges the arm runs out of
-/// reach; BENCHMARKS.md, "Where dense 17 and scene 34 are hard").
+/// reach; BENCHMARKS.md, "Where dense 17 and scene 34 are hard"), and within the arm's
+/// reach where that is known.
 #[derive(Clone, Copy, Debug)]
 struct StandingRoom {
     /// The table's extent along x and y (m).
@@ -52,13 +61,20 @@ struct StandingRoom {
     table_y: (f64, f64),
     /// The arm's base.
     p_WBase: Vector2<f64>,
+    /// The tool point's greatest distance from the base axis on the plane (m), measured
+    /// only where the hand cannot get behind the goal object at the start
+    /// ([`reach_behind_goal_object`]): there the tool stands round the side of objects
+    /// it cannot get behind. None: not measured (the headings are as without it).
+    reach_radius: Option<f64>,
 }
 
 impl StandingRoom {
     /// Can the hand stand at `p_WS` to push the object at `p_WO`?
     fn allows(&self, p_WS: Vector2<f64>, p_WO: Vector2<f64>) -> bool {
-        within_extent(p_WS, self.table_x, self.table_y)
-            || (p_WS - self.p_WBase).norm() <= (p_WO - self.p_WBase).norm()
+        let from_base = (p_WS - self.p_WBase).norm();
+        (within_extent(p_WS, self.table_x, self.table_y)
+            || from_base <= (p_WO - self.p_WBase).norm())
+            && self.reach_radius.is_none_or(|radius| from_base <= radius)
     }
 
     /// `p` moved onto the table, `radius` inside its edges.
@@ -151,6 +167,7 @@ impl PushHeading {
                     table_x: scene.table.x,
                     table_y: scene.table.y,
                     p_WBase: scene.robot.chain.base.translation.vector.xy(),
+                    reach_radius: reach_behind_goal_object(scene),
                 }),
                 RobotKind::PlanarHand => None,
             },
@@ -365,35 +382,61 @@ impl PushHeading {
         let d = (p_WG - p_WO).try_normalize(1e-9)?;
         let from_object = p_WT - p_WO;
         let distance = from_object.norm();
-        let behind = -d;
-        let cos_behind = if distance > 1e-9 {
-            from_object.dot(&behind) / distance
+        let stand = self.stand(object, p_WO, d, from_object);
+        let cos_stand = if distance > 1e-9 {
+            from_object.dot(&stand) / distance
         } else {
             1.0
         };
-        let is_behind = cos_behind >= BEHIND_HALF_ANGLE.cos();
-        if is_behind && distance <= standoff + PUSH_RANGE {
+        let is_there = cos_stand >= BEHIND_HALF_ANGLE.cos();
+        if is_there && distance <= standoff + PUSH_RANGE {
             // Push: halfway between through the object's centre (no turning) and toward
-            // the target (corrects a tool that stands off the line).
+            // the target (corrects a tool that stands off the line; from the side, it
+            // slides along the object and drags it).
             return (-from_object.normalize() + d)
                 .try_normalize(1e-9)
                 .or(Some(d));
         }
-        if !is_behind && distance < standoff + PUSH_RANGE {
+        if !is_there && distance < standoff + PUSH_RANGE {
             // Walk round, on the shorter side, keeping the standoff: the tangent turning
-            // toward `behind`, pulled outward while nearer than the standoff.
+            // toward `stand`, pulled outward while nearer than the standoff.
             let outward = from_object / distance.max(1e-9);
             let left = Vector2::new(-outward.y, outward.x);
-            let tangent = if left.dot(&behind) >= 0.0 {
-                left
-            } else {
-                -left
-            };
+            let tangent = if left.dot(&stand) >= 0.0 { left } else { -left };
             let push_out = ((standoff - distance) / standoff).max(0.0);
             return (tangent + outward * push_out).try_normalize(1e-9);
         }
-        // Away from the object: straight to the point behind it.
-        (p_WO + behind * standoff - p_WT).try_normalize(1e-9)
+        // Away from the object: straight to where it stands.
+        (p_WO + stand * standoff - p_WT).try_normalize(1e-9)
+    }
+
+    /// Which way from `object`'s centre `p_WO` (unit, world xy) the tool stands to push it
+    /// along `d`: straight behind it, or, where the hand's reach is known and ends short
+    /// of that, turned round by [`STAND_TURN`] steps, on the tool's side first, to the
+    /// first place it reaches (up to its side; none: straight behind).
+    fn stand(
+        &self,
+        object: usize,
+        p_WO: Vector2<f64>,
+        d: Vector2<f64>,
+        from_object: Vector2<f64>,
+    ) -> Vector2<f64> {
+        let behind = -d;
+        let Some(room) = self.reach.filter(|room| room.reach_radius.is_some()) else {
+            return behind;
+        };
+        let left = Vector2::new(-behind.y, behind.x);
+        let own = if from_object.dot(&left) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let standoff = self.standoff(object);
+        (0..=STAND_TURNS)
+            .flat_map(|turn| [own, -own].map(|side| side * STAND_TURN * turn as f64))
+            .map(|angle| behind * angle.cos() + left * angle.sin())
+            .find(|&stand| room.allows(p_WO + stand * standoff, p_WO))
+            .unwrap_or(behind)
     }
 }
 
@@ -498,6 +541,7 @@ mod tests {
             table_x: (0.3, 1.0),
             table_y: (-0.9, 0.9),
             p_WBase: Vector2::zeros(),
+            reach_radius: None,
         };
         let h = goal_in_disc(0.1, 3, Vector2::new(0.9, -0.3), Some(room));
         let state = State::from_flat(
@@ -539,6 +583,7 @@ mod tests {
             table_x: (-1.0, 1.0),
             table_y: (-1.0, 2.0),
             p_WBase: Vector2::new(-2.0, 0.0),
+            reach_radius: None,
         };
         let h = goal_in_disc(0.1, 2, Vector2::zeros(), Some(room));
         let state = State::from_flat(&[0.0, 0.0, 1.0, 0.0, 0.0, 0.15, 0.0], 1);
@@ -551,5 +596,46 @@ mod tests {
         // Without an arm (no standing room), the radial place stays.
         let free = PushHeading { reach: None, ..h };
         assert!((free.blockers(&state)[0].target - Vector2::new(0.0, 0.26)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn where_the_hand_cannot_get_behind_it_stands_round_the_side_and_pushes_inward() {
+        // The arm's base at the origin, its reach 0.95 m; the goal object (radius 0.05, the
+        // hand's reach 0.05: standoff 0.1) at (0.9, 0) must go to (0.5, 0). Straight behind,
+        // (1.0, 0), is out of reach, and so are the places turned 15-60 degrees round
+        // (0.997, 0.988, 0.973, 0.954 m from the base); turned 75 degrees, (0.926, 0.097) is
+        // 0.931 m out: there the tool stands, on the side (+y) it comes from.
+        let room = |reach| StandingRoom {
+            table_x: (0.3, 1.2),
+            table_y: (-1.0, 1.0),
+            p_WBase: Vector2::zeros(),
+            reach_radius: reach,
+        };
+        let state = State::from_flat(&[0.0, 0.9, 0.0, 0.0], 1);
+        let (object, goal) = (Vector2::new(0.9, 0.0), Vector2::new(0.5, 0.0));
+        let turned = 75f64.to_radians();
+        let stand = object + Vector2::new(turned.cos(), turned.sin()) * 0.1;
+        assert!((stand.norm() - 0.931).abs() < 1e-3);
+        let h = goal_in_disc(0.05, 1, goal, Some(room(Some(0.95))));
+        let far = Vector2::new(0.9, 0.3);
+        let to_stand = h.heading(&state, far, 0, goal).unwrap();
+        assert!(
+            (to_stand - (stand - far).normalize()).norm() < 1e-12,
+            "{to_stand}"
+        );
+        // There, the push: halfway between through the centre and toward the goal, so
+        // inward (toward the base and the goal) and into the object.
+        let push = h.heading(&state, stand, 0, goal).unwrap();
+        let into = (object - stand).normalize();
+        assert!((push - (into + (goal - object).normalize()).normalize()).norm() < 1e-12);
+        assert!(push.x < -0.7 && push.dot(&into) > 0.7, "{push}");
+        // Where the reach is not measured (the hand gets behind the goal object at the
+        // start), or where it allows straight behind, the tool heads for (1.0, 0).
+        for reach in [None, Some(1.1)] {
+            let h = goal_in_disc(0.05, 1, goal, Some(room(reach)));
+            let to_behind = h.heading(&state, far, 0, goal).unwrap();
+            let behind = Vector2::new(1.0, 0.0);
+            assert!((to_behind - (behind - far).normalize()).norm() < 1e-12);
+        }
     }
 }

@@ -263,20 +263,104 @@ pub fn check(scene: &Scene) -> Vec<SceneWarning> {
 /// [`SceneWarning::GoalObjectBehindOutOfReach`] for an arm whose hand cannot stand behind
 /// `object` for a push toward `center`, None otherwise (a planar hand reaches anywhere).
 fn behind_out_of_reach(scene: &Scene, object: usize, center: Vector2<f64>) -> Option<SceneWarning> {
+    let behind = unreachable_behind(scene, object, center)?;
+    Some(SceneWarning::GoalObjectBehindOutOfReach {
+        object: scene.objects[object].name.clone(),
+        point: behind.point,
+        standoff: behind.standoff,
+    })
+}
+
+/// The tool point behind an object, away from where it must go, where the hand cannot
+/// stand (world xy, m).
+struct UnreachableBehind {
+    point: Vector2<f64>,
+    /// From the object's centre (m).
+    standoff: f64,
+}
+
+/// The tool point behind `object` (at its start) for a push toward `center`, at the push
+/// headings' standoff (its bounding radius and the hand's reach), if an arm cannot put its
+/// tool there on the pushing plane.
+fn unreachable_behind(
+    scene: &Scene,
+    object: usize,
+    center: Vector2<f64>,
+) -> Option<UnreachableBehind> {
     if scene.robot.kind != RobotKind::Arm {
         return None;
     }
-    #[allow(non_snake_case)] // the goal object's centre in the world frame
+    #[allow(non_snake_case)] // the object's centre in the world frame
     let p_WO = scene.start.objects[object].translation();
     let away = (p_WO - center).try_normalize(1e-9)?;
-    // The hand's standoff behind an object, as the push headings place it.
     let standoff = scene.objects[object].bounding_radius + scene.robot.tool_reach();
     let point = p_WO + away * standoff;
-    (!reaches(scene, point)).then(|| SceneWarning::GoalObjectBehindOutOfReach {
-        object: scene.objects[object].name.clone(),
-        point,
-        standoff,
-    })
+    (!reaches(scene, point)).then_some(UnreachableBehind { point, standoff })
+}
+
+/// Must the goal object come nearer an arm's base than it starts (the goal disc's centre
+/// is nearer), from a start where the tool cannot be put over its centre on the pushing
+/// plane? Then the end effector touches only the near part of it, and a push from there
+/// sends it outward, farther out of reach: the scene generator draws no such goal object
+/// (docs/notes/any-arm.md, "Goal objects beyond the reach"). False for a planar hand or
+/// without an object goal.
+pub fn goal_object_beyond_reach(scene: &Scene) -> bool {
+    let Goal::ObjectInDisc { object, center, .. } = &scene.goal else {
+        return false;
+    };
+    if scene.robot.kind != RobotKind::Arm {
+        return false;
+    }
+    #[allow(non_snake_case)] // the base's origin and the goal object's centre, world xy
+    let (p_WBase, p_WO) = (
+        scene.robot.chain.base.translation.vector.xy(),
+        scene.start.objects[*object].translation(),
+    );
+    (p_WO - p_WBase).norm() > (center - p_WBase).norm() && !reaches(scene, p_WO)
+}
+
+/// How closely (m) [`reach_behind_goal_object`] brackets the hand's reach.
+const REACH_PRECISION: f64 = 0.01;
+
+/// How far the hand reaches on the pushing plane, where it cannot get behind the goal
+/// object ([`SceneWarning::GoalObjectBehindOutOfReach`]): the tool point's greatest
+/// distance (m) from the arm's base axis along the ray from the base through the
+/// unreachable point, to [`REACH_PRECISION`], bracketed by the goal object's near side
+/// (reachable, or the base itself) and that point. None where the hand gets behind it,
+/// without an object goal, at the goal at the start, or for a planar hand. An arm's reach
+/// on a plane is nearly a circle about its base axis (a first joint about z), so the
+/// push headings use this one radius in every direction; it costs a few
+/// inverse-kinematics searches, which is why only such scenes pay for it.
+pub fn reach_behind_goal_object(scene: &Scene) -> Option<f64> {
+    let Goal::ObjectInDisc { object, center, .. } = &scene.goal else {
+        return None;
+    };
+    if scene.goal.is_satisfied(&scene.start) {
+        return None;
+    }
+    let behind = unreachable_behind(scene, *object, *center)?;
+    #[allow(non_snake_case)] // the base's origin and the goal object's centre, world xy
+    let (p_WBase, p_WO) = (
+        scene.robot.chain.base.translation.vector.xy(),
+        scene.start.objects[*object].translation(),
+    );
+    let ray = behind.point - p_WBase;
+    let (mut out, direction) = (ray.norm(), ray.normalize());
+    let near_side = (p_WO - p_WBase).norm() - behind.standoff;
+    let mut within = if near_side > 0.0 && reaches(scene, p_WBase + direction * near_side) {
+        near_side
+    } else {
+        0.0
+    };
+    while out - within > REACH_PRECISION {
+        let middle = 0.5 * (within + out);
+        if reaches(scene, p_WBase + direction * middle) {
+            within = middle;
+        } else {
+            out = middle;
+        }
+    }
+    Some(within)
 }
 
 /// Objects a sliding push at the plane's height tips, the goal object first. Objects no

@@ -15,8 +15,11 @@
 //!   disc, leaving a passage of 0.20-0.26 m.
 //!
 //! Placed designs (all but the paper's) put objects one by one where each fits, and let
-//! objects push one another.
+//! objects push one another. In every design a goal object that must come nearer the
+//! arm's base starts where the tool reaches its centre
+//! ([`super::check::goal_object_beyond_reach`]): from beyond, pushes only send it out.
 
+use super::check::goal_object_beyond_reach;
 use super::Scene;
 use crate::random::SplitMix64;
 use std::path::{Path, PathBuf};
@@ -379,7 +382,9 @@ pub fn generate(
         let yaml = match design {
             Design::Paper => (0..10_000)
                 .map(|_| scene.yaml(&paper_layout(setup, n, &mut rng), PAPER_DESIGN))
-                .find(|yaml| Scene::from_yaml(yaml, &path).is_ok()),
+                .find(|yaml| {
+                    Scene::from_yaml(yaml, &path).is_ok_and(|s| !goal_object_beyond_reach(&s))
+                }),
             Design::Dense => {
                 let layout = Layout::ALL[i % Layout::ALL.len()];
                 (0..100).find_map(|_| dense_layout(&scene, layout, n, &mut rng))
@@ -541,7 +546,7 @@ fn dense_layout(
         goal_center: setup.goal,
         walls: Vec::new(),
     };
-    if !scene.loads(&placed, &design) {
+    if !scene.goal_object_pushable(&placed, &design) {
         return None;
     }
     // Where each clutter object is drawn: near its slot in the layout, or anywhere.
@@ -602,7 +607,7 @@ fn family_layout(
             });
         }
     }
-    if !scene.loads(&placed, text) {
+    if !scene.goal_object_pushable(&placed, text) {
         return None;
     }
     let on_goal = match design {
@@ -710,6 +715,14 @@ impl SceneText<'_> {
     /// Does the scene of `placed` load (every rule, the start valid)?
     fn loads(&self, placed: &Placement, design: &str) -> bool {
         Scene::from_yaml(&self.yaml(placed, design), self.path).is_ok()
+    }
+
+    /// Does the scene of `placed` load, its goal object where the arm can push it toward
+    /// the goal ([`goal_object_beyond_reach`])? Asked once the goal object (and walls) are
+    /// placed: clutter does not change it.
+    fn goal_object_pushable(&self, placed: &Placement, design: &str) -> bool {
+        Scene::from_yaml(&self.yaml(placed, design), self.path)
+            .is_ok_and(|s| !goal_object_beyond_reach(&s))
     }
 
     /// The scene file of `placed`.

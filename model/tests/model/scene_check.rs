@@ -5,7 +5,7 @@ use crate::common::HAND_NEAR;
 use nalgebra::Vector2;
 use pushplan_model::physics::tipping::{sliding_push_tips, ContactElevation};
 use pushplan_model::physics::{Footprint, PlanarContact};
-use pushplan_model::scene::check::check;
+use pushplan_model::scene::check::{check, goal_object_beyond_reach};
 use pushplan_model::scene::SceneWarning;
 use pushplan_model::Scene;
 use std::path::Path;
@@ -390,4 +390,38 @@ fn a_goal_object_the_hand_cannot_get_behind_is_named_and_one_it_can_is_not() {
     // A warning that the search is slow, not that it cannot work.
     assert!(!warning.blocks());
     assert!(warning.to_string().contains("'goal'"), "{warning}");
+}
+
+#[test]
+fn a_goal_object_that_must_come_in_from_beyond_the_reach_is_told_from_one_within() {
+    // The low WAM of the reach tests (shoulder 0.346 m above its base at (0.1, 0.14), about
+    // 1.1 m of links; its first joint turns about the base's vertical axis). The start
+    // with that joint turned by 0.6 rad puts the tool point 0.6 rad round the base from
+    // the start's: a witness that the point is within reach, found without inverse
+    // kinematics. A goal object there, its goal disc halfway to the base, must come in.
+    let p_wbase = Vector2::new(0.1, 0.14);
+    let probe = low_wam_scene([0.5, 0.3], [0.7, -0.3]);
+    let robot = &probe.robot;
+    let tool_point = |q: &nalgebra::DVector<f64>| {
+        robot
+            .tool_pose(&robot.link_poses(q))
+            .translation
+            .vector
+            .xy()
+    };
+    let mut turned = probe.start.q.clone();
+    turned[0] -= 0.6;
+    let from_base = tool_point(&probe.start.q) - p_wbase;
+    let within = p_wbase + nalgebra::Rotation2::new(-0.6) * from_base;
+    assert!((tool_point(&turned) - within).norm() < 1e-9);
+    let beyond = |pose: Vector2<f64>, center: Vector2<f64>| {
+        goal_object_beyond_reach(&low_wam_scene([pose.x, pose.y], [center.x, center.y]))
+    };
+    assert!(!beyond(within, p_wbase + (within - p_wbase) * 0.5));
+    // 2.2 m out along x, past the arm's whole length: beyond reach, and it must come in.
+    let far = Vector2::new(2.3, 0.14);
+    assert!(beyond(far, Vector2::new(0.7, 0.14)));
+    // The same object with the goal disc farther out still: it goes outward, as pushes from
+    // its near side send it.
+    assert!(!beyond(far, Vector2::new(2.5, 0.14)));
 }
