@@ -13,7 +13,9 @@
 # Writes OUT_DIR/scenes/ARM/DESIGN/, OUT_DIR/plans/PLANNER/ARM_DESIGN_NN.{json,txt} and
 # prints a table per arm, design and planner: scenes solved, median time to solve
 # (unsolved counted at the limit), and the end effector's travel per metre the goal object
-# moved (as found and after shortcutting; medians over the solved plans).
+# moved (as found and after shortcutting; medians over the solved plans); with more than
+# one planner, the runs each solved within budgets of 1 s up to the limit, and the cells
+# Push KPIECE is ahead of, level with or behind the best other planner at each.
 set -eu
 out=${1:?usage: benches/matrix.sh OUT_DIR [PUSHPLAN_BINARY]}
 bin=${2:-target/release/pushplan}
@@ -81,4 +83,26 @@ for planner in sorted({key[2] for key in rows}):
     cut = [v for r in mine for v in r["travel"]]
     print(f"{planner}: {sum(r['solved'] for r in mine)} of {sum(r['runs'] for r in mine)} solved within {limit:g} s; "
           f"EE travel per metre the goal object moved, median {median(raw)} as found, {median(cut)} after shortcutting")
+
+# Budgets: runs solved within each budget up to the limit (every run's time to solve is
+# known up to it), per cell, each planner against push_kpiece: how many cells it is ahead
+# of push_kpiece in (solves more within the budget).
+planners = sorted({key[2] for key in rows})
+if "push_kpiece" in planners and len(planners) > 1:
+    budgets = [b for b in (1, 2, 5, 10, 20, 30, 60) if b <= limit]
+    within = lambda r, b: sum(t < b or (t <= b and t < limit) for t in r["times"])
+    cells = sorted({key[:2] for key in rows})
+    print()
+    print("| budget (s) | " + " | ".join(f"{p} solved" for p in planners) + " | cells push_kpiece is ahead / level / behind the best other |")
+    print("|---|" + "---|" * len(planners) + "---|")
+    for b in budgets:
+        totals = {p: sum(within(rows[c + (p,)], b) for c in cells if c + (p,) in rows) for p in planners}
+        ahead = level = behind = 0
+        for c in cells:
+            mine = within(rows[c + ("push_kpiece",)], b)
+            best = max(within(rows[c + (p,)], b) for p in planners if p != "push_kpiece" and c + (p,) in rows)
+            ahead += mine > best
+            level += mine == best
+            behind += mine < best
+        print(f"| {b:g} | " + " | ".join(str(totals[p]) for p in planners) + f" | {ahead} / {level} / {behind} |")
 PY

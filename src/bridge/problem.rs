@@ -4,17 +4,20 @@
 
 use super::core::{guarded, SharedCore};
 use super::ffi::SceneInfo;
-use crate::planner::ParticleWorlds;
+use crate::planner::{ParticleWorlds, PushHeading};
 use crate::planning::static_clutter::StaticClutter;
 use crate::scene::Scene;
 use crate::state::State;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// A scene loaded for OMPL (OMPL's problem definition and space information, as far as
 /// the model is concerned).
 pub struct Problem {
     pub(crate) scene: Arc<Scene>,
     pub(crate) core: SharedCore,
+    /// The push headings of the scene, made on first use (where the hand cannot get
+    /// behind the goal object they measure its reach: inverse kinematics, once).
+    push_heading: OnceLock<Arc<PushHeading>>,
 }
 
 impl Problem {
@@ -23,7 +26,16 @@ impl Problem {
         Problem {
             core: SharedCore::new(&scene),
             scene: Arc::new(scene),
+            push_heading: OnceLock::new(),
         }
+    }
+
+    /// The push headings of the scene ([`PushHeading`]), shared by every projection and
+    /// control sampler made from this problem.
+    pub(crate) fn push_heading(&self) -> Arc<PushHeading> {
+        self.push_heading
+            .get_or_init(|| Arc::new(PushHeading::new(&self.scene)))
+            .clone()
     }
 
     /// Loads a scene file (boxed for C++).

@@ -18,7 +18,7 @@ use std::sync::Arc;
 pub struct Projection {
     core: SharedCore,
     scene: Arc<Scene>,
-    push_heading: PushHeading,
+    push_heading: Arc<PushHeading>,
     /// A state's object poses (called for every state of every motion: a kept buffer).
     objects: RefCell<Vec<Pose2>>,
 }
@@ -28,7 +28,7 @@ impl Projection {
     pub fn new(problem: &Problem) -> Box<Projection> {
         Box::new(Projection {
             core: problem.core.clone(),
-            push_heading: PushHeading::new(&problem.scene),
+            push_heading: problem.push_heading(),
             scene: problem.scene.clone(),
             objects: RefCell::new(Vec::new()),
         })
