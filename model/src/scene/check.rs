@@ -305,18 +305,34 @@ fn unreachable_behind(
 /// (docs/notes/any-arm.md, "Goal objects beyond the reach"). False for a planar hand or
 /// without an object goal.
 pub fn goal_object_beyond_reach(scene: &Scene) -> bool {
+    goal_object_and_base(scene).is_some_and(|g| {
+        (g.p_WO - g.p_WBase).norm() > (g.center - g.p_WBase).norm() && !reaches(scene, g.p_WO)
+    })
+}
+
+/// An arm's object goal, with where the arm and the goal object stand (world xy, m).
+#[allow(non_snake_case)] // frame-named points
+struct GoalObjectAndBase {
+    object: usize,
+    /// The goal disc's centre.
+    center: Vector2<f64>,
+    /// The base's origin.
+    p_WBase: Vector2<f64>,
+    /// The goal object's centre at the start.
+    p_WO: Vector2<f64>,
+}
+
+/// [`GoalObjectAndBase`] of an arm's scene with an object goal; None otherwise.
+fn goal_object_and_base(scene: &Scene) -> Option<GoalObjectAndBase> {
     let Goal::ObjectInDisc { object, center, .. } = &scene.goal else {
-        return false;
+        return None;
     };
-    if scene.robot.kind != RobotKind::Arm {
-        return false;
-    }
-    #[allow(non_snake_case)] // the base's origin and the goal object's centre, world xy
-    let (p_WBase, p_WO) = (
-        scene.robot.chain.base.translation.vector.xy(),
-        scene.start.objects[*object].translation(),
-    );
-    (p_WO - p_WBase).norm() > (center - p_WBase).norm() && !reaches(scene, p_WO)
+    (scene.robot.kind == RobotKind::Arm).then(|| GoalObjectAndBase {
+        object: *object,
+        center: *center,
+        p_WBase: scene.robot.chain.base.translation.vector.xy(),
+        p_WO: scene.start.objects[*object].translation(),
+    })
 }
 
 /// How closely (m) [`reach_behind_goal_object`] brackets the hand's reach.
@@ -332,21 +348,16 @@ const REACH_PRECISION: f64 = 0.01;
 /// push headings use this one radius in every direction; it costs a few
 /// inverse-kinematics searches, which is why only such scenes pay for it.
 pub fn reach_behind_goal_object(scene: &Scene) -> Option<f64> {
-    let Goal::ObjectInDisc { object, center, .. } = &scene.goal else {
-        return None;
-    };
+    let goal = goal_object_and_base(scene)?;
     if scene.goal.is_satisfied(&scene.start) {
         return None;
     }
-    let behind = unreachable_behind(scene, *object, *center)?;
-    #[allow(non_snake_case)] // the base's origin and the goal object's centre, world xy
-    let (p_WBase, p_WO) = (
-        scene.robot.chain.base.translation.vector.xy(),
-        scene.start.objects[*object].translation(),
-    );
+    let behind = unreachable_behind(scene, goal.object, goal.center)?;
+    #[allow(non_snake_case)] // the base's origin in the world frame
+    let p_WBase = goal.p_WBase;
     let ray = behind.point - p_WBase;
     let (mut out, direction) = (ray.norm(), ray.normalize());
-    let near_side = (p_WO - p_WBase).norm() - behind.standoff;
+    let near_side = (goal.p_WO - p_WBase).norm() - behind.standoff;
     let mut within = if near_side > 0.0 && reaches(scene, p_WBase + direction * near_side) {
         near_side
     } else {

@@ -382,9 +382,7 @@ pub fn generate(
         let yaml = match design {
             Design::Paper => (0..10_000)
                 .map(|_| scene.yaml(&paper_layout(setup, n, &mut rng), PAPER_DESIGN))
-                .find(|yaml| {
-                    Scene::from_yaml(yaml, &path).is_ok_and(|s| !goal_object_beyond_reach(&s))
-                }),
+                .find(|yaml| loads_pushable(yaml, &path)),
             Design::Dense => {
                 let layout = Layout::ALL[i % Layout::ALL.len()];
                 (0..100).find_map(|_| dense_layout(&scene, layout, n, &mut rng))
@@ -697,6 +695,12 @@ fn place_clutter(
     Some(())
 }
 
+/// Does the scene text load, its goal object where the arm can push it toward the goal
+/// ([`goal_object_beyond_reach`])?
+fn loads_pushable(yaml: &str, path: &Path) -> bool {
+    Scene::from_yaml(yaml, path).is_ok_and(|s| !goal_object_beyond_reach(&s))
+}
+
 /// Placed designs are modelled with objects pushing objects: a pushed object that meets
 /// a neighbour pushes it along, as it would on a real table (executed in 3D, such plans
 /// reach the goal at least as often as plans that keep objects apart; `BENCHMARKS.md`).
@@ -717,12 +721,10 @@ impl SceneText<'_> {
         Scene::from_yaml(&self.yaml(placed, design), self.path).is_ok()
     }
 
-    /// Does the scene of `placed` load, its goal object where the arm can push it toward
-    /// the goal ([`goal_object_beyond_reach`])? Asked once the goal object (and walls) are
-    /// placed: clutter does not change it.
+    /// [`loads_pushable`] for the scene of `placed`, asked once the goal object (and
+    /// walls) are placed: clutter does not change it.
     fn goal_object_pushable(&self, placed: &Placement, design: &str) -> bool {
-        Scene::from_yaml(&self.yaml(placed, design), self.path)
-            .is_ok_and(|s| !goal_object_beyond_reach(&s))
+        loads_pushable(&self.yaml(placed, design), self.path)
     }
 
     /// The scene file of `placed`.
