@@ -103,9 +103,9 @@ for planner in sorted({key[2] for key in rows}):
     print(f"{planner}: {sum(r['solved'] for r in mine)} of {sum(r['runs'] for r in mine)} solved within {limit:g} s; "
           f"EE travel per metre the goal object moved, median {median(raw)} as found, {median(cut)} after shortcutting")
 
-# Budgets: runs solved within each budget up to the limit (every run's time to solve is
-# known up to it), per cell, each planner against push_kpiece: how many cells it is ahead
-# of push_kpiece in (solves more within the budget).
+# Budgets: runs solved within each budget up to the limit (RETRY's, if given), per
+# planner; per cell, whether push_kpiece solves more than the best other planner within
+# the budget, as many, or fewer (those cells named).
 planners = sorted({key[2] for key in rows})
 if "push_kpiece" in planners and len(planners) > 1:
     budgets = [b for b in (1, 2, 5, 10, 20, 30, 45, 60, 120, 300, 600) if b <= max(limit, retry)]
