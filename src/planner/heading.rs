@@ -36,9 +36,9 @@ const STAND_TURNS: usize = 6;
 /// The geometry push headings need, fixed per scene.
 #[derive(Clone, Debug)]
 pub struct PushHeading {
-    /// How far the end effector reaches from the tool point (m,
-    /// [`crate::robot::Robot::tool_reach`]).
-    tool_reach: f64,
+    /// Per object: tool point to its centre when the hand stands just behind it (m,
+    /// [`Scene::push_standoff`]).
+    standoffs: Vec<f64>,
     /// Per object: the bounding radius of its footprint (m).
     radii: Vec<f64>,
     /// The least gap between two objects a plan keeps (m, `physics.object_clearance`).
@@ -158,7 +158,9 @@ impl PushHeading {
             _ => None,
         };
         PushHeading {
-            tool_reach: scene.robot.tool_reach(),
+            standoffs: (0..scene.objects.len())
+                .map(|i| scene.push_standoff(i))
+                .collect(),
             radii: scene.objects.iter().map(|o| o.bounding_radius).collect(),
             clearance: scene.physics.object_clearance,
             goal,
@@ -209,7 +211,7 @@ impl PushHeading {
 
     /// Tool point to the centre of `object` (m) when the hand stands just behind it.
     fn standoff(&self, object: usize) -> f64 {
-        self.radii[object] + self.tool_reach
+        self.standoffs[object]
     }
 
     /// Can the hand stand behind `object`, at `p_WB`, to push it along the unit `push`?
@@ -453,7 +455,7 @@ mod tests {
         reach: Option<StandingRoom>,
     ) -> PushHeading {
         PushHeading {
-            tool_reach,
+            standoffs: vec![0.05 + tool_reach; objects],
             radii: vec![0.05; objects],
             clearance: 0.01,
             goal: Some(GoalDisc {
@@ -467,7 +469,7 @@ mod tests {
 
     fn heading_at(object: Vector2<f64>, tool: Vector2<f64>) -> Vector2<f64> {
         let h = PushHeading {
-            tool_reach: 0.05,
+            standoffs: vec![0.1],
             radii: vec![0.05],
             clearance: 0.01,
             goal: None,

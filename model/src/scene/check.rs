@@ -293,7 +293,7 @@ fn unreachable_behind(
     #[allow(non_snake_case)] // the object's centre in the world frame
     let p_WO = scene.start.objects[object].translation();
     let away = (p_WO - center).try_normalize(1e-9)?;
-    let standoff = scene.objects[object].bounding_radius + scene.robot.tool_reach();
+    let standoff = scene.push_standoff(object);
     let point = p_WO + away * standoff;
     (!reaches(scene, point)).then_some(UnreachableBehind { point, standoff })
 }

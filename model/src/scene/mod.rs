@@ -319,6 +319,15 @@ impl Goal {
 }
 
 impl Scene {
+    /// How far the tool point stands from the centre of `object` when the hand stands just
+    /// behind it to push (m): the object's bounding radius and the end effector's reach
+    /// beyond the tool point ([`crate::robot::Robot::tool_reach`]), so that no part of the
+    /// hand overlaps the object from any side. The push headings stand the hand there; the
+    /// scene check asks whether the arm reaches it.
+    pub fn push_standoff(&self, object: usize) -> f64 {
+        self.objects[object].bounding_radius + self.robot.tool_reach()
+    }
+
     /// The scene of the Static RRT baseline: every movable object except the goal object
     /// becomes a static obstacle where it starts.
     pub fn with_static_clutter(&self) -> Scene {
