@@ -333,7 +333,8 @@ namespace pushplan
         /// Plans from `start` (a state observed while a plan runs) instead of the scene's
         /// start. The state is checked as a scene's start is: an arm's tool is brought onto
         /// its pushing plane, then joint limits and every validity rule; pushplan::Error if
-        /// it fails (an object inside the arm, two objects pressed together).
+        /// it fails (an object deep inside the arm, two objects pressed more than 2 cm into
+        /// each other; shallower, they are moved out to touch).
         Plan solveFrom(const Observation &start, const Options &options = Options()) const;
 
         /// Closing the loop: the rest of `plan` (of this planner) from a state observed at

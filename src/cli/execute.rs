@@ -154,7 +154,7 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
             t.search_time,
             match t.separations {
                 0 => String::new(),
-                s => format!("; {s} observations had an object inside the arm"),
+                s => format!("; {s} observations had an object inside the arm or another object"),
             },
             if t.tipped.is_empty() {
                 String::new()

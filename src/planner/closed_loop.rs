@@ -72,8 +72,8 @@ pub struct ClosedLoopTrial {
     pub cut_short: usize,
     /// Observations after which the rest of the plan still reached the goal.
     pub kept: usize,
-    /// Observations with an object inside the arm, taken to touch it instead
-    /// ([`Scene::with_start`]: a soft contact's depth).
+    /// Observations with an object inside the arm or inside another object, moved out to
+    /// touch it instead ([`Scene::with_start`]: a soft contact's depth).
     pub separations: usize,
     /// Re-planning searches that found a plan.
     pub replans: usize,

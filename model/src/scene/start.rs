@@ -3,14 +3,15 @@
 //!
 //! A world the model only approximates leaves states the model would never reach itself,
 //! and a robot must still go on from them: an object pushed partly over the table's edge
-//! that still stands, an object the hand has sunk a few millimetres into (a soft contact,
-//! or perception's error), a joint a hair past its limit once the tool is brought back
-//! onto its plane. These are taken as they physically are, within bounds; anything
+//! that still stands, an object the hand has sunk a few millimetres into, two objects
+//! pressed a few millimetres into each other (a soft contact, or perception's error), a
+//! joint a hair past its limit once the tool is brought back onto its plane. These are taken as they physically are, within bounds; anything
 //! further is refused.
 
 #![allow(non_snake_case)] // frame-named points: p_WL, a link's point in the world frame
 
 use super::{Clearances, Scene};
+use crate::collision::footprint::{self, FootprintContact};
 use crate::contact::{find_arm_contacts, object_bounds, ArmBounds, ArmContact};
 use crate::error::{Error, Result};
 use crate::math::Pose2;
@@ -19,8 +20,9 @@ use crate::state::State;
 use nalgebra::{DVector, Vector2};
 use std::path::Path;
 
-/// The most an observed object inside the arm is moved out to touch it (m): a soft
-/// contact's depth or perception's error, not an object the arm passes through.
+/// The most an observed object inside the arm, or inside another object, is moved out to
+/// touch it (m): a soft contact's depth or perception's error, not an object the arm
+/// passes through or two objects standing in one place.
 pub const MAX_SEPARATION: f64 = 0.02;
 
 /// The most an observed joint may lie past its limit once the tool is on its plane (rad,
@@ -98,7 +100,8 @@ impl Scene {
                 ));
             }
         }
-        self.separate_from_arm(&mut scene.start)
+        self.separate_objects(&mut scene.start)
+            .and_then(|()| self.separate_from_arm(&mut scene.start))
             .map_err(|(object, message)| invalid(format!("objects.{object}"), message))?;
         scene.clearances = Clearances::at_start(&scene).with_start_overhangs(&scene);
         crate::validity::check_state(&scene, &scene.start).map_err(|reason| {
@@ -136,6 +139,76 @@ impl Scene {
             }
         }
         Ok(()) // what is left past a limit is refused by the caller, with the joint named
+    }
+
+    /// Moves apart every two objects of `state` whose footprints overlap beyond
+    /// `physics.overlap_tolerance` (what the validity rules refuse), the deepest pair first,
+    /// each by half the depth and a tenth of a millimetre along the contact's normal, until
+    /// none does; an object moved further than [`MAX_SEPARATION`] in all is refused (its
+    /// name, the other's and the depth). MuJoCo's soft contacts leave two objects pressed
+    /// together a few millimetres into each other, and so may perception.
+    fn separate_objects(&self, state: &mut State) -> std::result::Result<(), (String, String)> {
+        let tolerance = self.physics.overlap_tolerance;
+        let start: Vec<Pose2> = state.objects.clone();
+        let mut found = Vec::new();
+        // Rounds: moving two objects apart may take one into a third.
+        for _ in 0..16 {
+            let mut deepest: Option<(usize, usize, FootprintContact)> = None;
+            for (i, a) in self.objects.iter().enumerate() {
+                for (j, b) in self.objects.iter().enumerate().skip(i + 1) {
+                    let (pose_a, pose_b) = (&state.objects[i], &state.objects[j]);
+                    let reach = a.bounding_radius + b.bounding_radius;
+                    if (pose_a.translation() - pose_b.translation()).norm() >= reach {
+                        continue;
+                    }
+                    found.clear();
+                    footprint::contacts(
+                        &a.footprint,
+                        pose_a,
+                        &b.footprint,
+                        pose_b,
+                        0.0,
+                        &mut found,
+                    );
+                    let Some(contact) = found.iter().min_by(|x, y| x.gap.total_cmp(&y.gap)) else {
+                        continue;
+                    };
+                    if contact.gap < -tolerance
+                        && deepest.is_none_or(|(_, _, d)| contact.gap < d.gap)
+                    {
+                        deepest = Some((i, j, *contact));
+                    }
+                }
+            }
+            let Some((i, j, contact)) = deepest else {
+                return Ok(());
+            };
+            let refused = || {
+                (
+                    self.objects[j].name.clone(),
+                    format!(
+                        "object '{}' overlaps it by {:.1} mm, further than the {} mm an \
+                         observation may be off",
+                        self.objects[i].name,
+                        -contact.gap * 1e3,
+                        MAX_SEPARATION * 1e3
+                    ),
+                )
+            };
+            if -contact.gap > MAX_SEPARATION {
+                return Err(refused());
+            }
+            // The normal points out of `i` toward `j`: each moves half the depth its way.
+            let half = contact.normal * (0.5 * (-contact.gap + 1e-4));
+            for (k, shift) in [(i, -half), (j, half)] {
+                let pose = &mut state.objects[k];
+                *pose = Pose2::new(pose.x + shift.x, pose.y + shift.y, pose.theta);
+                if (pose.translation() - start[k].translation()).norm() > MAX_SEPARATION {
+                    return Err(refused());
+                }
+            }
+        }
+        Ok(()) // the validity check names what is left
     }
 
     /// Moves every object of `state` that the arm's links reach into beyond

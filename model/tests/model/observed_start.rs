@@ -224,3 +224,50 @@ goal: {object: box, center: [0.85, 0.1], radius: 0.1}";
     observed.objects[0].x = hand_front + 0.05 - 0.025;
     refused_naming_the_box(&scene, &observed);
 }
+
+#[test]
+fn two_objects_observed_pressed_into_each_other_are_moved_apart_as_far_as_they_overlap() {
+    // Benchmark 25's glass_5 observed against glass_4 (both 35 mm discs), 3 mm into it:
+    // a soft contact's depth. Each goes half the depth (and 0.05 mm) back along the line
+    // between their centres, so their centres end 2 x 35 mm + 0.1 mm apart; nothing else
+    // moves. 25 mm into it is more than an observation may be off: refused, both named.
+    let scene = Scene::load("scenes/benchmark/scene_25.yaml").unwrap();
+    let (a, b) = (4, 5);
+    assert_eq!(
+        (&*scene.objects[a].name, &*scene.objects[b].name),
+        ("glass_4", "glass_5")
+    );
+    let pressed = |depth: f64| {
+        let mut observed = scene.start.clone();
+        let p = observed.objects[a];
+        observed.objects[b] = pushplan_model::Pose2::new(p.x - (0.070 - depth), p.y, 0.3);
+        observed
+    };
+    let observed = pressed(0.003);
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    let (pa, pb) = (from.start.objects[a], from.start.objects[b]);
+    assert!(
+        ((pa.x - pb.x) - (0.070 + 1e-4)).abs() < 1e-12,
+        "{pa:?} {pb:?}"
+    );
+    assert!((pa.x - observed.objects[a].x - 0.00155).abs() < 1e-12);
+    assert!(
+        (pa.y - observed.objects[a].y).abs() < 1e-12
+            && (pb.y - observed.objects[b].y).abs() < 1e-12
+    );
+    for (i, (now, seen)) in from.start.objects.iter().zip(&observed.objects).enumerate() {
+        if i != a && i != b {
+            assert_eq!(now, seen, "object {i} stays where it was observed");
+        }
+    }
+    let error = scene
+        .with_start(&pressed(0.025), Path::new("observed.json"))
+        .unwrap_err();
+    assert!(
+        matches!(&error, Error::Invalid { field, message, .. }
+            if field == "objects.glass_5" && message.contains("'glass_4' overlaps it by 25.0 mm")),
+        "{error}"
+    );
+}
