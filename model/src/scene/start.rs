@@ -144,9 +144,10 @@ impl Scene {
     /// Moves apart every two objects of `state` whose footprints overlap beyond
     /// `physics.overlap_tolerance` (what the validity rules refuse), the deepest pair first,
     /// each by half the depth and a tenth of a millimetre along the contact's normal, until
-    /// none does; an object moved further than [`MAX_SEPARATION`] in all is refused (its
-    /// name, the other's and the depth). MuJoCo's soft contacts leave two objects pressed
-    /// together a few millimetres into each other, and so may perception.
+    /// none does. An overlap deeper than [`MAX_SEPARATION`], or an object moved further than
+    /// that in all (overlaps passed along a row of objects), is refused, both objects
+    /// named. MuJoCo's soft contacts leave two objects pressed together a few millimetres
+    /// into each other, and so may perception.
     fn separate_objects(&self, state: &mut State) -> std::result::Result<(), (String, String)> {
         let tolerance = self.physics.overlap_tolerance;
         let start: Vec<Pose2> = state.objects.clone();
@@ -183,28 +184,39 @@ impl Scene {
             let Some((i, j, contact)) = deepest else {
                 return Ok(());
             };
-            let refused = || {
-                (
-                    self.objects[j].name.clone(),
+            let (name_i, name_j) = (&self.objects[i].name, &self.objects[j].name);
+            if -contact.gap > MAX_SEPARATION {
+                return Err((
+                    name_j.clone(),
                     format!(
-                        "object '{}' overlaps it by {:.1} mm, further than the {} mm an \
+                        "object '{name_i}' overlaps it by {:.1} mm, further than the {} mm an \
                          observation may be off",
-                        self.objects[i].name,
                         -contact.gap * 1e3,
                         MAX_SEPARATION * 1e3
                     ),
-                )
-            };
-            if -contact.gap > MAX_SEPARATION {
-                return Err(refused());
+                ));
             }
             // The normal points out of `i` toward `j`: each moves half the depth its way.
             let half = contact.normal * (0.5 * (-contact.gap + 1e-4));
             for (k, shift) in [(i, -half), (j, half)] {
                 let pose = &mut state.objects[k];
                 *pose = Pose2::new(pose.x + shift.x, pose.y + shift.y, pose.theta);
-                if (pose.translation() - start[k].translation()).norm() > MAX_SEPARATION {
-                    return Err(refused());
+                let moved = (pose.translation() - start[k].translation()).norm();
+                if moved > MAX_SEPARATION {
+                    let (name, other) = if k == i {
+                        (name_i, name_j)
+                    } else {
+                        (name_j, name_i)
+                    };
+                    return Err((
+                        name.clone(),
+                        format!(
+                            "moved {:.1} mm in all to stand clear of the objects it overlaps \
+                             (last '{other}'), further than the {} mm an observation may be off",
+                            moved * 1e3,
+                            MAX_SEPARATION * 1e3
+                        ),
+                    ));
                 }
             }
         }
