@@ -11,8 +11,10 @@
 #![allow(non_snake_case)] // frame-named points: p_WL, a link's point in the world frame
 
 use super::{Clearances, Scene};
-use crate::collision::footprint::{self, FootprintContact};
-use crate::contact::{find_arm_contacts, object_bounds, ArmBounds, ArmContact};
+use crate::contact::{
+    find_arm_contacts, object_bounds, object_pair_contacts, ArmBounds, ArmContact,
+    ObjectPairContact,
+};
 use crate::error::{Error, Result};
 use crate::math::Pose2;
 use crate::robot::RobotKind;
@@ -151,53 +153,42 @@ impl Scene {
     fn separate_objects(&self, state: &mut State) -> std::result::Result<(), (String, String)> {
         let tolerance = self.physics.overlap_tolerance;
         let start: Vec<Pose2> = state.objects.clone();
-        let mut found = Vec::new();
+        let (mut scratch, mut pairs) = (Vec::new(), Vec::new());
         // Rounds: moving two objects apart may take one into a third.
         for _ in 0..16 {
-            let mut deepest: Option<(usize, usize, FootprintContact)> = None;
-            for (i, a) in self.objects.iter().enumerate() {
-                for (j, b) in self.objects.iter().enumerate().skip(i + 1) {
-                    let (pose_a, pose_b) = (&state.objects[i], &state.objects[j]);
-                    let reach = a.bounding_radius + b.bounding_radius;
-                    if (pose_a.translation() - pose_b.translation()).norm() >= reach {
-                        continue;
-                    }
-                    found.clear();
-                    footprint::contacts(
-                        &a.footprint,
-                        pose_a,
-                        &b.footprint,
-                        pose_b,
-                        0.0,
-                        &mut found,
-                    );
-                    let Some(contact) = found.iter().min_by(|x, y| x.gap.total_cmp(&y.gap)) else {
-                        continue;
-                    };
-                    if contact.gap < -tolerance
-                        && deepest.is_none_or(|(_, _, d)| contact.gap < d.gap)
-                    {
-                        deepest = Some((i, j, *contact));
-                    }
-                }
+            pairs.clear();
+            for i in 0..self.objects.len() {
+                object_pair_contacts(self, &state.objects, i, 0.0, &mut scratch, &mut pairs);
             }
-            let Some((i, j, contact)) = deepest else {
+            // Each pair once (`from` the lower index), the first of the deepest.
+            let deepest = pairs
+                .iter()
+                .filter(|c| c.from < c.into && c.gap < -tolerance)
+                .min_by(|a, b| a.gap.total_cmp(&b.gap));
+            let Some(&ObjectPairContact {
+                from: i,
+                into: j,
+                normal,
+                gap,
+                ..
+            }) = deepest
+            else {
                 return Ok(());
             };
             let (name_i, name_j) = (&self.objects[i].name, &self.objects[j].name);
-            if -contact.gap > MAX_SEPARATION {
+            if -gap > MAX_SEPARATION {
                 return Err((
                     name_j.clone(),
                     format!(
                         "object '{name_i}' overlaps it by {:.1} mm, further than the {} mm an \
                          observation may be off",
-                        -contact.gap * 1e3,
+                        -gap * 1e3,
                         MAX_SEPARATION * 1e3
                     ),
                 ));
             }
             // The normal points out of `i` toward `j`: each moves half the depth its way.
-            let half = contact.normal * (0.5 * (-contact.gap + 1e-4));
+            let half = normal * (0.5 * (-gap + 1e-4));
             for (k, shift) in [(i, -half), (j, half)] {
                 let pose = &mut state.objects[k];
                 *pose = Pose2::new(pose.x + shift.x, pose.y + shift.y, pose.theta);
