@@ -10,7 +10,10 @@
 # each plan closed loop (`execute --closed-loop`, the same trials and worlds), into
 # OUT_DIR/*.closed.{json,txt}, with CLOSED_LOOP_ARGS (e.g. "--replan-shortcut 0.1 --replan-budget 60");
 # OPEN_LOOP=0 then skips the open-loop plays. REUSE_PLANS=1 judges the plans already in
-# OUT_DIR (FOLDER_scene_NN.json with its .plan.txt) instead of planning again.
+# OUT_DIR (FOLDER_scene_NN.json with its .plan.txt) instead of planning again. JOBS runs
+# that many scenes at a time (default 1; each scene's runs stay one after the other).
+# Closed-loop runs write a line per finished trial to FOLDER_scene_NN.ENGINE.closed.log as
+# they go (and their errors, if any).
 #
 #   benches/execution.sh OUT_DIR [PUSHPLAN_BINARY]
 #
@@ -30,30 +33,47 @@ done
 for scene in "${scenes[@]}"; do
   [ -f "$scene" ] || { echo "$scene: no such scene file" >&2; exit 2; }
 done
-for scene in "${scenes[@]}"; do
+# One scene: plan (or reuse), check, play; its summary lines go to OUT_DIR/NAME.summary.
+judge() {
+  local scene=$1 n e line
   # Named by folder and file: scenes of two folders may share a file name.
   n=$(basename "$(dirname "$scene")")_$(basename "$scene" .yaml)
+  local summary="$out/$n.summary"
+  : > "$summary"
   if [ -z "${REUSE_PLANS:-}" ] || [ ! -f "$out/$n.plan.txt" ]; then
     # shellcheck disable=SC2086
     "$bin" plan "$scene" --seed "${SEED:-1}" --time "${TIME:-10}" ${PLAN_ARGS:-} --out "$out/$n.json" --quiet > "$out/$n.plan.txt" 2>&1
   fi
   if grep -v '^warning:' "$out/$n.plan.txt" | head -1 | grep -q '^solved'; then
     "$bin" check "$out/$n.json" --noise "$trials" --path-only > "$out/$n.check.txt" 2>&1
-    echo "$n: $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$out/summary.txt"
+    echo "$n: $(grep -o 'perturbed re-simulations: [0-9]* of [0-9]*' "$out/$n.check.txt")" >> "$summary"
     for e in "${engines[@]}"; do
       if [ "${OPEN_LOOP:-1}" != 0 ]; then
         "$bin" execute "$out/$n.json" --engine "$e" --trials "$trials" --json "$out/$n.$e.exec.json" > "$out/$n.$e.exec.txt" 2>&1
-        echo "$n $e: $(head -1 "$out/$n.$e.exec.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
+        echo "$n $e: $(head -1 "$out/$n.$e.exec.txt" | sed 's/.*speed: //')" >> "$summary"
       fi
       if [ -n "${CLOSED_LOOP:-}" ]; then
         # shellcheck disable=SC2086
-        "$bin" execute "$out/$n.json" --engine "$e" --closed-loop --trials "$trials" ${CLOSED_LOOP_ARGS:-} --json "$out/$n.$e.closed.json" > "$out/$n.$e.closed.txt" 2>&1
-        echo "$n $e closed loop: $(head -1 "$out/$n.$e.closed.txt" | sed 's/.*speed: //')" >> "$out/summary.txt"
+        "$bin" execute "$out/$n.json" --engine "$e" --closed-loop --trials "$trials" ${CLOSED_LOOP_ARGS:-} --json "$out/$n.$e.closed.json" > "$out/$n.$e.closed.txt" 2> "$out/$n.$e.closed.log"
+        # The report's first line, or the error that stopped it.
+        line=$(head -1 "$out/$n.$e.closed.txt")
+        [ -n "$line" ] || line=$(tail -1 "$out/$n.$e.closed.log")
+        echo "$n $e closed loop: ${line/*speed: /}" >> "$summary"
       fi
     done
   else
-    echo "$n: not solved" >> "$out/summary.txt"
+    echo "$n: not solved" >> "$summary"
   fi
+}
+running=0
+for scene in "${scenes[@]}"; do
+  if [ "$running" -ge "${JOBS:-1}" ]; then wait -n; running=$((running - 1)); fi
+  judge "$scene" &
+  running=$((running + 1))
+done
+wait
+for scene in "${scenes[@]}"; do
+  cat "$out/$(basename "$(dirname "$scene")")_$(basename "$scene" .yaml).summary" >> "$out/summary.txt"
 done
 for e in "${engines[@]}"; do
   reached=$(cat "$out"/*."$e".exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')

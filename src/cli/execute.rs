@@ -1,7 +1,9 @@
 //! `pushplan execute`: play a plan in the 3D engine, open loop or closed loop, and report
 //! what happened.
 
-use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopReport, ClosedLoopSettings};
+use pushplan::planner::closed_loop::{
+    ClosedLoop, ClosedLoopReport, ClosedLoopSettings, ClosedLoopTrial,
+};
 use pushplan::planner::Search;
 use pushplan::planning::execute::{EngineKind, ExecuteSettings, ExecutionReport, DRIFT};
 use pushplan::planning::plan_file::PlanFile;
@@ -99,7 +101,10 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                 },
                 execution,
             };
-            let report = closed.trials(&scene, &plan.path_controls())?;
+            // One line per finished trial on stderr, the report on stdout once all are done.
+            let report = closed.trials_reporting(&scene, &plan.path_controls(), |i, t| {
+                eprintln!("{}", closed_loop_trial_line(i, trials, t));
+            })?;
             print_closed_loop(path, &report, speed, engine);
             (serde_json::to_string_pretty(&report), report.success_rate)
         }
@@ -139,34 +144,40 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
         report.decision_latency_median,
     );
     for (i, t) in report.trials.iter().enumerate() {
-        println!(
-            "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans ({} repairs){}, {:.1} s searching{}{}{}",
-            trial_outcome(i, n, t.reached, t.goal_distance),
-            t.controls_played,
-            t.cut_short,
-            t.kept,
-            t.replans,
-            t.repairs,
-            match t.failed_replans {
-                0 => String::new(),
-                f => format!(", {f} more found nothing in time"),
-            },
-            t.search_time,
-            match t.separations {
-                0 => String::new(),
-                s => format!("; {s} observations had an object inside the arm or another object"),
-            },
-            if t.tipped.is_empty() {
-                String::new()
-            } else {
-                format!("; tipped: {}", t.tipped.join(", "))
-            },
-            t.stopped
-                .as_ref()
-                .map(|why| format!("; stopped: {why}"))
-                .unwrap_or_default(),
-        );
+        println!("{}", closed_loop_trial_line(i, n, t));
     }
+}
+
+/// A closed-loop trial's line: outcome, controls, re-plans, time, and why it stopped.
+fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
+    format!(
+        "  {}; {} controls played ({} cut short), rest kept {} times, {} re-plans ({} repairs){}, {:.1} s searching, {:.0} s in all{}{}{}",
+        trial_outcome(i, n, t.reached, t.goal_distance),
+        t.controls_played,
+        t.cut_short,
+        t.kept,
+        t.replans,
+        t.repairs,
+        match t.failed_replans {
+            0 => String::new(),
+            f => format!(", {f} more found nothing in time"),
+        },
+        t.search_time,
+        t.wall_time,
+        match t.separations {
+            0 => String::new(),
+            s => format!("; {s} observations had an object inside the arm or another object"),
+        },
+        if t.tipped.is_empty() {
+            String::new()
+        } else {
+            format!("; tipped: {}", t.tipped.join(", "))
+        },
+        t.stopped
+            .as_ref()
+            .map(|why| format!("; stopped: {why}"))
+            .unwrap_or_default(),
+    )
 }
 
 fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {

@@ -20,7 +20,7 @@ use crate::state::State;
 use nalgebra::DVector;
 use serde::Serialize;
 use std::path::Path;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// How a closed-loop execution plays and re-plans.
 #[derive(Clone, Debug, PartialEq)]
@@ -93,6 +93,9 @@ pub struct ClosedLoopTrial {
     pub replan_latencies: Vec<f64>,
     /// Why the execution stopped before the plan's end, if it did.
     pub stopped: Option<String>,
+    /// Wall-clock time the trial took: the engine's simulation, the re-simulations, the
+    /// searches and the shortcutting (s).
+    pub wall_time: f64,
 }
 
 /// A closed-loop executor: it plays trials as `execution` says (their count, worlds, pace
@@ -119,6 +122,7 @@ impl ClosedLoop<'_> {
         plan: &[PathControl],
         world_scene: &Scene,
     ) -> Result<ClosedLoopTrial, String> {
+        let began = Instant::now();
         let settings = &self.settings;
         let robot = &scene.robot;
         let objects = scene.objects.len();
@@ -146,6 +150,7 @@ impl ClosedLoop<'_> {
             latencies: Vec::new(),
             replan_latencies: Vec::new(),
             stopped: None,
+            wall_time: 0.0,
         };
         let mut tipped = vec![false; objects];
         let mut q = scene.start.q.clone();
@@ -285,10 +290,17 @@ impl ClosedLoop<'_> {
                     / self.execution.speed)
                     .min(polish_left);
                 polish_left -= seconds;
-                let polish = ShortcutSettings::from_seconds(
-                    seconds,
-                    settings.seed ^ trial.controls_played as u64,
-                );
+                // The arm plays the control meanwhile: the work stops where the control ends,
+                // in wall-clock time too. A step among many objects in contact costs several
+                // times what `from_seconds` counts on (dense scenes), and a step budget alone
+                // would hold the arm far longer than the control lasts.
+                let polish = ShortcutSettings {
+                    deadline: Some(Instant::now() + Duration::from_secs_f64(seconds)),
+                    ..ShortcutSettings::from_seconds(
+                        seconds,
+                        settings.seed ^ trial.controls_played as u64,
+                    )
+                };
                 let polished = shortcut(
                     &mut Propagator::new(from.clone()),
                     next.final_state(),
@@ -326,6 +338,7 @@ impl ClosedLoop<'_> {
             .filter(|&i| tipped[i] && !world.object_fell_off(i))
             .map(|i| scene.objects[i].name.clone())
             .collect();
+        trial.wall_time = began.elapsed().as_secs_f64();
         Ok(trial)
     }
 
@@ -488,6 +501,18 @@ impl ClosedLoop<'_> {
     /// The execution's trials of `plan`, closed loop: the first in the scene as it is, the
     /// others in worlds perturbed by its noise, which the planner does not know.
     pub fn trials(&self, scene: &Scene, plan: &[PathControl]) -> Result<ClosedLoopReport, String> {
+        self.trials_reporting(scene, plan, |_, _| {})
+    }
+
+    /// [`ClosedLoop::trials`], telling `finished` of each trial as it ends (its index and
+    /// outcome): a dense scene's ten trials take minutes, and a run stopped before its
+    /// report keeps what its finished trials found.
+    pub fn trials_reporting(
+        &self,
+        scene: &Scene,
+        plan: &[PathControl],
+        mut finished: impl FnMut(usize, &ClosedLoopTrial),
+    ) -> Result<ClosedLoopReport, String> {
         let mut done = Vec::with_capacity(self.execution.trials);
         for (trial, world) in trial_worlds(scene, &self.execution).enumerate() {
             let each = ClosedLoop {
@@ -498,7 +523,9 @@ impl ClosedLoop<'_> {
                 execution: self.execution.clone(),
                 ..*self
             };
-            done.push(each.execute(scene, plan, &world?)?);
+            let outcome = each.execute(scene, plan, &world?)?;
+            finished(trial, &outcome);
+            done.push(outcome);
         }
         let decisions = sorted(done.iter().flat_map(|t| t.latencies.iter().copied()));
         let replans = sorted(done.iter().flat_map(|t| t.replan_latencies.iter().copied()));

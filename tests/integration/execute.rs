@@ -554,9 +554,28 @@ fn execute_closed_loop_reports_trials_replans_and_latency() {
     assert_eq!(code, 0, "{stdout}{stderr}");
     assert!(stdout.contains("executed 2 times closed loop"), "{stdout}");
     assert!(stdout.contains("re-planning latency median"), "{stdout}");
+    // Each trial is told on stderr as it ends (long runs show their progress), in order,
+    // and in the report again.
+    let told: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.contains("controls played"))
+        .collect();
+    assert_eq!(told.len(), 2, "{stderr}");
+    assert!(
+        told[0].trim_start().starts_with("trial 0 (nominal): "),
+        "{stderr}"
+    );
+    assert!(told[1].trim_start().starts_with("trial 1: "), "{stderr}");
+    for line in &told {
+        assert!(line.contains(" s in all"), "{line}");
+        assert!(stdout.contains(line), "{line} not in the report: {stdout}");
+    }
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(report["trials"].as_array().unwrap().len(), 2);
+    for trial in report["trials"].as_array().unwrap() {
+        assert!(trial["wall_time"].as_f64().unwrap() > 0.0, "{trial}");
+    }
     for field in [
         "success_rate",
         "replans_per_trial",
