@@ -72,13 +72,16 @@ pub struct ClosedLoopTrial {
     pub cut_short: usize,
     /// Observations after which the rest of the plan still reached the goal.
     pub kept: usize,
+    /// Observations after which the rest of the plan stopped being valid in the model
+    /// before its end (an object tipped or too close, the arm in collision).
+    pub invalid_rests: usize,
     /// Observations with an object inside the arm or inside another object, moved out to
     /// touch it instead ([`Scene::with_start`]: a soft contact's depth).
     pub separations: usize,
     /// Re-planning searches that found a plan.
     pub replans: usize,
-    /// Of those, the searches from the end of a rest that was still valid but ended short
-    /// of the goal: the rest kept, an ending added.
+    /// Of those, the searches from where the rest stopped being valid, or from its end
+    /// where it ended short of the goal: the rest kept up to there, an ending added.
     pub repairs: usize,
     /// Re-planning searches that found none in their time (the old rest played on).
     pub failed_replans: usize,
@@ -141,6 +144,7 @@ impl ClosedLoop<'_> {
             controls_played: 0,
             cut_short: 0,
             kept: 0,
+            invalid_rests: 0,
             separations: 0,
             replans: 0,
             repairs: 0,
@@ -190,6 +194,7 @@ impl ClosedLoop<'_> {
             let playing = Problem::new(margins_half_spent(&from), settings.planner);
             let simulated = playing.simulate(&rest, false);
             let rest_valid = simulated.stopped_by.is_none();
+            trial.invalid_rests += usize::from(!rest_valid);
             if rest_valid && still_reaches(&from.goal, simulated.final_state()) {
                 trial.kept += 1;
             } else {
@@ -218,12 +223,19 @@ impl ClosedLoop<'_> {
                     .min(budget_left);
                 let searching = Instant::now();
                 let index = trial.replans + trial.failed_replans;
-                // A rest that is still valid but ends short is kept and its end corrected
-                // (a warm start: the search begins where the rest ends, close to the
-                // goal, and finds a short ending fast); failing that, a new plan from the
-                // observed state.
-                let repaired = match rest_valid && !rest.is_empty() {
-                    true => self.repair(&from, &rest, simulated.final_state(), time, index),
+                // The rest is kept as far as it is valid (to its end if it ends short) and
+                // an ending is searched from there (a warm start: the search begins where
+                // the rest stops, most often close to the goal, and finds a short ending
+                // fast); failing that, a new plan from the observed state.
+                let valid_to = simulated.stopped_by.as_ref().map_or(rest.len(), |s| s.0);
+                let repaired = match valid_to > 0 {
+                    true => self.repair(
+                        &from,
+                        &rest[..valid_to],
+                        &simulated.states[valid_to],
+                        time,
+                        index,
+                    ),
                     false => Err(String::new()),
                 };
                 if repaired.is_ok() {
@@ -376,8 +388,9 @@ impl ClosedLoop<'_> {
         false
     }
 
-    /// `rest` (valid from `from`'s start, ending in `end` short of the goal) with an
-    /// ending searched from `end`, with a quarter of `time` ([`ClosedLoop::replan`]).
+    /// `rest` (valid from `from`'s start, ending in `end`: short of the goal, or where the
+    /// rest after it stops being valid) with an ending searched from `end`, with a quarter
+    /// of `time` ([`ClosedLoop::replan`]).
     fn repair(
         &self,
         from: &Scene,

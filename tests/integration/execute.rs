@@ -527,6 +527,82 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     );
 }
 
+/// Closed loop where the world has an obstacle on the plan's way that the model's scene
+/// has out of the way: a glass too slender to push upright (it tips below the hand's
+/// height) stands where the hand passes in the plan's third control or later. The first
+/// observation finds the rest of the plan invalid there; the rest is kept up to where it
+/// stops being valid and only an ending is searched from there (a repair), not a new plan
+/// from the start: with one re-plan allowed, that one is the repair.
+#[test]
+fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_there() {
+    use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
+    use pushplan::planning::execute::{ExecuteSettings, DRIFT};
+    use pushplan::planning::plan_file::PlanFile;
+    use pushplan::planning::Problem;
+    let scratch = common::Scratch::new("closed-loop-invalid-rest");
+    let scene_path = scratch.join("scene.yaml");
+    let base = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
+    // r / mu_g = 0.015 / 0.4 = 0.0375 m, below the hand's 0.05 m: pushing it tips it.
+    let glass = "  - name: glass\n    shape: {type: cylinder, radius: 0.015, height: 0.12}\n    pose: [0.32, -0.5, 0.0]\n    mass: 0.2\n    mu_g: 0.4\n    mu_c: 0.3\ngoal:";
+    std::fs::write(&scene_path, base.replacen("goal:", glass, 1)).unwrap();
+    let plan_path = scratch.join("plan.json");
+    common::plan_solved(
+        scene_path.to_str().unwrap(),
+        &plan_path,
+        &["--threads", "1"],
+    );
+    let plan = PlanFile::read(&plan_path).unwrap();
+    let scene = plan.load_scene(&plan_path).unwrap();
+    let controls = plan.path_controls();
+    assert!(controls.len() >= 4, "{} controls", controls.len());
+
+    // Where the hand is (its centre, x and y are its first joints) half way through the
+    // plan's second half; the glass in the world stands there.
+    let simulated = Problem::new(scene.clone(), plan.settings.planner).simulate(&controls, true);
+    assert!(simulated.valid());
+    let steps: usize = controls[..2].iter().map(|c| c.steps).sum();
+    let at = steps + 3 * (simulated.step_states.len() - 1 - steps) / 4;
+    let hand = &simulated.step_states[at].q;
+    let mut world = scene.clone();
+    world.start.objects[1].x = hand[0];
+    world.start.objects[1].y = hand[1];
+    let playing = Problem::new(world.clone(), plan.settings.planner).simulate(&controls, false);
+    let invalid_from = playing.stopped_by.as_ref().map(|s| s.0);
+    assert!(
+        invalid_from.is_some_and(|i| i >= 2),
+        "the plan is invalid in the world from its third control or later: {:?}",
+        playing.stopped_by
+    );
+
+    let closed_loop = ClosedLoop {
+        search: &pushplan::bridge::OmplSearch,
+        scene_path: &scene_path,
+        settings: ClosedLoopSettings {
+            planner: plan.settings.planner,
+            replan_time: 10.0,
+            replan_shortcut: 0.5,
+            polish: 2.0,
+            seed: 1,
+            max_replans: 1,
+            search_budget: 60.0,
+            tolerance: DRIFT,
+        },
+        execution: ExecuteSettings::default(),
+    };
+    let closed = closed_loop.execute(&scene, &controls, &world).unwrap();
+    assert!(closed.invalid_rests >= 1, "{closed:?}");
+    assert_eq!(
+        (closed.replans, closed.repairs),
+        (1, 1),
+        "the one re-plan kept the valid part and searched an ending: {closed:?}"
+    );
+    assert!(closed.controls_played >= 2, "{closed:?}");
+    assert!(
+        closed.tipped.is_empty(),
+        "the glass is not tipped: {closed:?}"
+    );
+}
+
 /// `execute --closed-loop` through the command line: every trial reported, with its
 /// re-plans and the latency figures, in the text and in the JSON report.
 #[test]
