@@ -153,9 +153,9 @@ enum Command {
         /// does not delay the arm).
         #[arg(long, default_value_t = 2.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_POLISH))]
         replan_polish: f64,
-        /// With --closed-loop: searches per trial at most (found or not); a trial that
-        /// needs more stops with a report.
-        #[arg(long, default_value_t = 50, value_name = "N", value_parser = within::count::<usize>(&limits::MAX_REPLANS))]
+        /// With --closed-loop: searches per trial at most (found or not; repairs count);
+        /// a trial that needs more stops with a report. The search budget bounds the time.
+        #[arg(long, default_value_t = 100, value_name = "N", value_parser = within::count::<usize>(&limits::MAX_REPLANS))]
         max_replans: usize,
         /// With --closed-loop: search time per trial at most, found or not (s); each search
         /// gets no more than what is left, and a trial that needs more stops with a report.
