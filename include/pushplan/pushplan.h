@@ -341,8 +341,9 @@ namespace pushplan
         /// the start of its control `at`. The remaining controls are re-simulated from the
         /// observed state first and returned as they are if they still reach the goal
         /// (Plan::replanned->kept); otherwise the scene is searched anew from the observed
-        /// state as `options` say (solveFrom). The CLI's `replan` and `execute
-        /// --closed-loop` do the same.
+        /// state as `options` say (solveFrom). The CLI's `replan` does the same; `execute
+        /// --closed-loop` first keeps a rest that ends short or stops being valid up to
+        /// there and searches only an ending from there (a repair), then searches anew.
         Plan replan(const Plan &plan, std::size_t at, const Observation &observed,
                     const Options &options = Options()) const;
 
