@@ -33,11 +33,15 @@ done
 for scene in "${scenes[@]}"; do
   [ -f "$scene" ] || { echo "$scene: no such scene file" >&2; exit 2; }
 done
+# A scene's name in OUT_DIR: by folder and file, since scenes of two folders may share a
+# file name.
+name_of() {
+  echo "$(basename "$(dirname "$1")")_$(basename "$1" .yaml)"
+}
 # One scene: plan (or reuse), check, play; its summary lines go to OUT_DIR/NAME.summary.
 judge() {
   local scene=$1 n e line
-  # Named by folder and file: scenes of two folders may share a file name.
-  n=$(basename "$(dirname "$scene")")_$(basename "$scene" .yaml)
+  n=$(name_of "$scene")
   local summary="$out/$n.summary"
   : > "$summary"
   if [ -z "${REUSE_PLANS:-}" ] || [ ! -f "$out/$n.plan.txt" ]; then
@@ -73,7 +77,7 @@ for scene in "${scenes[@]}"; do
 done
 wait
 for scene in "${scenes[@]}"; do
-  cat "$out/$(basename "$(dirname "$scene")")_$(basename "$scene" .yaml).summary" >> "$out/summary.txt"
+  cat "$out/$(name_of "$scene").summary" >> "$out/summary.txt"
 done
 for e in "${engines[@]}"; do
   reached=$(cat "$out"/*."$e".exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')

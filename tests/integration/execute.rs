@@ -447,6 +447,34 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
     }
 }
 
+/// The closed-loop tests' executor, re-planning in the scene file at `scene_path` with
+/// `planner`: searches of 10 s at most, shortcut for 0.5 s and polished for 2 s of work,
+/// seed 1, `max_replans` searches and 60 s of searching per trial at most, the default
+/// tolerance and execution (rapier).
+fn closed_loop(
+    scene_path: &Path,
+    planner: pushplan::planning::PlannerKind,
+    max_replans: usize,
+) -> pushplan::planner::closed_loop::ClosedLoop<'_> {
+    use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
+    use pushplan::planning::execute::{ExecuteSettings, DRIFT};
+    ClosedLoop {
+        search: &pushplan::bridge::OmplSearch,
+        scene_path,
+        settings: ClosedLoopSettings {
+            planner,
+            replan_time: 10.0,
+            replan_shortcut: 0.5,
+            polish: 2.0,
+            seed: 1,
+            max_replans,
+            search_budget: 60.0,
+            tolerance: DRIFT,
+        },
+        execution: ExecuteSettings::default(),
+    }
+}
+
 /// Closed loop against a world that is not the model: the box stands 6 cm to the side of
 /// where the scene says and grips the table twice as hard. Played open loop, the plan
 /// pushes past it and misses; closed loop, the first observation finds the box where it
@@ -456,7 +484,7 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
 #[test]
 fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
-    use pushplan::planning::execute::{execute_in_world, ExecuteSettings, DRIFT};
+    use pushplan::planning::execute::{execute_in_world, ExecuteSettings};
     use pushplan::planning::plan_file::PlanFile;
     let scratch = common::Scratch::new("closed-loop");
     let plan_path = scratch.join("plan.json");
@@ -472,21 +500,7 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     let open = execute_in_world(&world, &scene, &plan, &ExecuteSettings::default()).unwrap();
     assert!(!open.reached, "open loop misses: {open:?}");
 
-    let closed_loop = ClosedLoop {
-        search: &pushplan::bridge::OmplSearch,
-        scene_path: Path::new(scene_path),
-        settings: ClosedLoopSettings {
-            planner: plan.settings.planner,
-            replan_time: 10.0,
-            replan_shortcut: 0.5,
-            polish: 2.0,
-            seed: 1,
-            max_replans: 10,
-            search_budget: 60.0,
-            tolerance: DRIFT,
-        },
-        execution: ExecuteSettings::default(),
-    };
+    let closed_loop = closed_loop(Path::new(scene_path), plan.settings.planner, 10);
     let closed = closed_loop
         .execute(&scene, &plan.path_controls(), &world)
         .unwrap();
@@ -535,8 +549,6 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
 /// from the start: with one re-plan allowed, that one is the repair.
 #[test]
 fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_there() {
-    use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
-    use pushplan::planning::execute::{ExecuteSettings, DRIFT};
     use pushplan::planning::plan_file::PlanFile;
     use pushplan::planning::Problem;
     let scratch = common::Scratch::new("closed-loop-invalid-rest");
@@ -574,22 +586,9 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
         playing.stopped_by
     );
 
-    let closed_loop = ClosedLoop {
-        search: &pushplan::bridge::OmplSearch,
-        scene_path: &scene_path,
-        settings: ClosedLoopSettings {
-            planner: plan.settings.planner,
-            replan_time: 10.0,
-            replan_shortcut: 0.5,
-            polish: 2.0,
-            seed: 1,
-            max_replans: 1,
-            search_budget: 60.0,
-            tolerance: DRIFT,
-        },
-        execution: ExecuteSettings::default(),
-    };
-    let closed = closed_loop.execute(&scene, &controls, &world).unwrap();
+    let closed = closed_loop(&scene_path, plan.settings.planner, 1)
+        .execute(&scene, &controls, &world)
+        .unwrap();
     assert!(closed.invalid_rests >= 1, "{closed:?}");
     assert_eq!(
         (closed.replans, closed.repairs),
