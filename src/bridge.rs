@@ -48,7 +48,7 @@ use crate::planner::NearestTree;
 use crate::planning::PlannerKind;
 use convert::{
     add_search_stats, check_run_settings, plan_robust_trials, planner_cut_at_time_limit,
-    planner_kind, planner_name, planner_shares_one_search, planner_yields_controls,
+    planner_kind, planner_name, planner_shares_one_search, planner_yields_controls, repair_share,
     run_settings_of_scene, search_stats,
 };
 use metric::{tree_add, tree_nearest, tree_nearest_k, tree_nearest_r};
@@ -165,6 +165,17 @@ pub mod ffi {
         pub shortcut_dropped_as_less_robust: bool,
         pub robustness: f64,
         pub robustness_trials: usize,
+    }
+
+    /// `planning::rest::RestFrom`, flat: the rest of a plan judged from an observed state.
+    /// `reaches`: it reaches the goal and `states` are its states (the start and after
+    /// each control); else its first `valid` controls are valid and `states` are theirs,
+    /// the last where they end (a repair searches from there), and `why` says why not.
+    pub struct RestFrom {
+        pub reaches: bool,
+        pub valid: usize,
+        pub states: Vec<f64>,
+        pub why: String,
     }
 
     /// Part of a DARRT path: flat states one after another, and what the hand holds in
@@ -298,7 +309,7 @@ pub mod ffi {
             settings: &FinishSettings,
         ) -> Result<FinishedPath>;
         fn trajectory(self: &Finisher, u: &[f64], steps: &[usize]) -> Result<Trajectory>;
-        fn resimulate(self: &Finisher, u: &[f64], steps: &[usize]) -> Result<Vec<f64>>;
+        fn rest_from(self: &Finisher, u: &[f64], steps: &[usize]) -> Result<RestFrom>;
 
         type Darrt;
         #[Self = "Darrt"]
@@ -345,6 +356,8 @@ pub mod ffi {
         fn run_settings_of_scene(kind: PlannerKind, params: &PlannerParams) -> RunSettings;
         /// `planning::PLAN_ROBUST_TRIALS`: a plan's robustness check when none is asked for.
         fn plan_robust_trials() -> u32;
+        /// `planning::rest::REPAIR_SHARE`: a repair's share of a re-plan's search time.
+        fn repair_share() -> f64;
         fn planner_shares_one_search(kind: PlannerKind) -> bool;
         fn planner_cut_at_time_limit(kind: PlannerKind) -> bool;
         fn planner_kind(name: &str) -> Result<PlannerKind>;

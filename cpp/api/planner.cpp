@@ -245,49 +245,110 @@ namespace pushplan
                              detail::reportsOf(options));
     }
 
+    namespace detail
+    {
+        /// `plan`'s controls from `first` to `last` (exclusive), flat, appended to `path`.
+        void appendControls(FlatPath &path, const Plan &plan, std::size_t first, std::size_t last)
+        {
+            for (std::size_t i = first; i < last; ++i)
+            {
+                const Control &c = plan.controls[i];
+                path.controls.insert(path.controls.end(), c.ee_velocity.data(), c.ee_velocity.data() + 3);
+                path.controls.insert(path.controls.end(), c.nullspace.data(), c.nullspace.data() + c.nullspace.size());
+                path.steps.push_back(c.steps);
+            }
+        }
+
+        /// The state `k` of the flat `states` (of the scene `info` describes) as an observation.
+        Observation observationAt(const rust::Vec<double> &states, std::size_t k, const bridge::SceneInfo &info)
+        {
+            const std::size_t size = info.dof + 3 * info.objects;
+            const double *state = states.data() + k * size;
+            Observation out;
+            out.q = Eigen::Map<const Eigen::VectorXd>(state, static_cast<Eigen::Index>(info.dof));
+            for (std::size_t i = 0; i < info.objects; ++i)
+                out.objects.emplace_back(Eigen::Map<const Eigen::Vector3d>(state + info.dof + 3 * i));
+            return out;
+        }
+
+        /// The plan of `path` from the problem's start, which re-simulated it into `states`:
+        /// checked and described as every plan is, not shortcut (it is an old plan's rest,
+        /// or part of it).
+        Plan described(const bridge::Finisher &finisher, const bridge::SceneInfo &info, FlatPath path,
+                       const rust::Vec<double> &states)
+        {
+            path.states.assign(states.begin(), states.end());
+            const bridge::FinishedPath finished = finish(
+                finisher, path, true,
+                bridge::FinishSettings{0.0, 0, 0, 0.0, -1.0, 0, std::numeric_limits<double>::infinity()});
+            Plan out;
+            out.solved = true;
+            nameParts(out, info);
+            describe(out, finisher, info, finished);
+            return out;
+        }
+    }  // namespace detail
+
     Plan Planner::replan(const Plan &plan, std::size_t at, const Observation &observed, const Options &options) const
     {
         const Source &source = this->source();
-        Plan rest = detail::asPushplanError([&]() -> Plan {
+        return detail::asPushplanError([&]() -> Plan {
             if (at > plan.controls.size())
                 throw Error("replan: at = " + std::to_string(at) + ", but the plan has " +
                             std::to_string(plan.controls.size()) + " controls");
             const auto started = std::chrono::steady_clock::now();
+            const auto seconds = [&] {
+                return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            };
             const rust::Box<bridge::Problem> problem = detail::startingAt(source.load(), observed);
             const bridge::SceneInfo info = problem->info();
-            // The rest of the plan, re-simulated from the observed state.
-            detail::FlatPath kept;
-            for (std::size_t i = at; i < plan.controls.size(); ++i)
-            {
-                const Control &c = plan.controls[i];
-                kept.controls.insert(kept.controls.end(), c.ee_velocity.data(), c.ee_velocity.data() + 3);
-                kept.controls.insert(kept.controls.end(), c.nullspace.data(), c.nullspace.data() + c.nullspace.size());
-                kept.steps.push_back(c.steps);
-            }
+            // The rest of the plan, re-simulated from the observed state and judged as every
+            // front that closes the loop judges it (Rust's planning::rest).
+            detail::FlatPath rest;
+            detail::appendControls(rest, plan, at, plan.controls.size());
             const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(*problem);
-            const rust::Vec<double> states = finisher->resimulate(detail::slice(kept.controls), detail::slice(kept.steps));
-            if (states.empty())
+            const bridge::RestFrom verdict = finisher->rest_from(detail::slice(rest.controls), detail::slice(rest.steps));
+            if (verdict.reaches)
             {
-                // A re-plan is wanted fast: the first solution unless robustness is asked for.
-                Options fast = options;
-                fast.robust_trials = options.robust_trials.value_or(0u);
-                return solveFrom(observed, fast);
+                Plan kept = detail::described(*finisher, info, rest, verdict.states);
+                kept.planning_time = seconds();
+                kept.replanned = Replanned{at, true, std::nullopt};
+                return kept;
             }
-            kept.states.assign(states.begin(), states.end());
-            // Checked and described as every plan is; not shortcut (it is the old plan's rest).
-            const bridge::FinishedPath path = detail::finish(
-                *finisher, kept, true, bridge::FinishSettings{0.0, 0, 0, 0.0, -1.0, 0, std::numeric_limits<double>::infinity()});
-            Plan out;
-            out.solved = true;
-            detail::nameParts(out, info);
-            detail::describe(out, *finisher, info, path);
-            out.planning_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-            out.replanned = Replanned{at, true};
-            return out;
+            // A re-plan is wanted fast: the first solution unless robustness is asked for.
+            Options fast = options;
+            fast.robust_trials = options.robust_trials.value_or(0u);
+            if (verdict.valid > 0)
+            {
+                // A repair: the rest kept as far as it is valid (to its end if it ends short)
+                // and an ending searched from there, with a share of the search time.
+                Options repair = fast;
+                repair.time_limit = bridge::repair_share() * detail::resolve(fast, info).time_limit;
+                const Plan ending = solveFrom(detail::observationAt(verdict.states, verdict.valid, info), repair);
+                detail::FlatPath whole;
+                detail::appendControls(whole, plan, at, at + verdict.valid);
+                detail::appendControls(whole, ending, 0, ending.controls.size());
+                const bridge::RestFrom joined =
+                    ending.solved ? finisher->rest_from(detail::slice(whole.controls), detail::slice(whole.steps))
+                                  : bridge::RestFrom{};
+                if (joined.reaches)
+                {
+                    Plan repaired = detail::described(*finisher, info, whole, joined.states);
+                    repaired.planning_time = seconds();
+                    repaired.tree_size = ending.tree_size;
+                    repaired.propagation_steps = ending.propagation_steps;
+                    repaired.search = ending.search;
+                    repaired.threads = ending.threads;
+                    repaired.restarts = ending.restarts;
+                    repaired.fallbacks = ending.fallbacks;
+                    repaired.replanned = Replanned{at, false, verdict.valid};
+                    return repaired;
+                }
+            }
+            Plan searched = solveFrom(observed, fast);
+            searched.replanned = Replanned{at, false, std::nullopt};
+            return searched;
         });
-        if (!rest.replanned)
-            rest.replanned = Replanned{at, false};
-        return rest;
     }
 
     Plan detail::solve(const std::function<rust::Box<bridge::Problem>()> &load,

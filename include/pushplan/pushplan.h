@@ -226,8 +226,12 @@ namespace pushplan
     {
         std::size_t at = 0;  ///< the control of the old plan at whose start the world was observed
         /// The old plan's remaining controls still reached the goal from the observed state
-        /// and are this plan's (no search); false: this plan was searched anew from it.
+        /// and are this plan's (no search); false: this plan was repaired or searched anew.
         bool kept = false;
+        /// A repair: this many of the old plan's controls from `at` were valid from the
+        /// observed state and begin this plan, and an ending searched from where they end
+        /// follows. Unset: kept whole, or searched anew from the observed state.
+        std::optional<std::size_t> repaired;
     };
 
     struct Plan
@@ -340,10 +344,12 @@ namespace pushplan
         /// Closing the loop: the rest of `plan` (of this planner) from a state observed at
         /// the start of its control `at`. The remaining controls are re-simulated from the
         /// observed state first and returned as they are if they still reach the goal
-        /// (Plan::replanned->kept); otherwise the scene is searched anew from the observed
-        /// state as `options` say (solveFrom). The CLI's `replan` does the same; `execute
-        /// --closed-loop` first keeps a rest that ends short or stops being valid up to
-        /// there and searches only an ending from there (a repair), then searches anew.
+        /// (Plan::replanned->kept). If they are valid for a while and then stop being valid,
+        /// or end short of the goal, they are kept to there and an ending is searched from
+        /// where they end, with a quarter of the search time (a repair:
+        /// Plan::replanned->repaired). Otherwise, or if the repair finds nothing, the scene
+        /// is searched anew from the observed state as `options` say (solveFrom). The CLI's
+        /// `replan` and `execute --closed-loop` do the same.
         Plan replan(const Plan &plan, std::size_t at, const Observation &observed,
                     const Options &options = Options()) const;
 

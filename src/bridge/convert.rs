@@ -18,6 +18,10 @@ pub(super) fn plan_robust_trials() -> u32 {
     crate::planning::PLAN_ROBUST_TRIALS
 }
 
+pub(super) fn repair_share() -> f64 {
+    crate::planning::rest::REPAIR_SHARE
+}
+
 pub(super) fn run_settings_of_scene(
     kind: PlannerKind,
     params: &super::PlannerParams,

@@ -4,6 +4,7 @@
 use super::core::{guarded, Flat};
 use super::ffi;
 use super::Problem;
+use crate::planning::rest::RestFrom;
 use crate::planning::{PlannerKind, Problem as PlanningProblem};
 
 /// Finishes the paths of one problem, in the mode it had when the finisher was made
@@ -56,18 +57,29 @@ impl Finisher {
         })
     }
 
-    /// Re-simulates a path from the problem's start (such as an observed state): the state
-    /// at the start and after each control, flat, if every step is valid and the goal is
-    /// reached at the end; nothing if not (the path no longer does its work from there).
-    pub fn resimulate(&self, controls: &[f64], steps: &[usize]) -> Result<Vec<f64>, String> {
-        guarded("resimulate", || {
+    /// Re-simulates the rest of a plan from the problem's start (a state observed while the
+    /// plan runs) and judges it ([`crate::planning::rest`]): it reaches the goal, or how far
+    /// it is valid.
+    pub fn rest_from(&self, controls: &[f64], steps: &[usize]) -> Result<ffi::RestFrom, String> {
+        guarded("rest_from", || {
             let controls = Flat(self.problem.scene()).path_controls(controls, steps)?;
-            let path = self.problem.simulate(&controls, false);
-            let scene = self.problem.scene();
-            if !(path.valid() && scene.goal.is_satisfied(path.final_state())) {
-                return Ok(Vec::new());
-            }
-            Ok(path.states.iter().flat_map(|s| s.to_flat()).collect())
+            let goal = &self.problem.scene().goal;
+            let (verdict, simulated) = self.problem.rest_from(&controls, |s| goal.is_satisfied(s));
+            let flat = |states: &[crate::State]| states.iter().flat_map(|s| s.to_flat()).collect();
+            Ok(match verdict {
+                RestFrom::Reaches => ffi::RestFrom {
+                    reaches: true,
+                    valid: controls.len(),
+                    states: flat(&simulated.states),
+                    why: String::new(),
+                },
+                RestFrom::EndsShort { valid, why, .. } => ffi::RestFrom {
+                    reaches: false,
+                    valid,
+                    states: flat(&simulated.states[..=valid]),
+                    why,
+                },
+            })
         })
     }
 }

@@ -1,15 +1,22 @@
 //! `pushplan replan`: the rest of a plan from a state observed while it ran. The plan's
 //! remaining controls are re-simulated from the observed state first; if they still reach
-//! the goal they are the new plan, else the scene is searched anew from that state.
+//! the goal they are the new plan; if they are valid for a while, they are kept to there
+//! and an ending is searched from where they end (a repair); else, or if the repair finds
+//! nothing, the scene is searched anew from that state (`planning::rest`).
 
 use super::plan::{plan, ObservedStart, PlanOptions};
 use super::SearchFlags;
+use pushplan::limits::Front;
+use pushplan::planner::plan_scene::{repair_scene, PlanRequest};
 use pushplan::planner::Search;
 use pushplan::planning::observed::ObservedState;
 use pushplan::planning::plan_file::{PlanFile, ReplanRecord};
+use pushplan::planning::rest::{RestFrom, REPAIR_SHARE};
+use pushplan::planning::CommandDeadline;
 use pushplan::{DistanceMetric, Scene};
 use std::path::Path;
 use std::process::ExitCode;
+use std::time::Instant;
 
 /// What `replan` is asked.
 pub struct ReplanOptions {
@@ -51,29 +58,73 @@ pub fn replan(
         }
         None => nearest_recorded_state(&old, &from),
     };
-    let record = |kept| ReplanRecord {
+    let record = |kept, repaired| ReplanRecord {
         plan: PlanFile::scene_reference(plan_path, out),
         at,
         observed: PlanFile::scene_reference(observed_path, out),
         kept,
+        repaired,
     };
+    let reference = PlanFile::scene_reference(&scene_path, out);
 
-    // The rest of the plan, as it is, from where the world is.
-    let why_not = match old.rest_from(at, &from) {
-        Ok(rest) => {
-            let reference = PlanFile::scene_reference(&scene_path, out);
+    // The rest of the plan, as it is, from where the world is: kept whole if it still
+    // reaches the goal, else repaired where it can be (`planning::rest`).
+    let (rest, verdict) = old.rest_from(at, &from);
+    let (valid, end, why_not) = match verdict {
+        RestFrom::Reaches => {
             let mut file = PlanFile::build(&reference, from, &old.settings, &rest, None)?;
-            file.replanned = Some(record(true));
+            file.replanned = Some(record(true, None));
             pushplan::output::write_whole(out, file.to_json())?;
             println!(
-                "kept: the plan's controls {at} to {} still reach the goal from the observed state ({} written)",
-                count,
+                "kept: the plan's controls {at} to {count} still reach the goal from the observed state ({} written)",
                 out.display()
             );
             return Ok(ExitCode::SUCCESS);
         }
-        Err(why_not) => why_not,
+        RestFrom::EndsShort { valid, end, why } => (valid, end, why),
     };
+    if valid > 0 {
+        if !options.quiet {
+            eprintln!(
+                "the rest of the plan from control {at} no longer reaches the goal ({why_not}): \
+                 keeping its controls {at} to {} and searching an ending from where they end",
+                at + valid
+            );
+        }
+        let mut settings = options.search.settings(&from.planner);
+        settings.check(Front::CommandLine)?;
+        settings.time_limit *= REPAIR_SHARE;
+        let started = Instant::now();
+        let deadline = CommandDeadline::new(started, settings.time_limit, &from, false);
+        let repaired = repair_scene(
+            search,
+            &PlanRequest {
+                scene_path: &scene_path,
+                scene: &from,
+                start: Some(&from.start),
+                options: &settings,
+                deadline: deadline.pushing,
+                reference: &reference,
+                search_progress: None,
+                shortcut_progress: None,
+            },
+            &rest[..valid],
+            &end,
+        )?;
+        if let Some(mut file) = repaired {
+            file.replanned = Some(record(false, Some(valid)));
+            pushplan::output::write_whole(out, file.to_json())?;
+            println!(
+                "repaired in {:.3} s: the plan's controls {at} to {} kept, then an ending of {} controls \
+                 searched from where they end ({} written)",
+                started.elapsed().as_secs_f64(),
+                at + valid,
+                file.controls.len() - valid,
+                out.display()
+            );
+            return Ok(ExitCode::SUCCESS);
+        }
+    }
     if !options.quiet {
         eprintln!("the rest of the plan from control {at} no longer works ({why_not}): searching from the observed state");
     }
@@ -89,7 +140,7 @@ pub fn replan(
             from: Some(ObservedStart {
                 state: observed,
                 source: observed_path.to_path_buf(),
-                record: record(false),
+                record: record(false, None),
             }),
         },
         out,

@@ -11,6 +11,7 @@ use super::search::Search;
 use crate::planning::execute::{trial_worlds, ExecuteSettings, TIPPED_TILT};
 use crate::planning::execute::{Engine, EngineKind, STEP};
 use crate::planning::path::PathControl;
+use crate::planning::rest::{RestFrom, REPAIR_SHARE};
 use crate::planning::shortcut::{shortcut, ShortcutSettings};
 use crate::planning::trajectory::{Playback, Trajectory};
 use crate::planning::{FinishSettings, PlannerKind, Problem, RunSettings};
@@ -192,89 +193,80 @@ impl ClosedLoop<'_> {
             let problem = Problem::new(from.clone(), settings.planner);
             // The rest is re-simulated, and played, with half the margins spent.
             let playing = Problem::new(margins_half_spent(&from), settings.planner);
-            let simulated = playing.simulate(&rest, false);
-            let rest_valid = simulated.stopped_by.is_none();
-            trial.invalid_rests += usize::from(!rest_valid);
-            if rest_valid && still_reaches(&from.goal, simulated.final_state()) {
-                trial.kept += 1;
-            } else {
-                if trial.replans + trial.failed_replans == settings.max_replans {
-                    trial.stopped = Some(format!(
+            let (verdict, simulated) = playing.rest_from(&rest, |s| still_reaches(&from.goal, s));
+            trial.invalid_rests += usize::from(!simulated.valid());
+            match verdict {
+                RestFrom::Reaches => trial.kept += 1,
+                RestFrom::EndsShort { valid, end, .. } => {
+                    if trial.replans + trial.failed_replans == settings.max_replans {
+                        trial.stopped = Some(format!(
                         "the rest of the plan misses the goal after {} re-plans ({} found nothing)",
                         settings.max_replans, trial.failed_replans
                     ));
-                    break;
-                }
-                let budget_left = settings.search_budget - trial.search_time;
-                if budget_left <= 0.0 {
-                    trial.stopped = Some(format!(
-                        "the rest of the plan misses the goal and the {} s of search time are \
-                         spent ({} re-plans, {} found nothing)",
-                        settings.search_budget, trial.replans, trial.failed_replans
-                    ));
-                    break;
-                }
-                // A search that found nothing is tried again at the next observation with
-                // twice the time (up to 8 times), while the old rest is played on if it
-                // can be: the world may have moved to where a plan is easier to find.
-                // With nothing valid to play the arm waits (the objects are at rest) and
-                // searches again from the same state, up to WAITING_SEARCHES times.
-                let time = (settings.replan_time * f64::from(1 << failures_in_a_row.min(3)))
-                    .min(budget_left);
-                let searching = Instant::now();
-                let index = trial.replans + trial.failed_replans;
-                // The rest is kept as far as it is valid (to its end if it ends short) and
-                // an ending is searched from there (a warm start: the search begins where
-                // the rest stops, most often close to the goal, and finds a short ending
-                // fast); failing that, a new plan from the observed state.
-                let valid_to = simulated.stopped_by.as_ref().map_or(rest.len(), |s| s.0);
-                let repaired = match valid_to > 0 {
-                    true => self.repair(
-                        &from,
-                        &rest[..valid_to],
-                        &simulated.states[valid_to],
-                        time,
-                        index,
-                    ),
-                    false => Err(String::new()),
-                };
-                if repaired.is_ok() {
-                    trial.repairs += 1;
-                }
-                let replanned = repaired.or_else(|_| self.replan(&problem, time, index));
-                trial.search_time += searching.elapsed().as_secs_f64();
-                match replanned {
-                    Ok(controls) => {
-                        rest = controls;
-                        polish_left = settings.polish;
-                        trial.replans += 1;
-                        trial.replan_latencies.push(started.elapsed().as_secs_f64());
-                        failures_in_a_row = 0;
-                        waiting_failures = 0;
+                        break;
                     }
-                    Err(why) => {
-                        trial.failed_replans += 1;
-                        failures_in_a_row += 1;
-                        // A rest no longer valid to its end is played up to where it stops
-                        // being valid: the arm goes on the way the plan went (toward the
-                        // goal), and the next search starts from there.
-                        if let Some((invalid_from, _)) = simulated.stopped_by {
-                            rest.truncate(invalid_from);
+                    let budget_left = settings.search_budget - trial.search_time;
+                    if budget_left <= 0.0 {
+                        trial.stopped = Some(format!(
+                            "the rest of the plan misses the goal and the {} s of search time are \
+                         spent ({} re-plans, {} found nothing)",
+                            settings.search_budget, trial.replans, trial.failed_replans
+                        ));
+                        break;
+                    }
+                    // A search that found nothing is tried again at the next observation with
+                    // twice the time (up to 8 times), while the old rest is played on if it
+                    // can be: the world may have moved to where a plan is easier to find.
+                    // With nothing valid to play the arm waits (the objects are at rest) and
+                    // searches again from the same state, up to WAITING_SEARCHES times.
+                    let time = (settings.replan_time * f64::from(1 << failures_in_a_row.min(3)))
+                        .min(budget_left);
+                    let searching = Instant::now();
+                    let index = trial.replans + trial.failed_replans;
+                    // The rest is kept as far as it is valid (to its end if it ends short) and
+                    // an ending is searched from there (a warm start: the search begins where
+                    // the rest stops, most often close to the goal, and finds a short ending
+                    // fast); failing that, a new plan from the observed state.
+                    let repaired = match valid > 0 {
+                        true => self.repair(&from, &rest[..valid], &end, time, index),
+                        false => Err(String::new()),
+                    };
+                    if repaired.is_ok() {
+                        trial.repairs += 1;
+                    }
+                    let replanned = repaired.or_else(|_| self.replan(&problem, time, index));
+                    trial.search_time += searching.elapsed().as_secs_f64();
+                    match replanned {
+                        Ok(controls) => {
+                            rest = controls;
+                            polish_left = settings.polish;
+                            trial.replans += 1;
+                            trial.replan_latencies.push(started.elapsed().as_secs_f64());
+                            failures_in_a_row = 0;
+                            waiting_failures = 0;
                         }
-                        let playable = !rest.is_empty();
-                        waiting_failures += u32::from(!playable);
-                        if waiting_failures == WAITING_SEARCHES {
-                            trial.stopped = Some(format!(
+                        Err(why) => {
+                            trial.failed_replans += 1;
+                            failures_in_a_row += 1;
+                            // A rest no longer valid to its end is played up to where it stops
+                            // being valid: the arm goes on the way the plan went (toward the
+                            // goal), and the next search starts from there.
+                            rest.truncate(valid);
+                            let playable = !rest.is_empty();
+                            waiting_failures += u32::from(!playable);
+                            if waiting_failures == WAITING_SEARCHES {
+                                trial.stopped = Some(format!(
                                 "{why} ({WAITING_SEARCHES} searches found nothing while the arm \
                                  waited, the longest {time:.1} s: the rest of the plan is no longer \
                                  valid)"
                             ));
-                            break;
-                        }
-                        trial.last_failure = Some(why);
-                        if !playable {
-                            trial.latencies.push(started.elapsed().as_secs_f64());
-                            continue;
+                                break;
+                            }
+                            trial.last_failure = Some(why);
+                            if !playable {
+                                trial.latencies.push(started.elapsed().as_secs_f64());
+                                continue;
+                            }
                         }
                     }
                 }
@@ -389,8 +381,8 @@ impl ClosedLoop<'_> {
     }
 
     /// `rest` (valid from `from`'s start, ending in `end`: short of the goal, or where the
-    /// rest after it stops being valid) with an ending searched from `end`, with a quarter
-    /// of `time` ([`ClosedLoop::replan`]).
+    /// rest after it stops being valid) with an ending searched from `end`, with
+    /// [`REPAIR_SHARE`] of `time` ([`ClosedLoop::replan`]).
     fn repair(
         &self,
         from: &Scene,
@@ -404,7 +396,7 @@ impl ClosedLoop<'_> {
             .map_err(|e| e.to_string())?;
         let ending = self.replan(
             &Problem::new(at_end, self.settings.planner),
-            0.25 * time,
+            REPAIR_SHARE * time,
             index,
         )?;
         Ok([rest, &ending].concat())

@@ -3,6 +3,7 @@
 //! measured for robustness), written as a [`PlanFile`].
 
 use crate::planner::{Found, ReachSettings, Reached, Search, SearchProgress};
+use crate::planning::path::PathControl;
 use crate::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
 use crate::planning::shortcut::ShortcutProgress;
 use crate::planning::{
@@ -101,6 +102,45 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
         path,
         problem,
     })
+}
+
+/// A repair of the rest of a plan ([`crate::planning::rest`]): `kept`, the rest's
+/// controls valid from `request.scene`'s start (the observed state) and ending in `end`,
+/// then an ending searched from `end` and finished as `request` says. `None` when the
+/// search finds no exact ending by `request.deadline`; the plan file starts at the
+/// observed state and records the ending's settings (no re-plan record).
+pub fn repair_scene(
+    search: &dyn Search,
+    request: &PlanRequest,
+    kept: &[PathControl],
+    end: &State,
+) -> Result<Option<PlanFile>, String> {
+    let from = request.scene;
+    let at_end = from
+        .with_start(end, Path::new("the end of the plan's valid part"))
+        .map_err(|e| e.to_string())?;
+    let ending = plan_scene(
+        search,
+        &PlanRequest {
+            scene: &at_end,
+            start: Some(&at_end.start),
+            ..*request
+        },
+    )?;
+    if !ending.found.summary.exact {
+        return Ok(None);
+    }
+    let controls = [kept, &ending.file.path_controls()].concat();
+    let file = PlanFile::build(
+        request.reference,
+        from.clone(),
+        &ending.file.settings,
+        &controls,
+        None,
+    )?;
+    // The ending starts where the kept part ends, bit for bit (a valid state is taken as
+    // it is), so the whole reaches the goal as the ending did.
+    Ok(file.solved.then_some(file))
 }
 
 /// IK-BiRRT's reach of a grasp of `object` from `from` (`None`: the scene's start), with

@@ -11,10 +11,11 @@
 //! confirmed (nor refuted). A plan the clock did shape (unsolved, or the most robust
 //! solution found by the time limit) cannot be made again, and says so.
 
-use crate::planner::plan_scene::{plan_scene, reach_grasp, PlanRequest};
+use crate::planner::plan_scene::{plan_scene, reach_grasp, repair_scene, PlanRequest};
 use crate::planner::Search;
 use crate::planning::observed::ObservedState;
 use crate::planning::plan_file::{first_difference, PlanFile};
+use crate::planning::rest::RestFrom;
 use crate::planning::CommandDeadline;
 use std::path::Path;
 use std::time::Instant;
@@ -120,29 +121,55 @@ fn made_again(
                     old.controls.len()
                 ))));
             }
-            match (old.rest_from(record.at, &from), record.kept) {
-                (Ok(rest), true) => {
+            let (rest, verdict) = old.rest_from(record.at, &from);
+            let the_rest = format!(
+                "the rest of {} from control {}",
+                old_path.display(),
+                record.at
+            );
+            let differs = |why: String| Ok(Err(Remade::Differs(why)));
+            match (verdict, record.kept, record.repaired) {
+                (_, true, Some(_)) => {
+                    return differs("replanned: kept and repaired at once".into());
+                }
+                (RestFrom::Reaches, true, None) => {
                     let mut file = PlanFile::build(&plan.scene, from, &old.settings, &rest, None)?;
                     file.replanned = Some(record.clone());
                     file
                 }
-                (Err(why), true) => {
-                    return Ok(Err(Remade::Differs(format!(
-                        "replanned.kept: the rest of {} from control {} does not reach the goal from the observed state ({why})",
-                        old_path.display(),
-                        record.at
-                    ))))
+                (RestFrom::Reaches, false, _) => {
+                    return differs(format!(
+                        "replanned.kept: {the_rest} still reaches the goal from the observed state, and is kept"
+                    ));
                 }
-                (Ok(_), false) => {
-                    return Ok(Err(Remade::Differs(format!(
-                        "replanned.kept: the rest of {} from control {} still reaches the goal from the observed state, and is kept",
-                        old_path.display(),
-                        record.at
-                    ))))
+                (RestFrom::EndsShort { why, .. }, true, _) => {
+                    return differs(format!(
+                        "replanned.kept: {the_rest} does not reach the goal from the observed state ({why})"
+                    ));
                 }
-                (Err(_), false) => {
+                (RestFrom::EndsShort { valid, end, .. }, false, Some(repaired)) => {
+                    if repaired != valid || valid == 0 {
+                        return differs(format!(
+                            "replanned.repaired: {repaired} controls of {the_rest} kept, but {valid} are valid from the observed state"
+                        ));
+                    }
                     let scene_path = old.scene_path(&old_path);
-                    let mut file = search_again(search, plan, &scene_path, &from, true, time_limit)?;
+                    match repair_again(search, plan, &scene_path, &from, &rest[..valid], &end, time_limit)? {
+                        Some(mut file) => {
+                            file.replanned = Some(record.clone());
+                            file
+                        }
+                        None => {
+                            return differs(format!(
+                                "replanned.repaired: no ending found from where the valid part of {the_rest} ends"
+                            ))
+                        }
+                    }
+                }
+                (RestFrom::EndsShort { .. }, false, None) => {
+                    let scene_path = old.scene_path(&old_path);
+                    let mut file =
+                        search_again(search, plan, &scene_path, &from, true, time_limit)?;
                     file.replanned = Some(record.clone());
                     file
                 }
@@ -173,6 +200,44 @@ fn read_replan_inputs(
     let old = PlanFile::read(old_path).map_err(unreadable)?;
     let observed = ObservedState::read(observed_path).map_err(unreadable)?;
     Ok((old, observed))
+}
+
+/// A repair as `replan` makes it ([`repair_scene`]): `kept`, the valid part of the old
+/// plan's rest from `from`'s start (the observed state), then an ending searched from
+/// `end` with the file's settings within `time_limit` s.
+fn repair_again(
+    search: &dyn Search,
+    plan: &PlanFile,
+    scene_path: &Path,
+    from: &crate::Scene,
+    kept: &[crate::planning::path::PathControl],
+    end: &crate::State,
+    time_limit: f64,
+) -> Result<Option<PlanFile>, String> {
+    let options = plan
+        .settings
+        .run_settings(plan.robustness.as_ref(), time_limit);
+    let deadline = CommandDeadline::new(Instant::now(), time_limit, from, false);
+    let repaired = repair_scene(
+        search,
+        &PlanRequest {
+            scene_path,
+            scene: from,
+            start: Some(&from.start),
+            options: &options,
+            deadline: deadline.pushing,
+            reference: &plan.scene,
+            search_progress: None,
+            shortcut_progress: None,
+        },
+        kept,
+        end,
+    )?;
+    // What the settings record is what they were made with, not the time given here.
+    Ok(repaired.map(|mut file| {
+        file.settings.time_limit = plan.settings.time_limit;
+        file
+    }))
 }
 
 /// `plan`'s search and finishing (and reach of a grasp) as the file records them, in

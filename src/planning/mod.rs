@@ -25,6 +25,7 @@ pub mod path;
 pub mod plan_file;
 mod problem;
 pub mod reach;
+pub mod rest;
 pub mod robustness;
 mod run_settings;
 pub mod shortcut;

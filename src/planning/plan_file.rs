@@ -6,6 +6,7 @@
 //! the machine or the clock, so the same scene, parameters and seed give the same bytes.
 
 use crate::planning::path::{PathControl, PathMetrics, SimulatedPath};
+use crate::planning::rest::RestFrom;
 use crate::planning::robustness::Noise;
 pub use crate::planning::trajectory::TRAJECTORY_RATE;
 use crate::planning::trajectory::{executable, Trajectory};
@@ -198,8 +199,13 @@ pub struct ReplanRecord {
     /// The observation file, as given to `replan`.
     pub observed: String,
     /// True: that plan's remaining controls still reach the goal from the observed state,
-    /// and are this plan's; false: this plan was searched anew from it.
+    /// and are this plan's; false: this plan was repaired or searched anew from it.
     pub kept: bool,
+    /// A repair: this many of that plan's remaining controls are valid from the observed
+    /// state and begin this plan, and an ending searched from where they end follows (the
+    /// settings are the ending's search's). Absent: kept whole, or searched anew.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub repaired: Option<usize>,
 }
 
 /// The reserves of the validity rules a plan keeps (see the scene's `goal.margin`,
@@ -833,20 +839,14 @@ impl PlanFile {
         Ok(self)
     }
 
-    /// The plan's controls from `at` on (at most the control count), if re-simulated from
-    /// where `from` starts they still reach its goal; else why not. `replan` keeps them as
-    /// the new plan, or searches anew.
-    pub fn rest_from(&self, at: usize, from: &Scene) -> Result<Vec<PathControl>, String> {
+    /// The plan's controls from `at` on (at most the control count), and what they do
+    /// re-simulated from where `from` starts: reach its goal, or how far they are valid
+    /// ([`crate::planning::rest`]). `replan` keeps them, repairs them or searches anew.
+    pub fn rest_from(&self, at: usize, from: &Scene) -> (Vec<PathControl>, RestFrom) {
         let rest = self.path_controls().split_off(at.min(self.controls.len()));
-        let simulated = Problem::new(from.clone(), self.settings.planner).simulate(&rest, false);
-        match &simulated.stopped_by {
-            Some((i, reason)) => Err(format!("control {} stops: {reason}", at + i)),
-            None if !from.goal.is_satisfied(simulated.final_state()) => Err(format!(
-                "the goal is missed by {:.1} mm",
-                1e3 * from.goal.task_distance(simulated.final_state()).max(0.0)
-            )),
-            None => Ok(rest),
-        }
+        let problem = Problem::new(from.clone(), self.settings.planner);
+        let (verdict, _) = problem.rest_from(&rest, |s| from.goal.is_satisfied(s));
+        (rest, verdict)
     }
 
     /// The controls of the plan.

@@ -5,8 +5,9 @@
 // - Planner::reach reaches a grasp behind a wall with IK-BiRRT, and after a pushing plan;
 //   a grasp goal's samples (inverse kinematics of its regions) satisfy it;
 // - closing the loop: Planner::replan keeps the rest of a plan when the world is where the
-//   plan said, searches anew from an observed state where a box was moved (and the new
-//   plan starts there), and refuses an observation of the wrong size or an invalid one;
+//   plan said, repairs it where a box was moved (the rest kept, an ending searched from
+//   where it ends), searches anew with no rest to keep (each new plan starting at the
+//   observed state), and refuses an observation of the wrong size or an invalid one;
 // - OMPL's process-wide log level is as the application left it after solve();
 // - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
 //   whose paths are not controls, a bad scene, the model failing inside solve() and
@@ -411,16 +412,34 @@ int main()
         expect(same.solved && same.replanned && same.replanned->kept && same.replanned->at == k &&
                    same.controls.size() == plan.controls.size() - k,
                "replan keeps the rest of a plan when the world is where the plan said");
-        // The box found 5 cm further from the hand and 10 cm to the side.
+        // The box found 5 cm further from the hand and 10 cm to the side, away from the
+        // goal disc's centre.
+        const auto move_the_box = [](Eigen::Vector3d &box, const Eigen::VectorXd &q) {
+            const Eigen::Vector2d away = (box.head<2>() - q.head<2>()).normalized();
+            const Eigen::Vector2d side(-away.y(), away.x());
+            box.head<2>() +=
+                0.05 * away + ((0.85 - box.x()) * side.x() + (0.1 - box.y()) * side.y() > 0 ? -0.1 : 0.1) * side;
+        };
         Eigen::Vector3d &box = observed.objects[0];
-        const Eigen::VectorXd &q = plan.joint_trajectory[k];
-        const Eigen::Vector2d away = (box.head<2>() - q.head<2>()).normalized();
-        const Eigen::Vector2d side(-away.y(), away.x());
-        box.head<2>() += 0.05 * away + ((0.85 - box.x()) * side.x() + (0.1 - box.y()) * side.y() > 0 ? -0.1 : 0.1) * side;
+        move_the_box(box, plan.joint_trajectory[k]);
         const pushplan::Plan moved = hand.replan(plan, k, observed, o);
-        expect(moved.solved && moved.replanned && !moved.replanned->kept &&
-                   moved.object_poses.front()[0].isApprox(box, 1e-12),
-               "replan searches anew from an observed state where the box was moved, and starts there");
+        const std::size_t rest = plan.controls.size() - k;
+        bool same_rest = moved.controls.size() > rest;
+        for (std::size_t i = 0; same_rest && i < rest; ++i)
+            same_rest = moved.controls[i].ee_velocity == plan.controls[k + i].ee_velocity &&
+                        moved.controls[i].steps == plan.controls[k + i].steps;
+        expect(moved.solved && moved.replanned && !moved.replanned->kept && moved.replanned->repaired == rest &&
+                   same_rest && moved.object_poses.front()[0].isApprox(box, 1e-12),
+               "replan repairs the rest of a plan that misses a moved box: the rest kept, an ending searched "
+               "from where it ends; the plan starts at the observed state");
+        // At the plan's end there is no rest to keep: a new search from the observed state.
+        const std::size_t end = plan.controls.size();
+        pushplan::Observation after{plan.joint_trajectory[end], plan.object_poses[end]};
+        move_the_box(after.objects[0], plan.joint_trajectory[end]);
+        const pushplan::Plan anew = hand.replan(plan, end, after, o);
+        expect(anew.solved && anew.replanned && !anew.replanned->kept && !anew.replanned->repaired &&
+                   anew.object_poses.front()[0].isApprox(after.objects[0], 1e-12),
+               "replan searches anew from an observed state with no rest to keep, and starts there");
         pushplan::Observation short_q{plan.joint_trajectory[k].head(2), plan.object_poses[k]};
         expect(throwsError([&] { hand.replan(plan, k, short_q, o); }, "Observation::q"),
                "an observation of the wrong size is refused as pushplan::Error");

@@ -1,6 +1,7 @@
 //! `pushplan replan`: the rest of a plan from an observed state. Kept when the world is
-//! where the plan said; searched anew, and checked by `check`, when an object was moved;
-//! refused with the file and field named when the observation is wrong.
+//! where the plan said; when an object was moved, repaired (kept as far as it is valid, an
+//! ending searched from there) or searched anew, and checked by `check`; refused with the
+//! file and field named when the observation is wrong.
 
 use crate::common::{self, pushplan_in, Scratch};
 use pushplan::planning::observed::ObservedState;
@@ -85,34 +86,102 @@ fn the_rest_of_the_plan_is_kept_when_the_world_is_where_the_plan_said() {
     }
 }
 
+/// Moves the box of `state` 5 cm further from the planar hand and 10 cm to the side away
+/// from the goal disc's centre, (0.85, 0.1).
+fn move_the_box(state: &mut pushplan::State) {
+    let (hand, pose) = (&state.q, &mut state.objects[0]);
+    let (dx, dy) = (pose.x - hand[0], pose.y - hand[1]);
+    let length = dx.hypot(dy);
+    let (ux, uy) = (dx / length, dy / length);
+    let side = if (0.85 - pose.x) * -uy + (0.1 - pose.y) * ux > 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    pose.x += 0.05 * ux - side * 0.10 * uy;
+    pose.y += 0.05 * uy + side * 0.10 * ux;
+}
+
+/// The controls of `plan` as (velocity, steps) pairs, to compare.
+fn controls(plan: &PlanFile) -> Vec<(&[f64; 3], usize)> {
+    plan.controls
+        .iter()
+        .map(|c| (&c.ee_velocity, c.steps))
+        .collect()
+}
+
 #[test]
-fn a_moved_object_gets_a_new_search_from_where_it_is() {
-    // The planar hand pushes one box into the goal disc. Halfway, the box is found
-    // 5 cm further from the hand and 10 cm to the side of where the plan put it: the rest
-    // of the plan misses, and the new search from the observed state reaches the goal.
-    let scratch = Scratch::new("replan-moved");
+fn a_moved_object_is_pushed_on_from_where_the_rest_of_the_plan_ends() {
+    // The planar hand pushes one box into the goal disc. Halfway, the box is found 5 cm
+    // further from the hand and 10 cm to the side of where the plan put it: the rest of
+    // the plan is still valid but misses the goal, so it is kept and an ending is searched
+    // from where it ends (a repair), and the whole reaches the goal.
+    let scratch = Scratch::new("replan-repaired");
     let (plan, path) = planned(&scratch, "scenes/planar_hand_single_object.yaml");
     let k = plan.controls.len() / 2;
-    let observed = observe(&plan, &path, k, |state| {
-        let (hand, pose) = (&state.q, &mut state.objects[0]);
-        let (dx, dy) = (pose.x - hand[0], pose.y - hand[1]);
-        let length = dx.hypot(dy);
-        let (ux, uy) = (dx / length, dy / length);
-        // The side away from the goal disc's centre, (0.85, 0.1).
-        let side = if (0.85 - pose.x) * -uy + (0.1 - pose.y) * ux > 0.0 {
-            -1.0
-        } else {
-            1.0
-        };
-        pose.x += 0.05 * ux - side * 0.10 * uy;
-        pose.y += 0.05 * uy + side * 0.10 * ux;
-    });
+    let observed = observe(&plan, &path, k, move_the_box);
+    let (code, stdout, stderr, new) = replan(&path, &observed, &["--at", &k.to_string()]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.starts_with("repaired"), "{stdout}");
+    let new = new.expect("a plan written");
+    let record = new.replanned.as_ref().expect("a replan record");
+    let rest = plan.controls.len() - k;
+    assert_eq!(
+        (record.kept, record.at, record.repaired),
+        (false, k, Some(rest)),
+        "{record:?}"
+    );
+    assert!(new.solved && new.controls.len() > rest);
+    assert_eq!(
+        controls(&new)[..rest],
+        controls(&plan)[k..],
+        "the rest of the plan, as it was, begins the repaired plan"
+    );
+    let expected = ObservedState::read(&observed).unwrap();
+    assert_eq!(new.start.objects[0], expected.objects[&new.objects[0]]);
+    // `check` re-simulates it and makes it again (the repair's search, from where the
+    // rest ends); a record claiming fewer controls kept is not so.
+    let replanned = path.with_file_name("replanned.json");
+    checks(&replanned);
+    let text = std::fs::read_to_string(&replanned).unwrap();
+    let claimed = path.with_file_name("claims-fewer.json");
+    let field = format!("\"repaired\": {rest}");
+    assert!(text.contains(&field), "{text}");
+    std::fs::write(
+        &claimed,
+        text.replace(&field, &format!("\"repaired\": {}", rest - 1)),
+    )
+    .unwrap();
+    let (code, stdout, stderr) = pushplan_in(Path::new("."), &["check", claimed.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(
+        stdout.contains(&format!(
+            "replanned.repaired: {} controls of the rest",
+            rest - 1
+        )) && stdout.ends_with("plan FAILED\n"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn a_moved_object_gets_a_new_search_from_where_it_is() {
+    // The plan has ended with the box found 5 cm further from the hand and 10 cm to the
+    // side: there is no rest to keep, and the new search from the observed state reaches
+    // the goal.
+    let scratch = Scratch::new("replan-moved");
+    let (plan, path) = planned(&scratch, "scenes/planar_hand_single_object.yaml");
+    let k = plan.controls.len();
+    let observed = observe(&plan, &path, k, move_the_box);
     let (code, stdout, stderr, new) = replan(&path, &observed, &["--at", &k.to_string()]);
     assert_eq!(code, 0, "{stdout}{stderr}");
     assert!(stdout.starts_with("solved"), "{stdout}");
     let new = new.expect("a plan written");
     let record = new.replanned.as_ref().expect("a replan record");
-    assert!(!record.kept && record.at == k, "{record:?}");
+    assert_eq!(
+        (record.kept, record.at, record.repaired),
+        (false, k, None),
+        "{record:?}"
+    );
     assert!(new.solved);
     let expected = ObservedState::read(&observed).unwrap();
     assert_eq!(
