@@ -543,29 +543,30 @@ namespace pushplan
                                                                  found_rate, found_trials, time_limit - elapsed()});
                 };
                 const bridge::FinishedPath as_found = finished(0.0, -1.0, 0);
-                const bridge::FinishedPath repaired =
+                const bridge::FinishedPath made_robust =
                     robust(as_found) || out_of_time()
                         ? as_found
                         : finished(run.robust_shortcut, as_found.robustness, as_found.robustness_trials);
-                plan.robustness = repaired.robustness;
-                plan.robustness_trials = repaired.robustness_trials;
-                detail::FlatPath as_repaired{std::vector<double>(repaired.controls.begin(), repaired.controls.end()),
-                                             std::vector<std::size_t>(repaired.steps.begin(), repaired.steps.end()),
-                                             std::vector<double>(repaired.states.begin(), repaired.states.end())};
-                if (robust(repaired))
+                plan.robustness = made_robust.robustness;
+                plan.robustness_trials = made_robust.robustness_trials;
+                detail::FlatPath as_made_robust{
+                    std::vector<double>(made_robust.controls.begin(), made_robust.controls.end()),
+                    std::vector<std::size_t>(made_robust.steps.begin(), made_robust.steps.end()),
+                    std::vector<double>(made_robust.states.begin(), made_robust.states.end())};
+                if (robust(made_robust))
                 {
-                    found = std::move(as_repaired);
+                    found = std::move(as_made_robust);
                     break;
                 }
                 if (!most_robust || surely(plan.robustness, plan.robustness_trials) >
                                         surely(most_robust->robustness, most_robust->trials))
-                    most_robust = SetAside{*winner, std::move(as_repaired), plan.robustness, plan.robustness_trials};
+                    most_robust = SetAside{*winner, std::move(as_made_robust), plan.robustness, plan.robustness_trials};
                 {
                     char note[256];
                     std::snprintf(note, sizeof note,
                                   "a solution reaches the goal in %.0f %% of %zu perturbed re-simulations "
                                   "(%zu of %zu controls kept shortcutting toward robustness): searching on",
-                                  100.0 * plan.robustness, plan.robustness_trials, repaired.steps.size(),
+                                  100.0 * plan.robustness, plan.robustness_trials, made_robust.steps.size(),
                                   found.steps.size());
                     tell_event(note);
                 }
