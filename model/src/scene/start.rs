@@ -27,6 +27,11 @@ use std::path::Path;
 /// passes through or two objects standing in one place.
 pub const MAX_SEPARATION: f64 = 0.02;
 
+/// Passes of separating objects from each other and then from the arm, at most: each
+/// pass halves the depth the last one left where an object is pressed between the arm and
+/// a neighbour, and a pass that moves nothing ends them.
+const SEPARATION_PASSES: usize = 8;
+
 /// The most an observed joint may lie past its limit once the tool is on its plane (rad,
 /// or m), to be put back on the limit: the plane projection's own step, not a joint
 /// driven past it.
@@ -102,9 +107,20 @@ impl Scene {
                 ));
             }
         }
-        self.separate_objects(&mut scene.start)
-            .and_then(|()| self.separate_from_arm(&mut scene.start))
-            .map_err(|(object, message)| invalid(format!("objects.{object}"), message))?;
+        // Moving an object out of the arm may take it into a neighbour, and moving two
+        // objects apart may take one back into the arm: the two alternate until neither
+        // moves an object (each halves what the other left), every object bounded by
+        // MAX_SEPARATION from where it was observed.
+        let observed = scene.start.objects.clone();
+        for _ in 0..SEPARATION_PASSES {
+            let before = scene.start.objects.clone();
+            self.separate_objects(&mut scene.start, &observed)
+                .and_then(|()| self.separate_from_arm(&mut scene.start, &observed))
+                .map_err(|(object, message)| invalid(format!("objects.{object}"), message))?;
+            if scene.start.objects == before {
+                break;
+            }
+        }
         scene.clearances = Clearances::at_start(&scene).with_start_overhangs(&scene);
         crate::validity::check_state(&scene, &scene.start).map_err(|reason| {
             Error::InvalidStart {
@@ -147,12 +163,16 @@ impl Scene {
     /// `physics.overlap_tolerance` (what the validity rules refuse), the deepest pair first,
     /// each by half the depth and a tenth of a millimetre along the contact's normal, until
     /// none does. An overlap deeper than [`MAX_SEPARATION`], or an object moved further than
-    /// that in all (overlaps passed along a row of objects), is refused, both objects
+    /// that from `start` (where it was observed; overlaps passed along a row of objects),
+    /// is refused, both objects
     /// named. MuJoCo's soft contacts leave two objects pressed together a few millimetres
     /// into each other, and so may perception.
-    fn separate_objects(&self, state: &mut State) -> std::result::Result<(), (String, String)> {
+    fn separate_objects(
+        &self,
+        state: &mut State,
+        start: &[Pose2],
+    ) -> std::result::Result<(), (String, String)> {
         let tolerance = self.physics.overlap_tolerance;
-        let start: Vec<Pose2> = state.objects.clone();
         let (mut scratch, mut pairs) = (Vec::new(), Vec::new());
         // Rounds: moving two objects apart may take one into a third.
         for _ in 0..16 {
@@ -219,14 +239,18 @@ impl Scene {
     /// of its top), out in the table's plane until the validity rules accept it, by
     /// [`MAX_SEPARATION`] at most: along the contact's normal when that is within 60
     /// degrees of horizontal, else straight away from the link's contact point in 2 mm
-    /// steps. An object further in is refused (its name and why).
-    fn separate_from_arm(&self, state: &mut State) -> std::result::Result<(), (String, String)> {
+    /// steps. An object further in, or moved further than that from `start` (where it was
+    /// observed), is refused (its name and why).
+    fn separate_from_arm(
+        &self,
+        state: &mut State,
+        start: &[Pose2],
+    ) -> std::result::Result<(), (String, String)> {
         let tolerance = self.physics.penetration_tolerance;
         let vertical = self.physics.vertical_normal_angle.cos();
         let poses = self.robot.link_poses(&state.q);
         let mut bounds = ArmBounds::default();
         ArmBounds::compute(self, &poses, &mut bounds);
-        let start: Vec<Pose2> = state.objects.clone();
         let (mut boxes, mut contacts) = (Vec::new(), Vec::new());
         // Rounds: moving an object out of one link may take it into another, and an
         // object under a link moves out in steps.

@@ -271,3 +271,48 @@ fn two_objects_observed_pressed_into_each_other_are_moved_apart_as_far_as_they_o
         "{error}"
     );
 }
+
+#[test]
+fn an_object_pressed_between_the_arm_and_a_neighbour_is_taken_to_touch_both() {
+    // The planar hand's box observed 4 mm into the hand's front face, a second box of the
+    // same size touching its front (0.5 mm gap): moving the first out of the hand takes it
+    // 3.5 mm into the second, and moving those two apart takes it back into the hand. The
+    // two separations alternate until each contact is within its tolerance; with one pass
+    // of each (before), the objects were left overlapping and the observation refused.
+    let text = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
+    let second = "  - name: second\n    shape: {type: box, size: [0.1, 0.1, 0.14]}\n    pose: [0.8, -0.3, 0.0]\n    mass: 1.0\n    mu_g: 0.4\n    mu_c: 0.3\ngoal:";
+    let scene =
+        Scene::from_yaml(&text.replacen("goal:", second, 1), Path::new("two.yaml")).unwrap();
+    let mut observed = scene.start.clone();
+    let first_x = HAND_FRONT_X + BOX_HALF - 0.004;
+    observed.objects[0] = pushplan_model::Pose2::new(first_x, 0.0, 0.0);
+    observed.objects[1] = pushplan_model::Pose2::new(first_x + 2.0 * BOX_HALF + 0.0005, 0.0, 0.0);
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    let (first, second) = (from.start.objects[0], from.start.objects[1]);
+    let (physics, tolerance) = (&scene.physics, 1e-9);
+    let in_hand = HAND_FRONT_X - (first.x - BOX_HALF);
+    let overlap = (first.x + BOX_HALF) - (second.x - BOX_HALF);
+    assert!(
+        in_hand <= physics.penetration_tolerance + tolerance
+            && overlap <= physics.overlap_tolerance + tolerance,
+        "within both tolerances: {:.2} mm into the hand, {:.2} mm into the neighbour",
+        in_hand * 1e3,
+        overlap * 1e3
+    );
+    // Moved along x only, and no further than the depths asked: the first box at most its
+    // 4 mm out of the hand, the second at most the 3.5 mm it was pushed into.
+    assert_eq!(
+        (first.y, first.theta, second.y, second.theta),
+        (0.0, 0.0, 0.0, 0.0)
+    );
+    assert!(
+        first.x >= first_x && first.x - first_x <= 0.004 + 1e-4,
+        "{first:?}"
+    );
+    assert!(
+        second.x >= observed.objects[1].x && second.x - observed.objects[1].x <= 0.0035 + 1e-4,
+        "{second:?}"
+    );
+}
