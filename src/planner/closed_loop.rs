@@ -10,6 +10,7 @@
 use super::search::Search;
 use crate::planning::execute::{trial_worlds, ExecuteSettings, TIPPED_TILT};
 use crate::planning::execute::{Engine, EngineKind, STEP};
+use crate::planning::observed::ObservedState;
 use crate::planning::path::PathControl;
 use crate::planning::rest::{RestFrom, REPAIR_SHARE};
 use crate::planning::shortcut::{shortcut, ShortcutSettings};
@@ -97,6 +98,11 @@ pub struct ClosedLoopTrial {
     pub replan_latencies: Vec<f64>,
     /// Why the execution stopped before the plan's end, if it did.
     pub stopped: Option<String>,
+    /// The observation the execution stopped on, if the model refused it as a start (in
+    /// `replan --observed`'s format: `replan` and `check` on it say the same, so it can be
+    /// replayed without the engine).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub refused_observation: Option<ObservedState>,
     /// Wall-clock time the trial took: the engine's simulation, the re-simulations, the
     /// searches and the shortcutting (s).
     pub wall_time: f64,
@@ -155,6 +161,7 @@ impl ClosedLoop<'_> {
             latencies: Vec::new(),
             replan_latencies: Vec::new(),
             stopped: None,
+            refused_observation: None,
             wall_time: 0.0,
         };
         let mut tipped = vec![false; objects];
@@ -182,6 +189,7 @@ impl ClosedLoop<'_> {
                 Ok(from) => from,
                 Err(e) => {
                     trial.stopped = Some(format!("the observed state is no valid start: {e}"));
+                    trial.refused_observation = Some(ObservedState::of(scene, &observed));
                     break;
                 }
             };

@@ -602,6 +602,68 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     );
 }
 
+/// An observation the model refuses as a start stops the trial, and the trial keeps it in
+/// `replan --observed`'s format: `replan` on it refuses it the same way, without the
+/// engine, so a refusal seen in a long run can be replayed and traced.
+#[test]
+fn a_refused_observation_is_kept_in_the_trial_and_replays_through_replan() {
+    use pushplan::planning::plan_file::PlanFile;
+    let scratch = common::Scratch::new("closed-loop-refused");
+    let scene_path = Path::new("scenes/planar_hand_single_object.yaml");
+    let plan_path = scratch.join("plan.json");
+    common::plan_solved(
+        scene_path.to_str().unwrap(),
+        &plan_path,
+        &["--threads", "1"],
+    );
+    let plan = PlanFile::read(&plan_path).unwrap();
+    let scene = plan.load_scene(&plan_path).unwrap();
+    // The world's box stands 25 mm into the hand's front face (x = 0.42; the box is 10 cm
+    // wide): deeper than an observation may be off (20 mm).
+    let mut world = scene.clone();
+    world.start.objects[0] = pushplan::Pose2::new(0.42 + 0.05 - 0.025, 0.0, 0.0);
+    let trial = closed_loop(scene_path, plan.settings.planner, 1)
+        .execute(&scene, &plan.path_controls(), &world)
+        .unwrap();
+    assert!(!trial.reached && trial.controls_played == 0, "{trial:?}");
+    assert!(
+        trial
+            .stopped
+            .as_deref()
+            .is_some_and(|why| why.starts_with("the observed state is no valid start")),
+        "{trial:?}"
+    );
+    let refused = trial
+        .refused_observation
+        .expect("the refused observation kept");
+    let observed_box = refused.objects["box"];
+    assert!(
+        (observed_box[0] - 0.445).abs() < 1e-3 && observed_box[1].abs() < 1e-3,
+        "where the world has the box: {observed_box:?}"
+    );
+    let observed = scratch.join("refused.json");
+    std::fs::write(&observed, refused.to_json()).unwrap();
+    let out = scratch.join("replanned.json");
+    let (code, stdout, stderr) = common::pushplan_in(
+        Path::new("."),
+        &[
+            "replan",
+            plan_path.to_str().unwrap(),
+            "--observed",
+            observed.to_str().unwrap(),
+            "--at",
+            "0",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 2, "{stdout}{stderr}");
+    assert!(
+        stderr.contains("objects.box") && stderr.contains("an observation may be off"),
+        "{stderr}"
+    );
+}
+
 /// `execute --closed-loop` through the command line: every trial reported, with its
 /// re-plans and the latency figures, in the text and in the JSON report.
 #[test]
