@@ -40,17 +40,6 @@ pub enum RestFrom {
     },
 }
 
-impl RestFrom {
-    /// Controls of the rest to keep before an ending is searched: 0 when it is searched
-    /// anew, `None` when it is kept whole.
-    pub fn repairable(&self) -> Option<usize> {
-        match self {
-            RestFrom::Reaches => None,
-            RestFrom::EndsShort { valid, .. } => Some(*valid),
-        }
-    }
-}
-
 impl Problem {
     /// Re-simulates `rest` from the problem's start (the observed state) and judges it:
     /// `reaches` says whether a final state does the plan's work (the goal, or a goal
