@@ -7,12 +7,11 @@
 use super::plan::{plan, ObservedStart, PlanOptions};
 use super::SearchFlags;
 use pushplan::limits::Front;
-use pushplan::planner::plan_scene::{repair_scene, PlanRequest};
+use pushplan::planner::plan_scene::repair_scene;
 use pushplan::planner::Search;
 use pushplan::planning::observed::ObservedState;
 use pushplan::planning::plan_file::{PlanFile, ReplanRecord};
 use pushplan::planning::rest::{RestFrom, REPAIR_SHARE};
-use pushplan::planning::CommandDeadline;
 use pushplan::{DistanceMetric, Scene};
 use std::path::Path;
 use std::process::ExitCode;
@@ -95,19 +94,12 @@ pub fn replan(
         settings.check(Front::CommandLine)?;
         settings.time_limit *= REPAIR_SHARE;
         let started = Instant::now();
-        let deadline = CommandDeadline::new(started, settings.time_limit, &from, false);
         let repaired = repair_scene(
             search,
-            &PlanRequest {
-                scene_path: &scene_path,
-                scene: &from,
-                start: Some(&from.start),
-                options: &settings,
-                deadline: deadline.pushing,
-                reference: &reference,
-                search_progress: None,
-                shortcut_progress: None,
-            },
+            &scene_path,
+            &from,
+            &settings,
+            &reference,
             &rest[..valid],
             &end,
         )?;

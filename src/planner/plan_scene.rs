@@ -105,26 +105,35 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
 }
 
 /// A repair of the rest of a plan ([`crate::planning::rest`]): `kept`, the rest's
-/// controls valid from `request.scene`'s start (the observed state) and ending in `end`,
-/// then an ending searched from `end` and finished as `request` says. `None` when the
-/// search finds no exact ending by `request.deadline`; the plan file starts at the
-/// observed state and records the ending's settings (no re-plan record).
+/// controls valid from `from`'s start (the observed state) and ending in `end`, then an
+/// ending searched from `end` in the scene file at `scene_path` and finished as `options`
+/// say, all within `options.time_limit` s. `None` when the search finds no exact ending in
+/// that time; the plan file (`reference`: its `scene` field) starts at the observed state
+/// and records the ending's settings (no re-plan record).
 pub fn repair_scene(
     search: &dyn Search,
-    request: &PlanRequest,
+    scene_path: &Path,
+    from: &Scene,
+    options: &RunSettings,
+    reference: &str,
     kept: &[PathControl],
     end: &State,
 ) -> Result<Option<PlanFile>, String> {
-    let from = request.scene;
+    let deadline = CommandDeadline::new(Instant::now(), options.time_limit, from, false);
     let at_end = from
         .with_start(end, Path::new("the end of the plan's valid part"))
         .map_err(|e| e.to_string())?;
     let ending = plan_scene(
         search,
         &PlanRequest {
+            scene_path,
             scene: &at_end,
             start: Some(&at_end.start),
-            ..*request
+            options,
+            deadline: deadline.pushing,
+            reference,
+            search_progress: None,
+            shortcut_progress: None,
         },
     )?;
     if !ending.found.summary.exact {
@@ -132,7 +141,7 @@ pub fn repair_scene(
     }
     let controls = [kept, &ending.file.path_controls()].concat();
     let file = PlanFile::build(
-        request.reference,
+        reference,
         from.clone(),
         &ending.file.settings,
         &controls,

@@ -217,22 +217,7 @@ fn repair_again(
     let options = plan
         .settings
         .run_settings(plan.robustness.as_ref(), time_limit);
-    let deadline = CommandDeadline::new(Instant::now(), time_limit, from, false);
-    let repaired = repair_scene(
-        search,
-        &PlanRequest {
-            scene_path,
-            scene: from,
-            start: Some(&from.start),
-            options: &options,
-            deadline: deadline.pushing,
-            reference: &plan.scene,
-            search_progress: None,
-            shortcut_progress: None,
-        },
-        kept,
-        end,
-    )?;
+    let repaired = repair_scene(search, scene_path, from, &options, &plan.scene, kept, end)?;
     // What the settings record is what they were made with, not the time given here.
     Ok(repaired.map(|mut file| {
         file.settings.time_limit = plan.settings.time_limit;

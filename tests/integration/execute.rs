@@ -475,6 +475,18 @@ fn closed_loop(
     }
 }
 
+/// The plan `pushplan plan` makes of the scene file at `scene_path` on one thread, written
+/// to `plan_path`, and its scene.
+fn planned(
+    scene_path: &Path,
+    plan_path: &Path,
+) -> (pushplan::planning::plan_file::PlanFile, Scene) {
+    common::plan_solved(scene_path.to_str().unwrap(), plan_path, &["--threads", "1"]);
+    let plan = pushplan::planning::plan_file::PlanFile::read(plan_path).unwrap();
+    let scene = plan.load_scene(plan_path).unwrap();
+    (plan, scene)
+}
+
 /// Closed loop against a world that is not the model: the box stands 6 cm to the side of
 /// where the scene says and grips the table twice as hard. Played open loop, the plan
 /// pushes past it and misses; closed loop, the first observation finds the box where it
@@ -485,13 +497,10 @@ fn closed_loop(
 fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
     use pushplan::planning::execute::{execute_in_world, ExecuteSettings};
-    use pushplan::planning::plan_file::PlanFile;
     let scratch = common::Scratch::new("closed-loop");
     let plan_path = scratch.join("plan.json");
     let scene_path = "scenes/planar_hand_single_object.yaml";
-    common::plan_solved(scene_path, &plan_path, &["--threads", "1"]);
-    let plan = PlanFile::read(&plan_path).unwrap();
-    let scene = plan.load_scene(&plan_path).unwrap();
+    let (plan, scene) = planned(Path::new(scene_path), &plan_path);
     let mut world = scene.clone();
     // Sideways of the push (the hand starts at y = 0 behind the box, the goal lies at +y).
     world.start.objects[0].y -= 0.06;
@@ -549,7 +558,6 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
 /// from the start: with one re-plan allowed, that one is the repair.
 #[test]
 fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_there() {
-    use pushplan::planning::plan_file::PlanFile;
     use pushplan::planning::Problem;
     let scratch = common::Scratch::new("closed-loop-invalid-rest");
     let scene_path = scratch.join("scene.yaml");
@@ -558,13 +566,7 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     let glass = "  - name: glass\n    shape: {type: cylinder, radius: 0.015, height: 0.12}\n    pose: [0.32, -0.5, 0.0]\n    mass: 0.2\n    mu_g: 0.4\n    mu_c: 0.3\ngoal:";
     std::fs::write(&scene_path, base.replacen("goal:", glass, 1)).unwrap();
     let plan_path = scratch.join("plan.json");
-    common::plan_solved(
-        scene_path.to_str().unwrap(),
-        &plan_path,
-        &["--threads", "1"],
-    );
-    let plan = PlanFile::read(&plan_path).unwrap();
-    let scene = plan.load_scene(&plan_path).unwrap();
+    let (plan, scene) = planned(&scene_path, &plan_path);
     let controls = plan.path_controls();
     assert!(controls.len() >= 4, "{} controls", controls.len());
 
@@ -607,17 +609,10 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
 /// engine, so a refusal seen in a long run can be replayed and traced.
 #[test]
 fn a_refused_observation_is_kept_in_the_trial_and_replays_through_replan() {
-    use pushplan::planning::plan_file::PlanFile;
     let scratch = common::Scratch::new("closed-loop-refused");
     let scene_path = Path::new("scenes/planar_hand_single_object.yaml");
     let plan_path = scratch.join("plan.json");
-    common::plan_solved(
-        scene_path.to_str().unwrap(),
-        &plan_path,
-        &["--threads", "1"],
-    );
-    let plan = PlanFile::read(&plan_path).unwrap();
-    let scene = plan.load_scene(&plan_path).unwrap();
+    let (plan, scene) = planned(scene_path, &plan_path);
     // The world's box stands 25 mm into the hand's front face (x = 0.42; the box is 10 cm
     // wide): deeper than an observation may be off (20 mm).
     let mut world = scene.clone();
