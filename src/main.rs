@@ -143,6 +143,11 @@ enum Command {
         /// With --closed-loop: each re-planning search's time limit (s).
         #[arg(long, default_value_t = 2.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_TIME))]
         replan_time: f64,
+        /// With --closed-loop: threads of each re-planning search (default: one per core,
+        /// as `plan --threads`: the arm waits on a re-plan, and two threads find one in
+        /// about half the time).
+        #[arg(long, value_name = "N", value_parser = within::count::<u32>(&limits::REPLAN_THREADS))]
+        replan_threads: Option<u32>,
         /// With --closed-loop: shortcutting of each re-planned path before its first control
         /// is played (s of work; by default none: the polish below shortens it while the arm
         /// plays, and the median re-plan takes 0.03 s instead of 0.16 s, BENCHMARKS.md).
@@ -474,6 +479,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             render,
             closed_loop,
             replan_time,
+            replan_threads,
             replan_shortcut,
             replan_polish,
             max_replans,
@@ -491,6 +497,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                     &OmplSearch as &dyn pushplan::planner::Search,
                     ClosedLoopFlags {
                         replan_time,
+                        replan_threads: replan_threads.unwrap_or_else(cli::cores),
                         replan_shortcut,
                         replan_polish,
                         max_replans,

@@ -242,6 +242,8 @@ pub const MAX_REPLANS: Limit = count("--max-replans", "", 1, 10_000, "searches p
 pub const REPLAN_TIME: Limit = seconds("--replan-time", "", true, DAY, "seconds");
 /// `execute --replan-budget`: a closed-loop trial's search time in all (s).
 pub const REPLAN_BUDGET: Limit = seconds("--replan-budget", "", true, DAY, "seconds");
+/// `execute --replan-threads`: threads of each re-planning search.
+pub const REPLAN_THREADS: Limit = count("--replan-threads", "", 1, 256, "threads");
 /// `execute --replan-shortcut`: shortcutting before a re-plan is played (s of work).
 pub const REPLAN_SHORTCUT: Limit = seconds("--replan-shortcut", "", false, DAY, "seconds of work");
 /// `execute --replan-polish`: shortcutting while a re-plan is played (s of work).
@@ -262,7 +264,7 @@ pub const RUNS: Limit = count("--runs", "", 1, 10_000, "runs");
 pub const JOBS: Limit = count("--jobs", "", 1, 1_024, "processes");
 
 /// Every limit, for the table in docs/commands.md and its test.
-pub const ALL: [&Limit; 24] = [
+pub const ALL: [&Limit; 25] = [
     &K,
     &THREADS,
     &ROBUST_TRIALS,
@@ -278,6 +280,7 @@ pub const ALL: [&Limit; 24] = [
     &MAX_REPLANS,
     &REPLAN_TIME,
     &REPLAN_BUDGET,
+    &REPLAN_THREADS,
     &REPLAN_SHORTCUT,
     &REPLAN_POLISH,
     &SCENES,

@@ -15,6 +15,8 @@ use std::process::ExitCode;
 pub struct ClosedLoopFlags {
     /// Each re-planning search's time limit (s).
     pub replan_time: f64,
+    /// Threads of each re-planning search.
+    pub replan_threads: u32,
     /// Shortcutting of each re-planned path (s of work).
     pub replan_shortcut: f64,
     /// Shortcutting of each re-planned path while the arm plays it (s of work).
@@ -92,6 +94,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                 settings: ClosedLoopSettings {
                     planner: plan.settings.planner,
                     replan_time: flags.replan_time,
+                    threads: flags.replan_threads,
                     replan_shortcut: flags.replan_shortcut,
                     polish: flags.replan_polish,
                     seed: plan.settings.seed,
@@ -133,7 +136,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
 fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine: EngineKind) {
     let n = report.trials.len();
     println!(
-        "{}: executed {n} times closed loop in 3D ({engine}) at {speed}x speed: {} reach the goal ({:.0} %); {} tip an object; {:.1} re-plans per trial; re-planning latency median {:.3} s, 95th percentile {:.3} s (from any observation to the plan played next: median {:.4} s)",
+        "{}: executed {n} times closed loop in 3D ({engine}) at {speed}x speed: {} reach the goal ({:.0} %); {} tip an object; {:.1} re-plans per trial; re-planning latency median {:.3} s, 95th percentile {:.3} s, searching on {} {} (from any observation to the plan played next: median {:.4} s)",
         path.display(),
         report.trials.iter().filter(|t| t.reached).count(),
         100.0 * report.success_rate,
@@ -141,6 +144,8 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
         report.replans_per_trial,
         report.replan_latency_median,
         report.replan_latency_p95,
+        report.replan_threads,
+        if report.replan_threads == 1 { "thread" } else { "threads" },
         report.decision_latency_median,
     );
     for (i, t) in report.trials.iter().enumerate() {

@@ -31,6 +31,10 @@ pub struct ClosedLoopSettings {
     pub planner: PlannerKind,
     /// Time limit of each re-planning search (s).
     pub replan_time: f64,
+    /// Threads of each re-planning search: a re-plan is what the arm may wait on, and a
+    /// search on two threads finds a plan in about half the time (BENCHMARKS.md, "Two
+    /// threads against one").
+    pub threads: u32,
     /// Shortcutting budget of each re-planned path before its first control is played
     /// (s of work).
     pub replan_shortcut: f64,
@@ -423,6 +427,7 @@ impl ClosedLoop<'_> {
         let from = problem.scene();
         let run = RunSettings {
             time_limit: time,
+            threads: settings.threads,
             seed: settings.seed.wrapping_add(index as u64),
             shortcut: 0.0,
             ..RunSettings::of_scene(settings.planner, &from.planner)
@@ -493,6 +498,9 @@ fn note_tipping(world: &dyn Engine, tipped: &mut [bool]) {
 pub struct ClosedLoopReport {
     /// The engine the trials ran in.
     pub engine: EngineKind,
+    /// Threads of each re-planning search ([`ClosedLoopSettings::threads`]): latencies
+    /// depend on them.
+    pub replan_threads: u32,
     /// Every trial, the nominal one first.
     pub trials: Vec<ClosedLoopTrial>,
     /// Fraction of trials that reached the goal.
@@ -545,6 +553,7 @@ impl ClosedLoop<'_> {
         let n = done.len().max(1) as f64;
         Ok(ClosedLoopReport {
             engine: self.execution.engine,
+            replan_threads: self.settings.threads,
             success_rate: done.iter().filter(|t| t.reached).count() as f64 / n,
             tipped_trials: done.iter().filter(|t| !t.tipped.is_empty()).count(),
             replans_per_trial: done.iter().map(|t| t.replans).sum::<usize>() as f64 / n,

@@ -464,6 +464,7 @@ fn closed_loop(
         settings: ClosedLoopSettings {
             planner,
             replan_time: 10.0,
+            threads: 1,
             replan_shortcut: 0.5,
             polish: 2.0,
             seed: 1,
@@ -717,6 +718,27 @@ fn execute_closed_loop_reports_trials_replans_and_latency() {
     ] {
         assert!(report[field].is_number(), "{field}: {report}");
     }
+    // Re-plans search on one thread per core unless told otherwise, as `plan` does.
+    let cores = std::thread::available_parallelism().unwrap().get() as u64;
+    assert_eq!(report["replan_threads"].as_u64(), Some(cores), "{report}");
+    let (code, stdout, stderr) = common::pushplan_in(
+        Path::new("."),
+        &[
+            "execute",
+            plan.to_str().unwrap(),
+            "--closed-loop",
+            "--trials",
+            "1",
+            "--replan-threads",
+            "3",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(report["replan_threads"].as_u64(), Some(3), "{report}");
     // Rendering is for open-loop executions.
     let (code, _, stderr) = common::pushplan_in(
         Path::new("."),
@@ -735,6 +757,7 @@ fn execute_closed_loop_reports_trials_replans_and_latency() {
         ("--replan-budget", "-1"),
         ("--replan-budget", "nan"),
         ("--replan-polish", "-1"),
+        ("--replan-threads", "0"),
     ] {
         let (code, _, stderr) = common::pushplan_in(
             Path::new("."),
