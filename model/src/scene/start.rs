@@ -40,8 +40,10 @@ pub const LIMIT_SLACK: f64 = 1e-3;
 impl Scene {
     /// This scene with `start` as its start state, checked as a scene file's start is:
     /// joint and object counts, finite values, an arm's tool brought onto its pushing plane
-    /// (the tight tolerance of a scene's start, so that drift is measured from zero), joint
-    /// limits, and every validity rule. Object yaws are wrapped to (-pi, pi]. The
+    /// (the tight tolerance of a scene's start, so that drift is measured from zero; an
+    /// arm valid as observed and within the propagation's tolerance is kept as it is where
+    /// the projection would press two links together), joint limits, and every validity
+    /// rule. Object yaws are wrapped to (-pi, pi]. The
     /// clearances are those of the new start (objects that stand close together may stay
     /// so). Errors name `source` (the file the state came from) and the field at fault.
     pub fn with_start(&self, start: &State, source: &Path) -> Result<Scene> {
@@ -86,6 +88,17 @@ impl Scene {
         if self.robot.kind == RobotKind::Arm {
             self.start_on_plane_within_limits(&mut q)
                 .map_err(|failure| invalid("q".into(), failure))?;
+            // Bringing the tool onto its plane moves every joint a little: where two links
+            // are a hair apart (the WAM's links 3 and 5 often are) it can press them into
+            // each other. A state the propagation itself keeps (the tool within its
+            // tolerances of the plane), valid as observed, is a state the model makes: it
+            // is taken as it is rather than refused.
+            if crate::validity::check_arm(self, &q).is_err()
+                && self.within_propagation_tolerance(&start.q)
+                && crate::validity::check_arm(self, &start.q).is_ok()
+            {
+                q.clone_from(&start.q);
+            }
         }
         if let Err(i) = self.robot.chain.within_limits(&q) {
             let joint = self.robot.chain.dof_joint(i);
@@ -129,6 +142,14 @@ impl Scene {
             }
         })?;
         Ok(scene)
+    }
+
+    /// Is the tool of `q` on its pushing plane within the tolerances the propagation keeps
+    /// (not the start's tight ones)?
+    fn within_propagation_tolerance(&self, q: &DVector<f64>) -> bool {
+        let robot = &self.robot;
+        let (height, tilt) = robot.plane.error(&robot.tool_pose(&robot.link_poses(q)));
+        height.abs() <= robot.projection.height_tolerance && tilt <= robot.projection.tilt_tolerance
     }
 
     /// Brings the tool of `q` onto its pushing plane; a joint the projection takes past
