@@ -672,19 +672,21 @@ fn execute_closed_loop_reports_trials_replans_and_latency() {
         &["--threads", "1"],
     );
     let json = scratch.join("report.json");
-    let (code, stdout, stderr) = common::pushplan_in(
-        Path::new("."),
-        &[
-            "execute",
-            plan.to_str().unwrap(),
-            "--closed-loop",
-            "--trials",
-            "2",
-            "--json",
-            json.to_str().unwrap(),
-        ],
-    );
-    assert_eq!(code, 0, "{stdout}{stderr}");
+    // `execute --closed-loop` with `more` options, its JSON report to `json`.
+    let closed_loop = |more: &[&str]| {
+        let (code, stdout, stderr) = common::pushplan_in(
+            Path::new("."),
+            &[
+                &["execute", plan.to_str().unwrap(), "--closed-loop"],
+                more,
+                &["--json", json.to_str().unwrap()],
+            ]
+            .concat(),
+        );
+        assert_eq!(code, 0, "{stdout}{stderr}");
+        (stdout, stderr)
+    };
+    let (stdout, stderr) = closed_loop(&["--trials", "2"]);
     assert!(stdout.contains("executed 2 times closed loop"), "{stdout}");
     assert!(stdout.contains("re-planning latency median"), "{stdout}");
     // Each trial is told on stderr as it ends (long runs show their progress), in order,
@@ -721,21 +723,7 @@ fn execute_closed_loop_reports_trials_replans_and_latency() {
     // Re-plans search on one thread per core unless told otherwise, as `plan` does.
     let cores = std::thread::available_parallelism().unwrap().get() as u64;
     assert_eq!(report["replan_threads"].as_u64(), Some(cores), "{report}");
-    let (code, stdout, stderr) = common::pushplan_in(
-        Path::new("."),
-        &[
-            "execute",
-            plan.to_str().unwrap(),
-            "--closed-loop",
-            "--trials",
-            "1",
-            "--replan-threads",
-            "3",
-            "--json",
-            json.to_str().unwrap(),
-        ],
-    );
-    assert_eq!(code, 0, "{stdout}{stderr}");
+    closed_loop(&["--trials", "1", "--replan-threads", "3"]);
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(report["replan_threads"].as_u64(), Some(3), "{report}");
