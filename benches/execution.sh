@@ -9,7 +9,9 @@
 # 3D trials and perturbed re-simulations per plan (default 10). CLOSED_LOOP=1 also plays
 # each plan closed loop (`execute --closed-loop`, the same trials and worlds), into
 # OUT_DIR/*.closed.{json,txt}, with CLOSED_LOOP_ARGS (e.g. "--replan-shortcut 0.1 --replan-budget 60");
-# OPEN_LOOP=0 then skips the open-loop plays. REUSE_PLANS=1 judges the plans already in
+# OPEN_LOOP=0 then skips the open-loop plays. Closed-loop re-plans search on one thread per
+# core by default; with JOBS > 1, or another run beside this one, add "--replan-threads 1"
+# to CLOSED_LOOP_ARGS so that the runs do not share cores unevenly. REUSE_PLANS=1 judges the plans already in
 # OUT_DIR (FOLDER_scene_NN.json with its .plan.txt) instead of planning again. JOBS runs
 # that many scenes at a time (default 1; each scene's runs stay one after the other).
 # Closed-loop runs write a line per finished trial to FOLDER_scene_NN.ENGINE.closed.log as
