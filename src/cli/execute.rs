@@ -94,7 +94,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                 settings: ClosedLoopSettings {
                     planner: plan.settings.planner,
                     replan_time: flags.replan_time,
-                    threads: flags.replan_threads,
+                    replan_threads: flags.replan_threads,
                     replan_shortcut: flags.replan_shortcut,
                     polish: flags.replan_polish,
                     seed: plan.settings.seed,

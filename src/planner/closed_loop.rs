@@ -34,7 +34,7 @@ pub struct ClosedLoopSettings {
     /// Threads of each re-planning search: a re-plan is what the arm may wait on, and a
     /// search on two threads finds a plan in about half the time (BENCHMARKS.md, "Two
     /// threads against one").
-    pub threads: u32,
+    pub replan_threads: u32,
     /// Shortcutting budget of each re-planned path before its first control is played
     /// (s of work).
     pub replan_shortcut: f64,
@@ -427,7 +427,7 @@ impl ClosedLoop<'_> {
         let from = problem.scene();
         let run = RunSettings {
             time_limit: time,
-            threads: settings.threads,
+            threads: settings.replan_threads,
             seed: settings.seed.wrapping_add(index as u64),
             shortcut: 0.0,
             ..RunSettings::of_scene(settings.planner, &from.planner)
@@ -498,7 +498,7 @@ fn note_tipping(world: &dyn Engine, tipped: &mut [bool]) {
 pub struct ClosedLoopReport {
     /// The engine the trials ran in.
     pub engine: EngineKind,
-    /// Threads of each re-planning search ([`ClosedLoopSettings::threads`]): latencies
+    /// Threads of each re-planning search ([`ClosedLoopSettings::replan_threads`]): latencies
     /// depend on them.
     pub replan_threads: u32,
     /// Every trial, the nominal one first.
@@ -553,7 +553,7 @@ impl ClosedLoop<'_> {
         let n = done.len().max(1) as f64;
         Ok(ClosedLoopReport {
             engine: self.execution.engine,
-            replan_threads: self.settings.threads,
+            replan_threads: self.settings.replan_threads,
             success_rate: done.iter().filter(|t| t.reached).count() as f64 / n,
             tipped_trials: done.iter().filter(|t| !t.tipped.is_empty()).count(),
             replans_per_trial: done.iter().map(|t| t.replans).sum::<usize>() as f64 / n,

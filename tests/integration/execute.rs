@@ -464,7 +464,7 @@ fn closed_loop(
         settings: ClosedLoopSettings {
             planner,
             replan_time: 10.0,
-            threads: 1,
+            replan_threads: 1,
             replan_shortcut: 0.5,
             polish: 2.0,
             seed: 1,

@@ -146,6 +146,12 @@ impl Default for ProjectionSettings {
 }
 
 impl ProjectionSettings {
+    /// Does a tool `height` (m) from its plane and tilted by `tilt` (rad) lie within these
+    /// tolerances?
+    pub fn admits(&self, height: f64, tilt: f64) -> bool {
+        height.abs() <= self.height_tolerance && tilt <= self.tilt_tolerance
+    }
+
     /// These settings with the tolerances a start state is held to: a thousandth of the
     /// propagation's, so that drift is measured from (almost) zero.
     pub fn for_start(&self) -> ProjectionSettings {
@@ -287,11 +293,7 @@ impl Robot {
     ) -> Result<(), ProjectionFailure> {
         let within = |poses: &[Isometry3<f64>]| {
             let (h, t) = self.plane.error(&self.tool_pose(poses));
-            (
-                h.abs() <= settings.height_tolerance && t <= settings.tilt_tolerance,
-                h,
-                t,
-            )
+            (settings.admits(h, t), h, t)
         };
         let empty = DVector::zeros(0);
         for _ in 0..NEWTON_ITERATIONS {

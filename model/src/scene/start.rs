@@ -93,8 +93,12 @@ impl Scene {
             // each other. A state the propagation itself keeps (the tool within its
             // tolerances of the plane), valid as observed, is a state the model makes: it
             // is taken as it is rather than refused.
+            let robot = &self.robot;
+            let (height, tilt) = robot
+                .plane
+                .error(&robot.tool_pose(&robot.link_poses(&start.q)));
             if crate::validity::check_arm(self, &q).is_err()
-                && self.within_propagation_tolerance(&start.q)
+                && robot.projection.admits(height, tilt)
                 && crate::validity::check_arm(self, &start.q).is_ok()
             {
                 q.clone_from(&start.q);
@@ -142,14 +146,6 @@ impl Scene {
             }
         })?;
         Ok(scene)
-    }
-
-    /// Is the tool of `q` on its pushing plane within the tolerances the propagation keeps
-    /// (not the start's tight ones)?
-    fn within_propagation_tolerance(&self, q: &DVector<f64>) -> bool {
-        let robot = &self.robot;
-        let (height, tilt) = robot.plane.error(&robot.tool_pose(&robot.link_poses(q)));
-        height.abs() <= robot.projection.height_tolerance && tilt <= robot.projection.tilt_tolerance
     }
 
     /// Brings the tool of `q` onto its pushing plane; a joint the projection takes past
