@@ -21,6 +21,7 @@ use crate::scene::{Clearances, Scene};
 use crate::state::State;
 use nalgebra::DVector;
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -81,6 +82,10 @@ pub struct ClosedLoopTrial {
     /// Observations after which the rest of the plan stopped being valid in the model
     /// before its end (an object tipped or too close, the arm in collision).
     pub invalid_rests: usize,
+    /// Those observations by the rule the rest broke first ([`crate::validity::Invalid::kind`]:
+    /// "objects too close", "object off table", ...): what a world unlike the model does
+    /// to the plan.
+    pub invalid_rest_rules: BTreeMap<String, usize>,
     /// Observations with an object inside the arm or inside another object, moved out to
     /// touch it instead ([`Scene::with_start`]: a soft contact's depth).
     pub separations: usize,
@@ -156,6 +161,7 @@ impl ClosedLoop<'_> {
             cut_short: 0,
             kept: 0,
             invalid_rests: 0,
+            invalid_rest_rules: BTreeMap::new(),
             separations: 0,
             replans: 0,
             repairs: 0,
@@ -206,10 +212,16 @@ impl ClosedLoop<'_> {
             // The rest is re-simulated, and played, with half the margins spent.
             let playing = Problem::new(margins_half_spent(&from), settings.planner);
             let (verdict, simulated) = playing.rest_from(&rest, |s| still_reaches(&from.goal, s));
-            trial.invalid_rests += usize::from(!simulated.valid());
+            if let Some((_, rule)) = &simulated.stopped_by {
+                trial.invalid_rests += 1;
+                *trial
+                    .invalid_rest_rules
+                    .entry(rule.kind().to_string())
+                    .or_default() += 1;
+            }
             match verdict {
                 RestFrom::Reaches => trial.kept += 1,
-                RestFrom::EndsShort { valid, end, .. } => {
+                RestFrom::EndsShort { valid, end, why } => {
                     if trial.replans + trial.failed_replans == settings.max_replans {
                         trial.stopped = Some(format!(
                         "the rest of the plan misses the goal after {} re-plans ({} found nothing)",
@@ -257,7 +269,7 @@ impl ClosedLoop<'_> {
                             failures_in_a_row = 0;
                             waiting_failures = 0;
                         }
-                        Err(why) => {
+                        Err(failure) => {
                             trial.failed_replans += 1;
                             failures_in_a_row += 1;
                             // A rest no longer valid to its end is played up to where it stops
@@ -268,13 +280,13 @@ impl ClosedLoop<'_> {
                             waiting_failures += u32::from(!playable);
                             if waiting_failures == WAITING_SEARCHES {
                                 trial.stopped = Some(format!(
-                                "{why} ({WAITING_SEARCHES} searches found nothing while the arm \
-                                 waited, the longest {time:.1} s: the rest of the plan is no longer \
-                                 valid)"
-                            ));
+                                    "{failure} ({WAITING_SEARCHES} searches found nothing while the \
+                                     arm waited, the longest {time:.1} s: the rest of the plan is no \
+                                     longer valid, {why})"
+                                ));
                                 break;
                             }
-                            trial.last_failure = Some(why);
+                            trial.last_failure = Some(failure);
                             if !playable {
                                 trial.latencies.push(started.elapsed().as_secs_f64());
                                 continue;

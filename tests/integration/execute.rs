@@ -593,6 +593,18 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
         .execute(&scene, &controls, &world)
         .unwrap();
     assert!(closed.invalid_rests >= 1, "{closed:?}");
+    // Counted by the rule the rest broke: the first observation is the world's start, where
+    // the model's re-simulation above stopped.
+    let rule = playing.stopped_by.as_ref().unwrap().1.kind();
+    assert!(
+        closed.invalid_rest_rules.get(rule).is_some_and(|&n| n >= 1),
+        "{rule}: {closed:?}"
+    );
+    assert_eq!(
+        closed.invalid_rest_rules.values().sum::<usize>(),
+        closed.invalid_rests,
+        "{closed:?}"
+    );
     assert_eq!(
         (closed.replans, closed.repairs),
         (1, 1),
