@@ -439,12 +439,9 @@ namespace pushplan
             const std::function<bool()> out_of_time = [&] { return elapsed() >= time_limit; };
             // The models refuse to propagate past the limit: an extension of k long controls
             // (OMPL checks the limit only between extensions) ends on time. Not PDST's.
-            const auto cut_propagations_at = [&](double limit) {
-                if (bridge::planner_cut_at_time_limit(run.planner))
-                    for (const detail::ModelHandlePtr &m : every_model)
-                        m->propagator().set_time_limit(limit - elapsed());
-            };
-            cut_propagations_at(time_limit);
+            if (bridge::planner_cut_at_time_limit(run.planner))
+                for (const detail::ModelHandlePtr &m : every_model)
+                    m->propagator().set_time_limit(time_limit - elapsed());
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
@@ -485,17 +482,10 @@ namespace pushplan
                 last_t = t, last_steps = p.propagation_steps, last_propagating = propagating;
                 next_report = std::floor(t) + 1.0;
             };
-            // Searching on for a more robust solution, with one set aside, stops a reserve
-            // before the limit: the final shortcutting of the plan (`run.shortcut`) and as much
-            // again to measure the shortcut path in the perturbed worlds, at most a fifth of
-            // the limit. Without it a plan that is "the most robust found" came out as found,
-            // unshortened (benchmark 34: 308 controls, 9.8 m of end-effector travel).
-            const double searching_on_limit = time_limit - std::min(2.0 * run.shortcut, 0.2 * time_limit);
-            const std::function<bool()> out_of_time_searching_on = [&] { return elapsed() >= searching_on_limit; };
-            const auto search = [&](const std::function<bool()> &stop) {
+            const auto search = [&] {
                 try
                 {
-                    return portfolio.solve(stop, report_due, report);
+                    return portfolio.solve(out_of_time, report_due, report);
                 }
                 catch (const rust::Error &e)
                 {
@@ -505,7 +495,7 @@ namespace pushplan
 
             // The path as found: controls with their step counts, and the states OMPL reached.
             detail::FlatPath found;
-            std::optional<std::size_t> winner = search(out_of_time);
+            std::optional<std::size_t> winner = search();
             const auto read_path = [&] {
                 found = {};
                 if (const std::optional<std::size_t> best = winner ? winner : portfolio.best())
@@ -547,16 +537,14 @@ namespace pushplan
                 const auto surely = [&](double rate, std::size_t trials) {
                     return rate * static_cast<double>(trials) / run.robust_trials;
                 };
-                // With a solution set aside, the work on the next one keeps the reserve too.
-                const double limit = most_robust ? searching_on_limit : time_limit;
                 const auto finished = [&](double shortcut, double found_rate, std::size_t found_trials) {
                     return detail::finish(*finisher, found, true,
                                           bridge::FinishSettings{shortcut, seed, run.robust_trials, run.robust_rate,
-                                                                 found_rate, found_trials, limit - elapsed()});
+                                                                 found_rate, found_trials, time_limit - elapsed()});
                 };
                 const bridge::FinishedPath as_found = finished(0.0, -1.0, 0);
                 const bridge::FinishedPath made_robust =
-                    robust(as_found) || elapsed() >= limit
+                    robust(as_found) || out_of_time()
                         ? as_found
                         : finished(run.robust_shortcut, as_found.robustness, as_found.robustness_trials);
                 plan.robustness = made_robust.robustness;
@@ -582,14 +570,13 @@ namespace pushplan
                                   found.steps.size());
                     tell_event(note);
                 }
-                if (out_of_time_searching_on())
+                if (out_of_time())
                 {
                     winner.reset();  // the most robust path set aside is taken below
                     break;
                 }
                 portfolio.restart(*winner);
-                cut_propagations_at(searching_on_limit);
-                winner = search(out_of_time_searching_on);
+                winner = search();
                 read_path();
             }
             if (!winner && most_robust)

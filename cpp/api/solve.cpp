@@ -10,10 +10,9 @@ namespace pushplan::bridge
                       bool report, rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress)
     {
         const std::string path(scene_path);
-        // The caller finishes the path itself (planning::finish), to report on it: the
-        // path comes back as found, and `run.shortcut` is only the time a search for a more
-        // robust solution leaves the caller's shortcutting.
-        const detail::RunSettings &run = settings;
+        // The caller finishes the path itself (planning::finish), to report on it.
+        detail::RunSettings run = settings;
+        run.shortcut = 0.0;
         std::function<void(const Progress &)> tell;
         if (report)
             tell = [progress](const Progress &p) {

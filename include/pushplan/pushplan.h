@@ -117,8 +117,7 @@ namespace pushplan
         /// pressure x U(0.8, 1.2), the arm's friction `mu_c` x U(0.5, 1.2), the centre of
         /// friction +-2 cm) reach the goal; otherwise search on, and when the time
         /// runs out first, the most robust solution found is the plan (Plan::robustness says
-        /// its rate; the search for a more robust one stops twice `shortcut` before the
-        /// limit, at most a fifth of it, so that the plan is still shortcut). Default 20 in solve and solveFrom, as the CLI's `plan` (a plan is
+        /// its rate). Default 20 in solve and solveFrom, as the CLI's `plan` (a plan is
         /// robust by default), 0 in replan's search (a re-plan is wanted fast); 0 takes the
         /// first solution as found.
         std::optional<unsigned> robust_trials;

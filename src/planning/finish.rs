@@ -135,9 +135,7 @@ pub fn finish(
     let mut propagator = Propagator::new(scene.clone());
     // Every step recorded: the plan file is written from this simulation
     // (`PlanFile::from_simulation`), not from another one.
-    let simulating = Instant::now();
     let path = simulate(&mut propagator, &scene.start, found, true);
-    let one_simulation = simulating.elapsed();
     // A search stopped before it had a path (a limit of a millisecond) found none: the
     // start alone, which needs no reproducing.
     let nothing_found = found.is_empty() && found_states.is_empty();
@@ -162,19 +160,8 @@ pub fn finish(
         return Ok(finished);
     }
     if settings.shortcut > 0.0 {
-        // Robust planning measures what shortcutting made in the perturbed worlds (and the
-        // path as found, unless the caller did): shortcutting stops in time for those
-        // re-simulations, each costing at most what the found path's did, so that a
-        // deadline cuts the shortcutting short rather than the check.
-        let checks = settings.robust.map_or(0, |r| {
-            r.trials as u32 * if settings.found_rate.is_some() { 1 } else { 2 }
-        });
-        let deadline = settings.deadline.map(|d| {
-            d.checked_sub(one_simulation * checks)
-                .unwrap_or_else(Instant::now)
-        });
         let budget = ShortcutSettings {
-            deadline,
+            deadline: settings.deadline,
             progress: settings.progress,
             ..ShortcutSettings::from_seconds(settings.shortcut, settings.seed)
         };

@@ -459,17 +459,6 @@ fn a_plan_is_robust_by_default_and_the_most_robust_found_when_time_runs_out() {
             "{output}"
         );
     }
-    // The search for a more robust solution leaves the plan its shortcutting and the check
-    // of what that made, every world of it: the set-aside solution, a raw first solution
-    // (`--robust-shortcut 0`) of 14 controls and 1.95 m of end-effector travel, came out
-    // as found, unshortened, when the search ran to the limit.
-    let metrics = &best["metrics"];
-    let travel = |when: &str| metrics[when]["ee_length"].as_f64().unwrap();
-    assert!(
-        travel("after_shortcut") < travel("before_shortcut"),
-        "the plan written is shortcut: {metrics}\n{output}"
-    );
-    assert_eq!(best["robustness"]["trials"], 20, "{output}");
 }
 
 #[test]
