@@ -93,14 +93,17 @@ impl Scene {
             // each other. A state the propagation itself keeps (the tool within its
             // tolerances of the plane), valid as observed, is a state the model makes: it
             // is taken as it is rather than refused.
-            let robot = &self.robot;
-            let (height, tilt) = robot
-                .plane
-                .error(&robot.tool_pose(&robot.link_poses(&start.q)));
-            if crate::validity::check_arm(self, &q).is_err()
-                && robot.projection.admits(height, tilt)
-                && crate::validity::check_arm(self, &start.q).is_ok()
-            {
+            // Only asked where the projected arm is refused: every other observation is
+            // taken projected, without the observed arm's kinematics.
+            let kept_as_observed = || {
+                let robot = &self.robot;
+                let (height, tilt) = robot
+                    .plane
+                    .error(&robot.tool_pose(&robot.link_poses(&start.q)));
+                robot.projection.admits(height, tilt)
+                    && crate::validity::check_arm(self, &start.q).is_ok()
+            };
+            if crate::validity::check_arm(self, &q).is_err() && kept_as_observed() {
                 q.clone_from(&start.q);
             }
         }
