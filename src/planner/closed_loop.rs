@@ -112,6 +112,12 @@ pub struct ClosedLoopTrial {
     /// replayed without the engine).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub refused_observation: Option<ObservedState>,
+    /// The observation the last search that found nothing started from, if one did (in
+    /// `replan --observed`'s format: `replan` on it judges the rest and searches from there
+    /// again, without the engine, so a hard state met in a long run can be searched
+    /// anew, with more time or other seeds, and traced).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failed_search_from: Option<ObservedState>,
     /// Wall-clock time the trial took: the engine's simulation, the re-simulations, the
     /// searches and the shortcutting (s).
     pub wall_time: f64,
@@ -172,6 +178,7 @@ impl ClosedLoop<'_> {
             replan_latencies: Vec::new(),
             stopped: None,
             refused_observation: None,
+            failed_search_from: None,
             wall_time: 0.0,
         };
         let mut tipped = vec![false; objects];
@@ -271,6 +278,7 @@ impl ClosedLoop<'_> {
                         }
                         Err(failure) => {
                             trial.failed_replans += 1;
+                            trial.failed_search_from = Some(ObservedState::of(scene, &observed));
                             failures_in_a_row += 1;
                             // A rest no longer valid to its end is played up to where it stops
                             // being valid: the arm goes on the way the plan went (toward the

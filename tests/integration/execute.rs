@@ -672,6 +672,104 @@ fn a_refused_observation_is_kept_in_the_trial_and_replays_through_replan() {
     );
 }
 
+/// A search that never finds a plan: the executor's path where searching fails, made
+/// certain (the real search finds one in this scene within milliseconds).
+struct FindsNothing;
+
+impl pushplan::planner::Search for FindsNothing {
+    fn solve(
+        &self,
+        _scene: &Path,
+        _start: Option<&pushplan::State>,
+        _settings: &pushplan::planning::RunSettings,
+        _progress: Option<fn(&pushplan::planner::SearchProgress, &str)>,
+    ) -> Result<pushplan::planner::Found, String> {
+        Ok(pushplan::planner::Found {
+            summary: Default::default(),
+            search: Default::default(),
+            controls: Vec::new(),
+            states: Vec::new(),
+            robustness: None,
+        })
+    }
+
+    fn reach(
+        &self,
+        _scene: &Path,
+        _object: &str,
+        _from: Option<&pushplan::State>,
+        _settings: &pushplan::planner::ReachSettings,
+    ) -> Result<pushplan::planner::Reached, String> {
+        Err("not asked for here".into())
+    }
+
+    fn benchmark(
+        &self,
+        _scene: &Path,
+        _settings: &pushplan::planning::RunSettings,
+        _run: u32,
+        _log: &Path,
+    ) -> Result<(), String> {
+        Err("not asked for here".into())
+    }
+}
+
+/// A trial whose searches found nothing keeps the observation the last one started from,
+/// in `replan --observed`'s format: `replan` on it, with the real search, searches from
+/// there again and finds the plan, without the engine. What the sessions that traced
+/// benchmark 34's lost trials had to print by hand.
+#[test]
+fn the_observation_a_search_failed_from_is_kept_and_searches_again_through_replan() {
+    let scratch = common::Scratch::new("closed-loop-failed-search");
+    let scene_path = Path::new("scenes/planar_hand_single_object.yaml");
+    let plan_path = scratch.join("plan.json");
+    let (plan, scene) = planned(scene_path, &plan_path);
+    // The world of `closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses`:
+    // the rest misses the goal from the first observation on.
+    let mut world = scene.clone();
+    world.start.objects[0].y -= 0.06;
+    world.objects[0].mu_g *= 2.0;
+    let mut executor = closed_loop(scene_path, plan.settings.planner, 2);
+    executor.search = &FindsNothing;
+    let trial = executor
+        .execute(&scene, &plan.path_controls(), &world)
+        .unwrap();
+    assert!(
+        !trial.reached && trial.replans == 0 && trial.failed_replans == 2,
+        "{trial:?}"
+    );
+    let failed_from = trial
+        .failed_search_from
+        .expect("the observation of the last failed search kept");
+    // The world's box is where the observation has it, 6 cm to the side of the scene's
+    // start (the arm has pushed it since, along its first controls, if at all: not back).
+    let observed_box = failed_from.objects["box"];
+    assert!(
+        observed_box[1] < scene.start.objects[0].y - 0.03,
+        "{observed_box:?} against the scene's {:?}",
+        scene.start.objects[0]
+    );
+    let observed = scratch.join("failed.json");
+    std::fs::write(&observed, failed_from.to_json()).unwrap();
+    let out = scratch.join("replanned.json");
+    let (code, stdout, stderr) = common::pushplan_in(
+        Path::new("."),
+        &[
+            "replan",
+            plan_path.to_str().unwrap(),
+            "--observed",
+            observed.to_str().unwrap(),
+            "--threads",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let replanned = pushplan::planning::plan_file::PlanFile::read(&out).unwrap();
+    assert!(replanned.solved, "{stdout}{stderr}");
+}
+
 /// `execute --closed-loop` through the command line: every trial reported, with its
 /// re-plans and the latency figures, in the text and in the JSON report.
 #[test]
