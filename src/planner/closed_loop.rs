@@ -50,7 +50,9 @@ pub struct ClosedLoopSettings {
     pub max_replans: usize,
     /// Time the re-planning searches of one execution may take in all, found or not (s):
     /// a search gets no more than what is left, and once it is spent the execution stops
-    /// with a report (a robot should not think for minutes while its world waits).
+    /// with a report: it bounds a trial whose searches cannot succeed. Hard scenes need
+    /// minutes: benchmark 22's trials that reach the goal search up to 240 s in all, and
+    /// at 120 s six of ten were stopped (BENCHMARKS.md, "The search budget").
     pub search_budget: f64,
     /// An object this far from its predicted position cuts its control short (m).
     pub tolerance: f64,
