@@ -617,6 +617,32 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     );
 }
 
+/// `pushplan replan PLAN --observed` on `observation` (written to the scratch folder) with
+/// `more` options, the new plan to `replanned.json` there: exit status, stdout, stderr.
+fn replan_observed(
+    scratch: &common::Scratch,
+    plan_path: &Path,
+    observation: &pushplan::planning::observed::ObservedState,
+    more: &[&str],
+) -> (i32, String, String) {
+    let observed = scratch.join("observed.json");
+    std::fs::write(&observed, observation.to_json()).unwrap();
+    let out = scratch.join("replanned.json");
+    let args = [
+        &[
+            "replan",
+            plan_path.to_str().unwrap(),
+            "--observed",
+            observed.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        more,
+    ]
+    .concat();
+    common::pushplan_in(Path::new("."), &args)
+}
+
 /// An observation the model refuses as a start stops the trial, and the trial keeps it in
 /// `replan --observed`'s format: `replan` on it refuses it the same way, without the
 /// engine, so a refusal seen in a long run can be replayed and traced.
@@ -649,22 +675,7 @@ fn a_refused_observation_is_kept_in_the_trial_and_replays_through_replan() {
         (observed_box[0] - 0.445).abs() < 1e-3 && observed_box[1].abs() < 1e-3,
         "where the world has the box: {observed_box:?}"
     );
-    let observed = scratch.join("refused.json");
-    std::fs::write(&observed, refused.to_json()).unwrap();
-    let out = scratch.join("replanned.json");
-    let (code, stdout, stderr) = common::pushplan_in(
-        Path::new("."),
-        &[
-            "replan",
-            plan_path.to_str().unwrap(),
-            "--observed",
-            observed.to_str().unwrap(),
-            "--at",
-            "0",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-    );
+    let (code, stdout, stderr) = replan_observed(&scratch, &plan_path, &refused, &["--at", "0"]);
     assert_eq!(code, 2, "{stdout}{stderr}");
     assert!(
         stderr.contains("objects.box") && stderr.contains("an observation may be off"),
@@ -749,24 +760,11 @@ fn the_observation_a_search_failed_from_is_kept_and_searches_again_through_repla
         "{observed_box:?} against the scene's {:?}",
         scene.start.objects[0]
     );
-    let observed = scratch.join("failed.json");
-    std::fs::write(&observed, failed_from.to_json()).unwrap();
-    let out = scratch.join("replanned.json");
-    let (code, stdout, stderr) = common::pushplan_in(
-        Path::new("."),
-        &[
-            "replan",
-            plan_path.to_str().unwrap(),
-            "--observed",
-            observed.to_str().unwrap(),
-            "--threads",
-            "1",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-    );
+    let (code, stdout, stderr) =
+        replan_observed(&scratch, &plan_path, &failed_from, &["--threads", "1"]);
     assert_eq!(code, 0, "{stdout}{stderr}");
-    let replanned = pushplan::planning::plan_file::PlanFile::read(&out).unwrap();
+    let replanned =
+        pushplan::planning::plan_file::PlanFile::read(&scratch.join("replanned.json")).unwrap();
     assert!(replanned.solved, "{stdout}{stderr}");
 }
 
