@@ -33,6 +33,12 @@ const CLEAR_BY: f64 = 0.05;
 const STAND_TURN: f64 = std::f64::consts::PI / 12.0;
 const STAND_TURNS: usize = 6;
 
+/// Where a disc blocker's radial place out of the disc will not do (off the table, on
+/// another object), the places round the disc tried instead, this much (rad) farther
+/// round at a time, to either side, up to half a turn (`PLACE_TURNS` steps).
+const PLACE_TURN: f64 = std::f64::consts::PI / 12.0;
+const PLACE_TURNS: usize = 12;
+
 /// The geometry push headings need, fixed per scene.
 #[derive(Clone, Debug)]
 pub struct PushHeading {
@@ -179,7 +185,9 @@ impl PushHeading {
     /// The objects in the goal object's way, each with a place out of it. An object the
     /// goal object could touch anywhere in the goal disc goes radially out of the disc's
     /// reach, or sideways off the corridor below when radially out is in it
-    /// (`sideways_out_of_the_way`). An object the goal object would touch on the
+    /// (`sideways_out_of_the_way`), or, where the hand has an arm and that place is off the
+    /// table, on another object or a push it cannot make, round the disc to the nearest
+    /// place that is none of these (`place_round_the_disc`). An object the goal object would touch on the
     /// straight line to the goal centre (that corridor) goes sideways off the line, to the
     /// side it stands on unless the hand could not stand behind it for that push (beyond
     /// the table's edge, farther from the arm's base than the object): then across the
@@ -280,7 +288,9 @@ impl PushHeading {
     }
 
     /// A place for a blocker in the goal disc's reach, `from_center` off its centre:
-    /// radially out of the reach, unless that is in the corridor.
+    /// radially out of the reach, unless that is in the corridor (then sideways off it),
+    /// off the table, on another object or a push the hand cannot make: then the first
+    /// place round the disc, nearest the radial one, where none of these is so.
     fn out_of_the_disc(
         &self,
         state: &State,
@@ -292,11 +302,58 @@ impl PushHeading {
         let apart = self.apart(goal, object);
         let out = from_center.try_normalize(1e-9).unwrap_or(Vector2::x());
         let radial = goal.center + out * (goal.radius + apart + CLEAR_BY);
-        if way.corridor_distance(radial) >= apart {
-            return radial;
-        }
-        self.sideways_out_of_the_way(state, way, object)
+        let in_the_way = way.corridor_distance(radial) < apart;
+        let sideways = in_the_way
+            .then(|| self.sideways_out_of_the_way(state, way, object))
+            .flatten();
+        sideways
+            .or_else(|| self.place_round_the_disc(state, way, object, out))
             .unwrap_or(radial)
+    }
+
+    /// The first place for a disc blocker round the disc, out of its reach by
+    /// [`CLEAR_BY`], from the radial one along `out` (unit) turned by [`PLACE_TURN`] steps
+    /// to either side, up to half a turn: on the table, off the corridor, clear of the
+    /// other objects, and a push the hand can stand behind. None without an arm (a
+    /// free-flying hand needs no such care) or where there is no such place.
+    fn place_round_the_disc(
+        &self,
+        state: &State,
+        way: &Way,
+        object: usize,
+        out: Vector2<f64>,
+    ) -> Option<Vector2<f64>> {
+        let room = self.reach?;
+        let goal = &way.goal;
+        let apart = self.apart(goal, object);
+        let distance = goal.radius + apart + CLEAR_BY;
+        let p_WB = state.objects[object].translation();
+        let left = Vector2::new(-out.y, out.x);
+        std::iter::once(0.0)
+            .chain((1..=PLACE_TURNS).flat_map(|turn| {
+                let angle = PLACE_TURN * turn as f64;
+                [angle, -angle]
+            }))
+            .map(|angle| goal.center + (out * angle.cos() + left * angle.sin()) * distance)
+            .find(|&p| {
+                (room.onto_table(p, self.radii[object]) - p).norm() < 1e-12
+                    && way.corridor_distance(p) >= apart + CLEAR_BY
+                    && self.is_clear(state, way, object, p)
+                    && (p - p_WB)
+                        .try_normalize(1e-9)
+                        .is_some_and(|push| self.can_push_along(&room, object, p_WB, push))
+            })
+    }
+
+    /// Is `p` (world xy) a place for `object` clear of every object but itself and the
+    /// goal object (which moves on), by the clearance a plan keeps?
+    fn is_clear(&self, state: &State, way: &Way, object: usize, p: Vector2<f64>) -> bool {
+        state.objects.iter().enumerate().all(|(other, pose)| {
+            other == object
+                || other == way.goal.object
+                || (pose.translation() - p).norm()
+                    >= self.radii[object] + self.radii[other] + self.clearance
+        })
     }
 
     /// A place for a blocker `side` off the straight line's nearest point `p_WC`: sideways
@@ -332,9 +389,10 @@ impl PushHeading {
     /// For a disc blocker whose radial place is in the corridor (radially out of the disc
     /// is straight into the way when the blocker stands between the disc and the goal
     /// object): the nearest place straight sideways off the corridor and out of the disc's
-    /// reach, in 1 cm steps up to 0.6 m, on the table, on its own side first and where the
-    /// hand can stand behind it for the push. None: keep the radial place (also without an
-    /// arm: a free-flying hand needs no such care).
+    /// reach, in 1 cm steps up to 0.6 m, on the table, clear of the other objects, on its
+    /// own side first and where the hand can stand behind it for the push. None: a place
+    /// round the disc, or the radial one (also without an arm: a free-flying hand needs no
+    /// such care).
     fn sideways_out_of_the_way(
         &self,
         state: &State,
@@ -356,6 +414,7 @@ impl PushHeading {
         let clear = |p: Vector2<f64>| {
             (p - goal.center).norm() >= disc_reach + CLEAR_BY
                 && way.corridor_distance(p) >= apart + CLEAR_BY
+                && self.is_clear(state, way, object, p)
         };
         [own, -own]
             .into_iter()
@@ -598,6 +657,50 @@ mod tests {
         // Without an arm (no standing room), the radial place stays.
         let free = PushHeading { reach: None, ..h };
         assert!((free.blockers(&state)[0].target - Vector2::new(0.0, 0.26)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn a_disc_blocker_whose_radial_place_is_off_the_table_or_taken_goes_round_the_disc() {
+        // A table over x 0.3..1.0 m, y -0.9..0.9 m, the arm's base at the origin. Radii
+        // 0.05, clearance 0.01: apart 0.11; places round the disc 0.1 + 0.11 + 0.05 = 0.26
+        // from its centre; the hand stands 0.05 + 0.1 behind a blocker.
+        let room = StandingRoom {
+            table_x: (0.3, 1.0),
+            table_y: (-0.9, 0.9),
+            p_WBase: Vector2::zeros(),
+            reach_radius: None,
+        };
+        // The disc at the far edge, (0.9, -0.3); the goal object comes from (0.5, 0.3). A
+        // blocker at (0.95, -0.3) would go radially to (1.16, -0.3), over the edge. Turned
+        // 15-75 degrees its place is still beyond x = 0.95 (the edge less its radius);
+        // turned 90 degrees toward +y, (0.9, -0.04) is 0.144 m from the way (less than
+        // 0.16); toward -y, (0.9, -0.56) is on the table, off the way and clear, and the
+        // hand stands behind it at (0.978, -0.153), over the table.
+        let h = goal_in_disc(0.1, 2, Vector2::new(0.9, -0.3), Some(room));
+        let state = State::from_flat(&[0.0, 0.5, 0.3, 0.0, 0.95, -0.3, 0.0], 1);
+        let blockers = h.blockers(&state);
+        assert_eq!(blockers.len(), 1, "{blockers:?}");
+        assert!(
+            (blockers[0].target - Vector2::new(0.9, -0.56)).norm() < 1e-12,
+            "{blockers:?}"
+        );
+        // Without an arm (no standing room), the radial place stays.
+        let free = PushHeading { reach: None, ..h };
+        assert!((free.blockers(&state)[0].target - Vector2::new(1.16, -0.3)).norm() < 1e-12);
+
+        // The disc at (0.6, -0.3), the goal object coming down x = 0.6 from (0.6, 0.4). A
+        // blocker at (0.6, -0.35) goes radially to (0.6, -0.56), where a third object
+        // stands; turned 15 degrees either way its place is 0.068 m from that object's
+        // centre (less than 0.11); turned 30 degrees toward +x, (0.73, -0.525), is clear.
+        let h = goal_in_disc(0.1, 3, Vector2::new(0.6, -0.3), Some(room));
+        let state = State::from_flat(&[0.0, 0.6, 0.4, 0.0, 0.6, -0.35, 0.0, 0.6, -0.56, 0.0], 1);
+        let blockers = h.blockers(&state);
+        assert_eq!(blockers.len(), 1, "{blockers:?}");
+        let turned = 30f64.to_radians();
+        let place = Vector2::new(0.6 + 0.26 * turned.sin(), -0.3 - 0.26 * turned.cos());
+        assert!((blockers[0].target - place).norm() < 1e-12, "{blockers:?}");
+        let from_third = (place - Vector2::new(0.6, -0.56)).norm();
+        assert!(from_third >= 0.11, "{from_third}");
     }
 
     #[test]
