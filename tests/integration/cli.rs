@@ -416,6 +416,23 @@ fn a_plan_is_robust_by_default_and_the_most_robust_found_when_time_runs_out() {
         robust["robustness"]["success_rate"].as_f64().unwrap() >= 0.95,
         "{output}"
     );
+    // The same record as a clock would have cut it, after 7 of the 20 worlds: `check`
+    // cannot make such a plan again (where the clock stops depends on the machine) and
+    // says so; the path itself still checks. (tests/time_limit makes a real cut, whose
+    // place depends on the machine's speed.)
+    let mut cut = robust.clone();
+    cut["robustness"]["trials"] = 7.into();
+    cut["robustness"]["asked"] = 20.into();
+    let cut_path = scratch.join("cut.json");
+    std::fs::write(&cut_path, cut.to_string()).unwrap();
+    let (code, checked, stderr) = pushplan(&["check", cut_path.to_str().unwrap()]);
+    assert_eq!(code, 1, "{checked}{stderr}");
+    assert!(
+        checked.contains(
+            "the time limit cut its robustness check short, at 7 of the 20 perturbed worlds asked"
+        ) && checked.ends_with("path OK, plan not confirmed\n"),
+        "{checked}{stderr}"
+    );
     let (code, output, raw) = plan("raw.json", &[&hand[..], &["--robust", "0"]].concat());
     assert_eq!(code, 0, "{output}");
     assert!(

@@ -63,18 +63,37 @@ fn the_time_limit_bounds_the_whole_plan_command() {
         2.0,
     );
     assert_eq!(code, 0, "{stdout}");
-    // Its robustness record, over the trials the limit left, is what `check` measures; the
-    // clock cut it, so the plan cannot be made again, and `check` says so.
+    // Its robustness record, over the trials the limit left, is what `check` measures.
     let (code, checked, stderr) = pushplan(&["check", out, "--path-only"]);
     assert_eq!(code, 0, "{checked}{stderr}");
     let (code, checked, stderr) = pushplan(&["check", out]);
-    assert_eq!(code, 1, "{checked}{stderr}");
-    assert!(
-        checked.contains("the time limit cut its robustness check short, at ")
-            && checked.contains(" of the 1000 perturbed worlds asked")
-            && checked.ends_with("path OK, plan not confirmed\n"),
-        "{checked}"
-    );
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+    let record = &plan["robustness"];
+    // Whether the clock cut the check depends on the machine and the solution found: on the
+    // 2-core VM, with a benchmark beside it, it stopped after 548 of the thousand worlds; an
+    // idle or faster machine may finish a short solution's check within the 2 s. Cut, the
+    // plan cannot be made again, and `check` says where the clock stopped; finished, the
+    // record is the whole check, and `check` judges it as any other. The message on a cut
+    // record is checked without a clock in tests/integration/cli.rs.
+    if let Some(asked) = record["asked"].as_u64() {
+        assert_eq!(code, 1, "{checked}{stderr}");
+        assert_eq!(asked, 1000, "{record}");
+        let trials = record["trials"].as_u64().unwrap();
+        assert!(
+            checked.contains(&format!(
+                "the time limit cut its robustness check short, at {trials} of the 1000 \
+                 perturbed worlds asked"
+            )) && checked.ends_with("path OK, plan not confirmed\n"),
+            "{checked}"
+        );
+    } else {
+        assert_eq!(record["trials"], 1000, "{record}");
+        assert!(
+            code <= 1 && !checked.contains("differs"),
+            "{checked}{stderr}"
+        );
+    }
     // With --grasp, a reach follows the pushing within the same limit.
     within(
         &[
