@@ -185,13 +185,13 @@ impl PushHeading {
     /// The objects in the goal object's way, each with a place out of it. An object the
     /// goal object could touch anywhere in the goal disc goes radially out of the disc's
     /// reach, or sideways off the corridor below when radially out is in it
-    /// (`sideways_out_of_the_way`), or, where the hand has an arm and that place is off the
-    /// table, on another object or a push it cannot make, round the disc to the nearest
-    /// place that is none of these (`place_round_the_disc`). An object the goal object would touch on the
-    /// straight line to the goal centre (that corridor) goes sideways off the line, to the
-    /// side it stands on unless the hand could not stand behind it for that push (beyond
-    /// the table's edge, farther from the arm's base than the object): then across the
-    /// line, onto the table. Empty without an object goal.
+    /// (`sideways_out_of_the_way`), or, where the hand has an arm and that place is off
+    /// the table, on another object or a push it cannot make, round the disc to the
+    /// nearest place that is none of these (`place_round_the_disc`). An object the goal
+    /// object would touch on the straight line to the goal centre (that corridor) goes
+    /// sideways off the line, to the side it stands on unless the hand could not stand
+    /// behind it for that push (beyond the table's edge, farther from the arm's base than
+    /// the object): then across the line, onto the table. Empty without an object goal.
     pub fn blockers(&self, state: &State) -> Vec<PushTarget> {
         let mut blockers = Vec::new();
         self.for_each_blocker(&state.objects, |way, object, in_the_way, _| {
