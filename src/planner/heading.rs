@@ -83,6 +83,11 @@ impl StandingRoom {
             && self.reach_radius.is_none_or(|radius| from_base <= radius)
     }
 
+    /// Does the table hold an object of `radius` centred at `p`, inside its edges?
+    fn holds(&self, p: Vector2<f64>, radius: f64) -> bool {
+        (self.onto_table(p, radius) - p).norm() < 1e-12
+    }
+
     /// `p` moved onto the table, `radius` inside its edges.
     fn onto_table(&self, p: Vector2<f64>, radius: f64) -> Vector2<f64> {
         let clamp = |v: f64, (lo, hi): (f64, f64)| {
@@ -328,15 +333,10 @@ impl PushHeading {
         let apart = self.apart(goal, object);
         let distance = goal.radius + apart + CLEAR_BY;
         let p_WB = state.objects[object].translation();
-        let left = Vector2::new(-out.y, out.x);
-        std::iter::once(0.0)
-            .chain((1..=PLACE_TURNS).flat_map(|turn| {
-                let angle = PLACE_TURN * turn as f64;
-                [angle, -angle]
-            }))
-            .map(|angle| goal.center + (out * angle.cos() + left * angle.sin()) * distance)
+        turned_both_ways(out, PLACE_TURN, PLACE_TURNS, 1.0)
+            .map(|direction| goal.center + direction * distance)
             .find(|&p| {
-                (room.onto_table(p, self.radii[object]) - p).norm() < 1e-12
+                room.holds(p, self.radii[object])
                     && way.corridor_distance(p) >= apart + CLEAR_BY
                     && self.is_clear(state, way, object, p)
                     && (p - p_WB)
@@ -425,7 +425,7 @@ impl PushHeading {
                     .map(|step| p_WB + out * (0.01 * step as f64))
                     .find(|&p| clear(p))
             })
-            .find(|&p| (room.onto_table(p, r) - p).norm() < 1e-12)
+            .find(|&p| room.holds(p, r))
     }
 
     /// The unit heading for the tool at `p_WT` (world xy) to push `object` toward
@@ -493,12 +493,27 @@ impl PushHeading {
             -1.0
         };
         let standoff = self.standoff(object);
-        (0..=STAND_TURNS)
-            .flat_map(|turn| [own, -own].map(|side| side * STAND_TURN * turn as f64))
-            .map(|angle| behind * angle.cos() + left * angle.sin())
+        turned_both_ways(behind, STAND_TURN, STAND_TURNS, own)
             .find(|&stand| room.allows(p_WO + stand * standoff, p_WO))
             .unwrap_or(behind)
     }
+}
+
+/// The unit `v`, then turned by `step` (rad) at a time to either side up to `turns` steps,
+/// nearest first: `first` (1: counter-clockwise, -1: clockwise) before the other side.
+fn turned_both_ways(
+    v: Vector2<f64>,
+    step: f64,
+    turns: usize,
+    first: f64,
+) -> impl Iterator<Item = Vector2<f64>> {
+    let left = Vector2::new(-v.y, v.x);
+    std::iter::once(0.0)
+        .chain((1..=turns).flat_map(move |turn| {
+            let angle = first * step * turn as f64;
+            [angle, -angle]
+        }))
+        .map(move |angle| v * angle.cos() + left * angle.sin())
 }
 
 #[cfg(test)]
