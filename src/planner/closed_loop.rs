@@ -63,7 +63,8 @@ pub struct ClosedLoopSettings {
 pub const OBSERVE_AFTER: f64 = 0.05;
 
 /// Searches in a row that may find nothing while the arm waits, with nothing valid to
-/// play (2, 4, 8 and 8 times `replan_time`: 42 s with the default 2 s).
+/// play (each gets 1, 2, 4, then 8 times `replan_time`, doubling with the failures in a row
+/// before it: 30 to 64 s in all with the default 2 s).
 const WAITING_SEARCHES: u32 = 4;
 
 /// One closed-loop execution.
