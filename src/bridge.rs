@@ -222,6 +222,7 @@ pub mod ffi {
         fn load(path: &str) -> Result<Box<Problem>>;
         #[Self = "Problem"]
         fn from_yaml(yaml: &str, source: &str) -> Result<Box<Problem>>;
+        fn duplicate(self: &Problem) -> Box<Problem>;
         fn info(self: &Problem) -> SceneInfo;
         fn scene_warnings(self: &Problem) -> Vec<String>;
         fn set_start(self: &mut Problem, flat: &[f64]) -> Result<()>;

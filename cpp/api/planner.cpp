@@ -82,18 +82,19 @@ namespace pushplan
         }
     }  // namespace detail
 
-    Planner::Planner(const std::string &scene_file) : Planner(std::make_unique<Source>(Source{scene_file, "", false, ""}))
+    Planner::Planner(const std::string &scene_file) : Planner(std::make_unique<Source>(Source{scene_file, "", false, "", std::nullopt}))
     {
     }
 
     Planner Planner::fromYaml(const std::string &yaml, const std::string &source)
     {
-        return Planner(std::make_unique<Source>(Source{source, yaml, true, ""}));
+        return Planner(std::make_unique<Source>(Source{source, yaml, true, "", std::nullopt}));
     }
 
     Planner::Planner(std::unique_ptr<Source> source) : source_(std::move(source))
     {
-        source_->name = std::string(source_->load()->info().name);  // validates now
+        source_->read_once = source_->read();  // validates now
+        source_->name = std::string((*source_->read_once)->info().name);
     }
 
     Planner::~Planner() = default;

@@ -6,10 +6,9 @@
 
 namespace pushplan::bridge
 {
-    SolveOutput solve(rust::Str scene_path, rust::Slice<const double> start, const detail::RunSettings &settings,
-                      bool report, rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress)
+    SolveOutput solve(const Problem &problem, const detail::RunSettings &settings, bool report,
+                      rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress)
     {
-        const std::string path(scene_path);
         // The caller finishes the path itself (planning::finish), to report on it.
         detail::RunSettings run = settings;
         run.shortcut = 0.0;
@@ -20,14 +19,8 @@ namespace pushplan::bridge
                                                 p.tree_states.value_or(0), p.closest_goal_distance, p.searches},
                          p.note);
             };
-        const auto load = [&] {
-            rust::Box<Problem> problem = Problem::load(path);
-            if (!start.empty())
-                problem->set_start(start);
-            return problem;
-        };
         const Plan plan = detail::solve(
-            load, [&](const SceneInfo &) { return run; }, tell, detail::Finishing::AsFound);
+            [&] { return problem.duplicate(); }, [&](const SceneInfo &) { return run; }, tell, detail::Finishing::AsFound);
         SolveOutput out;
         out.summary = detail::SearchSummary{plan.solved,          !plan.solved && !plan.controls.empty(),
                                             plan.planning_time,   plan.tree_size,

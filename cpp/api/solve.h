@@ -9,13 +9,14 @@ namespace pushplan::bridge
 {
     struct SolveOutput;
     struct ReachOutput;
+    struct Problem;
 
-    /// Searches a scene file as `settings` say, from the flat state `start` (the scene's
-    /// start if empty), telling `progress` how far it is (a note: an event) when `report`
-    /// is set; the path comes back as found (not shortcut). Throws (a Rust Err) on bad
-    /// input.
-    SolveOutput solve(rust::Str scene_path, rust::Slice<const double> start, const detail::RunSettings &settings,
-                      bool report, rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress);
+    /// Searches `problem`'s scene (loaded, its start set) as `settings` say, every model
+    /// a copy of it (`Problem::duplicate`: the scene is not read again), telling
+    /// `progress` how far it is (a note: an event) when `report` is set; the path comes
+    /// back as found (not shortcut). Throws (a Rust Err) on bad input.
+    SolveOutput solve(const Problem &problem, const detail::RunSettings &settings, bool report,
+                      rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress);
 
     /// Reaches a grasp of `object` from the flat state `from` (the scene's start if empty).
     ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from,

@@ -320,7 +320,8 @@ namespace pushplan
     class Planner
     {
     public:
-        /// Loads and validates a scene file.
+        /// Loads and validates a scene file. It is read once, here: every solve and re-plan
+        /// plans the scene as it was then (a re-plan does not pay for reading it again).
         explicit Planner(const std::string &scene_file);
         /// A scene from YAML text; relative paths resolve against `source`'s folder.
         static Planner fromYaml(const std::string &yaml, const std::string &source);

@@ -185,9 +185,7 @@ impl Scene {
             plan_scene(
                 &OmplSearch,
                 &PlanRequest {
-                    scene_path: &self.path,
                     scene: &self.scene,
-                    start: None,
                     options: &options,
                     deadline: deadline.pushing,
                     reference: &reference,

@@ -2,9 +2,11 @@
 //! reach, a benchmark run; declared in `cpp/api/solve.h` and `cpp/api/benchmark.h`), and
 //! [`OmplSearch`], which offers them as [`crate::planner::Search`] in the model's types.
 
+use super::Problem;
 use crate::planner::{Found, ReachSettings, Reached, Search, SearchProgress, SearchStats};
 use crate::planning::path::PathControl;
 use crate::planning::{MeasuredRate, RunSettings};
+use crate::scene::Scene;
 use crate::state::State;
 use nalgebra::DVector;
 use std::cell::Cell;
@@ -46,6 +48,7 @@ pub mod ffi {
     unsafe extern "C++" {
         include!("pushplan/src/bridge.rs.h");
         type SearchStats = crate::bridge::ffi::SearchStats;
+        type Problem = crate::bridge::Problem;
         include!("pushplan/cpp/problem/bridge_types.h");
         #[namespace = "pushplan::detail"]
         type RunSettings = crate::planning::RunSettings;
@@ -56,12 +59,11 @@ pub mod ffi {
         #[namespace = "pushplan::detail"]
         type SearchSummary = crate::planner::SearchSummary;
         include!("pushplan/cpp/api/solve.h");
-        /// Searches the scene file with OMPL from the flat state `start` (the scene's
-        /// start if empty), telling `progress` how far it is when `report` is set; the
-        /// path comes back as found (not shortcut).
+        /// Searches `problem`'s scene with OMPL from its start, every search and lane on
+        /// a copy of it (`Problem::duplicate`), telling `progress` how far it is when
+        /// `report` is set; the path comes back as found (not shortcut).
         fn solve(
-            scene_path: &str,
-            start: &[f64],
+            problem: &Problem,
             settings: &RunSettings,
             report: bool,
             progress: fn(report: &SearchProgress, note: &str),
@@ -108,20 +110,13 @@ fn tell(report: &SearchProgress, note: &str) {
 impl Search for OmplSearch {
     fn solve(
         &self,
-        scene: &Path,
-        start: Option<&State>,
+        scene: &Scene,
         settings: &RunSettings,
         progress: Option<Progress>,
     ) -> Result<Found, String> {
-        let start = start.map(State::to_flat).unwrap_or_default();
+        let problem = Problem::new(scene.clone());
         PROGRESS.with(|p| p.set(progress));
-        let out = ffi::solve(
-            &scene.to_string_lossy(),
-            &start,
-            settings,
-            progress.is_some(),
-            tell,
-        );
+        let out = ffi::solve(&problem, settings, progress.is_some(), tell);
         PROGRESS.with(|p| p.set(None));
         let out = out.map_err(|e| e.what().to_string())?;
         Ok(Found {

@@ -16,8 +16,17 @@ pub struct Problem {
     pub(crate) scene: Arc<Scene>,
     pub(crate) core: SharedCore,
     /// The push headings of the scene, made on first use (where the hand cannot get
-    /// behind the goal object they measure its reach: inverse kinematics, once).
-    push_heading: OnceLock<Arc<PushHeading>>,
+    /// behind the goal object they measure its reach: inverse kinematics, once), and
+    /// shared with its duplicates: they depend on the scene alone.
+    push_heading: Arc<OnceLock<Arc<PushHeading>>>,
+}
+
+// The entry points' bridge (`super::entry`) takes a problem by reference: the C++ type
+// is the one `super::ffi` declares (an opaque Rust type), named here so that a second
+// bridge may use it.
+unsafe impl cxx::ExternType for Problem {
+    type Id = cxx::type_id!("pushplan::bridge::Problem");
+    type Kind = cxx::kind::Opaque;
 }
 
 impl Problem {
@@ -26,8 +35,21 @@ impl Problem {
         Problem {
             core: SharedCore::new(&scene),
             scene: Arc::new(scene),
-            push_heading: OnceLock::new(),
+            push_heading: Arc::default(),
         }
+    }
+
+    /// The problem of the same scene and start as `load` would give it anew (the pushing
+    /// problem, no perturbed worlds), without reading or preparing the scene again: a
+    /// search's models (one per search and lane) are duplicates of one loaded problem.
+    /// The scene and push headings are shared; the core (what one model's parts share
+    /// while it searches) is its own.
+    pub fn duplicate(&self) -> Box<Problem> {
+        Box::new(Problem {
+            core: SharedCore::new(&self.scene),
+            scene: self.scene.clone(),
+            push_heading: self.push_heading.clone(),
+        })
     }
 
     /// The push headings of the scene ([`PushHeading`]), shared by every projection and

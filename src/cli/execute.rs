@@ -90,7 +90,6 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
             }
             let closed = ClosedLoop {
                 search,
-                scene_path: &plan.scene_path(path),
                 settings: ClosedLoopSettings {
                     planner: plan.settings.planner,
                     replan_time: flags.replan_time,

@@ -180,9 +180,7 @@ pub fn plan(
     let planned = plan_scene(
         search,
         &PlanRequest {
-            scene_path,
             scene: &scene,
-            start: run.from.as_ref().map(|_| &scene.start),
             options: &options,
             deadline: deadline.pushing,
             reference: &reference,

@@ -94,15 +94,7 @@ pub fn replan(
         settings.check(Front::CommandLine)?;
         settings.time_limit *= REPAIR_SHARE;
         let started = Instant::now();
-        let repaired = repair_scene(
-            search,
-            &scene_path,
-            &from,
-            &settings,
-            &reference,
-            &rest[..valid],
-            &end,
-        )?;
+        let repaired = repair_scene(search, &from, &settings, &reference, &rest[..valid], &end)?;
         if let Some(mut file) = repaired {
             file.replanned = Some(record(false, Some(valid)));
             pushplan::output::write_whole(out, file.to_json())?;

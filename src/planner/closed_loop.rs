@@ -127,13 +127,12 @@ pub struct ClosedLoopTrial {
 }
 
 /// A closed-loop executor: it plays trials as `execution` says (their count, worlds, pace
-/// and the engine's effort) and re-plans in the scene file at `scene_path` with `search`,
-/// as `settings` say.
+/// and the engine's effort) and re-plans with `search` as `settings` say, in the scene
+/// the plan was made in, from each observed state (the scene loaded once: a re-plan does
+/// not read its file again).
 pub struct ClosedLoop<'a> {
     /// The search of every re-plan.
     pub search: &'a dyn Search,
-    /// The scene file the search loads (the scene the plans are made in).
-    pub scene_path: &'a Path,
     /// How it re-plans.
     pub settings: ClosedLoopSettings,
     /// How it plays, as open-loop execution does.
@@ -457,7 +456,7 @@ impl ClosedLoop<'_> {
         };
         let found = self
             .search
-            .solve(self.scene_path, Some(&from.start), &run, None)
+            .solve(from, &run, None)
             .map_err(|e| format!("re-planning failed: {e}"))?;
         if !found.summary.exact {
             return Err(format!(

@@ -17,12 +17,9 @@ use std::time::Instant;
 
 /// What to plan and how.
 pub struct PlanRequest<'a> {
-    /// The scene file the search loads.
-    pub scene_path: &'a Path,
-    /// The same scene, loaded (and, for a re-plan, starting where the plan starts).
+    /// The scene, loaded, starting where the search starts (for a re-plan, where the plan
+    /// starts: `Scene::with_start`).
     pub scene: &'a Scene,
-    /// The search's start: `None` for the scene file's, else `scene.start` (a re-plan).
-    pub start: Option<&'a State>,
     /// The settings; the search gets the time `deadline` leaves, not `time_limit`.
     pub options: &'a RunSettings,
     /// When the search and the finishing stop.
@@ -53,8 +50,7 @@ pub struct Planned {
 pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned, String> {
     let options = request.options;
     let found = search.solve(
-        request.scene_path,
-        request.start,
+        request.scene,
         &RunSettings {
             time_limit: time_left(request.deadline),
             ..*options
@@ -106,13 +102,11 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
 
 /// A repair of the rest of a plan ([`crate::planning::rest`]): `kept`, the rest's
 /// controls valid from `from`'s start (the observed state) and ending in `end`, then an
-/// ending searched from `end` in the scene file at `scene_path` and finished as `options`
-/// say, all within `options.time_limit` s. `None` when the search finds no exact ending in
+/// ending searched from `end` and finished as `options` say, all within `options.time_limit` s. `None` when the search finds no exact ending in
 /// that time; the plan file (`reference`: its `scene` field) starts at the observed state
 /// and records the ending's settings (no re-plan record).
 pub fn repair_scene(
     search: &dyn Search,
-    scene_path: &Path,
     from: &Scene,
     options: &RunSettings,
     reference: &str,
@@ -126,9 +120,7 @@ pub fn repair_scene(
     let ending = plan_scene(
         search,
         &PlanRequest {
-            scene_path,
             scene: &at_end,
-            start: Some(&at_end.start),
             options,
             deadline: deadline.pushing,
             reference,

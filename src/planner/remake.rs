@@ -153,8 +153,7 @@ fn made_again(
                             "replanned.repaired: {repaired} controls of {the_rest} kept, but {valid} are valid from the observed state"
                         ));
                     }
-                    let scene_path = old.scene_path(&old_path);
-                    match repair_again(search, plan, &scene_path, &from, &rest[..valid], &end, time_limit)? {
+                    match repair_again(search, plan, &from, &rest[..valid], &end, time_limit)? {
                         Some(mut file) => {
                             file.replanned = Some(record.clone());
                             file
@@ -168,8 +167,7 @@ fn made_again(
                 }
                 (RestFrom::EndsShort { .. }, false, None) => {
                     let scene_path = old.scene_path(&old_path);
-                    let mut file =
-                        search_again(search, plan, &scene_path, &from, true, time_limit)?;
+                    let mut file = search_again(search, plan, &scene_path, &from, time_limit)?;
                     file.replanned = Some(record.clone());
                     file
                 }
@@ -182,7 +180,6 @@ fn made_again(
                 plan,
                 &plan.scene_path(plan_path),
                 &scene,
-                false,
                 time_limit,
             )?
         }
@@ -208,7 +205,6 @@ fn read_replan_inputs(
 fn repair_again(
     search: &dyn Search,
     plan: &PlanFile,
-    scene_path: &Path,
     from: &crate::Scene,
     kept: &[crate::planning::path::PathControl],
     end: &crate::State,
@@ -217,7 +213,7 @@ fn repair_again(
     let options = plan
         .settings
         .run_settings(plan.robustness.as_ref(), time_limit);
-    let repaired = repair_scene(search, scene_path, from, &options, &plan.scene, kept, end)?;
+    let repaired = repair_scene(search, from, &options, &plan.scene, kept, end)?;
     // What the settings record is what they were made with, not the time given here.
     Ok(repaired.map(|mut file| {
         file.settings.time_limit = plan.settings.time_limit;
@@ -226,14 +222,13 @@ fn repair_again(
 }
 
 /// `plan`'s search and finishing (and reach of a grasp) as the file records them, in
-/// `scene` (`observed`: starting where the plan starts rather than at the scene file's
-/// start), within `time_limit` s.
+/// `scene` (from its start: the scene file's, or where the plan starts), within
+/// `time_limit` s; `scene_path` is the scene file a reach of a grasp loads.
 fn search_again(
     search: &dyn Search,
     plan: &PlanFile,
     scene_path: &Path,
     scene: &crate::Scene,
-    observed: bool,
     time_limit: f64,
 ) -> Result<PlanFile, String> {
     let started = Instant::now();
@@ -267,9 +262,7 @@ fn search_again(
     let planned = plan_scene(
         search,
         &PlanRequest {
-            scene_path,
             scene,
-            start: observed.then_some(&scene.start),
             options: &options,
             deadline: deadline.pushing,
             reference: &plan.scene,

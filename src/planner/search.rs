@@ -5,6 +5,7 @@
 use super::SearchStats;
 use crate::planning::path::PathControl;
 use crate::planning::{MeasuredRate, RunSettings};
+use crate::scene::Scene;
 use crate::state::State;
 use nalgebra::DVector;
 use std::path::Path;
@@ -100,15 +101,16 @@ pub struct Reached {
 
 /// The search behind the applications.
 pub trait Search {
-    /// Searches the scene file as `settings` say, from `start` (`None`: the scene's start;
-    /// another, such as one observed while a plan runs, is checked as a scene's start is:
-    /// `Scene::with_start`). Its shortcut budget is the caller's to spend: the path comes
-    /// back as found. Tells `progress` how far it is: a report once a second with an empty
-    /// note, or an event (a note, with the totals so far).
+    /// Searches `scene` from its start as `settings` say (a start observed while a plan
+    /// runs comes as `Scene::with_start` makes it). The scene is the one already loaded:
+    /// a re-plan does not read and prepare its file again (for a dense scene that is
+    /// 40-80 ms, most of it the objects' support grids, a share of every re-plan's
+    /// latency). Its shortcut budget is the caller's to spend: the path comes back as
+    /// found. Tells `progress` how far it is: a report once a second with an empty note,
+    /// or an event (a note, with the totals so far).
     fn solve(
         &self,
-        scene: &Path,
-        start: Option<&State>,
+        scene: &Scene,
         settings: &RunSettings,
         progress: Option<fn(&SearchProgress, &str)>,
     ) -> Result<Found, String>;

@@ -10,8 +10,9 @@
 //   observed state), and refuses an observation of the wrong size or an invalid one;
 // - OMPL's process-wide log level is as the application left it after solve();
 // - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
-//   whose paths are not controls, a bad scene, the model failing inside solve() and
-//   makeSetup(), an integer cast to PlannerKind, a moved-from planner;
+//   whose paths are not controls, a bad scene, an observed start the model refuses inside
+//   solveFrom(), an integer cast to PlannerKind, a moved-from planner;
+// - a Planner reads its scene file once: with the file removed it still plans and re-plans;
 // - the public OMPL layer (pushplan/ompl.h): the state space passes OMPL's own sanity
 //   checks, StateAccess reads what it wrote, and no state outside OMPL's bounds is valid.
 // Prints one line per check; exits non-zero at the first failure.
@@ -281,25 +282,6 @@ int main()
         expect(warnings.size() == 1 && warnings[0].find("'green_box' tips when the tool pushes it") != std::string::npos,
                "a plane above the goal object's tipping height is a scene warning");
     }
-    // A failure of the model inside solve() and makeSetup(): the scene file is gone by then.
-    {
-        std::ifstream in("scenes/herb_single_object.yaml");
-        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        const std::string relative = "../robots/wam7.urdf";
-        text.replace(text.find(relative), relative.size(), (std::filesystem::current_path() / "robots/wam7.urdf").string());
-        const std::filesystem::path file =
-            std::filesystem::temp_directory_path() / ("pushplan-contract-" + std::to_string(::getpid()) + ".yaml");
-        std::ofstream(file) << text;
-        const pushplan::Planner vanishing(file.string());
-        std::filesystem::remove(file);
-        pushplan::Options o;
-        o.time_limit = 1.0;
-        expect(throwsError([&] { vanishing.solve(o); }, file.filename().string()),
-               "a model error inside solve() throws pushplan::Error naming the file");
-        expect(throwsError([&] { pushplan::makeSetup(vanishing); }, file.filename().string()),
-               "a model error inside makeSetup() throws pushplan::Error naming the file");
-    }
-
     // The public OMPL layer.
     const ompl::control::SimpleSetupPtr setup = pushplan::makeSetup(pushplan::Planner("scenes/herb_fig1_clutter.yaml"));
     const ompl::base::StateSpacePtr &space = setup->getStateSpace();
@@ -447,6 +429,37 @@ int main()
         inside.objects[0].head<2>() = plan.joint_trajectory[k].head<2>();
         expect(throwsError([&] { hand.solveFrom(inside, o); }, "an observation may be off"),
                "an observed box deep inside the hand (further than 2 cm) is no valid start");
+    }
+    {
+        // A Planner reads its scene file once, when it is made: with the file gone, it still
+        // plans and re-plans, and its searches (each on a copy of the scene read then)
+        // plan bit for bit what a Planner of the file in place plans.
+        const std::filesystem::path copy =
+            std::filesystem::temp_directory_path() / ("pushplan-read-once-" + std::to_string(getpid()) + ".yaml");
+        std::filesystem::copy_file("scenes/planar_hand_single_object.yaml", copy,
+                                   std::filesystem::copy_options::overwrite_existing);
+        const pushplan::Planner read_once(copy.string());
+        std::filesystem::remove(copy);
+        pushplan::Options o;
+        o.seed = 3;
+        o.threads = 2;
+        o.shortcut = 0.0;
+        const pushplan::Plan plan = read_once.solve(o);
+        const pushplan::Plan in_place = pushplan::Planner("scenes/planar_hand_single_object.yaml").solve(o);
+        bool same = plan.solved && plan.controls.size() == in_place.controls.size();
+        for (std::size_t i = 0; same && i < plan.controls.size(); ++i)
+            same = plan.controls[i].ee_velocity == in_place.controls[i].ee_velocity &&
+                   plan.controls[i].steps == in_place.controls[i].steps;
+        const std::size_t end = plan.controls.size();
+        pushplan::Observation after{plan.joint_trajectory[end], plan.object_poses[end]};
+        // The box found 5 cm further from the hand and 15 cm aside, out of the goal disc.
+        Eigen::Vector3d &box = after.objects[0];
+        box.head<2>() += 0.05 * (box.head<2>() - after.q.head<2>()).normalized();
+        box.y() -= 0.15;
+        const pushplan::Plan again = read_once.replan(plan, end, after, o);
+        expect(same && again.solved && again.replanned && !again.replanned->kept,
+               "a Planner reads its scene file once: with the file removed it plans (as a Planner of the "
+               "file in place does, bit for bit, on two threads) and re-plans");
     }
     {
         // Seeded fuzzing of Options through Planner::solve: every count, duration and rate

@@ -24,15 +24,14 @@ pub fn default_scene_plan(seed: u64) -> (Scene, Vec<pushplan::planning::path::Pa
         fallback_steps: 0,
         ..run_settings("pcrrt")
     };
-    let scene_file = "scenes/herb_fig1_clutter.yaml";
+    let scene = Scene::load("scenes/herb_fig1_clutter.yaml").unwrap();
     let out = pushplan::bridge::OmplSearch
-        .solve(Path::new(scene_file), None, &settings, None)
+        .solve(&scene, &settings, None)
         .unwrap();
     assert!(
         out.summary.exact,
         "seed {seed} should solve the default scene"
     );
-    let scene = Scene::load(scene_file).unwrap();
     let controls = out.controls;
     (scene, controls)
 }

@@ -447,20 +447,17 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
     }
 }
 
-/// The closed-loop tests' executor, re-planning in the scene file at `scene_path` with
-/// `planner`: searches of 10 s at most, shortcut for 0.5 s and polished for 2 s of work,
+/// The closed-loop tests' executor, re-planning with `planner`: searches of 10 s at most, shortcut for 0.5 s and polished for 2 s of work,
 /// seed 1, `max_replans` searches and 60 s of searching per trial at most, the default
 /// tolerance and execution (rapier).
 fn closed_loop(
-    scene_path: &Path,
     planner: pushplan::planning::PlannerKind,
     max_replans: usize,
-) -> pushplan::planner::closed_loop::ClosedLoop<'_> {
+) -> pushplan::planner::closed_loop::ClosedLoop<'static> {
     use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
     use pushplan::planning::execute::{ExecuteSettings, DRIFT};
     ClosedLoop {
         search: &pushplan::bridge::OmplSearch,
-        scene_path,
         settings: ClosedLoopSettings {
             planner,
             replan_time: 10.0,
@@ -510,7 +507,7 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     let open = execute_in_world(&world, &scene, &plan, &ExecuteSettings::default()).unwrap();
     assert!(!open.reached, "open loop misses: {open:?}");
 
-    let closed_loop = closed_loop(Path::new(scene_path), plan.settings.planner, 10);
+    let closed_loop = closed_loop(plan.settings.planner, 10);
     let closed = closed_loop
         .execute(&scene, &plan.path_controls(), &world)
         .unwrap();
@@ -589,7 +586,7 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
         playing.stopped_by
     );
 
-    let closed = closed_loop(&scene_path, plan.settings.planner, 1)
+    let closed = closed_loop(plan.settings.planner, 1)
         .execute(&scene, &controls, &world)
         .unwrap();
     assert!(closed.invalid_rests >= 1, "{closed:?}");
@@ -656,7 +653,7 @@ fn a_refused_observation_is_kept_in_the_trial_and_replays_through_replan() {
     // wide): deeper than an observation may be off (20 mm).
     let mut world = scene.clone();
     world.start.objects[0] = pushplan::Pose2::new(0.42 + 0.05 - 0.025, 0.0, 0.0);
-    let trial = closed_loop(scene_path, plan.settings.planner, 1)
+    let trial = closed_loop(plan.settings.planner, 1)
         .execute(&scene, &plan.path_controls(), &world)
         .unwrap();
     assert!(!trial.reached && trial.controls_played == 0, "{trial:?}");
@@ -690,8 +687,7 @@ struct FindsNothing;
 impl pushplan::planner::Search for FindsNothing {
     fn solve(
         &self,
-        _scene: &Path,
-        _start: Option<&pushplan::State>,
+        _scene: &pushplan::Scene,
         _settings: &pushplan::planning::RunSettings,
         _progress: Option<fn(&pushplan::planner::SearchProgress, &str)>,
     ) -> Result<pushplan::planner::Found, String> {
@@ -740,7 +736,7 @@ fn the_observation_a_search_failed_from_is_kept_and_searches_again_through_repla
     let mut world = scene.clone();
     world.start.objects[0].y -= 0.06;
     world.objects[0].mu_g *= 2.0;
-    let mut executor = closed_loop(scene_path, plan.settings.planner, 2);
+    let mut executor = closed_loop(plan.settings.planner, 2);
     executor.search = &FindsNothing;
     let trial = executor
         .execute(&scene, &plan.path_controls(), &world)

@@ -20,9 +20,11 @@ fn options(planner: &str, seed: u64, time_limit: f64) -> RunSettings {
     }
 }
 
-/// The search the CLI runs (OMPL's, through the bridge), without progress reports.
+/// The search the CLI runs (OMPL's, through the bridge) on the scene file at `scene`,
+/// without progress reports.
 fn solve(scene: &Path, settings: &RunSettings) -> Result<Found, String> {
-    OmplSearch.solve(scene, None, settings, None)
+    let scene = Scene::load(scene).map_err(|e| e.to_string())?;
+    OmplSearch.solve(&scene, settings, None)
 }
 
 fn settings(planner: &str, seed: u64) -> PlanSettings {
@@ -583,5 +585,39 @@ fn push_kpiece_hands_over_to_pc_rrt_only_where_it_makes_no_progress() {
     assert!(
         err.contains("fallback_steps") && err.contains("pcrrt"),
         "{err}"
+    );
+}
+
+#[test]
+fn the_search_plans_the_scene_it_is_given_not_its_file() {
+    // The goal disc moved 25 cm aside in memory only: a search that read the scene file
+    // again (as every search and re-plan did before it was handed the loaded scene) would
+    // push the box to the file's disc instead.
+    let file = Scene::load("scenes/planar_hand_single_object.yaml").unwrap();
+    let mut scene = file.clone();
+    let pushplan::scene::Goal::ObjectInDisc {
+        object,
+        center,
+        radius,
+        margin,
+    } = file.goal
+    else {
+        unreachable!()
+    };
+    scene.goal = pushplan::scene::Goal::ObjectInDisc {
+        object,
+        center: center - nalgebra::Vector2::new(0.0, 0.25),
+        radius,
+        margin,
+    };
+    let out = OmplSearch
+        .solve(&scene, &options("push_kpiece", 1, 20.0), None)
+        .unwrap();
+    assert!(out.summary.exact, "no exact solution");
+    let end = out.states.last().unwrap();
+    assert!(scene.goal.is_satisfied(end));
+    assert!(
+        !file.goal.is_satisfied(end),
+        "the file's goal disc is 25 cm away"
     );
 }
