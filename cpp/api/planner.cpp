@@ -82,19 +82,22 @@ namespace pushplan
         }
     }  // namespace detail
 
-    Planner::Planner(const std::string &scene_file) : Planner(std::make_unique<Source>(Source{scene_file, "", false, "", std::nullopt}))
+    Planner::Planner(const std::string &scene_file)
+        : Planner(std::make_unique<Source>(Source{detail::asPushplanError(
+              [&] { return bridge::Problem::load(detail::utf8(scene_file, "the scene file's path")); })}))
     {
     }
 
     Planner Planner::fromYaml(const std::string &yaml, const std::string &source)
     {
-        return Planner(std::make_unique<Source>(Source{source, yaml, true, "", std::nullopt}));
+        return Planner(std::make_unique<Source>(Source{detail::asPushplanError([&] {
+            return bridge::Problem::from_yaml(detail::utf8(yaml, "the scene's YAML text"),
+                                              detail::utf8(source, "the scene's source label"));
+        })}));
     }
 
     Planner::Planner(std::unique_ptr<Source> source) : source_(std::move(source))
     {
-        source_->read_once = source_->read();  // validates now
-        source_->name = std::string((*source_->read_once)->info().name);
     }
 
     Planner::~Planner() = default;
@@ -103,13 +106,13 @@ namespace pushplan
 
     std::string Planner::sceneName() const
     {
-        return source().name;
+        return std::string(source().problem->info().name);
     }
 
     std::vector<std::string> Planner::sceneWarnings() const
     {
         std::vector<std::string> warnings;
-        for (const auto &w : source().load()->scene_warnings())
+        for (const auto &w : source().problem->scene_warnings())
             warnings.emplace_back(w);
         return warnings;
     }

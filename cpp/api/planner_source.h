@@ -9,7 +9,6 @@
 #include "rust/cxx.h"  // rust::Error
 
 #include <functional>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -116,37 +115,14 @@ namespace pushplan
                     const std::function<std::vector<double>(const bridge::SceneInfo &)> &start_of);
     }  // namespace detail
 
+    /// A Planner's scene, read and prepared once, when the Planner is made (from a file or
+    /// YAML text): every search and re-plan works on duplicates of it (preparing a dense
+    /// scene's objects takes 40-80 ms, a share of a re-plan's latency).
     struct Planner::Source
     {
-        std::string path;  // the scene file, or the label of YAML text
-        std::string yaml;
-        bool from_yaml = false;
-        std::string name;
-        /// The scene as read when the Planner was made (`read`); every search and re-plan
-        /// works on duplicates of it (preparing a dense scene's objects takes 40-80 ms, a
-        /// share of a re-plan's latency), so the file is read once.
-        std::optional<rust::Box<bridge::Problem>> read_once;
+        rust::Box<bridge::Problem> problem;
 
-        /// Reads the scene file (or YAML text) and prepares it.
-        rust::Box<bridge::Problem> read() const
-        {
-            try
-            {
-                return from_yaml ? bridge::Problem::from_yaml(detail::utf8(yaml, "the scene's YAML text"),
-                                                              detail::utf8(path, "the scene's source label")) :
-                                   bridge::Problem::load(detail::utf8(path, "the scene file's path"));
-            }
-            catch (const rust::Error &e)
-            {
-                throw Error(e.what());
-            }
-        }
-
-        /// The scene as a problem of its own (from its start, the pushing problem): a
-        /// duplicate of the one read once, or read now if none was.
-        rust::Box<bridge::Problem> load() const
-        {
-            return read_once ? (*read_once)->duplicate() : read();
-        }
+        /// The scene as a problem of its own (from its start, the pushing problem).
+        rust::Box<bridge::Problem> load() const { return problem->duplicate(); }
     };
 }  // namespace pushplan

@@ -102,9 +102,10 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
 
 /// A repair of the rest of a plan ([`crate::planning::rest`]): `kept`, the rest's
 /// controls valid from `from`'s start (the observed state) and ending in `end`, then an
-/// ending searched from `end` and finished as `options` say, all within `options.time_limit` s. `None` when the search finds no exact ending in
-/// that time; the plan file (`reference`: its `scene` field) starts at the observed state
-/// and records the ending's settings (no re-plan record).
+/// ending searched from `end` and finished as `options` say, all within
+/// `options.time_limit` s. `None` when the search finds no exact ending in that time; the
+/// plan file (`reference`: its `scene` field) starts at the observed state and records the
+/// ending's settings (no re-plan record).
 pub fn repair_scene(
     search: &dyn Search,
     from: &Scene,

@@ -447,8 +447,8 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
     }
 }
 
-/// The closed-loop tests' executor, re-planning with `planner`: searches of 10 s at most, shortcut for 0.5 s and polished for 2 s of work,
-/// seed 1, `max_replans` searches and 60 s of searching per trial at most, the default
+/// The closed-loop tests' executor, re-planning with `planner`: searches of 10 s at most,
+/// shortcut for 0.5 s and polished for 2 s of work, seed 1, `max_replans` searches and 60 s of searching per trial at most, the default
 /// tolerance and execution (rapier).
 fn closed_loop(
     planner: pushplan::planning::PlannerKind,
