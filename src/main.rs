@@ -444,7 +444,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 grasp_goal: goal.map(|g| cli::grasp_goal(&g)).transpose()?,
                 grasp_after: grasp,
                 sample_probability,
-                from: None,
+                replanned: None,
             };
             plan(&OmplSearch, &scene, &options, &out).and_then(|code| match render {
                 Some(dir) => draw(&out, &dir, &[]).map(|_| code),

@@ -64,13 +64,12 @@ namespace pushplan::bridge
         return out;
     }
 
-    ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from,
+    ReachOutput reach(const Problem &problem, rust::Str object, rust::Slice<const double> from,
                       const detail::ReachSettings &settings)
     {
-        const std::string path(scene_path);
         std::size_t dof = 0;
         const Reach r = detail::reach(
-            [&] { return Problem::load(path); }, std::string(object),
+            [&] { return problem.duplicate(); }, std::string(object),
             [&](const SceneInfo &info) {
                 dof = info.dof;
                 return settings;

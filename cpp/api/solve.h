@@ -18,7 +18,8 @@ namespace pushplan::bridge
     SolveOutput solve(const Problem &problem, const detail::RunSettings &settings, bool report,
                       rust::Fn<void(const detail::SearchProgress &, rust::Str)> progress);
 
-    /// Reaches a grasp of `object` from the flat state `from` (the scene's start if empty).
-    ReachOutput reach(rust::Str scene_path, rust::Str object, rust::Slice<const double> from,
+    /// Reaches a grasp of `object` in `problem`'s scene (a copy of it: not read again) from
+    /// the flat state `from` (the scene's start if empty).
+    ReachOutput reach(const Problem &problem, rust::Str object, rust::Slice<const double> from,
                       const detail::ReachSettings &settings);
 }  // namespace pushplan::bridge

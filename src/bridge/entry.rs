@@ -68,10 +68,10 @@ pub mod ffi {
             report: bool,
             progress: fn(report: &SearchProgress, note: &str),
         ) -> Result<SolveOutput>;
-        /// Reaches a grasp of `object` with IK-BiRRT from the flat state `from`; from the
-        /// scene's start if `from` is empty.
+        /// Reaches a grasp of `object` in `problem`'s scene with IK-BiRRT from the flat
+        /// state `from`; from the scene's start if `from` is empty.
         fn reach(
-            scene_path: &str,
+            problem: &Problem,
             object: &str,
             from: &[f64],
             settings: &ReachSettings,
@@ -133,13 +133,13 @@ impl Search for OmplSearch {
 
     fn reach(
         &self,
-        scene: &Path,
+        scene: &Scene,
         object: &str,
         from: Option<&State>,
         settings: &ReachSettings,
     ) -> Result<Reached, String> {
         let from = from.map(State::to_flat).unwrap_or_default();
-        let out = ffi::reach(&scene.to_string_lossy(), object, &from, settings)
+        let out = ffi::reach(&Problem::new(scene.clone()), object, &from, settings)
             .map_err(|e| e.what().to_string())?;
         Ok(Reached {
             solved: out.solved,

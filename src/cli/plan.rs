@@ -12,6 +12,7 @@ use pushplan::state::State;
 use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
+use std::time::Instant;
 
 /// The `plan` command's options: the search's settings as the flags set them, and what
 /// the command does around the search.
@@ -26,18 +27,9 @@ pub struct PlanOptions {
     pub grasp_after: bool,
     /// IK-BiRRT's P_sample.
     pub sample_probability: f64,
-    /// Search from this observed state instead of the scene's start (`replan`).
-    pub from: Option<ObservedStart>,
-}
-
-/// A start observed while a plan ran, and what the new plan records of it.
-pub struct ObservedStart {
-    /// The observed state (checked by [`Scene::with_start`] before the search).
-    pub state: State,
-    /// The file it came from, named in errors.
-    pub source: std::path::PathBuf,
-    /// The new plan's record of where it comes from.
-    pub record: ReplanRecord,
+    /// A re-plan (`replan`): the scene's start is a state observed while a plan ran
+    /// (as [`Scene::with_start`] makes it); the new plan's record of where it comes from.
+    pub replanned: Option<ReplanRecord>,
 }
 
 /// The object of a `--goal` value `grasp:OBJECT`.
@@ -55,7 +47,7 @@ pub fn grasp_goal(goal: &str) -> Result<String, String> {
 /// `search_settings`).
 fn reach(
     search: &dyn Search,
-    scene_path: &Path,
+    scene: &Scene,
     object: &str,
     from: Option<&State>,
     run: &PlanOptions,
@@ -70,7 +62,7 @@ fn reach(
     }
     let (record, found) = reach_grasp(
         search,
-        scene_path,
+        scene,
         object,
         from,
         search_settings.seed,
@@ -89,8 +81,7 @@ fn reach(
     Ok(record)
 }
 
-/// `pushplan plan`: searches the scene with `search`, finishes the path and writes the plan
-/// file to `out`.
+/// `pushplan plan`: loads the scene at `scene_path` and plans it ([`plan_loaded`]).
 pub fn plan(
     search: &dyn Search,
     scene_path: &Path,
@@ -98,18 +89,26 @@ pub fn plan(
     out: &Path,
 ) -> Result<ExitCode, String> {
     // --time bounds the whole command: loading, search, shortcutting and writing.
-    let started = std::time::Instant::now();
+    let started = Instant::now();
     let scene = Scene::load(scene_path).map_err(|e| e.to_string())?;
-    let scene = match &run.from {
-        Some(from) => scene
-            .with_start(&from.state, &from.source)
-            .map_err(|e| e.to_string())?,
-        None => scene,
-    };
+    plan_loaded(search, &scene, scene_path, started, run, out)
+}
+
+/// `pushplan plan` on `scene`, loaded from `scene_path` (a re-plan's with its start
+/// observed): searches it with `search`, finishes the path and writes the plan file to
+/// `out`, all within the time limit counted from `started`.
+pub fn plan_loaded(
+    search: &dyn Search,
+    scene: &Scene,
+    scene_path: &Path,
+    started: Instant,
+    run: &PlanOptions,
+    out: &Path,
+) -> Result<ExitCode, String> {
     // A scene that loads may still ask the impossible (`check SCENE.yaml` prints the same);
     // a re-plan's start is the world's, not the user's choice.
-    if run.from.is_none() {
-        for warning in pushplan::scene::check::check(&scene) {
+    if run.replanned.is_none() {
+        for warning in pushplan::scene::check::check(scene) {
             eprintln!("warning: {}: {warning}", scene_path.display());
         }
     }
@@ -117,7 +116,7 @@ pub fn plan(
     pushplan::output::check_writable(out)?;
     let mut options = run.search.settings(&scene.planner);
     // A plan is robust unless asked otherwise; a re-plan (`replan`) is wanted fast.
-    if run.search.robust_trials.is_none() && run.from.is_none() {
+    if run.search.robust_trials.is_none() && run.replanned.is_none() {
         options.robust_trials = PLAN_ROBUST_TRIALS;
     }
     let (planner, quiet) = (options.planner, run.quiet);
@@ -135,22 +134,22 @@ pub fn plan(
         );
     }
     let settings = PlanSettings::from(&options);
-    let deadline = CommandDeadline::new(started, options.time_limit, &scene, run.grasp_after);
+    let deadline = CommandDeadline::new(started, options.time_limit, scene, run.grasp_after);
     let reference = PlanFile::scene_reference(scene_path, out);
     if let Some(object) = &run.grasp_goal {
         // Reaching a grasp only: no controls, the reach from the start.
-        pushplan::planning::reach::graspable_object(&scene, object)?;
-        let found = reach(search, scene_path, object, None, run, &options, &deadline)?;
+        pushplan::planning::reach::graspable_object(scene, object)?;
+        let found = reach(search, scene, object, None, run, &options, &deadline)?;
         let solved = found.is_some();
         let mut file = PlanFile::build(&reference, scene.clone(), &settings, &[], None)?;
         if let Some(record) = found {
-            file = file.with_reach(&scene, record)?;
+            file = file.with_reach(scene, record)?;
         }
         return write_plan(&file, out, solved);
     }
     if run.grasp_after {
         if let pushplan::scene::Goal::ObjectInDisc { object, .. } = scene.goal {
-            pushplan::planning::reach::graspable_object(&scene, &scene.objects[object].name)?;
+            pushplan::planning::reach::graspable_object(scene, &scene.objects[object].name)?;
         } else {
             return Err("--grasp needs an object goal (the object to grasp after pushing)".into());
         }
@@ -180,7 +179,7 @@ pub fn plan(
     let planned = plan_scene(
         search,
         &PlanRequest {
-            scene: &scene,
+            scene,
             options: &options,
             deadline: deadline.pushing,
             reference: &reference,
@@ -209,21 +208,13 @@ pub fn plan(
             eprintln!("shortcutting: the shortcut path is less robust; the path as found is kept");
         }
     }
-    file.replanned = run.from.as_ref().map(|from| from.record.clone());
+    file.replanned = run.replanned.clone();
     let mut solved = solution.summary.exact;
     if run.grasp_after && solution.summary.exact {
         let goal_object = problem.scene().goal.object().expect("checked above");
         let name = problem.scene().objects[goal_object].name.clone();
         let end = file.end_state();
-        match reach(
-            search,
-            scene_path,
-            &name,
-            Some(&end),
-            run,
-            &options,
-            &deadline,
-        )? {
+        match reach(search, scene, &name, Some(&end), run, &options, &deadline)? {
             Some(record) => file = file.with_reach(problem.scene(), record)?,
             None => {
                 file.solved = false;

@@ -4,7 +4,7 @@
 //! and an ending is searched from where they end (a repair); else, or if the repair finds
 //! nothing, the scene is searched anew from that state (`planning::rest`).
 
-use super::plan::{plan, ObservedStart, PlanOptions};
+use super::plan::{plan_loaded, PlanOptions};
 use super::SearchFlags;
 use pushplan::limits::Front;
 use pushplan::planner::plan_scene::repair_scene;
@@ -112,20 +112,18 @@ pub fn replan(
     if !options.quiet {
         eprintln!("the rest of the plan from control {at} no longer works ({why_not}): searching from the observed state");
     }
-    plan(
+    plan_loaded(
         search,
+        &from,
         &scene_path,
+        Instant::now(),
         &PlanOptions {
             search: options.search,
             quiet: options.quiet,
             grasp_goal: None,
             grasp_after: false,
             sample_probability: 0.0,
-            from: Some(ObservedStart {
-                state: observed,
-                source: observed_path.to_path_buf(),
-                record: record(false, None),
-            }),
+            replanned: Some(record(false, None)),
         },
         out,
     )

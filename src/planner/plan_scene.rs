@@ -150,7 +150,7 @@ pub fn repair_scene(
 /// file records of it (`None` when none was found) and how the search went.
 pub fn reach_grasp(
     search: &dyn Search,
-    scene_path: &Path,
+    scene: &Scene,
     object: &str,
     from: Option<&State>,
     seed: u64,
@@ -162,7 +162,7 @@ pub fn reach_grasp(
         seed,
         sample_probability,
     };
-    let found = search.reach(scene_path, object, from, &settings)?;
+    let found = search.reach(scene, object, from, &settings)?;
     let record = found.solved.then(|| ReachRecord {
         object: object.to_string(),
         sample_probability,

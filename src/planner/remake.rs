@@ -166,8 +166,7 @@ fn made_again(
                     }
                 }
                 (RestFrom::EndsShort { .. }, false, None) => {
-                    let scene_path = old.scene_path(&old_path);
-                    let mut file = search_again(search, plan, &scene_path, &from, time_limit)?;
+                    let mut file = search_again(search, plan, &from, time_limit)?;
                     file.replanned = Some(record.clone());
                     file
                 }
@@ -175,13 +174,7 @@ fn made_again(
         }
         None => {
             let scene = plan.load_scene(plan_path)?;
-            search_again(
-                search,
-                plan,
-                &plan.scene_path(plan_path),
-                &scene,
-                time_limit,
-            )?
+            search_again(search, plan, &scene, time_limit)?
         }
     }))
 }
@@ -223,11 +216,10 @@ fn repair_again(
 
 /// `plan`'s search and finishing (and reach of a grasp) as the file records them, in
 /// `scene` (from its start: the scene file's, or where the plan starts), within
-/// `time_limit` s; `scene_path` is the scene file a reach of a grasp loads.
+/// `time_limit` s.
 fn search_again(
     search: &dyn Search,
     plan: &PlanFile,
-    scene_path: &Path,
     scene: &crate::Scene,
     time_limit: f64,
 ) -> Result<PlanFile, String> {
@@ -243,7 +235,7 @@ fn search_again(
         let record = grasp.expect("asked only with a reach");
         let (found, _) = reach_grasp(
             search,
-            scene_path,
+            scene,
             &record.object,
             from,
             options.seed,

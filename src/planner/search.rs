@@ -115,10 +115,11 @@ pub trait Search {
         progress: Option<fn(&SearchProgress, &str)>,
     ) -> Result<Found, String>;
 
-    /// Reaches a grasp of `object` with IK-BiRRT from `from` (`None`: the scene's start).
+    /// Reaches a grasp of `object` in `scene` (the one already loaded, as for
+    /// [`Search::solve`]) with IK-BiRRT from `from` (`None`: the scene's start).
     fn reach(
         &self,
-        scene: &Path,
+        scene: &Scene,
         object: &str,
         from: Option<&State>,
         settings: &ReachSettings,

@@ -702,7 +702,7 @@ impl pushplan::planner::Search for FindsNothing {
 
     fn reach(
         &self,
-        _scene: &Path,
+        _scene: &pushplan::Scene,
         _object: &str,
         _from: Option<&pushplan::State>,
         _settings: &pushplan::planner::ReachSettings,

@@ -621,3 +621,40 @@ fn the_search_plans_the_scene_it_is_given_not_its_file() {
         "the file's goal disc is 25 cm away"
     );
 }
+
+#[test]
+fn a_reach_plans_the_scene_it_is_given_not_its_file() {
+    // The box moved 15 cm along +y in memory only: a reach that read the scene file again
+    // (as reaches did before they were handed the loaded scene) would end at a grasp of
+    // the box where the file has it.
+    use pushplan::planning::reach::grasp_distance;
+    use pushplan::robot::wgr::GRASP_TOLERANCE;
+    let file = Scene::load("scenes/grasp_behind_wall.yaml").unwrap();
+    let box_ = file.objects.iter().position(|o| o.name == "box").unwrap();
+    let mut scene = file.clone();
+    scene.start.objects[box_].y += 0.15;
+    let reached = OmplSearch
+        .reach(
+            &scene,
+            "box",
+            None,
+            &pushplan::planner::ReachSettings {
+                time_limit: 20.0,
+                seed: 1,
+                sample_probability: 0.1,
+            },
+        )
+        .unwrap();
+    assert!(reached.solved, "no reach found");
+    let end = |objects: &[pushplan::Pose2]| pushplan::State {
+        q: reached.waypoints.last().unwrap().clone(),
+        objects: objects.to_vec(),
+    };
+    let here = grasp_distance(&scene, &end(&scene.start.objects), box_).unwrap();
+    let in_file = grasp_distance(&file, &end(&file.start.objects), box_).unwrap();
+    assert!(here <= GRASP_TOLERANCE, "{here} from the box's grasps");
+    assert!(
+        in_file > 0.05,
+        "{in_file} from the grasps of the box where the file has it: should be far"
+    );
+}
