@@ -209,10 +209,12 @@ pub fn plan_loaded(
         }
     }
     file.replanned = run.replanned.clone();
-    let mut solved = solution.summary.exact;
-    if run.grasp_after && solution.summary.exact {
+    if run.grasp_after {
         let goal_object = problem.scene().goal.object().expect("checked above");
-        let name = problem.scene().objects[goal_object].name.clone();
+        file.grasp_after = Some(problem.scene().objects[goal_object].name.clone());
+    }
+    let mut solved = solution.summary.exact;
+    if let (Some(name), true) = (file.grasp_after.clone(), solution.summary.exact) {
         let end = file.end_state();
         match reach(search, scene, &name, Some(&end), run, &options, &deadline)? {
             Some(record) => file = file.with_reach(problem.scene(), record)?,

@@ -265,6 +265,7 @@ fn search_again(
     let mut file = planned.file;
     // What the settings record is what they were made with, not the time given here.
     file.settings.time_limit = plan.settings.time_limit;
+    file.grasp_after.clone_from(&plan.grasp_after);
     if grasp.is_some() && planned.found.summary.exact {
         match reach(Some(&file.end_state()))? {
             Some(record) => file = file.with_reach(scene, record)?,

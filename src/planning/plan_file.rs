@@ -165,6 +165,12 @@ pub struct PlanFile {
     /// after pushing).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reach: Option<ReachRecord>,
+    /// `plan --grasp`: the object a reach of a grasp was asked for after the controls (the
+    /// goal object), found or not. The plan is solved only with a `reach`; without one
+    /// (none found in time) `check` says so instead of finding `solved` at odds with
+    /// controls that reach the goal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grasp_after: Option<String>,
     /// A plan for the rest of another, from a state observed while it ran (`replan`):
     /// its `start` is that state, not the scene's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -747,6 +753,7 @@ impl PlanFile {
             trajectory: executable(scene, controls, &path.step_states)?,
             robustness: None,
             reach: None,
+            grasp_after: None,
             replanned: None,
             unknown: Default::default(),
         })
@@ -779,6 +786,7 @@ impl PlanFile {
         )?;
         rebuilt.robustness.clone_from(&self.robustness);
         rebuilt.replanned.clone_from(&self.replanned);
+        rebuilt.grasp_after.clone_from(&self.grasp_after);
         match &self.reach {
             Some(reach) => rebuilt.with_reach(&scene, reach.clone()),
             None => Ok(rebuilt),
@@ -908,6 +916,13 @@ impl PlanFile {
         let mut goal_reached = grasp_only || problem.scene().goal.is_satisfied(sim.final_state());
         if !goal_reached {
             problems.push("the goal is not reached".to_string());
+        }
+        if let (Some(object), None) = (&self.grasp_after, &self.reach) {
+            goal_reached = false;
+            problems.push(format!(
+                "reach: a grasp of '{object}' after the controls was asked for (`plan --grasp`) \
+                 and none was found: the plan is not solved"
+            ));
         }
         if let Some(reach) = &self.reach {
             let checked = crate::planning::reach::graspable_object(problem.scene(), &reach.object)

@@ -112,6 +112,7 @@ fn push_then_grasp_solves_the_default_scene() {
     assert!(stdout.contains("then a grasp of 'green_box'"), "{stdout}");
     let plan = PlanFile::read(&plan_path).unwrap();
     assert!(plan.solved && !plan.controls.is_empty());
+    assert_eq!(plan.grasp_after.as_deref(), Some("green_box"));
     let scene = Scene::load(scene_path).unwrap();
     let green = graspable_object(&scene, "green_box").unwrap();
     let end = plan.end_state();
@@ -132,6 +133,23 @@ fn push_then_grasp_solves_the_default_scene() {
     assert!(!report.passed(), "{report:?}");
     assert!(
         report.problems.iter().any(|p| p.starts_with("reach:")),
+        "{report:?}"
+    );
+
+    // A grasp asked for and not found (as `plan --grasp` writes it when IK-BiRRT runs out
+    // of time): the controls reach the goal, the plan is not solved, and `check` says why
+    // (it said that `solved` differed from the re-simulation).
+    let mut not_found = plan.clone();
+    not_found.reach = None;
+    not_found.solved = false;
+    let report = not_found.check(&plan_path).unwrap();
+    assert!(!report.passed(), "{report:?}");
+    assert_eq!(
+        report.problems,
+        [
+            "reach: a grasp of 'green_box' after the controls was asked for (`plan --grasp`) and \
+          none was found: the plan is not solved"
+        ],
         "{report:?}"
     );
 
