@@ -147,13 +147,18 @@ pub fn plan_loaded(
         }
         return write_plan(&file, out, solved);
     }
-    if run.grasp_after {
-        if let pushplan::scene::Goal::ObjectInDisc { object, .. } = scene.goal {
-            pushplan::planning::reach::graspable_object(scene, &scene.objects[object].name)?;
-        } else {
-            return Err("--grasp needs an object goal (the object to grasp after pushing)".into());
+    // `--grasp`: the goal object, grasped after the pushing (it must have grasps).
+    let grasp_after = match (run.grasp_after, &scene.goal) {
+        (false, _) => None,
+        (true, pushplan::scene::Goal::ObjectInDisc { object, .. }) => {
+            let name = &scene.objects[*object].name;
+            pushplan::planning::reach::graspable_object(scene, name)?;
+            Some(name.clone())
         }
-    }
+        (true, _) => {
+            return Err("--grasp needs an object goal (the object to grasp after pushing)".into())
+        }
+    };
     if !quiet {
         eprintln!(
             "planning '{}' with {} (k = {}, seed = {}, up to {} s, {})",
@@ -209,14 +214,11 @@ pub fn plan_loaded(
         }
     }
     file.replanned = run.replanned.clone();
-    if run.grasp_after {
-        let goal_object = problem.scene().goal.object().expect("checked above");
-        file.grasp_after = Some(problem.scene().objects[goal_object].name.clone());
-    }
+    file.grasp_after.clone_from(&grasp_after);
     let mut solved = solution.summary.exact;
-    if let (Some(name), true) = (file.grasp_after.clone(), solution.summary.exact) {
+    if let (Some(name), true) = (&grasp_after, solution.summary.exact) {
         let end = file.end_state();
-        match reach(search, scene, &name, Some(&end), run, &options, &deadline)? {
+        match reach(search, scene, name, Some(&end), run, &options, &deadline)? {
             Some(record) => file = file.with_reach(problem.scene(), record)?,
             None => {
                 file.solved = false;
