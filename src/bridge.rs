@@ -245,6 +245,7 @@ pub mod ffi {
             out_particles: &mut [f64],
         ) -> Result<bool>;
         fn set_time_limit(self: &mut Propagator, seconds: f64);
+        fn past_time_limit(self: &Propagator) -> bool;
         fn steps(self: &Propagator) -> u64;
         fn seconds(self: &Propagator) -> f64;
         fn search_stats(propagator: &Propagator) -> SearchStats;

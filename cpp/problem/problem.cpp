@@ -6,6 +6,7 @@
 #include "pushplan/cpp/problem/goal.h"
 #include "pushplan/cpp/problem/nearest.h"
 #include "pushplan/cpp/search/parallel_kpiece.h"
+#include "pushplan/cpp/search/portfolio.h"
 #include "pushplan/cpp/problem/propagator.h"
 #include "pushplan/cpp/search/restarts.h"
 #include "pushplan/cpp/problem/validity.h"
@@ -174,6 +175,25 @@ namespace pushplan::detail
         return Lane{si, std::move(model), problem.setup->getProblemDefinition()->getGoal(), seed};
     }
 
+    /// Fallback's PC RRT on `problem`'s model and state space, seeded with `seed`, with
+    /// uniform controls and a problem definition of its own (the start the model's, the
+    /// goal `goal`), never restarted.
+    static Search pcRrtFallback(const Problem &problem, const ob::GoalPtr &goal, std::uint64_t seed,
+                                double goal_bias, bool intermediate_states)
+    {
+        const oc::SpaceInformationPtr si = withUniformControls(problem, seed);
+        auto pc_rrt = std::make_shared<SeededRRT>(si, *problem.model, subSeed(seed, 4), "PCRRT");
+        pc_rrt->setGoalBias(goal_bias);
+        pc_rrt->setIntermediateStates(intermediate_states);
+        auto setup = std::make_shared<oc::SimpleSetup>(si);
+        ob::ScopedState<> start(problem.space);
+        problem.model->writeStart(start.get());
+        setup->setStartState(start);
+        setup->setGoal(goal);
+        setup->setPlanner(pc_rrt);
+        return Search{Problem{problem.model, problem.space, std::move(setup), problem.k}, std::move(pc_rrt)};
+    }
+
     /// `planner` after setGoalBias: every planner kind takes the scene's (or the call's) goal
     /// bias, not only the RRTs (OMPL's own default, 0.05, is also the scene's default).
     template <class Planner>
@@ -257,6 +277,8 @@ namespace pushplan::detail
             beforeAttempt(kind, problem.setup->getSpaceInformation(), lanes);
         if (before_attempt)
             before_attempt(1);
+        // The fallback's searches run on the lanes once the first search has left them.
+        const std::vector<Lane> lanes_of_search = lanes;
         ob::PlannerPtr search =
             makeSearch(kind, problem, seed, goal_bias, intermediate_states, std::move(lanes), threads);
         if (restart_steps > 0)
@@ -264,12 +286,21 @@ namespace pushplan::detail
                                                   std::move(before_attempt));
         if (fallback_steps == 0)
             return search;
-        // PC RRT on the same problem, with its own uniform controls, never restarted; on
-        // one thread (the lanes are the first search's).
-        auto pc_rrt = std::make_shared<SeededRRT>(withUniformControls(problem, seed), *problem.model,
-                                                  subSeed(seed, 4), "PCRRT");
-        pc_rrt->setGoalBias(goal_bias);
-        pc_rrt->setIntermediateStates(intermediate_states);
-        return std::make_shared<Fallback>(std::move(search), std::move(pc_rrt), problem.model, fallback_steps);
+        // PC RRT on the same problem, one search per thread of the first (a search on T
+        // threads has T + 1 lanes: lanesFor), counted from the lanes so that the searches
+        // depend on them, not on the threads: the first on the search's model with the
+        // search's seed, the others on lanes 1, 2, ... with theirs (lane 0 draws the
+        // search's own streams).
+        std::vector<Search> fallbacks{
+            pcRrtFallback(problem, problem.setup->getProblemDefinition()->getGoal(), seed, goal_bias,
+                          intermediate_states)};
+        for (std::size_t l = 1; l + 1 < lanes_of_search.size(); ++l)
+        {
+            const Lane &lane = lanes_of_search[l];
+            const Problem on_lane{lane.model, std::static_pointer_cast<PushStateSpace>(lane.si->getStateSpace()),
+                                  nullptr, problem.k};
+            fallbacks.push_back(pcRrtFallback(on_lane, lane.goal, lane.seed, goal_bias, intermediate_states));
+        }
+        return std::make_shared<Fallback>(std::move(search), std::move(fallbacks), problem.model, fallback_steps);
     }
 }  // namespace pushplan::detail

@@ -99,7 +99,8 @@ namespace pushplan::detail
     /// that the clutter is static (ModelHandle's static-clutter mode). With restart_steps
     /// > 0 the search starts over when an attempt finds no solution (Restarting). With
     /// fallback_steps > 0 (Push KPIECE only; others throw) it hands over to PC RRT when
-    /// that many steps have not moved the goal object (Fallback). With
+    /// that many steps have not moved the goal object (Fallback): as many independent PC
+    /// RRT searches as the first search had threads (lanes less one; one without lanes). With
     /// lanes (the KPIECE planners only) the search extends on them (ParallelKPIECE), run
     /// by `threads` threads (0: one per lane); the search depends on the lanes, not on the
     /// threads.

@@ -1,18 +1,25 @@
 #include "pushplan/cpp/search/fallback.h"
 
+#include <ompl/base/PlannerData.h>
 #include <ompl/base/ProblemDefinition.h>
+#include <ompl/control/SimpleSetup.h>
 
+#include <atomic>
+#include <cmath>
 #include <utility>
 
 namespace ob = ompl::base;
 
 namespace pushplan::detail
 {
-    Fallback::Fallback(ob::PlannerPtr search, ob::PlannerPtr fallback, ModelHandlePtr model,
+    Fallback::Fallback(ob::PlannerPtr search, std::vector<Search> fallbacks, ModelHandlePtr model,
                        std::uint64_t patience_steps)
       : WrappedSearch(search)
       , first_(std::move(search))
-      , fallback_(std::move(fallback))
+      , fallback_(fallbacks.at(0).planner)
+      , fallbacks_(std::move(fallbacks))
+      , credited_steps_(fallbacks_.size(), 0)
+      , credited_seconds_(fallbacks_.size(), 0.0)
       , model_(std::move(model))
       , patience_steps_(patience_steps)
     {
@@ -40,22 +47,80 @@ namespace pushplan::detail
                 search_->solve(ob::PlannerTerminationCondition([&] { return ptc() || handOverDue(); }));
             if (pdef_->hasExactSolution() || !handOverDue())
                 return status;
-            // The hand never got to the goal object: the first tree goes, the fallback
-            // searches from the start.
+            // The hand never got to the goal object: the first tree goes, the fallbacks
+            // search from the start, their models' counts credited from here on.
             search_->clear();
             search_ = fallback_;
+            for (std::size_t i = 0; i < fallbacks_.size(); ++i)
+            {
+                const ob::ProblemDefinitionPtr &pdef = fallbacks_[i].problem.setup->getProblemDefinition();
+                pdef->clearStartStates();
+                pdef->addStartState(pdef_->getStartState(0));
+                credited_steps_[i] = fallbacks_[i].problem.model->propagationSteps();
+                credited_seconds_[i] = fallbacks_[i].problem.model->propagationSeconds();
+            }
             if (ptc())
                 return status;
         }
-        return search_->solve(ptc);
+        return solveWithFallbacks(ptc);
+    }
+
+    ob::PlannerStatus Fallback::solveWithFallbacks(const ob::PlannerTerminationCondition &ptc)
+    {
+        ob::PlannerStatus status = ob::PlannerStatus::TIMEOUT;
+        if (fallbacks_.size() == 1)
+            status = fallback_->solve(ptc);
+        else
+        {
+            // The caller's termination condition is asked on this thread only, once a round
+            // (its own rounds may pause there: Portfolio's lone search); the fallbacks'
+            // threads read the answer.
+            std::atomic<bool> stop{false};
+            fallbacks_.solve([&] { return stop.load(); }, [] { return true; },
+                             [&] {
+                                 creditFallbacks();
+                                 stop = ptc();
+                             });
+            creditFallbacks();
+        }
+        const std::optional<std::size_t> best = fallbacks_.best();
+        if (!best)
+            return status;
+        const ob::ProblemDefinitionPtr &found = fallbacks_[*best].problem.setup->getProblemDefinition();
+        pdef_->addSolutionPath(found->getSolutions().front());
+        if (fallbacks_.size() == 1)
+            return status;
+        return found->hasExactSolution() ? ob::PlannerStatus::EXACT_SOLUTION : ob::PlannerStatus::APPROXIMATE_SOLUTION;
+    }
+
+    void Fallback::creditFallbacks()
+    {
+        for (std::size_t i = 1; i < fallbacks_.size(); ++i)
+        {
+            const ModelHandle &model = *fallbacks_[i].problem.model;
+            model_->credit(model.propagationSteps() - credited_steps_[i],
+                           model.propagationSeconds() - credited_seconds_[i]);
+            credited_steps_[i] = model.propagationSteps();
+            credited_seconds_[i] = model.propagationSeconds();
+            // Infinite while the model has met no goal distance.
+            for (const double distance : {model.closestGoalDistance(), model.farthestGoalDistance()})
+                if (std::isfinite(distance))
+                    model_->creditGoalDistance(distance);
+        }
     }
 
     void Fallback::clear()
     {
         ob::Planner::clear();
+        for (std::size_t i = 0; i < fallbacks_.size(); ++i)
+            fallbacks_.restart(i);
+        // Once handed over, the fallbacks start over (robust planning sets a solution
+        // aside and searches anew): that the first search could not move the goal object
+        // is the scene's doing, not its tree's. Back in the first search it would not hand
+        // over again, as the model's goal distances now hold the fallbacks' moves.
+        if (fellBack())
+            return;
         first_->clear();
-        fallback_->clear();
-        search_ = first_;
         began_at_ = model_->propagationSteps();
         kept_ = false;
     }
@@ -64,15 +129,28 @@ namespace pushplan::detail
     {
         ob::Planner::setup();
         first_->setup();
-        fallback_->setup();
+        for (std::size_t i = 0; i < fallbacks_.size(); ++i)
+            fallbacks_[i].problem.setup->setup();
     }
 
     void Fallback::setProblemDefinition(const ob::ProblemDefinitionPtr &pdef)
     {
         ob::Planner::setProblemDefinition(pdef);
         first_->setProblemDefinition(pdef);
-        fallback_->setProblemDefinition(pdef);
+        // The fallbacks keep problem definitions of their own, given this one's start as
+        // they take over.
         start_distance_.reset();  // another start, maybe
+    }
+
+    void Fallback::getPlannerData(ob::PlannerData &data) const
+    {
+        if (!fellBack())
+        {
+            WrappedSearch::getPlannerData(data);
+            return;
+        }
+        for (std::size_t i = 0; i < fallbacks_.size(); ++i)
+            fallbacks_[i].planner->getPlannerData(data);
     }
 
     bool fellBack(const ob::PlannerPtr &planner)

@@ -16,43 +16,71 @@
 // Whether the goal object has moved is read from goal distances: the model keeps the
 // least and the largest it has met (lanes credit theirs), both the start's until a state
 // moves the goal object.
+//
+// A first search on several threads (Push KPIECE on lanes) leaves them idle when it hands
+// over to one PC RRT: on the 2-core machine dense 17 was searched at one thread's rate
+// for the rest of the time. So the fallback is one independent PC RRT per thread, each on
+// a model of its own (the search's, then its lanes'), in the lock-step rounds of a
+// Portfolio: the first to reach the goal, lowest-numbered within a round, gives the plan,
+// whatever the timing. Their steps and goal distances are credited to the search's model
+// after each round, so its counts (progress, benchmark logs) are every thread's.
 #pragma once
 
 #include "pushplan/cpp/problem/model_handle.h"
+#include "pushplan/cpp/search/portfolio.h"
 #include "pushplan/cpp/search/wrapped_search.h"
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 namespace pushplan::detail
 {
     /// Runs `search`; when `patience_steps` propagation steps have gone by and every goal
     /// distance met is still the start state's, clears it (the closest path found stays
-    /// in the problem definition) and runs `fallback` on the same problem from then on.
-    /// clear() goes back to `search` (the goal distances met stay the model's).
+    /// in the problem definition) and runs the `fallbacks` from then on, each from the
+    /// same start in a problem definition of its own (the first on `model`), on a thread
+    /// each when there are several. The first to solve, or else the one closest to the
+    /// goal, adds its path to the search's problem definition.
+    /// clear() starts the running searches over: `search` before the handover (the goal
+    /// distances met stay the model's), the fallbacks after it.
     class Fallback : public WrappedSearch
     {
     public:
-        Fallback(ompl::base::PlannerPtr search, ompl::base::PlannerPtr fallback, ModelHandlePtr model,
+        Fallback(ompl::base::PlannerPtr search, std::vector<Search> fallbacks, ModelHandlePtr model,
                  std::uint64_t patience_steps);
 
         ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
         void clear() override;
         void setup() override;
         void setProblemDefinition(const ompl::base::ProblemDefinitionPtr &pdef) override;
+        /// The first search's tree, or once it has handed over every fallback's.
+        void getPlannerData(ompl::base::PlannerData &data) const override;
 
         /// The first search (search() is the one running).
         const ompl::base::PlannerPtr &wrapped() const override { return first_; }
         /// Whether the fallback has taken over.
         bool fellBack() const { return search_ == fallback_; }
+        /// The fallback's searches (the first runs on the model of this search).
+        const Portfolio &fallbacks() const { return fallbacks_; }
 
     private:
         /// True once the patience is spent and no state has moved the goal object. Goal
         /// distances met only ever spread, so the first look past the patience decides:
         /// a search that has moved the goal object is kept, and not asked again.
         bool handOverDue();
+        /// Runs the fallbacks (in rounds, on their threads, when there are several) and adds
+        /// the best path among them to the problem definition.
+        ompl::base::PlannerStatus solveWithFallbacks(const ompl::base::PlannerTerminationCondition &ptc);
+        /// Credits the model with the fallbacks' steps, seconds and goal distances since
+        /// the last call (the first fallback's model is the model itself).
+        void creditFallbacks();
 
         ompl::base::PlannerPtr first_, fallback_;
+        Portfolio fallbacks_;
+        /// Each fallback model's steps and seconds credited so far (the first's unused).
+        std::vector<std::uint64_t> credited_steps_;
+        std::vector<double> credited_seconds_;
         ModelHandlePtr model_;
         std::uint64_t patience_steps_;
         /// The model's step count when the current first search began.

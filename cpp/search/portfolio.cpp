@@ -92,13 +92,17 @@ namespace pushplan::detail
             const ModelHandle &model = *searches_[i].problem.model;
             // Rounds are counted in steps, so each ends at the same iteration whatever the
             // timing; the search pauses there without leaving solve(). A lone search's
-            // timing cannot change its plan: it pauses only for a report.
-            std::uint64_t round_end = model.propagationSteps() + kRoundSteps;
+            // timing cannot change its plan: it pauses only for a report. The steps are
+            // the search's own, not those credited to its model between rounds (Fallback).
+            // Past its model's time limit a search takes no more steps, so its round would
+            // never end: it stops there.
+            const auto steps = [&] { return model.propagator().steps(); };
+            std::uint64_t round_end = steps() + kRoundSteps;
             bool stopped = false;
             const ob::PlannerTerminationCondition ptc([&] {
-                if (stopped || out_of_time())
+                if (stopped || out_of_time() || model.propagator().past_time_limit())
                     return true;
-                if (alone ? !report_due() : model.propagationSteps() < round_end)
+                if (alone ? !report_due() : steps() < round_end)
                     return false;
                 round_end += kRoundSteps;
                 return stopped = rendezvous.pause();
@@ -229,6 +233,15 @@ namespace pushplan::detail
         std::size_t states = 0;
         for (const Search &s : searches_)
         {
+            // A search that fell back searches on in its fallback's trees, all of them.
+            if (const Fallback *fallback = wrapperOf<Fallback>(s.planner); fallback != nullptr && fallback->fellBack())
+            {
+                const std::optional<std::size_t> fallback_states = fallback->fallbacks().treeStates();
+                if (!fallback_states)
+                    return std::nullopt;
+                states += *fallback_states;
+                continue;
+            }
             const auto *tree = dynamic_cast<const TreeSize *>(&innerPlanner(s.planner));
             if (tree == nullptr)
                 return std::nullopt;

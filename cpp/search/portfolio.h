@@ -40,7 +40,8 @@ namespace pushplan::detail
         explicit Portfolio(std::vector<Search> searches);
 
         /// Runs rounds until one ends with an exact solution or `out_of_time` (asked from
-        /// every thread) says stop; every search runs on a thread of its own, and `report`
+        /// every thread) says stop, or every search's model is past its time limit; every
+        /// search runs on a thread of its own, and `report`
         /// on the calling thread after a round when `report_due` says so, while every
         /// search is paused. A lone search keeps step with nobody: its rounds end only
         /// when a report is due (a pause wakes the calling thread, which, every 1 000

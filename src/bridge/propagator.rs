@@ -142,6 +142,15 @@ impl Propagator {
         self.core.lock().deadline = crate::planning::deadline(Instant::now(), seconds);
     }
 
+    /// Whether the time limit has passed: from then on every propagation is refused, so
+    /// a search that waits for steps must stop on this instead.
+    pub fn past_time_limit(&self) -> bool {
+        self.core
+            .lock()
+            .deadline
+            .is_some_and(|d| Instant::now() >= d)
+    }
+
     /// Propagation steps taken so far.
     pub fn steps(&self) -> u64 {
         self.steps_taken

@@ -68,8 +68,8 @@ pub struct SearchFlags {
     pub restart_steps: Option<u64>,
     /// push_kpiece only: when this many propagation steps have not moved the goal
     /// object (the arm cannot get to it), PC RRT searches on from the start for the rest
-    /// of the time, on one thread; 0: never. Default: 1000000 (about 3 s in dense
-    /// clutter).
+    /// of the time, one independent search per thread; 0: never. Default: 1000000 (about
+    /// 3 s in dense clutter).
     #[arg(long = "fallback", value_name = "STEPS")]
     pub fallback_steps: Option<u64>,
 }

@@ -34,6 +34,9 @@ namespace
         bool pc_rrt_tree = false;
         std::uint64_t restarts = 0;
         std::uint64_t steps = 0;
+        /// Steps propagated on the search's own model (the rest credited by lanes, or by
+        /// the fallback's other searches).
+        std::uint64_t own_steps = 0;
         unsigned tree_states = 0;
         /// Tree vertices whose goal object stands elsewhere than at the start.
         unsigned goal_object_moved = 0;
@@ -55,6 +58,7 @@ namespace
         s.pc_rrt_tree = dynamic_cast<const pd::SeededRRT *>(&pd::innerPlanner(planner)) != nullptr;
         s.restarts = pd::restartsOf(planner);
         s.steps = model->propagationSteps();
+        s.own_steps = model->propagator().steps();
         ob::PlannerData data(problem.setup->getSpaceInformation());
         planner->getPlannerData(data);
         s.tree_states = data.numVertices();
@@ -98,6 +102,35 @@ int main()
     const Search two_lanes = search(dense, patience, 0, budget, 2, 1);
     expect(two_lanes.fell_back && same(two_lanes, search(dense, patience, 0, budget, 2, 2)),
            "with two lanes, the same on one thread and on two");
+    // Three lanes: a search on two threads, whose fallback is two PC RRTs, the second on
+    // lane 1's model; its steps are credited to the search's model after each round.
+    const Search three_lanes = search(dense, patience, 0, budget, 3, 2);
+    std::cout << "  three lanes: " << three_lanes.own_steps << " of " << three_lanes.steps
+              << " steps on the search's own model\n";
+    // Before the handover the lanes propagate; after it the first PC RRT on the search's
+    // own model takes about half the steps left, not all of them.
+    expect(three_lanes.fell_back && three_lanes.steps >= budget && three_lanes.own_steps > 0 &&
+               4 * three_lanes.own_steps < 3 * (three_lanes.steps - patience),
+           "with three lanes, the fallback's two searches share the budget after the handover");
+    expect(same(three_lanes, search(dense, patience, 0, budget, 3, 1)) &&
+               same(three_lanes, search(dense, patience, 0, budget, 3, 2)),
+           "and they are the same on one thread and on two, and again");
+    // Robust planning sets a solution aside and starts the search over (clear()): after
+    // the handover the fallback starts over, not Push KPIECE, which could not move the
+    // goal object and, the model having met the fallback's moves, would not hand over again.
+    {
+        const test::SearchRun run =
+            test::runSearch(dense, PlannerKind::PushKpiece, kSeed, 0, 0, 0, patience, budget);
+        run.planner->clear();
+        const std::uint64_t more = run.model->propagationSteps() + 5000;
+        run.planner->solve(ob::PlannerTerminationCondition([&] { return run.model->propagationSteps() >= more; }));
+        ob::PlannerData data(run.problem.setup->getSpaceInformation());
+        run.planner->getPlannerData(data);
+        std::cout << "  cleared after the handover, 5 000 steps: " << data.numVertices() << " states\n";
+        expect(pd::fellBack(run.planner) && dynamic_cast<const pd::SeededRRT *>(&pd::innerPlanner(run.planner)) &&
+                   data.numVertices() > 1 && data.numVertices() < handed.tree_states,
+               "cleared after the handover, it searches on in a new PC RRT tree");
+    }
     // Attempts of 3 000 x Luby(i) steps end at 3 000, 6 000, 12 000, 15 000 and 18 000.
     const Search restarting = search(dense, patience, 3000, budget);
     std::cout << "  with restarts: " << restarting.restarts << " before the handover\n";

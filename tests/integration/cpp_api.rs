@@ -264,7 +264,7 @@ fn parallel_kpiece_with_one_lane_is_ompl_kpiece1_bit_for_bit() {
 
 #[test]
 fn push_kpiece_falls_back_to_pc_rrt_only_without_progress() {
-    run_internal_checks("tests/cpp/fallback.cpp", "fallback", 7);
+    run_internal_checks("tests/cpp/fallback.cpp", "fallback", 10);
 }
 
 #[test]

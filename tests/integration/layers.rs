@@ -283,6 +283,7 @@ fn no_type_of_the_bridge_has_more_than_ten_functions() {
             "new",
             "propagate",
             "set_time_limit",
+            "past_time_limit",
             "steps",
             "seconds",
             "search_stats"
