@@ -469,8 +469,10 @@ namespace pushplan
                 const double t = elapsed();
                 if (const std::uint64_t fallbacks = portfolio.fallbacks(); fallbacks > told_fallbacks)
                 {
+                    // As many PC RRT searches as the search had threads (Fallback).
                     tell_event("the goal object has not moved in " + std::to_string(fallback_steps) +
-                               " propagation steps: PC RRT searches on");
+                               " propagation steps: PC RRT searches on" +
+                               (threads > 1 ? ", " + std::to_string(threads) + " independent searches" : ""));
                     told_fallbacks = fallbacks;
                 }
                 Progress p;
