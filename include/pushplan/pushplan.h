@@ -143,9 +143,9 @@ namespace pushplan
         /// 0: never. Default: the planner's (Push KPIECE restarts, the others do not).
         std::optional<std::uint64_t> restart_steps;
         /// Push KPIECE only: when this many propagation steps have not moved the goal
-        /// object, the search hands over to PC RRT for the rest of the time, on one thread
-        /// (its guided pushes need the hand at the goal object first; PC RRT's random
-        /// targets sweep the arm's postures). 0: never. Default: the planner's (Push
+        /// object, the search hands over to PC RRT for the rest of the time, one independent
+        /// PC RRT search per thread (its guided pushes need the hand at the goal object
+        /// first; PC RRT's random targets sweep the arm's postures). 0: never. Default: the planner's (Push
         /// KPIECE 1 000 000, the others 0; another planner with a value > 0 is an error).
         std::optional<std::uint64_t> fallback_steps;
 
