@@ -480,7 +480,10 @@ fn past_its_time_limit_the_model_refuses_to_propagate() {
     let start = scene.start.to_flat();
     let forward = [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
     let mut next = vec![f64::NAN; start.len()];
+    assert!(!model.past_time_limit(), "no limit until one is set");
     model.set_time_limit(0.0);
+    // What a search that counts its rounds in steps stops on (Portfolio).
+    assert!(model.past_time_limit());
     assert!(!model
         .propagate(&start, &[], &forward, 1, &mut next, &mut [])
         .unwrap());
@@ -488,6 +491,9 @@ fn past_its_time_limit_the_model_refuses_to_propagate() {
     assert_eq!(model.steps(), 0);
     assert_eq!(model.search_stats().propagations, 0, "nothing counted");
     model.set_time_limit(f64::INFINITY);
+    assert!(!model.past_time_limit());
+    model.set_time_limit(3600.0);
+    assert!(!model.past_time_limit(), "an hour from now is not past");
     assert!(model
         .propagate(&start, &[], &forward, 1, &mut next, &mut [])
         .unwrap());
