@@ -176,8 +176,8 @@ namespace pushplan::detail
     }
 
     /// Fallback's PC RRT on `problem`'s model and state space, seeded with `seed`, with
-    /// uniform controls and a problem definition of its own (the start the model's, the
-    /// goal `goal`), never restarted.
+    /// uniform controls and a problem definition of its own (the goal `goal`; the start
+    /// the Fallback's, given as it hands over), never restarted.
     static Search pcRrtFallback(const Problem &problem, const ob::GoalPtr &goal, std::uint64_t seed,
                                 double goal_bias, bool intermediate_states)
     {
@@ -186,9 +186,6 @@ namespace pushplan::detail
         pc_rrt->setGoalBias(goal_bias);
         pc_rrt->setIntermediateStates(intermediate_states);
         auto setup = std::make_shared<oc::SimpleSetup>(si);
-        ob::ScopedState<> start(problem.space);
-        problem.model->writeStart(start.get());
-        setup->setStartState(start);
         setup->setGoal(goal);
         setup->setPlanner(pc_rrt);
         return Search{Problem{problem.model, problem.space, std::move(setup), problem.k}, std::move(pc_rrt)};

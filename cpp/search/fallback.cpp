@@ -16,13 +16,14 @@ namespace pushplan::detail
                        std::uint64_t patience_steps)
       : WrappedSearch(search)
       , first_(std::move(search))
-      , fallback_(fallbacks.at(0).planner)
       , fallbacks_(std::move(fallbacks))
       , credited_steps_(fallbacks_.size(), 0)
       , credited_seconds_(fallbacks_.size(), 0.0)
       , model_(std::move(model))
       , patience_steps_(patience_steps)
     {
+        if (fallbacks_.size() == 0)
+            throw Error("a fallback needs at least one search to hand over to");
         began_at_ = model_->propagationSteps();
     }
 
@@ -50,7 +51,7 @@ namespace pushplan::detail
             // The hand never got to the goal object: the first tree goes, the fallbacks
             // search from the start, their models' counts credited from here on.
             search_->clear();
-            search_ = fallback_;
+            search_ = fallbacks_[0].planner;
             for (std::size_t i = 0; i < fallbacks_.size(); ++i)
             {
                 const ob::ProblemDefinitionPtr &pdef = fallbacks_[i].problem.setup->getProblemDefinition();
@@ -69,7 +70,7 @@ namespace pushplan::detail
     {
         ob::PlannerStatus status = ob::PlannerStatus::TIMEOUT;
         if (fallbacks_.size() == 1)
-            status = fallback_->solve(ptc);
+            status = fallbacks_[0].planner->solve(ptc);
         else
         {
             // The caller's termination condition is asked on this thread only, once a round
@@ -88,8 +89,6 @@ namespace pushplan::detail
             return status;
         const ob::ProblemDefinitionPtr &found = fallbacks_[*best].problem.setup->getProblemDefinition();
         pdef_->addSolutionPath(found->getSolutions().front());
-        if (fallbacks_.size() == 1)
-            return status;
         return found->hasExactSolution() ? ob::PlannerStatus::EXACT_SOLUTION : ob::PlannerStatus::APPROXIMATE_SOLUTION;
     }
 

@@ -60,7 +60,7 @@ namespace pushplan::detail
         /// The first search (search() is the one running).
         const ompl::base::PlannerPtr &wrapped() const override { return first_; }
         /// Whether the fallback has taken over.
-        bool fellBack() const { return search_ == fallback_; }
+        bool fellBack() const { return search_ == fallbacks_[0].planner; }
         /// The fallback's searches (the first runs on the model of this search).
         const Portfolio &fallbacks() const { return fallbacks_; }
 
@@ -76,7 +76,7 @@ namespace pushplan::detail
         /// the last call (the first fallback's model is the model itself).
         void creditFallbacks();
 
-        ompl::base::PlannerPtr first_, fallback_;
+        ompl::base::PlannerPtr first_;
         Portfolio fallbacks_;
         /// Each fallback model's steps and seconds credited so far (the first's unused).
         std::vector<std::uint64_t> credited_steps_;

@@ -145,8 +145,9 @@ namespace pushplan
         /// Push KPIECE only: when this many propagation steps have not moved the goal
         /// object, the search hands over to PC RRT for the rest of the time, one independent
         /// PC RRT search per thread (its guided pushes need the hand at the goal object
-        /// first; PC RRT's random targets sweep the arm's postures). 0: never. Default: the planner's (Push
-        /// KPIECE 1 000 000, the others 0; another planner with a value > 0 is an error).
+        /// first; PC RRT's random targets sweep the arm's postures). 0: never. Default: the
+        /// planner's (Push KPIECE 1 000 000, the others 0; another planner with a value > 0
+        /// is an error).
         std::optional<std::uint64_t> fallback_steps;
 
         /// Print progress to stderr once a second.

@@ -64,6 +64,11 @@ impl SharedCore {
 }
 
 impl Core {
+    /// Whether the search's time limit had passed at `at`.
+    pub fn past_deadline(&self, at: Instant) -> bool {
+        self.deadline.is_some_and(|d| at >= d)
+    }
+
     /// Whether `state` is, bit for bit, the last propagation's result, and if so, its
     /// validity (OMPL asks right after propagating).
     pub fn last_result_validity(&self, state: &[f64]) -> Option<bool> {

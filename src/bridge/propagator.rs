@@ -62,7 +62,7 @@ impl Propagator {
             // or the invalid state the last step tried to reach. Past the deadline: the
             // start, invalid, nothing counted.
             // `reached`: the state the propagation ended in, valid or not.
-            let (valid, taken, reached) = if core.deadline.is_some_and(|d| started >= d) {
+            let (valid, taken, reached) = if core.past_deadline(started) {
                 result.copy_from_slice(state);
                 (false, None, None)
             } else if let Some(view) = &mut core.static_clutter {
@@ -145,10 +145,7 @@ impl Propagator {
     /// Whether the time limit has passed: from then on every propagation is refused, so
     /// a search that waits for steps must stop on this instead.
     pub fn past_time_limit(&self) -> bool {
-        self.core
-            .lock()
-            .deadline
-            .is_some_and(|d| Instant::now() >= d)
+        self.core.lock().past_deadline(Instant::now())
     }
 
     /// Propagation steps taken so far.
