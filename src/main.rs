@@ -158,7 +158,7 @@ enum Command {
         /// does not delay the arm).
         #[arg(long, default_value_t = 2.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_POLISH))]
         replan_polish: f64,
-        /// With --closed-loop: searches per trial at most (found or not; repairs count);
+        /// With --closed-loop: searches per trial at most (found or not; repairs and legs count);
         /// a trial that needs more stops with a report. The search budget bounds the time;
         /// dense trials that reach the goal search up to 157 times (BENCHMARKS.md).
         #[arg(long, default_value_t = 400, value_name = "N", value_parser = within::count::<usize>(&limits::MAX_REPLANS))]
@@ -168,6 +168,11 @@ enum Command {
         /// (benchmark 22's trials that reach the goal search up to 240 s in all; BENCHMARKS.md)
         #[arg(long, default_value_t = 300.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_BUDGET))]
         replan_budget: f64,
+        /// With --closed-loop: where no search finds a way to the goal, a leg is searched
+        /// instead: the goal object to within half this distance of the point this far
+        /// ahead on its way in the last plan that reached the goal (m; 0: no legs).
+        #[arg(long, default_value_t = 0.1, value_name = "METRES", value_parser = within::real(&limits::REPLAN_LEG))]
+        replan_leg: f64,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,
     /// run) in a process of its own, the logs merged into DIR/results.db (Planner Arena's
@@ -486,6 +491,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             replan_polish,
             max_replans,
             replan_budget,
+            replan_leg,
         } => execute(
             &plan,
             ExecuteOptions {
@@ -504,6 +510,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                         replan_polish,
                         max_replans,
                         replan_budget,
+                        replan_leg,
                     },
                 )),
             },

@@ -242,6 +242,15 @@ pub const MAX_REPLANS: Limit = count("--max-replans", "", 1, 10_000, "searches p
 pub const REPLAN_TIME: Limit = seconds("--replan-time", "", true, DAY, "seconds");
 /// `execute --replan-budget`: a closed-loop trial's search time in all (s).
 pub const REPLAN_BUDGET: Limit = seconds("--replan-budget", "", true, DAY, "seconds");
+/// `execute --replan-leg`: how far ahead a closed-loop leg aims (m; 0: no legs).
+pub const REPLAN_LEG: Limit = Limit {
+    option: "--replan-leg",
+    field: "",
+    least: 0.0,
+    above_least: false,
+    most: MAX_EXTENT,
+    what: "metres",
+};
 /// `execute --replan-threads`: threads of each re-planning search.
 pub const REPLAN_THREADS: Limit = count("--replan-threads", "", 1, 256, "threads");
 /// `execute --replan-shortcut`: shortcutting before a re-plan is played (s of work).
@@ -264,7 +273,7 @@ pub const RUNS: Limit = count("--runs", "", 1, 10_000, "runs");
 pub const JOBS: Limit = count("--jobs", "", 1, 1_024, "processes");
 
 /// Every limit, for the table in docs/commands.md and its test.
-pub const ALL: [&Limit; 25] = [
+pub const ALL: [&Limit; 26] = [
     &K,
     &THREADS,
     &ROBUST_TRIALS,
@@ -280,6 +289,7 @@ pub const ALL: [&Limit; 25] = [
     &MAX_REPLANS,
     &REPLAN_TIME,
     &REPLAN_BUDGET,
+    &REPLAN_LEG,
     &REPLAN_THREADS,
     &REPLAN_SHORTCUT,
     &REPLAN_POLISH,

@@ -25,6 +25,8 @@ pub struct ClosedLoopFlags {
     pub max_replans: usize,
     /// Search time per trial at most (s).
     pub replan_budget: f64,
+    /// How far ahead a leg aims (m; 0: no legs).
+    pub replan_leg: f64,
 }
 
 /// What `execute` is asked.
@@ -100,6 +102,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
                     max_replans: flags.max_replans,
                     search_budget: flags.replan_budget,
                     tolerance: DRIFT,
+                    leg: flags.replan_leg,
                 },
                 execution,
             };
@@ -155,7 +158,7 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
 /// A closed-loop trial's line: outcome, controls, re-plans, time, and why it stopped.
 fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
     format!(
-        "  {}; {} controls played ({} cut short), rest kept {} times (invalid {} times{}), {} re-plans ({} repairs){}, {:.1} s searching, {:.0} s in all{}{}{}",
+        "  {}; {} controls played ({} cut short), rest kept {} times (invalid {} times{}), {} re-plans ({} repairs){}{}, {:.1} s searching, {:.0} s in all{}{}{}",
         trial_outcome(i, n, t.reached, t.goal_distance),
         t.controls_played,
         t.cut_short,
@@ -177,6 +180,10 @@ fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
         match t.failed_replans {
             0 => String::new(),
             f => format!(", {f} more found nothing in time"),
+        },
+        match t.legs {
+            0 => String::new(),
+            l => format!(", {l} legs along the way"),
         },
         t.search_time,
         t.wall_time,

@@ -11,15 +11,15 @@ use super::search::Search;
 use crate::planning::execute::{trial_worlds, ExecuteSettings, TIPPED_TILT};
 use crate::planning::execute::{Engine, EngineKind, STEP};
 use crate::planning::observed::ObservedState;
-use crate::planning::path::PathControl;
+use crate::planning::path::{PathControl, SimulatedPath};
 use crate::planning::rest::{RestFrom, REPAIR_SHARE};
 use crate::planning::shortcut::{shortcut, ShortcutSettings};
 use crate::planning::trajectory::{Playback, Trajectory};
 use crate::planning::{FinishSettings, PlannerKind, Problem, RunSettings};
 use crate::propagate::Propagator;
-use crate::scene::{Clearances, Scene};
+use crate::scene::{Clearances, Goal, Scene};
 use crate::state::State;
-use nalgebra::DVector;
+use nalgebra::{DVector, Vector2};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -56,6 +56,13 @@ pub struct ClosedLoopSettings {
     pub search_budget: f64,
     /// An object this far from its predicted position cuts its control short (m).
     pub tolerance: f64,
+    /// How far ahead a leg aims (m; 0: no legs). Where no search from the observed state
+    /// finds a way to the goal, the executor searches a leg: the goal object to a point
+    /// this far ahead on its track in the last rest that reached the goal, within half
+    /// this distance. A hard scene's search to the goal needs a million steps; one a
+    /// decimetre along a way the model has already found takes milliseconds to seconds
+    /// (dense 19: BENCHMARKS.md, "Legs along the track").
+    pub leg: f64,
 }
 
 /// Time the world gets after each control (or a control cut short) before it is observed:
@@ -99,6 +106,8 @@ pub struct ClosedLoopTrial {
     pub repairs: usize,
     /// Re-planning searches that found none in their time (the old rest played on).
     pub failed_replans: usize,
+    /// Legs found and played after such a search ([`ClosedLoopSettings::leg`]).
+    pub legs: usize,
     /// Why the last of those found none.
     pub last_failure: Option<String>,
     /// Time the re-planning searches took in all, found or not, shortcutting included (s).
@@ -174,6 +183,7 @@ impl ClosedLoop<'_> {
             replans: 0,
             repairs: 0,
             failed_replans: 0,
+            legs: 0,
             last_failure: None,
             search_time: 0.0,
             latencies: Vec::new(),
@@ -197,6 +207,14 @@ impl ClosedLoop<'_> {
         let mut waiting_failures: u32 = 0;
         // The plan given was shortcut when it was made: only re-plans are polished.
         let mut polish_left = 0.0;
+        // The goal object's way in the model, legs aim along: first the plan's from the
+        // scene's start, then that of each rest found to reach the goal.
+        let mut track = Track::of(
+            &scene.goal,
+            &Problem::new(scene.clone(), settings.planner).simulate(plan, false),
+        );
+        // While a leg plays, the goal it aims at: the rest is judged by it.
+        let mut leg: Option<Goal> = None;
         loop {
             // Observe: the arm where it was driven, the objects where the world has them.
             let observed = State {
@@ -220,7 +238,18 @@ impl ClosedLoop<'_> {
             let problem = Problem::new(from.clone(), settings.planner);
             // The rest is re-simulated, and played, with half the margins spent.
             let playing = Problem::new(margins_half_spent(&from), settings.planner);
-            let (verdict, simulated) = playing.rest_from(&rest, |s| still_reaches(&from.goal, s));
+            let mut judged = playing.rest_from(&rest, |s| {
+                still_reaches(leg.as_ref().unwrap_or(&from.goal), s)
+            });
+            if leg.is_some() && (rest.is_empty() || judged.0 != RestFrom::Reaches) {
+                // The leg is played, or no longer gets there: the goal is the aim again.
+                leg = None;
+                judged = playing.rest_from(&rest, |s| still_reaches(&from.goal, s));
+            }
+            let (verdict, simulated) = judged;
+            if leg.is_none() && verdict == RestFrom::Reaches {
+                track = Track::of(&from.goal, &simulated);
+            }
             if let Some((_, rule)) = &simulated.stopped_by {
                 trial.invalid_rests += 1;
                 *trial
@@ -231,7 +260,7 @@ impl ClosedLoop<'_> {
             match verdict {
                 RestFrom::Reaches => trial.kept += 1,
                 RestFrom::EndsShort { valid, end, why } => {
-                    if trial.replans + trial.failed_replans == settings.max_replans {
+                    if trial.replans + trial.failed_replans + trial.legs == settings.max_replans {
                         trial.stopped = Some(format!(
                         "the rest of the plan misses the goal after {} re-plans ({} found nothing)",
                         settings.max_replans, trial.failed_replans
@@ -255,7 +284,7 @@ impl ClosedLoop<'_> {
                     let time = (settings.replan_time * f64::from(1 << failures_in_a_row.min(3)))
                         .min(budget_left);
                     let searching = Instant::now();
-                    let index = trial.replans + trial.failed_replans;
+                    let index = trial.replans + trial.failed_replans + trial.legs;
                     // The rest is kept as far as it is valid (to its end if it ends short) and
                     // an ending is searched from there (a warm start: the search begins where
                     // the rest stops, most often close to the goal, and finds a short ending
@@ -268,9 +297,18 @@ impl ClosedLoop<'_> {
                         trial.repairs += 1;
                     }
                     let replanned = repaired.or_else(|_| self.replan(&problem, time, index));
+                    // None found: a leg along the track, with the same time.
+                    let legged = match (&replanned, self.leg_goal(&from, &track)) {
+                        (Err(_), Some(goal)) => {
+                            let time = time.min(budget_left - searching.elapsed().as_secs_f64());
+                            self.leg(&from, &goal, time, index)
+                                .map(|controls| (controls, goal))
+                        }
+                        _ => None,
+                    };
                     trial.search_time += searching.elapsed().as_secs_f64();
-                    match replanned {
-                        Ok(controls) => {
+                    match (replanned, legged) {
+                        (Ok(controls), _) => {
                             rest = controls;
                             polish_left = settings.polish;
                             trial.replans += 1;
@@ -278,7 +316,22 @@ impl ClosedLoop<'_> {
                             failures_in_a_row = 0;
                             waiting_failures = 0;
                         }
-                        Err(failure) => {
+                        (Err(failure), Some((controls, goal))) => {
+                            trial.failed_replans += 1;
+                            trial.failed_search_from = Some(ObservedState::of(scene, &observed));
+                            trial.last_failure = Some(failure);
+                            rest = controls;
+                            leg = Some(goal);
+                            trial.legs += 1;
+                            // The polish shortens a path to the goal, which a leg is not.
+                            polish_left = 0.0;
+                            trial.replan_latencies.push(started.elapsed().as_secs_f64());
+                            // The searches from the next leg's end start over at their
+                            // shortest: the goal may be nearer.
+                            failures_in_a_row = 0;
+                            waiting_failures = 0;
+                        }
+                        (Err(failure), None) => {
                             trial.failed_replans += 1;
                             trial.failed_search_from = Some(ObservedState::of(scene, &observed));
                             failures_in_a_row += 1;
@@ -436,6 +489,39 @@ impl ClosedLoop<'_> {
         Ok([rest, &ending].concat())
     }
 
+    /// The goal of a leg from `from`'s start (the observed state): the goal object to
+    /// within half [`ClosedLoopSettings::leg`] of the point that far ahead on `track`.
+    /// None for legs turned off, goals other than an object's disc, or a track that ends
+    /// nearer than a leg (the goal itself is the next aim).
+    fn leg_goal(&self, from: &Scene, track: &Track) -> Option<Goal> {
+        let ahead = self.settings.leg;
+        let Goal::ObjectInDisc { object, .. } = from.goal else {
+            return None;
+        };
+        if ahead <= 0.0 {
+            return None;
+        }
+        let center = track.waypoint(&from.start.objects[object].translation(), ahead)?;
+        Some(Goal::ObjectInDisc {
+            object,
+            center,
+            radius: 0.5 * ahead,
+            margin: 0.0,
+        })
+    }
+
+    /// A leg to `goal` from `from`'s start, searched for `time` seconds at most
+    /// ([`ClosedLoop::replan`]); none found in the time: None.
+    fn leg(&self, from: &Scene, goal: &Goal, time: f64, index: usize) -> Option<Vec<PathControl>> {
+        if time <= 0.0 {
+            return None;
+        }
+        let mut toward = from.clone();
+        toward.goal = goal.clone();
+        self.replan(&Problem::new(toward, self.settings.planner), time, index)
+            .ok()
+    }
+
     /// A new plan from `problem`'s start (the observed state): searched for `time` seconds
     /// at most, then finished (checked by re-simulation, shortcut). The `index`-th re-plan
     /// of the execution.
@@ -474,6 +560,41 @@ impl ClosedLoop<'_> {
         Ok(problem
             .finish(&found.controls, &found.states, true, &finish)?
             .controls)
+    }
+}
+
+/// The goal object's positions (m, world frame) at the states of a path that reaches an
+/// object goal in the model: the way a leg follows when no search finds the goal.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Track(Vec<Vector2<f64>>);
+
+impl Track {
+    /// The goal object's track along `path`; empty for a goal that is not an object's.
+    fn of(goal: &Goal, path: &SimulatedPath) -> Track {
+        match goal.object() {
+            Some(object) => Track(
+                path.states
+                    .iter()
+                    .map(|s| s.objects[object].translation())
+                    .collect(),
+            ),
+            None => Track::default(),
+        }
+    }
+
+    /// Where a leg from `at` aims: past the track's point nearest `at` (the latest of
+    /// equals, as an object held still between pushes leaves many), the first point
+    /// `ahead` or farther from `at`. None where the track ends nearer.
+    fn waypoint(&self, at: &Vector2<f64>, ahead: f64) -> Option<Vector2<f64>> {
+        let distance = |p: &Vector2<f64>| (p - at).norm();
+        let nearest = (0..self.0.len()).fold(None, |best: Option<usize>, i| match best {
+            Some(b) if distance(&self.0[b]) < distance(&self.0[i]) => Some(b),
+            _ => Some(i),
+        })?;
+        self.0[nearest..]
+            .iter()
+            .find(|p| distance(p) >= ahead)
+            .copied()
     }
 }
 
@@ -599,5 +720,52 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
     match sorted.len() {
         0 => 0.0,
         n => sorted[((q * n as f64).ceil() as usize).clamp(1, n) - 1],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Track;
+    use nalgebra::Vector2;
+
+    fn track(points: &[[f64; 2]]) -> Track {
+        Track(points.iter().map(|&[x, y]| Vector2::new(x, y)).collect())
+    }
+
+    /// A leg aims past the track's point nearest the object, at the first point a leg's
+    /// length from it: along an L-shaped track, round the corner when the object stands
+    /// near it, and nowhere when the track ends nearer.
+    #[test]
+    fn a_leg_aims_a_legs_length_ahead_of_the_nearest_point_of_the_track() {
+        let l = track(&[
+            [0.0, 0.0],
+            [0.05, 0.0],
+            [0.1, 0.0],
+            [0.15, 0.0],
+            [0.2, 0.0],
+            [0.2, 0.05],
+            [0.2, 0.1],
+            [0.2, 0.15],
+        ]);
+        let at = |x, y| Vector2::new(x, y);
+        // (0.1, 0) is 0.092 from (0.01, 0.02), (0.15, 0) 0.141.
+        assert_eq!(l.waypoint(&at(0.01, 0.02), 0.1), Some(at(0.15, 0.0)));
+        // Off the track's side: the nearest point is (0.15, 0); 0.1 from (0.16, 0.03) is
+        // first passed round the corner, at (0.2, 0.15) ((0.2, 0.1) is 0.081 away).
+        assert_eq!(l.waypoint(&at(0.16, 0.03), 0.1), Some(at(0.2, 0.15)));
+        assert_eq!(l.waypoint(&at(0.2, 0.08), 0.1), None);
+        // Standing far off the track, the leg goes back to its nearest point.
+        assert_eq!(l.waypoint(&at(0.1, -0.3), 0.1), Some(at(0.1, 0.0)));
+        assert_eq!(track(&[]).waypoint(&at(0.0, 0.0), 0.1), None);
+    }
+
+    /// An object held still while the hand goes round it leaves the same point many
+    /// times: the leg counts from the last of them, not from an earlier visit.
+    #[test]
+    fn a_leg_counts_from_the_last_visit_of_the_nearest_point() {
+        let back = track(&[[0.0, 0.0], [0.1, 0.0], [0.0, 0.0], [0.0, 0.1], [0.0, 0.2]]);
+        let at = Vector2::new(0.0, 0.0);
+        // From the first visit the leg would aim back at (0.1, 0).
+        assert_eq!(back.waypoint(&at, 0.1), Some(Vector2::new(0.0, 0.1)));
     }
 }

@@ -468,6 +468,7 @@ fn closed_loop(
             max_replans,
             search_budget: 60.0,
             tolerance: DRIFT,
+            leg: 0.1,
         },
         execution: ExecuteSettings::default(),
     }
@@ -762,6 +763,88 @@ fn the_observation_a_search_failed_from_is_kept_and_searches_again_through_repla
     let replanned =
         pushplan::planning::plan_file::PlanFile::read(&scratch.join("replanned.json")).unwrap();
     assert!(replanned.solved, "{stdout}{stderr}");
+}
+
+/// The real search, except that from farther than `far` (m) from the centre of the goal
+/// disc centred at `goal` it finds no way there: a hard scene's search from far off, made
+/// certain. Any other goal (a leg's) it searches as it is.
+struct FindsTheGoalOnlyNear {
+    goal: nalgebra::Vector2<f64>,
+    far: f64,
+}
+
+impl pushplan::planner::Search for FindsTheGoalOnlyNear {
+    fn solve(
+        &self,
+        scene: &pushplan::Scene,
+        settings: &pushplan::planning::RunSettings,
+        progress: Option<fn(&pushplan::planner::SearchProgress, &str)>,
+    ) -> Result<pushplan::planner::Found, String> {
+        if let pushplan::scene::Goal::ObjectInDisc { object, center, .. } = &scene.goal {
+            let far = (scene.start.objects[*object].translation() - center).norm() > self.far;
+            if (center - self.goal).norm() < 1e-12 && far {
+                return FindsNothing.solve(scene, settings, progress);
+            }
+        }
+        pushplan::bridge::OmplSearch.solve(scene, settings, progress)
+    }
+
+    fn reach(
+        &self,
+        _scene: &pushplan::Scene,
+        _object: &str,
+        _from: Option<&pushplan::State>,
+        _settings: &pushplan::planner::ReachSettings,
+    ) -> Result<pushplan::planner::Reached, String> {
+        Err("not asked for here".into())
+    }
+
+    fn benchmark(
+        &self,
+        _scene: &Path,
+        _settings: &pushplan::planning::RunSettings,
+        _run: u32,
+        _log: &Path,
+    ) -> Result<(), String> {
+        Err("not asked for here".into())
+    }
+}
+
+/// Where no search from the observed state finds the goal (here: none from farther than
+/// 15 cm), legs bring the goal object along the plan's way, a decimetre at a time, until a
+/// search does; without legs the trial stops short. In the world the box stands 20 cm to
+/// the side of the plan's way, where the plan's hand passes it by.
+#[test]
+fn where_no_search_finds_the_goal_legs_along_the_plans_way_bring_the_object_near() {
+    let scratch = common::Scratch::new("closed-loop-legs");
+    let scene_path = Path::new("scenes/planar_hand_single_object.yaml");
+    let plan_path = scratch.join("plan.json");
+    let (plan, scene) = planned(scene_path, &plan_path);
+    let pushplan::scene::Goal::ObjectInDisc { center, .. } = scene.goal else {
+        panic!("an object goal")
+    };
+    let mut world = scene.clone();
+    world.start.objects[0].y -= 0.2;
+    let hard_from_far = FindsTheGoalOnlyNear {
+        goal: center,
+        far: 0.15,
+    };
+    let mut executor = closed_loop(plan.settings.planner, 40);
+    executor.search = &hard_from_far;
+    let with_legs = executor
+        .execute(&scene, &plan.path_controls(), &world)
+        .unwrap();
+    assert!(
+        with_legs.reached && with_legs.legs >= 1 && with_legs.failed_replans >= 1,
+        "{with_legs:?}"
+    );
+    assert!(with_legs.tipped.is_empty(), "{with_legs:?}");
+
+    executor.settings.leg = 0.0;
+    let without = executor
+        .execute(&scene, &plan.path_controls(), &world)
+        .unwrap();
+    assert!(!without.reached && without.legs == 0, "{without:?}");
 }
 
 /// `execute --closed-loop` through the command line: every trial reported, with its
