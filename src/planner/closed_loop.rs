@@ -298,10 +298,7 @@ impl ClosedLoop<'_> {
                     }
                     let replanned = repaired.or_else(|_| self.replan(&problem, time, index));
                     // None found: a leg along the track, with the same time.
-                    let legged = match (
-                        &replanned,
-                        track.leg_goal(&from.goal, &from.start, settings.leg),
-                    ) {
+                    let legged = match (&replanned, self.leg_goal(&from, &track)) {
                         (Err(_), Some(goal)) => {
                             let time = time.min(budget_left - searching.elapsed().as_secs_f64());
                             self.leg(&from, &goal, time, index)
@@ -492,6 +489,27 @@ impl ClosedLoop<'_> {
         Ok([rest, &ending].concat())
     }
 
+    /// The goal of a leg from `from`'s start (the observed state): the goal object to
+    /// within half [`ClosedLoopSettings::leg`] of the point that far ahead on `track`.
+    /// None for legs turned off, goals other than an object's disc, or a track that ends
+    /// nearer than a leg (the goal itself is the next aim).
+    fn leg_goal(&self, from: &Scene, track: &Track) -> Option<Goal> {
+        let ahead = self.settings.leg;
+        let Goal::ObjectInDisc { object, .. } = from.goal else {
+            return None;
+        };
+        if ahead <= 0.0 {
+            return None;
+        }
+        let center = track.waypoint(&from.start.objects[object].translation(), ahead)?;
+        Some(Goal::ObjectInDisc {
+            object,
+            center,
+            radius: 0.5 * ahead,
+            margin: 0.0,
+        })
+    }
+
     /// A leg to `goal` from `from`'s start, searched for `time` seconds at most
     /// ([`ClosedLoop::replan`]); none found in the time: None.
     fn leg(&self, from: &Scene, goal: &Goal, time: f64, index: usize) -> Option<Vec<PathControl>> {
@@ -562,37 +580,6 @@ impl Track {
             ),
             None => Track::default(),
         }
-    }
-
-    /// The goal of a leg from `state` toward `goal` along the track: the goal object to
-    /// within half `ahead` (m) of [`Track::waypoint`]. None for legs turned off (`ahead`
-    /// 0), goals other than an object's disc, a track that ends nearer than a leg, or a
-    /// point on the goal disc: legs lead to the disc, and the last stretch is the goal's
-    /// own search (its blockers cleared, its margin kept), which gets the growing search
-    /// times.
-    fn leg_goal(&self, goal: &Goal, state: &State, ahead: f64) -> Option<Goal> {
-        let Goal::ObjectInDisc {
-            object,
-            center: goal_center,
-            radius: goal_radius,
-            ..
-        } = *goal
-        else {
-            return None;
-        };
-        if ahead <= 0.0 {
-            return None;
-        }
-        let center = self.waypoint(&state.objects[object].translation(), ahead)?;
-        if (center - goal_center).norm() < goal_radius {
-            return None;
-        }
-        Some(Goal::ObjectInDisc {
-            object,
-            center,
-            radius: 0.5 * ahead,
-            margin: 0.0,
-        })
     }
 
     /// Where a leg from `at` aims: past the track's point nearest `at` (the latest of
@@ -770,39 +757,6 @@ mod tests {
         // Standing far off the track, the leg goes back to its nearest point.
         assert_eq!(l.waypoint(&at(0.1, -0.3), 0.1), Some(at(0.1, 0.0)));
         assert_eq!(track(&[]).waypoint(&at(0.0, 0.0), 0.1), None);
-    }
-
-    /// A leg's goal: within half a leg of the waypoint, no margin; none with legs off,
-    /// and none where the waypoint lies on the goal disc (the last stretch is the goal's).
-    #[test]
-    fn a_leg_leads_to_the_goal_disc_not_onto_it() {
-        use crate::scene::Goal;
-        use crate::{Pose2, State};
-        let line = track(&[[0.0, 0.0], [0.1, 0.0], [0.2, 0.0], [0.3, 0.0], [0.4, 0.0]]);
-        let goal = Goal::ObjectInDisc {
-            object: 0,
-            center: Vector2::new(0.4, 0.0),
-            radius: 0.1,
-            margin: 0.03,
-        };
-        let at = |x| State {
-            q: nalgebra::DVector::zeros(1),
-            objects: vec![Pose2::new(x, 0.0, 0.0)],
-        };
-        assert_eq!(
-            line.leg_goal(&goal, &at(0.0), 0.1),
-            Some(Goal::ObjectInDisc {
-                object: 0,
-                center: Vector2::new(0.1, 0.0),
-                radius: 0.05,
-                margin: 0.0,
-            })
-        );
-        assert_eq!(line.leg_goal(&goal, &at(0.0), 0.0), None);
-        // From 0.15 the waypoint is (0.3, 0): on the disc's edge, not on the disc.
-        assert!(line.leg_goal(&goal, &at(0.15), 0.1).is_some());
-        // From 0.21 it is (0.4, 0), the disc's centre.
-        assert_eq!(line.leg_goal(&goal, &at(0.21), 0.1), None);
     }
 
     /// An object held still while the hand goes round it leaves the same point many
