@@ -681,17 +681,33 @@ fn a_refused_observation_is_kept_in_the_trial_and_replays_through_replan() {
     );
 }
 
-/// A search that never finds a plan: the executor's path where searching fails, made
-/// certain (the real search finds one in this scene within milliseconds).
-struct FindsNothing;
+/// A search that finds no plan to the scene's goal: from anywhere (`goal_from_within`
+/// None: the executor's path where searching fails, made certain; the real search finds
+/// one in this scene within milliseconds), or from farther than the given distance (m)
+/// from the centre of the goal disc (a hard scene's search from far off, made certain).
+/// Any other goal (a leg's) it searches with the real search.
+struct FindsNothing {
+    goal_from_within: Option<(nalgebra::Vector2<f64>, f64)>,
+}
 
 impl pushplan::planner::Search for FindsNothing {
     fn solve(
         &self,
-        _scene: &pushplan::Scene,
-        _settings: &pushplan::planning::RunSettings,
-        _progress: Option<fn(&pushplan::planner::SearchProgress, &str)>,
+        scene: &pushplan::Scene,
+        settings: &pushplan::planning::RunSettings,
+        progress: Option<fn(&pushplan::planner::SearchProgress, &str)>,
     ) -> Result<pushplan::planner::Found, String> {
+        let searched = match (&scene.goal, self.goal_from_within) {
+            (_, None) => false,
+            (pushplan::scene::Goal::ObjectInDisc { object, center, .. }, Some((goal, near))) => {
+                let from = (scene.start.objects[*object].translation() - center).norm();
+                (center - goal).norm() > 1e-12 || from <= near
+            }
+            _ => false,
+        };
+        if searched {
+            return pushplan::bridge::OmplSearch.solve(scene, settings, progress);
+        }
         Ok(pushplan::planner::Found {
             summary: Default::default(),
             search: Default::default(),
@@ -738,7 +754,9 @@ fn the_observation_a_search_failed_from_is_kept_and_searches_again_through_repla
     world.start.objects[0].y -= 0.06;
     world.objects[0].mu_g *= 2.0;
     let mut executor = closed_loop(plan.settings.planner, 2);
-    executor.search = &FindsNothing;
+    executor.search = &FindsNothing {
+        goal_from_within: None,
+    };
     let trial = executor
         .execute(&scene, &plan.path_controls(), &world)
         .unwrap();
@@ -765,51 +783,6 @@ fn the_observation_a_search_failed_from_is_kept_and_searches_again_through_repla
     assert!(replanned.solved, "{stdout}{stderr}");
 }
 
-/// The real search, except that from farther than `far` (m) from the centre of the goal
-/// disc centred at `goal` it finds no way there: a hard scene's search from far off, made
-/// certain. Any other goal (a leg's) it searches as it is.
-struct FindsTheGoalOnlyNear {
-    goal: nalgebra::Vector2<f64>,
-    far: f64,
-}
-
-impl pushplan::planner::Search for FindsTheGoalOnlyNear {
-    fn solve(
-        &self,
-        scene: &pushplan::Scene,
-        settings: &pushplan::planning::RunSettings,
-        progress: Option<fn(&pushplan::planner::SearchProgress, &str)>,
-    ) -> Result<pushplan::planner::Found, String> {
-        if let pushplan::scene::Goal::ObjectInDisc { object, center, .. } = &scene.goal {
-            let far = (scene.start.objects[*object].translation() - center).norm() > self.far;
-            if (center - self.goal).norm() < 1e-12 && far {
-                return FindsNothing.solve(scene, settings, progress);
-            }
-        }
-        pushplan::bridge::OmplSearch.solve(scene, settings, progress)
-    }
-
-    fn reach(
-        &self,
-        _scene: &pushplan::Scene,
-        _object: &str,
-        _from: Option<&pushplan::State>,
-        _settings: &pushplan::planner::ReachSettings,
-    ) -> Result<pushplan::planner::Reached, String> {
-        Err("not asked for here".into())
-    }
-
-    fn benchmark(
-        &self,
-        _scene: &Path,
-        _settings: &pushplan::planning::RunSettings,
-        _run: u32,
-        _log: &Path,
-    ) -> Result<(), String> {
-        Err("not asked for here".into())
-    }
-}
-
 /// Where no search from the observed state finds the goal (here: none from farther than
 /// 15 cm), legs bring the goal object along the plan's way, a decimetre at a time, until a
 /// search does; without legs the trial stops short. In the world the box stands 20 cm to
@@ -825,9 +798,8 @@ fn where_no_search_finds_the_goal_legs_along_the_plans_way_bring_the_object_near
     };
     let mut world = scene.clone();
     world.start.objects[0].y -= 0.2;
-    let hard_from_far = FindsTheGoalOnlyNear {
-        goal: center,
-        far: 0.15,
+    let hard_from_far = FindsNothing {
+        goal_from_within: Some((center, 0.15)),
     };
     let mut executor = closed_loop(plan.settings.planner, 40);
     executor.search = &hard_from_far;
