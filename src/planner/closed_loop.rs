@@ -238,15 +238,14 @@ impl ClosedLoop<'_> {
             let problem = Problem::new(from.clone(), settings.planner);
             // The rest is re-simulated, and played, with half the margins spent.
             let playing = Problem::new(margins_half_spent(&from), settings.planner);
-            let mut judged = playing.rest_from(&rest, |s| {
+            let (mut verdict, simulated) = playing.rest_from(&rest, |s| {
                 still_reaches(leg.as_ref().unwrap_or(&from.goal), s)
             });
-            if leg.is_some() && (rest.is_empty() || judged.0 != RestFrom::Reaches) {
+            if leg.is_some() && (rest.is_empty() || verdict != RestFrom::Reaches) {
                 // The leg is played, or no longer gets there: the goal is the aim again.
                 leg = None;
-                judged = playing.rest_from(&rest, |s| still_reaches(&from.goal, s));
+                verdict = playing.verdict_on(&simulated, |s| still_reaches(&from.goal, s));
             }
-            let (verdict, simulated) = judged;
             if leg.is_none() && verdict == RestFrom::Reaches {
                 track = Track::of(&from.goal, &simulated);
             }

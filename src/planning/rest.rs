@@ -51,11 +51,22 @@ impl Problem {
         reaches: impl Fn(&State) -> bool,
     ) -> (RestFrom, SimulatedPath) {
         let simulated = self.simulate(rest, false);
+        (self.verdict_on(&simulated, reaches), simulated)
+    }
+
+    /// The verdict on a rest already re-simulated from the problem's start (`simulated`,
+    /// [`Problem::rest_from`]'s), by `reaches`: judging the same rest by another aim needs
+    /// no second simulation.
+    pub fn verdict_on(
+        &self,
+        simulated: &SimulatedPath,
+        reaches: impl Fn(&State) -> bool,
+    ) -> RestFrom {
         let end = simulated.final_state();
-        let verdict = match &simulated.stopped_by {
+        match &simulated.stopped_by {
             None if reaches(end) => RestFrom::Reaches,
             None => RestFrom::EndsShort {
-                valid: rest.len(),
+                valid: simulated.states.len() - 1,
                 end: end.clone(),
                 why: format!(
                     "the goal is missed by {:.1} mm",
@@ -67,7 +78,6 @@ impl Problem {
                 end: simulated.states[*k].clone(),
                 why: format!("its control {k} stops: {reason}"),
             },
-        };
-        (verdict, simulated)
+        }
     }
 }
