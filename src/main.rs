@@ -9,12 +9,12 @@ use cli::within;
 use cli::{
     allowed_collisions_of, bench, bench_merge, bench_scene, check, draw, execute, export,
     generate_scenes, generate_shipped_scenes, install, pick_place, plan, plots, replan, robot,
-    ClosedLoopFlags, ExecuteOptions, PickPlaceOptions, PlanOptions, ReplanOptions, RobotQuery,
-    SearchFlags,
+    ExecuteOptions, PickPlaceOptions, PlanOptions, ReplanOptions, RobotQuery, SearchFlags,
 };
 use pushplan::benchmark::grid::{Cell, Grid, Shard};
 use pushplan::bridge::OmplSearch;
 use pushplan::limits;
+use pushplan::planner::closed_loop::{defaults, ClosedLoopOptions};
 use pushplan::planning::execute::EngineKind;
 use pushplan::planning::PlannerKind;
 use pushplan::scene::builtin;
@@ -141,7 +141,7 @@ enum Command {
         #[arg(long)]
         closed_loop: bool,
         /// With --closed-loop: each re-planning search's time limit (s).
-        #[arg(long, default_value_t = 2.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_TIME))]
+        #[arg(long, default_value_t = defaults::REPLAN_TIME, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_TIME))]
         replan_time: f64,
         /// With --closed-loop: threads of each re-planning search (default: one per core,
         /// as `plan --threads`: the arm waits on a re-plan, and two threads find one in
@@ -151,27 +151,27 @@ enum Command {
         /// With --closed-loop: shortcutting of each re-planned path before its first control
         /// is played (s of work; by default none: the polish below shortens it while the arm
         /// plays, and the median re-plan takes 0.03 s instead of 0.16 s, BENCHMARKS.md).
-        #[arg(long, default_value_t = 0.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_SHORTCUT))]
+        #[arg(long, default_value_t = defaults::REPLAN_SHORTCUT, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_SHORTCUT))]
         replan_shortcut: f64,
         /// With --closed-loop: shortcutting of each re-planned path while the arm plays it
         /// (s of work, as much per control as the control lasts, until this is spent; it
         /// does not delay the arm).
-        #[arg(long, default_value_t = 2.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_POLISH))]
+        #[arg(long, default_value_t = defaults::REPLAN_POLISH, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_POLISH))]
         replan_polish: f64,
         /// With --closed-loop: searches per trial at most (found or not; repairs and legs count);
         /// a trial that needs more stops with a report. The search budget bounds the time;
         /// dense trials that reach the goal search up to 157 times (BENCHMARKS.md).
-        #[arg(long, default_value_t = 400, value_name = "N", value_parser = within::count::<usize>(&limits::MAX_REPLANS))]
+        #[arg(long, default_value_t = defaults::MAX_REPLANS, value_name = "N", value_parser = within::count::<usize>(&limits::MAX_REPLANS))]
         max_replans: usize,
         /// With --closed-loop: search time per trial at most, found or not (s); each search
         /// gets no more than what is left, and a trial that needs more stops with a report
         /// (benchmark 22's trials that reach the goal search up to 240 s in all; BENCHMARKS.md)
-        #[arg(long, default_value_t = 300.0, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_BUDGET))]
+        #[arg(long, default_value_t = defaults::REPLAN_BUDGET, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_BUDGET))]
         replan_budget: f64,
         /// With --closed-loop: where no search finds a way to the goal, a leg is searched
         /// instead: the goal object to within half this distance of the point this far
         /// ahead on its way in the last plan that reached the goal (m; 0: no legs).
-        #[arg(long, default_value_t = 0.1, value_name = "METRES", value_parser = within::real(&limits::REPLAN_LEG))]
+        #[arg(long, default_value_t = defaults::REPLAN_LEG, value_name = "METRES", value_parser = within::real(&limits::REPLAN_LEG))]
         replan_leg: f64,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,
@@ -503,7 +503,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                 render: render.as_deref(),
                 closed_loop: closed_loop.then_some((
                     &OmplSearch as &dyn pushplan::planner::Search,
-                    ClosedLoopFlags {
+                    ClosedLoopOptions {
                         replan_time,
                         replan_threads: replan_threads.unwrap_or_else(cli::cores),
                         replan_shortcut,

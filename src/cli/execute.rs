@@ -2,32 +2,14 @@
 //! what happened.
 
 use pushplan::planner::closed_loop::{
-    ClosedLoop, ClosedLoopReport, ClosedLoopSettings, ClosedLoopTrial,
+    ClosedLoop, ClosedLoopOptions, ClosedLoopReport, ClosedLoopTrial,
 };
 use pushplan::planner::Search;
-use pushplan::planning::execute::{EngineKind, ExecuteSettings, ExecutionReport, DRIFT};
+use pushplan::planning::execute::{EngineKind, ExecuteSettings, ExecutionReport};
 use pushplan::planning::plan_file::PlanFile;
 use pushplan::Scene;
 use std::path::Path;
 use std::process::ExitCode;
-
-/// How `execute` re-plans in closed loop.
-pub struct ClosedLoopFlags {
-    /// Each re-planning search's time limit (s).
-    pub replan_time: f64,
-    /// Threads of each re-planning search.
-    pub replan_threads: u32,
-    /// Shortcutting of each re-planned path (s of work).
-    pub replan_shortcut: f64,
-    /// Shortcutting of each re-planned path while the arm plays it (s of work).
-    pub replan_polish: f64,
-    /// Searches per trial at most.
-    pub max_replans: usize,
-    /// Search time per trial at most (s).
-    pub replan_budget: f64,
-    /// How far ahead a leg aims (m; 0: no legs).
-    pub replan_leg: f64,
-}
 
 /// What `execute` is asked.
 pub struct ExecuteOptions<'a> {
@@ -44,7 +26,7 @@ pub struct ExecuteOptions<'a> {
     /// Write the nominal execution's animation into this folder (open loop).
     pub render: Option<&'a Path>,
     /// Closed loop, re-planning with this search, as the flags say.
-    pub closed_loop: Option<(&'a dyn Search, ClosedLoopFlags)>,
+    pub closed_loop: Option<(&'a dyn Search, ClosedLoopOptions)>,
 }
 
 pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String> {
@@ -92,18 +74,7 @@ pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String>
             }
             let closed = ClosedLoop {
                 search,
-                settings: ClosedLoopSettings {
-                    planner: plan.settings.planner,
-                    replan_time: flags.replan_time,
-                    replan_threads: flags.replan_threads,
-                    replan_shortcut: flags.replan_shortcut,
-                    polish: flags.replan_polish,
-                    seed: plan.settings.seed,
-                    max_replans: flags.max_replans,
-                    search_budget: flags.replan_budget,
-                    tolerance: DRIFT,
-                    leg: flags.replan_leg,
-                },
+                settings: flags.settings(plan.settings.planner, plan.settings.seed),
                 execution,
             };
             // One line per finished trial on stderr, the report on stdout once all are done.

@@ -16,7 +16,7 @@ pub mod within;
 
 pub use bench::{bench, bench_merge, bench_scene, plots};
 pub use check::check;
-pub use execute::{execute, ClosedLoopFlags, ExecuteOptions};
+pub use execute::{execute, ExecuteOptions};
 pub use files::{draw, export, generate_scenes, generate_shipped_scenes, install};
 pub use pick_place::{check_pick_place, pick_place, PickPlaceOptions, PICK_PLACE_FORMAT};
 pub use plan::{grasp_goal, plan, PlanOptions};

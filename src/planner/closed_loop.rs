@@ -8,7 +8,7 @@
 //! differ from the scene's): only what it observes.
 
 use super::search::Search;
-use crate::planning::execute::{trial_worlds, ExecuteSettings, TIPPED_TILT};
+use crate::planning::execute::{trial_worlds, ExecuteSettings, DRIFT, TIPPED_TILT};
 use crate::planning::execute::{Engine, EngineKind, STEP};
 use crate::planning::observed::ObservedState;
 use crate::planning::path::{PathControl, SimulatedPath};
@@ -63,6 +63,64 @@ pub struct ClosedLoopSettings {
     /// decimetre along a way the model has already found takes milliseconds to seconds
     /// (dense 19: BENCHMARKS.md, "Legs along the track").
     pub leg: f64,
+}
+
+/// The closed loop's options as a user gives them: `execute --closed-loop`'s flags, and the
+/// C++ API's `ExecutorOptions` (the same names; their limits are in [`crate::limits`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClosedLoopOptions {
+    /// [`ClosedLoopSettings::replan_time`] (s).
+    pub replan_time: f64,
+    /// [`ClosedLoopSettings::replan_threads`].
+    pub replan_threads: u32,
+    /// [`ClosedLoopSettings::replan_shortcut`] (s of work).
+    pub replan_shortcut: f64,
+    /// [`ClosedLoopSettings::polish`] (s of work).
+    pub replan_polish: f64,
+    /// [`ClosedLoopSettings::max_replans`].
+    pub max_replans: usize,
+    /// [`ClosedLoopSettings::search_budget`] (s).
+    pub replan_budget: f64,
+    /// [`ClosedLoopSettings::leg`] (m).
+    pub replan_leg: f64,
+}
+
+impl ClosedLoopOptions {
+    /// The settings of a closed loop that re-plans a plan made with `planner` and `seed`
+    /// as these options say; an object [`DRIFT`] off its predicted position cuts its
+    /// control short.
+    pub fn settings(&self, planner: PlannerKind, seed: u64) -> ClosedLoopSettings {
+        ClosedLoopSettings {
+            planner,
+            replan_time: self.replan_time,
+            replan_threads: self.replan_threads,
+            replan_shortcut: self.replan_shortcut,
+            polish: self.replan_polish,
+            seed,
+            max_replans: self.max_replans,
+            search_budget: self.replan_budget,
+            tolerance: DRIFT,
+            leg: self.replan_leg,
+        }
+    }
+}
+
+/// `execute --closed-loop`'s defaults, and the C++ API's `ExecutorOptions`'
+/// ([`ClosedLoopSettings`] says what each does; the reasons are in `execute --help`).
+pub mod defaults {
+    /// [`super::ClosedLoopSettings::replan_time`] (s).
+    pub const REPLAN_TIME: f64 = 2.0;
+    /// [`super::ClosedLoopSettings::replan_shortcut`] (s of work): none, the polish
+    /// shortens a re-plan while the arm plays it.
+    pub const REPLAN_SHORTCUT: f64 = 0.0;
+    /// [`super::ClosedLoopSettings::polish`] (s of work).
+    pub const REPLAN_POLISH: f64 = 2.0;
+    /// [`super::ClosedLoopSettings::max_replans`].
+    pub const MAX_REPLANS: usize = 400;
+    /// [`super::ClosedLoopSettings::search_budget`] (s).
+    pub const REPLAN_BUDGET: f64 = 300.0;
+    /// [`super::ClosedLoopSettings::leg`] (m).
+    pub const REPLAN_LEG: f64 = 0.1;
 }
 
 /// Time the world gets after each control (or a control cut short) before it is observed:
@@ -139,6 +197,7 @@ pub struct ClosedLoopTrial {
 /// and the engine's effort) and re-plans with `search` as `settings` say, in the scene
 /// the plan was made in, from each observed state (the scene loaded once: a re-plan does
 /// not read its file again).
+#[derive(Clone)]
 pub struct ClosedLoop<'a> {
     /// The search of every re-plan.
     pub search: &'a dyn Search,
@@ -148,10 +207,10 @@ pub struct ClosedLoop<'a> {
     pub execution: ExecuteSettings,
 }
 
-impl ClosedLoop<'_> {
+impl<'a> ClosedLoop<'a> {
     /// Plays `plan` (from `scene`'s start) closed loop in a world built from `world_scene`
     /// (the same scene, its objects and parameters perturbed or changed), re-planning in
-    /// `scene`.
+    /// `scene`: an [`Executor`] decides after each observation of the world what to play.
     pub fn execute(
         &self,
         scene: &Scene,
@@ -159,7 +218,6 @@ impl ClosedLoop<'_> {
         world_scene: &Scene,
     ) -> Result<ClosedLoopTrial, String> {
         let began = Instant::now();
-        let settings = &self.settings;
         let robot = &scene.robot;
         let objects = scene.objects.len();
         let mut poses = Vec::new();
@@ -170,244 +228,30 @@ impl ClosedLoop<'_> {
             &poses,
             &self.execution.solver,
         )?;
-        let mut trial = ClosedLoopTrial {
-            reached: false,
-            goal_distance: f64::INFINITY,
-            tipped: Vec::new(),
-            controls_played: 0,
-            cut_short: 0,
-            kept: 0,
-            invalid_rests: 0,
-            invalid_rest_rules: BTreeMap::new(),
-            separations: 0,
-            replans: 0,
-            repairs: 0,
-            failed_replans: 0,
-            legs: 0,
-            last_failure: None,
-            search_time: 0.0,
-            latencies: Vec::new(),
-            replan_latencies: Vec::new(),
-            stopped: None,
-            refused_observation: None,
-            failed_search_from: None,
-            wall_time: 0.0,
-        };
+        let mut executor = self.executor(scene, plan);
         let mut tipped = vec![false; objects];
         let mut q = scene.start.q.clone();
-        let mut rest = plan.to_vec();
-        // Every control played is followed by an observation; this bounds a loop that
-        // re-plans without end (the search budget bounds the time spent searching). Trials
-        // that re-plan often may still get there: scene 32's reached the goal after up to
-        // 32 times the plan's controls (MuJoCo; 4 of 10 trials with a cap of 10 times, 10
-        // of 10 with 30 times).
-        let most_controls = 30 * plan.len() + 100;
-        let mut failures_in_a_row: u32 = 0;
-        // Of those, the searches while the arm waited with nothing valid to play.
-        let mut waiting_failures: u32 = 0;
-        // The plan given was shortcut when it was made: only re-plans are polished.
-        let mut polish_left = 0.0;
-        // The goal object's way in the model, legs aim along: first the plan's from the
-        // scene's start, then that of each rest found to reach the goal.
-        let mut track = Track::of(
-            &scene.goal,
-            &Problem::new(scene.clone(), settings.planner).simulate(plan, false),
-        );
-        // While a leg plays, the goal it aims at: the rest is judged by it.
-        let mut leg: Option<Goal> = None;
         loop {
             // Observe: the arm where it was driven, the objects where the world has them.
             let observed = State {
                 q: q.clone(),
                 objects: (0..objects).map(|i| world.object_pose2(i)).collect(),
             };
-            let started = Instant::now();
-            let from = match scene.with_start(&observed, Path::new("the observed world")) {
-                Ok(from) => from,
-                Err(e) => {
-                    trial.stopped = Some(format!("the observed state is no valid start: {e}"));
-                    trial.refused_observation = Some(ObservedState::of(scene, &observed));
-                    break;
-                }
-            };
-            q.clone_from(&from.start.q);
-            let moved = |(a, b): (&crate::Pose2, &crate::Pose2)| a.x != b.x || a.y != b.y;
-            if from.start.objects.iter().zip(&observed.objects).any(moved) {
-                trial.separations += 1;
-            }
-            let problem = Problem::new(from.clone(), settings.planner);
-            // The rest is re-simulated, and played, with half the margins spent.
-            let playing = Problem::new(margins_half_spent(&from), settings.planner);
-            let (mut verdict, simulated) = playing.rest_from(&rest, |s| {
-                still_reaches(leg.as_ref().unwrap_or(&from.goal), s)
-            });
-            if leg.is_some() && (rest.is_empty() || verdict != RestFrom::Reaches) {
-                // The leg is played, or no longer gets there: the goal is the aim again.
-                leg = None;
-                verdict = playing.verdict_on(&simulated, |s| still_reaches(&from.goal, s));
-            }
-            if leg.is_none() && verdict == RestFrom::Reaches {
-                track = Track::of(&from.goal, &simulated);
-            }
-            if let Some((_, rule)) = &simulated.stopped_by {
-                trial.invalid_rests += 1;
-                *trial
-                    .invalid_rest_rules
-                    .entry(rule.kind().to_string())
-                    .or_default() += 1;
-            }
-            match verdict {
-                RestFrom::Reaches => trial.kept += 1,
-                RestFrom::EndsShort { valid, end, why } => {
-                    if trial.replans + trial.failed_replans + trial.legs == settings.max_replans {
-                        trial.stopped = Some(format!(
-                        "the rest of the plan misses the goal after {} re-plans ({} found nothing)",
-                        settings.max_replans, trial.failed_replans
-                    ));
-                        break;
-                    }
-                    let budget_left = settings.search_budget - trial.search_time;
-                    if budget_left <= 0.0 {
-                        trial.stopped = Some(format!(
-                            "the rest of the plan misses the goal and the {} s of search time are \
-                         spent ({} re-plans, {} found nothing)",
-                            settings.search_budget, trial.replans, trial.failed_replans
-                        ));
-                        break;
-                    }
-                    // A search that found nothing is tried again at the next observation with
-                    // twice the time (up to 8 times), while the old rest is played on if it
-                    // can be: the world may have moved to where a plan is easier to find.
-                    // With nothing valid to play the arm waits (the objects are at rest) and
-                    // searches again from the same state, up to WAITING_SEARCHES times.
-                    let time = (settings.replan_time * f64::from(1 << failures_in_a_row.min(3)))
-                        .min(budget_left);
-                    let searching = Instant::now();
-                    let index = trial.replans + trial.failed_replans + trial.legs;
-                    // The rest is kept as far as it is valid (to its end if it ends short) and
-                    // an ending is searched from there (a warm start: the search begins where
-                    // the rest stops, most often close to the goal, and finds a short ending
-                    // fast); failing that, a new plan from the observed state.
-                    let repaired = match valid > 0 {
-                        true => self.repair(&from, &rest[..valid], &end, time, index),
-                        false => Err(String::new()),
-                    };
-                    if repaired.is_ok() {
-                        trial.repairs += 1;
-                    }
-                    let replanned = repaired.or_else(|_| self.replan(&problem, time, index));
-                    // None found: a leg along the track, with the same time.
-                    let legged = match (&replanned, self.leg_goal(&from, &track)) {
-                        (Err(_), Some(goal)) => {
-                            let time = time.min(budget_left - searching.elapsed().as_secs_f64());
-                            self.leg(&from, &goal, time, index)
-                                .map(|controls| (controls, goal))
-                        }
-                        _ => None,
-                    };
-                    trial.search_time += searching.elapsed().as_secs_f64();
-                    match (replanned, legged) {
-                        (Ok(controls), _) => {
-                            rest = controls;
-                            polish_left = settings.polish;
-                            trial.replans += 1;
-                            trial.replan_latencies.push(started.elapsed().as_secs_f64());
-                            failures_in_a_row = 0;
-                            waiting_failures = 0;
-                        }
-                        (Err(failure), Some((controls, goal))) => {
-                            trial.failed_replans += 1;
-                            trial.failed_search_from = Some(ObservedState::of(scene, &observed));
-                            trial.last_failure = Some(failure);
-                            rest = controls;
-                            leg = Some(goal);
-                            trial.legs += 1;
-                            // The polish shortens a path to the goal, which a leg is not.
-                            polish_left = 0.0;
-                            trial.replan_latencies.push(started.elapsed().as_secs_f64());
-                            // The searches from the next leg's end start over at their
-                            // shortest: the goal may be nearer.
-                            failures_in_a_row = 0;
-                            waiting_failures = 0;
-                        }
-                        (Err(failure), None) => {
-                            trial.failed_replans += 1;
-                            trial.failed_search_from = Some(ObservedState::of(scene, &observed));
-                            failures_in_a_row += 1;
-                            // A rest no longer valid to its end is played up to where it stops
-                            // being valid: the arm goes on the way the plan went (toward the
-                            // goal), and the next search starts from there.
-                            rest.truncate(valid);
-                            let playable = !rest.is_empty();
-                            waiting_failures += u32::from(!playable);
-                            if waiting_failures == WAITING_SEARCHES {
-                                trial.stopped = Some(format!(
-                                    "{failure} ({WAITING_SEARCHES} searches found nothing while the \
-                                     arm waited, the longest {time:.1} s: the rest of the plan is no \
-                                     longer valid, {why})"
-                                ));
-                                break;
-                            }
-                            trial.last_failure = Some(failure);
-                            if !playable {
-                                trial.latencies.push(started.elapsed().as_secs_f64());
-                                continue;
-                            }
-                        }
-                    }
-                }
-            }
-            trial.latencies.push(started.elapsed().as_secs_f64());
-            if rest.is_empty() {
+            let Step::Play {
+                trajectory,
+                predicted,
+                ..
+            } = executor.step(&observed)
+            else {
                 break;
-            }
-            if trial.controls_played == most_controls {
-                trial.stopped = Some(format!("{most_controls} controls played"));
-                break;
-            }
-            // Play the next control: its executable trajectory from the observed state. After
-            // a whole control the arm is where the model's control ends (the trajectory's
-            // last sample is interpolated onto it).
-            let (next, trajectory) = match playing.timed(&rest[..1]) {
-                Ok(timed) => timed,
-                Err(e) => {
-                    trial.stopped = Some(format!("internal error: {e}"));
-                    break;
-                }
             };
-            if polish_left > 0.0 && rest.len() > 2 {
-                let seconds = (trajectory.times.last().copied().unwrap_or(0.0)
-                    / self.execution.speed)
-                    .min(polish_left);
-                polish_left -= seconds;
-                // The arm plays the control meanwhile: the work stops where the control ends,
-                // in wall-clock time too. A step among many objects in contact costs several
-                // times what `from_seconds` counts on (dense scenes), and a step budget alone
-                // would hold the arm far longer than the control lasts.
-                let polish = ShortcutSettings {
-                    deadline: Some(Instant::now() + Duration::from_secs_f64(seconds)),
-                    ..ShortcutSettings::from_seconds(
-                        seconds,
-                        settings.seed ^ trial.controls_played as u64,
-                    )
-                };
-                let polished = shortcut(
-                    &mut Propagator::new(from.clone()),
-                    next.final_state(),
-                    &rest[1..],
-                    &polish,
-                );
-                rest.truncate(1);
-                rest.extend(polished.controls);
-            }
-            let cut = self.play(world.as_mut(), robot, &trajectory, &mut q, &mut tipped);
-            trial.controls_played += 1;
-            if cut {
-                trial.cut_short += 1;
+            // After a whole control the arm is where the model's control ends (the
+            // trajectory's last sample is interpolated onto it).
+            if self.play(world.as_mut(), robot, &trajectory, &mut q, &mut tipped) {
+                executor.trial.cut_short += 1;
             } else {
-                q.clone_from(&next.final_state().q);
+                q.clone_from(&predicted.q);
             }
-            rest.remove(0);
             settle(world.as_mut(), &mut tipped, OBSERVE_AFTER);
         }
         settle(
@@ -415,6 +259,7 @@ impl ClosedLoop<'_> {
             &mut tipped,
             crate::planning::execute::SETTLE,
         );
+        let mut trial = executor.trial;
         let mut end_state = scene.start.clone();
         end_state.q = q;
         end_state.objects = (0..objects).map(|i| world.object_pose2(i)).collect();
@@ -430,6 +275,55 @@ impl ClosedLoop<'_> {
             .collect();
         trial.wall_time = began.elapsed().as_secs_f64();
         Ok(trial)
+    }
+
+    /// An executor of `plan` (from `scene`'s start) that re-plans in `scene` as this closed
+    /// loop does, for observations from anywhere: this crate's engines, or a robot's
+    /// perception and encoders.
+    pub fn executor(&self, scene: &Scene, plan: &[PathControl]) -> Executor<'a> {
+        Executor {
+            closed_loop: self.clone(),
+            scene: scene.clone(),
+            // Every control played is followed by an observation; this bounds a loop that
+            // re-plans without end (the search budget bounds the time spent searching).
+            // Trials that re-plan often may still get there: scene 32's reached the goal
+            // after up to 32 times the plan's controls (MuJoCo; 4 of 10 trials with a cap
+            // of 10 times, 10 of 10 with 30 times).
+            most_controls: 30 * plan.len() + 100,
+            rest: plan.to_vec(),
+            failures_in_a_row: 0,
+            waiting_failures: 0,
+            // The plan given was shortcut when it was made: only re-plans are polished.
+            polish_left: 0.0,
+            track: Track::of(
+                &scene.goal,
+                &Problem::new(scene.clone(), self.settings.planner).simulate(plan, false),
+            ),
+            leg: None,
+            trial: ClosedLoopTrial {
+                reached: false,
+                goal_distance: f64::INFINITY,
+                tipped: Vec::new(),
+                controls_played: 0,
+                cut_short: 0,
+                kept: 0,
+                invalid_rests: 0,
+                invalid_rest_rules: BTreeMap::new(),
+                separations: 0,
+                replans: 0,
+                repairs: 0,
+                failed_replans: 0,
+                legs: 0,
+                last_failure: None,
+                search_time: 0.0,
+                latencies: Vec::new(),
+                replan_latencies: Vec::new(),
+                stopped: None,
+                refused_observation: None,
+                failed_search_from: None,
+                wall_time: 0.0,
+            },
+        }
     }
 
     /// Drives the arm along `trajectory` (one control's, at the execution's pace) in
@@ -562,6 +456,285 @@ impl ClosedLoop<'_> {
     }
 }
 
+/// What an [`Executor`] asks for after an observation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Step {
+    /// Play `control` next: `trajectory` from the observed state (the arm's joints with
+    /// its tool brought onto the pushing plane), at the plan's pace; the model predicts
+    /// `predicted` after it. Then observe again.
+    Play {
+        /// The control.
+        control: PathControl,
+        /// Its executable trajectory (joint waypoints and times, the objects' predicted
+        /// poses along it).
+        trajectory: Trajectory,
+        /// The state the model predicts at the control's end.
+        predicted: State,
+    },
+    /// The plan is played to its end: nothing more to play.
+    Finished,
+    /// The execution cannot go on: why ([`ClosedLoopTrial::stopped`] holds the same).
+    Stopped(String),
+}
+
+/// Closed-loop execution one observation at a time, for a world it does not own: after
+/// each control the application observes the arm's joints and the objects' poses (a
+/// robot's encoders and perception, or an engine, as [`ClosedLoop::execute`] does) and
+/// asks [`Executor::step`] what to play next. The rest of the plan is re-simulated from
+/// each observation and kept while it reaches the goal; else it is repaired, searched
+/// anew, or, where no search finds the goal, a leg along the track is searched
+/// ([`ClosedLoopSettings`]). Made by [`ClosedLoop::executor`].
+pub struct Executor<'a> {
+    closed_loop: ClosedLoop<'a>,
+    /// The scene the plan was made in: every re-plan plans it from an observed state.
+    scene: Scene,
+    rest: Vec<PathControl>,
+    most_controls: usize,
+    failures_in_a_row: u32,
+    /// Of those, the searches while the arm waited with nothing valid to play.
+    waiting_failures: u32,
+    polish_left: f64,
+    /// The goal object's way in the model, legs aim along: first the plan's from the
+    /// scene's start, then that of each rest found to reach the goal.
+    track: Track,
+    /// While a leg plays, the goal it aims at: the rest is judged by it.
+    leg: Option<Goal>,
+    trial: ClosedLoopTrial,
+}
+
+impl Executor<'_> {
+    /// What to play after the world was observed in `observed` (the scene's joint and
+    /// object orders; object poses in the world frame). The world must be at rest, as it
+    /// is after a control and a short pause ([`OBSERVE_AFTER`]).
+    pub fn step(&mut self, observed: &State) -> Step {
+        let mut observed = observed.clone();
+        // A search that finds nothing with nothing valid to play leaves the arm waiting:
+        // the objects at rest, the same state is searched from again.
+        loop {
+            match self.decide(&observed) {
+                Ok(step) => return step,
+                Err(waiting) => observed.q = waiting,
+            }
+        }
+    }
+
+    /// The execution so far: its counts, re-plans and latencies, and why it stopped if it
+    /// did (the world's outcome, `reached` and the like, is the caller's to judge).
+    pub fn trial(&self) -> &ClosedLoopTrial {
+        &self.trial
+    }
+
+    /// The remaining controls, the next one first.
+    pub fn rest(&self) -> &[PathControl] {
+        &self.rest
+    }
+
+    /// One decision from `observed`; Err(the arm's configuration) where the arm waits and
+    /// the same state is to be decided on again.
+    fn decide(&mut self, observed: &State) -> Result<Step, DVector<f64>> {
+        let ClosedLoop {
+            settings,
+            execution,
+            ..
+        } = &self.closed_loop;
+        let scene = &self.scene;
+        let trial = &mut self.trial;
+        let started = Instant::now();
+        let stop = |trial: &mut ClosedLoopTrial, why: String| {
+            trial.stopped = Some(why.clone());
+            Ok(Step::Stopped(why))
+        };
+        let from = match scene.with_start(observed, Path::new("the observed world")) {
+            Ok(from) => from,
+            Err(e) => {
+                trial.refused_observation = Some(ObservedState::of(scene, observed));
+                return stop(trial, format!("the observed state is no valid start: {e}"));
+            }
+        };
+        let moved = |(a, b): (&crate::Pose2, &crate::Pose2)| a.x != b.x || a.y != b.y;
+        if from.start.objects.iter().zip(&observed.objects).any(moved) {
+            trial.separations += 1;
+        }
+        let problem = Problem::new(from.clone(), settings.planner);
+        // The rest is re-simulated, and played, with half the margins spent.
+        let playing = Problem::new(margins_half_spent(&from), settings.planner);
+        let leg = &mut self.leg;
+        let (mut verdict, simulated) = playing.rest_from(&self.rest, |s| {
+            still_reaches(leg.as_ref().unwrap_or(&from.goal), s)
+        });
+        if leg.is_some() && (self.rest.is_empty() || verdict != RestFrom::Reaches) {
+            // The leg is played, or no longer gets there: the goal is the aim again.
+            *leg = None;
+            verdict = playing.verdict_on(&simulated, |s| still_reaches(&from.goal, s));
+        }
+        if leg.is_none() && verdict == RestFrom::Reaches {
+            self.track = Track::of(&from.goal, &simulated);
+        }
+        if let Some((_, rule)) = &simulated.stopped_by {
+            trial.invalid_rests += 1;
+            *trial
+                .invalid_rest_rules
+                .entry(rule.kind().to_string())
+                .or_default() += 1;
+        }
+        match verdict {
+            RestFrom::Reaches => trial.kept += 1,
+            RestFrom::EndsShort { valid, end, why } => {
+                if trial.replans + trial.failed_replans + trial.legs == settings.max_replans {
+                    return stop(
+                        trial,
+                        format!(
+                            "the rest of the plan misses the goal after {} re-plans ({} found nothing)",
+                            settings.max_replans, trial.failed_replans
+                        ),
+                    );
+                }
+                let budget_left = settings.search_budget - trial.search_time;
+                if budget_left <= 0.0 {
+                    return stop(
+                        trial,
+                        format!(
+                            "the rest of the plan misses the goal and the {} s of search time \
+                             are spent ({} re-plans, {} found nothing)",
+                            settings.search_budget, trial.replans, trial.failed_replans
+                        ),
+                    );
+                }
+                // A search that found nothing is tried again at the next observation with
+                // twice the time (up to 8 times), while the old rest is played on if it
+                // can be: the world may have moved to where a plan is easier to find.
+                // With nothing valid to play the arm waits (the objects are at rest) and
+                // searches again from the same state, up to WAITING_SEARCHES times.
+                let time = (settings.replan_time * f64::from(1 << self.failures_in_a_row.min(3)))
+                    .min(budget_left);
+                let searching = Instant::now();
+                let index = trial.replans + trial.failed_replans + trial.legs;
+                let closed_loop = &self.closed_loop;
+                // The rest is kept as far as it is valid (to its end if it ends short) and
+                // an ending is searched from there (a warm start: the search begins where
+                // the rest stops, most often close to the goal, and finds a short ending
+                // fast); failing that, a new plan from the observed state.
+                let repaired = match valid > 0 {
+                    true => closed_loop.repair(&from, &self.rest[..valid], &end, time, index),
+                    false => Err(String::new()),
+                };
+                if repaired.is_ok() {
+                    trial.repairs += 1;
+                }
+                let replanned = repaired.or_else(|_| closed_loop.replan(&problem, time, index));
+                // None found: a leg along the track, with the same time.
+                let legged = match (&replanned, closed_loop.leg_goal(&from, &self.track)) {
+                    (Err(_), Some(goal)) => {
+                        let time = time.min(budget_left - searching.elapsed().as_secs_f64());
+                        closed_loop
+                            .leg(&from, &goal, time, index)
+                            .map(|controls| (controls, goal))
+                    }
+                    _ => None,
+                };
+                trial.search_time += searching.elapsed().as_secs_f64();
+                match (replanned, legged) {
+                    (Ok(controls), _) => {
+                        self.rest = controls;
+                        self.polish_left = settings.polish;
+                        trial.replans += 1;
+                        trial.replan_latencies.push(started.elapsed().as_secs_f64());
+                        self.failures_in_a_row = 0;
+                        self.waiting_failures = 0;
+                    }
+                    (Err(failure), Some((controls, goal))) => {
+                        trial.failed_replans += 1;
+                        trial.failed_search_from = Some(ObservedState::of(scene, observed));
+                        trial.last_failure = Some(failure);
+                        self.rest = controls;
+                        // The searches from a leg's end start over at their shortest: the
+                        // goal may be nearer. Not after a leg onto the goal disc: the last
+                        // stretch, among the disc's blockers, is the goal search's work,
+                        // and it needs its growing times (dense 10).
+                        if !onto_the_disc(&from.goal, &goal) {
+                            self.failures_in_a_row = 0;
+                        }
+                        *leg = Some(goal);
+                        trial.legs += 1;
+                        // The polish shortens a path to the goal, which a leg is not.
+                        self.polish_left = 0.0;
+                        trial.replan_latencies.push(started.elapsed().as_secs_f64());
+                        self.waiting_failures = 0;
+                    }
+                    (Err(failure), None) => {
+                        trial.failed_replans += 1;
+                        trial.failed_search_from = Some(ObservedState::of(scene, observed));
+                        self.failures_in_a_row += 1;
+                        // A rest no longer valid to its end is played up to where it stops
+                        // being valid: the arm goes on the way the plan went (toward the
+                        // goal), and the next search starts from there.
+                        self.rest.truncate(valid);
+                        let playable = !self.rest.is_empty();
+                        self.waiting_failures += u32::from(!playable);
+                        if self.waiting_failures == WAITING_SEARCHES {
+                            return stop(
+                                trial,
+                                format!(
+                                    "{failure} ({WAITING_SEARCHES} searches found nothing while \
+                                     the arm waited, the longest {time:.1} s: the rest of the \
+                                     plan is no longer valid, {why})"
+                                ),
+                            );
+                        }
+                        trial.last_failure = Some(failure);
+                        if !playable {
+                            trial.latencies.push(started.elapsed().as_secs_f64());
+                            return Err(from.start.q);
+                        }
+                    }
+                }
+            }
+        }
+        trial.latencies.push(started.elapsed().as_secs_f64());
+        if self.rest.is_empty() {
+            return Ok(Step::Finished);
+        }
+        if trial.controls_played == self.most_controls {
+            return stop(trial, format!("{} controls played", self.most_controls));
+        }
+        // The next control: its executable trajectory from the observed state.
+        let (next, trajectory) = match playing.timed(&self.rest[..1]) {
+            Ok(timed) => timed,
+            Err(e) => return stop(trial, format!("internal error: {e}")),
+        };
+        if self.polish_left > 0.0 && self.rest.len() > 2 {
+            let seconds = (trajectory.times.last().copied().unwrap_or(0.0) / execution.speed)
+                .min(self.polish_left);
+            self.polish_left -= seconds;
+            // The arm plays the control meanwhile: the work stops where the control ends,
+            // in wall-clock time too. A step among many objects in contact costs several
+            // times what `from_seconds` counts on (dense scenes), and a step budget alone
+            // would hold the arm far longer than the control lasts.
+            let polish = ShortcutSettings {
+                deadline: Some(Instant::now() + Duration::from_secs_f64(seconds)),
+                ..ShortcutSettings::from_seconds(
+                    seconds,
+                    settings.seed ^ trial.controls_played as u64,
+                )
+            };
+            let polished = shortcut(
+                &mut Propagator::new(from.clone()),
+                next.final_state(),
+                &self.rest[1..],
+                &polish,
+            );
+            self.rest.truncate(1);
+            self.rest.extend(polished.controls);
+        }
+        trial.controls_played += 1;
+        Ok(Step::Play {
+            control: self.rest.remove(0),
+            trajectory,
+            predicted: next.final_state().clone(),
+        })
+    }
+}
+
 /// The goal object's positions (m, world frame) at the states of a path that reaches an
 /// object goal in the model: the way a leg follows when no search finds the goal.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -594,6 +767,16 @@ impl Track {
             .iter()
             .find(|p| distance(p) >= ahead)
             .copied()
+    }
+}
+
+/// Does `leg` aim at a point on `goal`'s disc (both an object's disc)?
+fn onto_the_disc(goal: &Goal, leg: &Goal) -> bool {
+    match (goal, leg) {
+        (Goal::ObjectInDisc { center, radius, .. }, Goal::ObjectInDisc { center: aim, .. }) => {
+            (aim - center).norm() < *radius
+        }
+        _ => false,
     }
 }
 
@@ -724,8 +907,9 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::Track;
-    use nalgebra::Vector2;
+    use super::{onto_the_disc, Track};
+    use crate::scene::Goal;
+    use nalgebra::{DVector, Vector2};
 
     fn track(points: &[[f64; 2]]) -> Track {
         Track(points.iter().map(|&[x, y]| Vector2::new(x, y)).collect())
@@ -766,5 +950,27 @@ mod tests {
         let at = Vector2::new(0.0, 0.0);
         // From the first visit the leg would aim back at (0.1, 0).
         assert_eq!(back.waypoint(&at, 0.1), Some(Vector2::new(0.0, 0.1)));
+    }
+
+    /// A leg onto the goal disc is one whose aim lies on the disc (its margin aside); any
+    /// other goal has no disc to aim onto.
+    #[test]
+    fn a_leg_is_onto_the_disc_when_its_aim_lies_on_it() {
+        let disc = |x: f64, y: f64, radius: f64| Goal::ObjectInDisc {
+            object: 0,
+            center: Vector2::new(x, y),
+            radius,
+            margin: 0.03,
+        };
+        let goal = disc(0.85, -0.3, 0.1);
+        // 0.09 from the centre: on the disc, though not inside its margin.
+        assert!(onto_the_disc(&goal, &disc(0.85, -0.39, 0.05)));
+        // 0.11 from the centre: off it, though the leg's own disc overlaps it.
+        assert!(!onto_the_disc(&goal, &disc(0.85, -0.41, 0.05)));
+        let configuration = Goal::Configuration {
+            q: DVector::zeros(7),
+            tolerance: 0.1,
+        };
+        assert!(!onto_the_disc(&configuration, &disc(0.85, -0.3, 0.05)));
     }
 }
