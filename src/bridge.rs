@@ -11,6 +11,7 @@
 //! | [`Goal`]            | `ob::GoalSampleableRegion`           | `PushGoal`                     |
 //! | [`Projection`]      | `ob::ProjectionEvaluator`, push headings | `PushProjection`, `PushControlSampler` |
 //! | [`Finisher`]        | the path after the search            | `Planner::solve`               |
+//! | [`Executor`]        | closed-loop execution (re-plans)     | `Executor`                     |
 //! | [`Darrt`]           | DARRT's primitives                   | `Darrt`                        |
 //! | [`Grasping`]        | grasp regions                        | `IkBiRrt`, `Planner::reach`    |
 //!
@@ -24,6 +25,7 @@ mod convert;
 mod core;
 mod darrt;
 pub mod entry;
+mod executor;
 mod finisher;
 mod goal;
 mod grasping;
@@ -35,6 +37,7 @@ mod validity;
 
 pub use darrt::Darrt;
 pub use entry::OmplSearch;
+pub use executor::Executor;
 pub use finisher::Finisher;
 pub use goal::Goal;
 pub use grasping::Grasping;
@@ -47,9 +50,9 @@ pub use validity::ValidityChecker;
 use crate::planner::NearestTree;
 use crate::planning::PlannerKind;
 use convert::{
-    add_search_stats, check_run_settings, plan_robust_trials, planner_cut_at_time_limit,
-    planner_kind, planner_name, planner_shares_one_search, planner_yields_controls, repair_share,
-    run_settings_of_scene, search_stats,
+    add_search_stats, check_run_settings, executor_defaults, plan_robust_trials,
+    planner_cut_at_time_limit, planner_kind, planner_name, planner_shares_one_search,
+    planner_yields_controls, repair_share, run_settings_of_scene, search_stats,
 };
 use metric::{tree_add, tree_nearest, tree_nearest_k, tree_nearest_r};
 
@@ -176,6 +179,58 @@ pub mod ffi {
         pub valid: usize,
         pub states: Vec<f64>,
         pub why: String,
+    }
+
+    /// `planner::closed_loop::ClosedLoopSettings` as the C++ API's `ExecutorOptions` name
+    /// them (the CLI's `execute --closed-loop` options), and the pace the application
+    /// plays at (`--speed`).
+    pub struct ExecutorSettings {
+        pub planner: PlannerKind,
+        pub seed: u64,
+        pub replan_time: f64,
+        pub replan_threads: u32,
+        pub replan_shortcut: f64,
+        pub replan_polish: f64,
+        pub max_replans: usize,
+        pub replan_budget: f64,
+        pub replan_leg: f64,
+        pub speed: f64,
+    }
+
+    /// What an executor asks for (`planner::closed_loop::Step`).
+    pub enum ExecutorStepKind {
+        Play,
+        Finished,
+        Stopped,
+    }
+
+    /// `planner::closed_loop::Step`, flat: to `Play`, the control (`control`, held for
+    /// `steps` steps), its trajectory and the state predicted at its end; `why` a stop's
+    /// reason.
+    pub struct ExecutorStep {
+        pub kind: ExecutorStepKind,
+        pub control: Vec<f64>,
+        pub steps: usize,
+        pub trajectory: Trajectory,
+        pub predicted: Vec<f64>,
+        pub why: String,
+    }
+
+    /// An execution so far (`planner::closed_loop::ClosedLoopTrial`'s counts; empty
+    /// strings for none).
+    pub struct ExecutorReport {
+        pub controls_played: usize,
+        pub kept: usize,
+        pub invalid_rests: usize,
+        pub replans: usize,
+        pub repairs: usize,
+        pub failed_replans: usize,
+        pub legs: usize,
+        pub search_time: f64,
+        pub latencies: Vec<f64>,
+        pub replan_latencies: Vec<f64>,
+        pub last_failure: String,
+        pub stopped: String,
     }
 
     /// Part of a DARRT path: flat states one after another, and what the hand holds in
@@ -312,6 +367,20 @@ pub mod ffi {
         ) -> Result<FinishedPath>;
         fn trajectory(self: &Finisher, u: &[f64], steps: &[usize]) -> Result<Trajectory>;
         fn rest_from(self: &Finisher, u: &[f64], steps: &[usize]) -> Result<RestFrom>;
+
+        type Executor;
+        #[Self = "Executor"]
+        #[cxx_name = "make"]
+        fn new(
+            problem: &Problem,
+            u: &[f64],
+            steps: &[usize],
+            settings: &ExecutorSettings,
+        ) -> Result<Box<Executor>>;
+        fn step(self: &mut Executor, observed: &[f64]) -> Result<ExecutorStep>;
+        fn report(self: &Executor) -> ExecutorReport;
+        /// `execute --closed-loop`'s defaults (planner, seed and threads the caller's).
+        fn executor_defaults() -> ExecutorSettings;
 
         type Darrt;
         #[Self = "Darrt"]

@@ -653,20 +653,7 @@ namespace pushplan
         const rust::Slice<const double> controls(path.controls.data(), path.controls.size());
         const rust::Slice<const std::size_t> steps(path.steps.data(), path.steps.size());
         describePath(plan, info, rust::Slice<const double>(path.states.data(), path.states.size()), controls, steps);
-        const bridge::Trajectory trajectory = finisher.trajectory(controls, steps);
-        plan.trajectory.rate = trajectory.rate;
-        for (std::size_t k = 0; k < trajectory.times.size(); ++k)
-        {
-            plan.trajectory.times.push_back(trajectory.times[k]);
-            plan.trajectory.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(trajectory.q.data() + k * info.dof, info.dof));
-            std::vector<Eigen::Vector3d> poses;
-            for (std::size_t o = 0; o < info.objects; ++o)
-            {
-                const double *p = trajectory.objects.data() + (k * info.objects + o) * 3;
-                poses.emplace_back(p[0], p[1], p[2]);
-            }
-            plan.trajectory.objects.push_back(std::move(poses));
-        }
+        plan.trajectory = trajectoryOf(finisher.trajectory(controls, steps), info);
         plan.contacts.resize(path.steps.size());
         for (const auto &c : path.contacts)
             plan.contacts[c.control].push_back(
@@ -688,11 +675,31 @@ namespace pushplan
         }
         const std::size_t cwidth = 3 + info.dof;
         for (std::size_t i = 0; i < steps.size(); ++i)
+            plan.controls.push_back(controlAt(controls.data() + i * cwidth, steps[i], info));
+    }
+
+    Control detail::controlAt(const double *c, std::size_t steps, const bridge::SceneInfo &info)
+    {
+        return Control{Eigen::Vector3d(c[0], c[1], c[2]), Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
+                       static_cast<double>(steps) * info.planner.step, steps};
+    }
+
+    Trajectory detail::trajectoryOf(const bridge::Trajectory &trajectory, const bridge::SceneInfo &info)
+    {
+        Trajectory out;
+        out.rate = trajectory.rate;
+        for (std::size_t k = 0; k < trajectory.times.size(); ++k)
         {
-            const double *c = controls.data() + i * cwidth;
-            plan.controls.push_back(Control{Eigen::Vector3d(c[0], c[1], c[2]),
-                                            Eigen::Map<const Eigen::VectorXd>(c + 3, info.dof),
-                                            static_cast<double>(steps[i]) * info.planner.step, steps[i]});
+            out.times.push_back(trajectory.times[k]);
+            out.q.emplace_back(Eigen::Map<const Eigen::VectorXd>(trajectory.q.data() + k * info.dof, info.dof));
+            std::vector<Eigen::Vector3d> poses;
+            for (std::size_t o = 0; o < info.objects; ++o)
+            {
+                const double *p = trajectory.objects.data() + (k * info.objects + o) * 3;
+                poses.emplace_back(p[0], p[1], p[2]);
+            }
+            out.objects.push_back(std::move(poses));
         }
+        return out;
     }
 }  // namespace pushplan

@@ -107,6 +107,31 @@ namespace pushplan
         void describePath(Plan &plan, const bridge::SceneInfo &info, rust::Slice<const double> states,
                           rust::Slice<const double> controls, rust::Slice<const std::size_t> steps);
 
+        /// `kind` if it is one of PlannerKind's values; else pushplan::Error.
+        PlannerKind checkedKind(PlannerKind kind);
+
+        /// One search per core (at least one).
+        unsigned defaultThreads();
+
+        /// `observed` in the flat layout, its sizes checked against the scene's.
+        std::vector<double> flatObservation(const Observation &observed, const bridge::SceneInfo &info);
+
+        /// `problem` starting at `observed` (checked as a scene's start is).
+        rust::Box<bridge::Problem> startingAt(rust::Box<bridge::Problem> problem, const Observation &observed);
+
+        /// `plan`'s controls from `first` to `last` (exclusive), flat, appended to `path`.
+        void appendControls(FlatPath &path, const Plan &plan, std::size_t first, std::size_t last);
+
+        /// The state `k` of the flat `states` (of the scene `info` describes) as an observation.
+        Observation observationAt(const rust::Vec<double> &states, std::size_t k, const bridge::SceneInfo &info);
+
+        /// The flat control at `c` (3 + dof values), held for `steps` steps, of the scene
+        /// `info` describes.
+        Control controlAt(const double *c, std::size_t steps, const bridge::SceneInfo &info);
+
+        /// The model's trajectory as the API's (of the scene `info` describes).
+        Trajectory trajectoryOf(const bridge::Trajectory &trajectory, const bridge::SceneInfo &info);
+
         /// Reaches a grasp of `object` in the scene `load` reads as the settings
         /// `settings_of` gives for it (checked here), from the flat state `start_of` gives
         /// for it: what Planner::reach and the CLI's reach do. Throws pushplan::Error.

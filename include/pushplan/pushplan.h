@@ -379,5 +379,123 @@ namespace pushplan
         /// The scene's source; throws pushplan::Error for a moved-from planner.
         const Source &source() const;
         std::unique_ptr<Source> source_;
+        friend class Executor;
+    };
+
+    /// Options of closed-loop execution (Executor): the CLI's `execute --closed-loop`
+    /// options of the same names, with their defaults and limits (docs/commands.md). A
+    /// value outside its limit throws pushplan::Error naming it
+    /// (`ExecutorOptions::replan_time: must be in (0, 86400], ...`).
+    struct ExecutorOptions
+    {
+        /// The planner of every re-plan (one that yields controls).
+        PlannerKind planner = PlannerKind::PushKpiece;
+        /// Seed of the first re-plan; the next ones count up from it. Default: the scene's.
+        std::optional<std::uint64_t> seed;
+        /// Each re-planning search's time limit (s); a search that finds nothing is tried
+        /// again with twice the time, up to 8 times. Default 2.
+        std::optional<double> replan_time;
+        /// Threads of each re-planning search. Default: one per core.
+        std::optional<unsigned> replan_threads;
+        /// Shortcutting of a re-planned path before its first control is played (s of
+        /// work). Default 0: the polish shortens it while the arm plays.
+        std::optional<double> replan_shortcut;
+        /// Shortcutting of a re-planned path while the arm plays it (s of work, as much per
+        /// control as the control lasts at `speed`, until this is spent). Default 2.
+        std::optional<double> replan_polish;
+        /// Searches at most, found or not (repairs and legs count); then step() stops.
+        /// Default 400.
+        std::optional<std::size_t> max_replans;
+        /// Search time in all, found or not (s); then step() stops. Default 300.
+        std::optional<double> replan_budget;
+        /// Where no search finds a way to the goal, a leg is searched: the goal object to
+        /// within half this distance of the point this far ahead on its way in the last
+        /// plan that reached the goal (m; 0: no legs). Default 0.1.
+        std::optional<double> replan_leg;
+        /// The pace the application plays controls at, against the plan's (the polish's
+        /// budget per control). Default 1.
+        std::optional<double> speed;
+    };
+
+    /// What Executor::step asks the application to do.
+    struct ExecutorStep
+    {
+        enum class Kind
+        {
+            /// Play `control` along `trajectory`, then observe again.
+            Play,
+            /// The plan is played to its end: judge the world (is the goal object in the
+            /// goal disc?).
+            Finished,
+            /// The execution cannot go on; `why` says why.
+            Stopped,
+        };
+        Kind kind = Kind::Finished;
+        /// Play: the control to play next.
+        Control control;
+        /// Play: its trajectory from the observed state (the arm's joints with its tool
+        /// brought onto the pushing plane), timed as Plan::trajectory is.
+        Trajectory trajectory;
+        /// Play: the state the model predicts at the control's end.
+        Observation predicted;
+        /// Stopped: why (the searches' budget spent, an observation no valid start, ...).
+        std::string why;
+    };
+
+    /// An execution so far (Executor::report).
+    struct ExecutorReport
+    {
+        std::size_t controls_played = 0;  ///< Play steps returned
+        std::size_t kept = 0;             ///< observations after which the rest still reached the goal
+        std::size_t invalid_rests = 0;    ///< observations after which the rest stopped being valid
+        std::size_t replans = 0;          ///< searches that found a plan (repairs among them)
+        std::size_t repairs = 0;          ///< of those, endings searched from where the rest stopped
+        std::size_t failed_replans = 0;   ///< searches that found none in their time
+        std::size_t legs = 0;             ///< legs found and played after such a search
+        double search_time = 0.0;         ///< s, found or not
+        /// From each observation to the step returned (s); of the observations that
+        /// re-planned only.
+        std::vector<double> latencies, replan_latencies;
+        std::string last_failure;  ///< why the last search that found nothing did not
+        std::string stopped;       ///< why step() stopped, if it did
+    };
+
+    /// Closed-loop execution for an application that observes its own world (a robot's
+    /// encoders and perception, or its simulator): after each control, pass the observed
+    /// state to step(), and play what it asks. The rest of the plan is re-simulated from
+    /// each observation and kept while it reaches the goal; else it is repaired, searched
+    /// anew (Planner::replan's steps), or, where no search finds the goal, a leg along
+    /// the goal object's way is searched; searches that find nothing are tried again
+    /// with more time. What `pushplan execute --closed-loop` does in its engines.
+    ///
+    ///   pushplan::Executor executor(planner, plan);
+    ///   for (;;) {
+    ///       pushplan::ExecutorStep next = executor.step(observe());
+    ///       if (next.kind != pushplan::ExecutorStep::Kind::Play) break;
+    ///       play(next.trajectory);  // then let the objects come to rest
+    ///   }
+    class Executor
+    {
+    public:
+        /// The executor of `plan` (a solved plan of `planner`, from its first state),
+        /// re-planning in `planner`'s scene. Throws pushplan::Error for an unsolved plan or
+        /// an option out of range.
+        Executor(const Planner &planner, const Plan &plan, const ExecutorOptions &options = ExecutorOptions());
+        ~Executor();
+        Executor(Executor &&) noexcept;
+        Executor &operator=(Executor &&) noexcept;
+
+        /// What to play after the world was observed in `observed` (at rest: after a
+        /// control, let the objects settle). Throws pushplan::Error for an observation of
+        /// the wrong size or an internal failure; an observation that is no valid start
+        /// (an object deep inside the arm) is a Stopped step.
+        ExecutorStep step(const Observation &observed);
+
+        /// The execution so far.
+        ExecutorReport report() const;
+
+    private:
+        struct State;
+        std::unique_ptr<State> state_;
     };
 }  // namespace pushplan

@@ -22,6 +22,22 @@ pub(super) fn repair_share() -> f64 {
     crate::planning::rest::REPAIR_SHARE
 }
 
+pub(super) fn executor_defaults() -> bridge::ExecutorSettings {
+    use crate::planner::closed_loop::defaults;
+    bridge::ExecutorSettings {
+        planner: PlannerKind::PushKpiece,
+        seed: 1,
+        replan_time: defaults::REPLAN_TIME,
+        replan_threads: 1,
+        replan_shortcut: defaults::REPLAN_SHORTCUT,
+        replan_polish: defaults::REPLAN_POLISH,
+        max_replans: defaults::MAX_REPLANS,
+        replan_budget: defaults::REPLAN_BUDGET,
+        replan_leg: defaults::REPLAN_LEG,
+        speed: 1.0,
+    }
+}
+
 pub(super) fn run_settings_of_scene(
     kind: PlannerKind,
     params: &super::PlannerParams,

@@ -12,6 +12,10 @@
 // - every failure crosses as pushplan::Error: an unknown name, each bad option, a planner
 //   whose paths are not controls, a bad scene, an observed start the model refuses inside
 //   solveFrom(), an integer cast to PlannerKind, a moved-from planner;
+// - closed-loop execution (pushplan::Executor): a plan played as it is where the world is
+//   where the plan said, re-planned where the box is found elsewhere and played to its
+//   end; an option out of its limit, an unsolved plan, an observation of the wrong size
+//   refused as pushplan::Error, one that is no valid start a stop that says why;
 // - a Planner reads its scene file once: with the file removed it still plans and re-plans;
 // - the public OMPL layer (pushplan/ompl.h): the state space passes OMPL's own sanity
 //   checks, StateAccess reads what it wrote, and no state outside OMPL's bounds is valid.
@@ -48,6 +52,15 @@ namespace
 {
     using test::expect;
     using test::failures;
+
+    /// The planar hand's box (scenes/planar_hand_single_object.yaml) found 5 cm further from
+    /// the hand at `q` and 10 cm to the side, away from the goal disc's centre (0.85, 0.1).
+    void move_the_box(Eigen::Vector3d &box, const Eigen::VectorXd &q)
+    {
+        const Eigen::Vector2d away = (box.head<2>() - q.head<2>()).normalized();
+        const Eigen::Vector2d side(-away.y(), away.x());
+        box.head<2>() += 0.05 * away + ((0.85 - box.x()) * side.x() + (0.1 - box.y()) * side.y() > 0 ? -0.1 : 0.1) * side;
+    }
 
     /// Runs `f`; true if it threw pushplan::Error whose message contains `text`.
     bool throwsError(const std::function<void()> &f, const std::string &text)
@@ -394,14 +407,6 @@ int main()
         expect(same.solved && same.replanned && same.replanned->kept && same.replanned->at == k &&
                    same.controls.size() == plan.controls.size() - k,
                "replan keeps the rest of a plan when the world is where the plan said");
-        // The box found 5 cm further from the hand and 10 cm to the side, away from the
-        // goal disc's centre.
-        const auto move_the_box = [](Eigen::Vector3d &box, const Eigen::VectorXd &q) {
-            const Eigen::Vector2d away = (box.head<2>() - q.head<2>()).normalized();
-            const Eigen::Vector2d side(-away.y(), away.x());
-            box.head<2>() +=
-                0.05 * away + ((0.85 - box.x()) * side.x() + (0.1 - box.y()) * side.y() > 0 ? -0.1 : 0.1) * side;
-        };
         Eigen::Vector3d &box = observed.objects[0];
         move_the_box(box, plan.joint_trajectory[k]);
         const pushplan::Plan moved = hand.replan(plan, k, observed, o);
@@ -429,6 +434,69 @@ int main()
         inside.objects[0].head<2>() = plan.joint_trajectory[k].head<2>();
         expect(throwsError([&] { hand.solveFrom(inside, o); }, "an observation may be off"),
                "an observed box deep inside the hand (further than 2 cm) is no valid start");
+
+        // Closed-loop execution for an application with its own observations
+        // (pushplan::Executor). Its "world" here is the model's prediction of each control
+        // it plays, except where the test moves the box: where the world is the plan's,
+        // the executor plays the plan as it is; where the box is found elsewhere, it
+        // re-plans and plays on until the box is in the goal disc (0.85, 0.1), r = 0.1.
+        pushplan::ExecutorOptions eo;
+        eo.replan_threads = 1;
+        // Plays until the executor asks for something else; `now` ends where the world is.
+        const auto run = [&](pushplan::Executor &executor, pushplan::Observation &now, std::size_t move_box_at,
+                             std::size_t &played) {
+            for (played = 0; played < 10 * plan.controls.size() + 10; ++played)
+            {
+                if (played == move_box_at)
+                    move_the_box(now.objects[0], now.q);
+                const pushplan::ExecutorStep next = executor.step(now);
+                if (next.kind != pushplan::ExecutorStep::Kind::Play)
+                    return next;
+                if (next.trajectory.q.empty() || !next.trajectory.q.front().isApprox(now.q, 1e-3))
+                    return pushplan::ExecutorStep{pushplan::ExecutorStep::Kind::Stopped, {}, {}, {},
+                                                  "a trajectory that does not start at the observed joints"};
+                now = next.predicted;
+            }
+            return pushplan::ExecutorStep{pushplan::ExecutorStep::Kind::Stopped, {}, {}, {}, "played on and on"};
+        };
+        const pushplan::Observation start{plan.joint_trajectory.front(), plan.object_poses.front()};
+        pushplan::Executor as_planned(hand, plan, eo);
+        std::size_t played = 0;
+        pushplan::Observation now = start;
+        const pushplan::ExecutorStep played_out = run(as_planned, now, std::numeric_limits<std::size_t>::max(), played);
+        const pushplan::ExecutorReport as_is = as_planned.report();
+        expect(plan.solved && played_out.kind == pushplan::ExecutorStep::Kind::Finished && played == plan.controls.size() &&
+                   as_is.controls_played == played && as_is.replans == 0 && as_is.failed_replans == 0 &&
+                   as_is.kept == played + 1,
+               "an Executor plays a plan as it is while the world is where the plan said");
+        pushplan::Executor off_its_way(hand, plan, eo);
+        now = start;
+        const pushplan::ExecutorStep replanned = run(off_its_way, now, k, played);
+        const pushplan::ExecutorReport report = off_its_way.report();
+        const bool in_disc = (now.objects[0].head<2>() - Eigen::Vector2d(0.85, 0.1)).norm() < 0.1;
+        expect(replanned.kind == pushplan::ExecutorStep::Kind::Finished && in_disc && report.replans >= 1 &&
+                   report.replan_latencies.size() == report.replans + report.legs && report.search_time > 0.0,
+               "an Executor re-plans where the box is found off its way, and plays on until the box is in the "
+               "goal disc (" +
+                   std::to_string(report.replans) + " re-plans, " + std::to_string(played) + " controls, the plan " +
+                   std::to_string(plan.controls.size()) + ")");
+        expect(throwsError(
+                   [&] {
+                       pushplan::ExecutorOptions bad = eo;
+                       bad.replan_time = -1.0;
+                       pushplan::Executor(hand, plan, bad);
+                   },
+                   "ExecutorOptions::replan_time: must be in (0, 86400]"),
+               "an Executor refuses an option out of its limit, naming it");
+        expect(throwsError([&] { pushplan::Executor(hand, pushplan::Plan{}, eo); }, "not solved"),
+               "an Executor refuses an unsolved plan");
+        pushplan::Executor replay(hand, plan, eo);
+        expect(throwsError([&] { replay.step(short_q); }, "Observation::q"),
+               "an Executor refuses an observation of the wrong size as pushplan::Error");
+        const pushplan::ExecutorStep refused = replay.step(inside);
+        expect(refused.kind == pushplan::ExecutorStep::Kind::Stopped &&
+                   refused.why.find("no valid start") != std::string::npos && replay.report().stopped == refused.why,
+               "an Executor stops, saying why, on an observation that is no valid start");
     }
     {
         // A Planner reads its scene file once, when it is made: with the file gone, it still
