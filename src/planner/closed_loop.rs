@@ -1,8 +1,11 @@
-//! Closed-loop execution: a plan played in the 3D engine (rapier) one control at a time.
-//! After each control the world's object poses and the arm's joints are read, as a robot's
-//! perception and encoders would; the rest of the plan is re-simulated from there in the
-//! planning model and kept if it still reaches the goal, else the scene is searched anew
-//! from the observed state ([`Search::solve`] with a start). A control whose objects leave
+//! Closed-loop execution: a plan played one control at a time. After each control the
+//! world's object poses and the arm's joints are observed, as a robot's perception and
+//! encoders would; the rest of the plan is re-simulated from there in the planning model
+//! and kept if it still reaches the goal, else repaired or searched anew from the observed
+//! state ([`Search::solve`] with a start), or, where no search finds the goal, a leg along
+//! the goal object's way is searched. [`Executor`] makes these decisions for observations
+//! from anywhere (the C++ API's `pushplan::Executor` holds one); [`ClosedLoop::execute`]
+//! runs it against a 3D engine (rapier or MuJoCo), where a control whose objects leave
 //! their predicted poses by more than a tolerance is cut short and the world observed
 //! there. The planner never sees the world's own parameters (its masses and frictions may
 //! differ from the scene's): only what it observes.
