@@ -15,11 +15,7 @@ use std::fmt::Display;
 static OMPL: OmplSearch = OmplSearch;
 
 /// A plan's closed-loop executor, asked after each observation what to play.
-pub struct Executor {
-    executor: closed_loop::Executor<'static>,
-    /// The scene observations are read in (their flat layout).
-    scene: Scene,
-}
+pub struct Executor(closed_loop::Executor<'static>);
 
 impl Executor {
     /// The executor of the plan `controls` / `steps` (flat, from `problem`'s start) in
@@ -32,7 +28,7 @@ impl Executor {
         settings: &ffi::ExecutorSettings,
     ) -> Result<Box<Executor>, String> {
         guarded("Executor", || {
-            let Bridged { settings, speed } = settings.try_into()?;
+            let (settings, speed) = settings_of(settings)?;
             let scene: &Scene = &problem.scene;
             let plan = Flat(scene).path_controls(controls, steps)?;
             let closed = ClosedLoop {
@@ -43,18 +39,15 @@ impl Executor {
                     ..ExecuteSettings::default()
                 },
             };
-            Ok(Box::new(Executor {
-                executor: closed.executor(scene, &plan),
-                scene: scene.clone(),
-            }))
+            Ok(Box::new(Executor(closed.executor(scene, &plan))))
         })
     }
 
     /// What to play after the world was observed in the flat state `observed`.
     pub fn step(&mut self, observed: &[f64]) -> Result<ffi::ExecutorStep, String> {
         guarded("Executor::step", || {
-            let observed = Flat(&self.scene).state(observed)?;
-            Ok(match self.executor.step(&observed) {
+            let observed = Flat(self.0.scene()).state(observed)?;
+            Ok(match self.0.step(&observed) {
                 Step::Play {
                     control,
                     trajectory,
@@ -80,7 +73,7 @@ impl Executor {
 
     /// The execution so far.
     pub fn report(&self) -> ffi::ExecutorReport {
-        let t = self.executor.trial();
+        let t = self.0.trial();
         ffi::ExecutorReport {
             controls_played: t.controls_played,
             kept: t.kept,
@@ -117,32 +110,23 @@ impl ffi::ExecutorStep {
     }
 }
 
-/// The settings of a bridged executor: a closed loop's, and the pace the application
-/// plays at.
-struct Bridged {
-    settings: ClosedLoopSettings,
-    speed: f64,
-}
-
-impl TryFrom<&ffi::ExecutorSettings> for Bridged {
-    type Error = String;
-
-    fn try_from(s: &ffi::ExecutorSettings) -> Result<Self, String> {
-        use crate::limits::*;
-        let options = ClosedLoopOptions {
-            replan_time: within(&REPLAN_TIME, s.replan_time)?,
-            replan_threads: within(&REPLAN_THREADS, s.replan_threads)?,
-            replan_shortcut: within(&REPLAN_SHORTCUT, s.replan_shortcut)?,
-            replan_polish: within(&REPLAN_POLISH, s.replan_polish)?,
-            max_replans: within(&MAX_REPLANS, s.max_replans)?,
-            replan_budget: within(&REPLAN_BUDGET, s.replan_budget)?,
-            replan_leg: within(&REPLAN_LEG, s.replan_leg)?,
-        };
-        Ok(Bridged {
-            settings: options.settings(s.planner, s.seed),
-            speed: within(&SPEED, s.speed)?,
-        })
-    }
+/// The closed loop's settings and the pace the application plays at, from the C++ side's
+/// (each value checked against the limits table).
+fn settings_of(s: &ffi::ExecutorSettings) -> Result<(ClosedLoopSettings, f64), String> {
+    use crate::limits::*;
+    let options = ClosedLoopOptions {
+        replan_time: within(&REPLAN_TIME, s.replan_time)?,
+        replan_threads: within(&REPLAN_THREADS, s.replan_threads)?,
+        replan_shortcut: within(&REPLAN_SHORTCUT, s.replan_shortcut)?,
+        replan_polish: within(&REPLAN_POLISH, s.replan_polish)?,
+        max_replans: within(&MAX_REPLANS, s.max_replans)?,
+        replan_budget: within(&REPLAN_BUDGET, s.replan_budget)?,
+        replan_leg: within(&REPLAN_LEG, s.replan_leg)?,
+    };
+    Ok((
+        options.settings(s.planner, s.seed),
+        within(&SPEED, s.speed)?,
+    ))
 }
 
 /// `value` if it lies within `limit`; else why not, named as the C++ API's

@@ -527,9 +527,9 @@ impl Executor<'_> {
         &self.trial
     }
 
-    /// The remaining controls, the next one first.
-    pub fn rest(&self) -> &[PathControl] {
-        &self.rest
+    /// The scene the plan was made in (observations are in its joint and object orders).
+    pub fn scene(&self) -> &Scene {
+        &self.scene
     }
 
     /// One decision from `observed`; Err(the arm's configuration) where the arm waits and
