@@ -170,7 +170,9 @@ enum Command {
         replan_budget: f64,
         /// With --closed-loop: where no search finds a way to the goal, a leg is searched
         /// instead: the goal object to within half this distance of the point this far
-        /// ahead on its way in the last plan that reached the goal (m; 0: no legs).
+        /// ahead on its way in the last plan that reached the goal (m; 0: no legs). Where
+        /// that point lies off the goal disc, the leg is searched first and the goal only
+        /// if no leg is found.
         #[arg(long, default_value_t = defaults::REPLAN_LEG, value_name = "METRES", value_parser = within::real(&limits::REPLAN_LEG))]
         replan_leg: f64,
     },

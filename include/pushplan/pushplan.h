@@ -410,7 +410,8 @@ namespace pushplan
         std::optional<double> replan_budget;
         /// Where no search finds a way to the goal, a leg is searched: the goal object to
         /// within half this distance of the point this far ahead on its way in the last
-        /// plan that reached the goal (m; 0: no legs). Default 0.1.
+        /// plan that reached the goal (m; 0: no legs); where that point lies off the goal
+        /// disc, the leg is searched first and the goal only if none is found. Default 0.1.
         std::optional<double> replan_leg;
         /// The pace the application plays controls at, against the plan's (the polish's
         /// budget per control). Default 1.
@@ -451,7 +452,7 @@ namespace pushplan
         std::size_t replans = 0;          ///< searches that found a plan (repairs among them)
         std::size_t repairs = 0;          ///< of those, endings searched from where the rest stopped
         std::size_t failed_replans = 0;   ///< searches that found none in their time
-        std::size_t legs = 0;             ///< legs found and played after such a search
+        std::size_t legs = 0;             ///< legs found and played (after such a search, or first far from the disc)
         double search_time = 0.0;         ///< s, found or not
         /// From each observation to the step returned (s); of the observations that
         /// re-planned only.

@@ -64,7 +64,9 @@ pub struct ClosedLoopSettings {
     /// this far ahead on its track in the last rest that reached the goal, within half
     /// this distance. A hard scene's search to the goal needs a million steps; one a
     /// decimetre along a way the model has already found takes milliseconds to seconds
-    /// (dense 19: BENCHMARKS.md, "Legs along the track").
+    /// (dense 19: docs/notes/plans-in-the-world.md, "Legs along the track"). Farther from the goal disc than
+    /// a leg (the leg's aim off the disc) the leg is searched first, and the goal only
+    /// where no leg is found.
     pub leg: f64,
 }
 
@@ -167,7 +169,8 @@ pub struct ClosedLoopTrial {
     pub repairs: usize,
     /// Re-planning searches that found none in their time (the old rest played on).
     pub failed_replans: usize,
-    /// Legs found and played after such a search ([`ClosedLoopSettings::leg`]).
+    /// Legs found and played: after such a search, or, far from the goal disc, before any
+    /// ([`ClosedLoopSettings::leg`]).
     pub legs: usize,
     /// Why the last of those found none.
     pub last_failure: Option<String>,
@@ -191,9 +194,53 @@ pub struct ClosedLoopTrial {
     /// anew, with more time or other seeds, and traced).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub failed_search_from: Option<ObservedState>,
+    /// Every re-planning search in the order searched: where the goal object was, what
+    /// it was given and what it found. Where a long trial's time went.
+    pub searches: Vec<SearchRecord>,
     /// Wall-clock time the trial took: the engine's simulation, the re-simulations, the
     /// searches and the shortcutting (s).
     pub wall_time: f64,
+}
+
+/// One re-planning search of a closed-loop trial (a repair, a new plan, then a leg: the
+/// searches after one observation together).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SearchRecord {
+    /// Controls played before it.
+    pub after_controls: usize,
+    /// The goal's task distance in the observed state (m; for an object's disc, its centre
+    /// from the disc's edge, negative inside).
+    pub goal_distance: f64,
+    /// Controls of the rest valid from the observed state (all of them when it ends short).
+    pub rest_valid: usize,
+    /// Why the rest was not kept: the control that stops and the rule it breaks, or how
+    /// far the goal is missed.
+    pub rest_ends: String,
+    /// Its time limit (s).
+    pub time: f64,
+    /// The time it took, shortcutting included (s).
+    pub seconds: f64,
+    /// What it found.
+    pub found: SearchFound,
+}
+
+/// What a re-planning search found ([`SearchRecord::found`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SearchFound {
+    /// An ending of the rest kept up to where it stops being valid.
+    Repair,
+    /// A new plan from the observed state.
+    Replan,
+    /// Far from the goal disc, a leg along the track, searched before the goal (which
+    /// was not searched).
+    LegFirst,
+    /// No way to the goal found, a leg along the track.
+    Leg,
+    /// No way to the goal found, a leg whose aim lies on the goal disc.
+    LegOntoTheDisc,
+    /// Nothing.
+    Nothing,
 }
 
 /// A closed-loop executor: it plays trials as `execution` says (their count, worlds, pace
@@ -324,6 +371,7 @@ impl<'a> ClosedLoop<'a> {
                 stopped: None,
                 refused_observation: None,
                 failed_search_from: None,
+                searches: Vec::new(),
                 wall_time: 0.0,
             },
         }
@@ -621,21 +669,61 @@ impl Executor<'_> {
                     true => closed_loop.repair(&from, &self.rest[..valid], &end, time, index),
                     false => Err(String::new()),
                 };
-                if repaired.is_ok() {
-                    trial.repairs += 1;
-                }
-                let replanned = repaired.or_else(|_| closed_loop.replan(&problem, time, index));
-                // None found: a leg along the track, with the same time.
-                let legged = match (&replanned, closed_loop.leg_goal(&from, &self.track)) {
-                    (Err(_), Some(goal)) => {
-                        let time = time.min(budget_left - searching.elapsed().as_secs_f64());
-                        closed_loop
-                            .leg(&from, &goal, time, index)
-                            .map(|controls| (controls, goal))
+                let is_repair = repaired.is_ok();
+                trial.repairs += usize::from(is_repair);
+                // Far from the goal disc (a leg's aim off it) a leg is searched first and
+                // the goal only where none is found: from there a search to the goal
+                // rarely finds one in its seconds, and a leg takes a fraction of that
+                // (dense 16 and 19, BENCHMARKS.md "Dense scenes, closed loop").
+                let leg_goal = closed_loop.leg_goal(&from, &self.track);
+                let far = leg_goal
+                    .as_ref()
+                    .is_some_and(|goal| !onto_the_disc(&from.goal, goal));
+                // What is left of the budget caps each search after the first.
+                let time_left = || time.min(budget_left - searching.elapsed().as_secs_f64());
+                let mut leg_first = None;
+                let replanned = repaired.or_else(|_| {
+                    if let (true, Some(goal)) = (far, &leg_goal) {
+                        leg_first = closed_loop.leg(&from, goal, time_left(), index);
+                        if leg_first.is_some() {
+                            return Err(String::new());
+                        }
                     }
+                    match time_left() {
+                        left if left > 0.0 => closed_loop.replan(&problem, left, index),
+                        _ => Err("the search budget is spent".into()),
+                    }
+                });
+                let is_leg_first = leg_first.is_some();
+                // None found: a leg along the track, with the same time.
+                let legged = match (&replanned, leg_goal) {
+                    (Err(_), Some(goal)) if far => leg_first.map(|controls| (controls, goal)),
+                    (Err(_), Some(goal)) => closed_loop
+                        .leg(&from, &goal, time_left(), index)
+                        .map(|controls| (controls, goal)),
                     _ => None,
                 };
-                trial.search_time += searching.elapsed().as_secs_f64();
+                let seconds = searching.elapsed().as_secs_f64();
+                trial.search_time += seconds;
+                let found = match (&replanned, &legged) {
+                    (Ok(_), _) if is_repair => SearchFound::Repair,
+                    (Ok(_), _) => SearchFound::Replan,
+                    (Err(_), Some(_)) if is_leg_first => SearchFound::LegFirst,
+                    (Err(_), Some((_, goal))) if onto_the_disc(&from.goal, goal) => {
+                        SearchFound::LegOntoTheDisc
+                    }
+                    (Err(_), Some(_)) => SearchFound::Leg,
+                    (Err(_), None) => SearchFound::Nothing,
+                };
+                trial.searches.push(SearchRecord {
+                    after_controls: trial.controls_played,
+                    goal_distance: from.goal.task_distance(&from.start),
+                    rest_valid: valid,
+                    rest_ends: why.clone(),
+                    time,
+                    seconds,
+                    found,
+                });
                 match (replanned, legged) {
                     (Ok(controls), _) => {
                         self.rest = controls;
@@ -646,9 +734,11 @@ impl Executor<'_> {
                         self.waiting_failures = 0;
                     }
                     (Err(failure), Some((controls, goal))) => {
-                        trial.failed_replans += 1;
-                        trial.failed_search_from = Some(ObservedState::of(scene, observed));
-                        trial.last_failure = Some(failure);
+                        if !is_leg_first {
+                            trial.failed_replans += 1;
+                            trial.failed_search_from = Some(ObservedState::of(scene, observed));
+                            trial.last_failure = Some(failure);
+                        }
                         self.rest = controls;
                         // The searches from a leg's end start over at their shortest: the
                         // goal may be nearer. Not after a leg onto the goal disc: the last
