@@ -64,9 +64,9 @@ pub struct ClosedLoopSettings {
     /// this far ahead on its track in the last rest that reached the goal, within half
     /// this distance. A hard scene's search to the goal needs a million steps; one a
     /// decimetre along a way the model has already found takes milliseconds to seconds
-    /// (dense 19: docs/notes/plans-in-the-world.md, "Legs along the track"). Farther from the goal disc than
-    /// a leg (the leg's aim off the disc) the leg is searched first, and the goal only
-    /// where no leg is found.
+    /// (dense 19: docs/notes/plans-in-the-world.md, "Legs along the track"). Farther from
+    /// the goal disc than a leg (the leg's aim off the disc) the leg is searched first,
+    /// and the goal only where no leg is found.
     pub leg: f64,
 }
 
@@ -202,8 +202,8 @@ pub struct ClosedLoopTrial {
     pub wall_time: f64,
 }
 
-/// One re-planning search of a closed-loop trial (a repair, a new plan, then a leg: the
-/// searches after one observation together).
+/// One re-planning search of a closed-loop trial: the searches after one observation
+/// together (a repair, legs, a new plan).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SearchRecord {
     /// Controls played before it.
@@ -241,6 +241,40 @@ pub enum SearchFound {
     LegOntoTheDisc,
     /// Nothing.
     Nothing,
+}
+
+/// What the searches after one observation brought ([`ClosedLoop::search`]).
+enum Searched {
+    /// A plan to the goal: the rest repaired (an ending added), or searched anew.
+    Plan {
+        controls: Vec<PathControl>,
+        repair: bool,
+    },
+    /// A leg to `goal`, searched after a search to the goal that failed (why), or first,
+    /// far from the goal disc (None).
+    Leg {
+        controls: Vec<PathControl>,
+        goal: Goal,
+        failure: Option<String>,
+    },
+    /// Nothing: why the search to the goal found nothing.
+    Nothing(String),
+}
+
+impl Searched {
+    /// Its kind, on the record: `goal` is the execution's.
+    fn found(&self, goal: &Goal) -> SearchFound {
+        match self {
+            Searched::Plan { repair: true, .. } => SearchFound::Repair,
+            Searched::Plan { .. } => SearchFound::Replan,
+            Searched::Leg { failure: None, .. } => SearchFound::LegFirst,
+            Searched::Leg { goal: leg, .. } if onto_the_disc(goal, leg) => {
+                SearchFound::LegOntoTheDisc
+            }
+            Searched::Leg { .. } => SearchFound::Leg,
+            Searched::Nothing(_) => SearchFound::Nothing,
+        }
+    }
 }
 
 /// A closed-loop executor: it plays trials as `execution` says (their count, worlds, pace
@@ -414,6 +448,79 @@ impl<'a> ClosedLoop<'a> {
     /// `rest` (valid from `from`'s start, ending in `end`: short of the goal, or where the
     /// rest after it stops being valid) with an ending searched from `end`, with
     /// [`REPAIR_SHARE`] of `time` ([`ClosedLoop::replan`]).
+    /// The searches after an observation whose rest of the plan does not reach the goal
+    /// (`from`'s start): a repair of the rest `kept` up to where it stops being valid
+    /// (`kept.1`, its end), then, far from the goal disc, a leg along `track`, then a new
+    /// plan to the goal, then (if no leg was searched) a leg. The first search gets `time`
+    /// (`times.0`); each after it no more than what is left of it and of the budget
+    /// (`times.1`, counted from the call). The `index`-th search of the execution.
+    fn search(
+        &self,
+        from: &Scene,
+        problem: &Problem,
+        kept: (&[PathControl], &State),
+        track: &Track,
+        (time, budget_left): (f64, f64),
+        index: usize,
+    ) -> Searched {
+        let began = Instant::now();
+        let time_left = || time.min(budget_left - began.elapsed().as_secs_f64());
+        // The rest is kept as far as it is valid (to its end if it ends short) and
+        // an ending is searched from there (a warm start: the search begins where
+        // the rest stops, most often close to the goal, and finds a short ending
+        // fast); failing that, a new plan from the observed state.
+        if !kept.0.is_empty() {
+            if let Ok(controls) = self.repair(from, kept.0, kept.1, time, index) {
+                return Searched::Plan {
+                    controls,
+                    repair: true,
+                };
+            }
+        }
+        // Far from the goal disc (a leg's aim off it) a leg is searched first and the
+        // goal only where none is found: from there a search to the goal rarely finds
+        // one in its seconds, and a leg takes a fraction of that (dense 16 and 19,
+        // BENCHMARKS.md "Dense scenes, closed loop").
+        let leg_goal = self.leg_goal(from, track);
+        let far = leg_goal
+            .as_ref()
+            .is_some_and(|goal| !onto_the_disc(&from.goal, goal));
+        if let (true, Some(goal)) = (far, &leg_goal) {
+            if let Some(controls) = self.leg(from, goal, time_left(), index) {
+                return Searched::Leg {
+                    controls,
+                    goal: goal.clone(),
+                    failure: None,
+                };
+            }
+        }
+        let failure = match time_left() {
+            left if left > 0.0 => match self.replan(problem, left, index) {
+                Ok(controls) => {
+                    return Searched::Plan {
+                        controls,
+                        repair: false,
+                    }
+                }
+                Err(failure) => failure,
+            },
+            _ => "the search budget is spent".into(),
+        };
+        // None found: a leg along the track, with the time left (not twice).
+        let leg = leg_goal.filter(|_| !far).and_then(|goal| {
+            let controls = self.leg(from, &goal, time_left(), index)?;
+            Some((controls, goal))
+        });
+        match leg {
+            Some((controls, goal)) => Searched::Leg {
+                controls,
+                goal,
+                failure: Some(failure),
+            },
+            None => Searched::Nothing(failure),
+        }
+    }
+
     fn repair(
         &self,
         from: &Scene,
@@ -660,61 +767,17 @@ impl Executor<'_> {
                     .min(budget_left);
                 let searching = Instant::now();
                 let index = trial.replans + trial.failed_replans + trial.legs;
-                let closed_loop = &self.closed_loop;
-                // The rest is kept as far as it is valid (to its end if it ends short) and
-                // an ending is searched from there (a warm start: the search begins where
-                // the rest stops, most often close to the goal, and finds a short ending
-                // fast); failing that, a new plan from the observed state.
-                let repaired = match valid > 0 {
-                    true => closed_loop.repair(&from, &self.rest[..valid], &end, time, index),
-                    false => Err(String::new()),
-                };
-                let is_repair = repaired.is_ok();
-                trial.repairs += usize::from(is_repair);
-                // Far from the goal disc (a leg's aim off it) a leg is searched first and
-                // the goal only where none is found: from there a search to the goal
-                // rarely finds one in its seconds, and a leg takes a fraction of that
-                // (dense 16 and 19, BENCHMARKS.md "Dense scenes, closed loop").
-                let leg_goal = closed_loop.leg_goal(&from, &self.track);
-                let far = leg_goal
-                    .as_ref()
-                    .is_some_and(|goal| !onto_the_disc(&from.goal, goal));
-                // What is left of the budget caps each search after the first.
-                let time_left = || time.min(budget_left - searching.elapsed().as_secs_f64());
-                let mut leg_first = None;
-                let replanned = repaired.or_else(|_| {
-                    if let (true, Some(goal)) = (far, &leg_goal) {
-                        leg_first = closed_loop.leg(&from, goal, time_left(), index);
-                        if leg_first.is_some() {
-                            return Err(String::new());
-                        }
-                    }
-                    match time_left() {
-                        left if left > 0.0 => closed_loop.replan(&problem, left, index),
-                        _ => Err("the search budget is spent".into()),
-                    }
-                });
-                let is_leg_first = leg_first.is_some();
-                // None found: a leg along the track, with the same time.
-                let legged = match (&replanned, leg_goal) {
-                    (Err(_), Some(goal)) if far => leg_first.map(|controls| (controls, goal)),
-                    (Err(_), Some(goal)) => closed_loop
-                        .leg(&from, &goal, time_left(), index)
-                        .map(|controls| (controls, goal)),
-                    _ => None,
-                };
+                let searched = self.closed_loop.search(
+                    &from,
+                    &problem,
+                    (&self.rest[..valid], &end),
+                    &self.track,
+                    (time, budget_left),
+                    index,
+                );
                 let seconds = searching.elapsed().as_secs_f64();
                 trial.search_time += seconds;
-                let found = match (&replanned, &legged) {
-                    (Ok(_), _) if is_repair => SearchFound::Repair,
-                    (Ok(_), _) => SearchFound::Replan,
-                    (Err(_), Some(_)) if is_leg_first => SearchFound::LegFirst,
-                    (Err(_), Some((_, goal))) if onto_the_disc(&from.goal, goal) => {
-                        SearchFound::LegOntoTheDisc
-                    }
-                    (Err(_), Some(_)) => SearchFound::Leg,
-                    (Err(_), None) => SearchFound::Nothing,
-                };
+                let found = searched.found(&from.goal);
                 trial.searches.push(SearchRecord {
                     after_controls: trial.controls_played,
                     goal_distance: from.goal.task_distance(&from.start),
@@ -724,17 +787,22 @@ impl Executor<'_> {
                     seconds,
                     found,
                 });
-                match (replanned, legged) {
-                    (Ok(controls), _) => {
+                match searched {
+                    Searched::Plan { controls, repair } => {
                         self.rest = controls;
                         self.polish_left = settings.polish;
                         trial.replans += 1;
+                        trial.repairs += usize::from(repair);
                         trial.replan_latencies.push(started.elapsed().as_secs_f64());
                         self.failures_in_a_row = 0;
                         self.waiting_failures = 0;
                     }
-                    (Err(failure), Some((controls, goal))) => {
-                        if !is_leg_first {
+                    Searched::Leg {
+                        controls,
+                        goal,
+                        failure,
+                    } => {
+                        if let Some(failure) = failure {
                             trial.failed_replans += 1;
                             trial.failed_search_from = Some(ObservedState::of(scene, observed));
                             trial.last_failure = Some(failure);
@@ -754,7 +822,7 @@ impl Executor<'_> {
                         trial.replan_latencies.push(started.elapsed().as_secs_f64());
                         self.waiting_failures = 0;
                     }
-                    (Err(failure), None) => {
+                    Searched::Nothing(failure) => {
                         trial.failed_replans += 1;
                         trial.failed_search_from = Some(ObservedState::of(scene, observed));
                         self.failures_in_a_row += 1;
