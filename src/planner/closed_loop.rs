@@ -445,19 +445,15 @@ impl<'a> ClosedLoop<'a> {
         false
     }
 
-    /// `rest` (valid from `from`'s start, ending in `end`: short of the goal, or where the
-    /// rest after it stops being valid) with an ending searched from `end`, with
-    /// [`REPAIR_SHARE`] of `time` ([`ClosedLoop::replan`]).
     /// The searches after an observation whose rest of the plan does not reach the goal
     /// (`from`'s start): a repair of the rest `kept` up to where it stops being valid
     /// (`kept.1`, its end), then, far from the goal disc, a leg along `track`, then a new
-    /// plan to the goal, then (if no leg was searched) a leg. The first search gets `time`
-    /// (`times.0`); each after it no more than what is left of it and of the budget
-    /// (`times.1`, counted from the call). The `index`-th search of the execution.
+    /// plan to the goal, then (if no leg was searched) a leg. The first search gets
+    /// `time`; each after it no more than what is left of it and of `budget_left`
+    /// (counted from the call). The `index`-th search of the execution.
     fn search(
         &self,
         from: &Scene,
-        problem: &Problem,
         kept: (&[PathControl], &State),
         track: &Track,
         (time, budget_left): (f64, f64),
@@ -495,15 +491,18 @@ impl<'a> ClosedLoop<'a> {
             }
         }
         let failure = match time_left() {
-            left if left > 0.0 => match self.replan(problem, left, index) {
-                Ok(controls) => {
-                    return Searched::Plan {
-                        controls,
-                        repair: false,
+            left if left > 0.0 => {
+                let problem = Problem::new(from.clone(), self.settings.planner);
+                match self.replan(&problem, left, index) {
+                    Ok(controls) => {
+                        return Searched::Plan {
+                            controls,
+                            repair: false,
+                        }
                     }
+                    Err(failure) => failure,
                 }
-                Err(failure) => failure,
-            },
+            }
             _ => "the search budget is spent".into(),
         };
         // None found: a leg along the track, with the time left (not twice).
@@ -521,6 +520,9 @@ impl<'a> ClosedLoop<'a> {
         }
     }
 
+    /// `rest` (valid from `from`'s start, ending in `end`: short of the goal, or where the
+    /// rest after it stops being valid) with an ending searched from `end`, with
+    /// [`REPAIR_SHARE`] of `time` ([`ClosedLoop::replan`]).
     fn repair(
         &self,
         from: &Scene,
@@ -713,7 +715,6 @@ impl Executor<'_> {
         if from.start.objects.iter().zip(&observed.objects).any(moved) {
             trial.separations += 1;
         }
-        let problem = Problem::new(from.clone(), settings.planner);
         // The rest is re-simulated, and played, with half the margins spent.
         let playing = Problem::new(margins_half_spent(&from), settings.planner);
         let leg = &mut self.leg;
@@ -769,7 +770,6 @@ impl Executor<'_> {
                 let index = trial.replans + trial.failed_replans + trial.legs;
                 let searched = self.closed_loop.search(
                     &from,
-                    &problem,
                     (&self.rest[..valid], &end),
                     &self.track,
                     (time, budget_left),
