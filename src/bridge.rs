@@ -194,6 +194,7 @@ pub mod ffi {
         pub max_replans: usize,
         pub replan_budget: f64,
         pub replan_leg: f64,
+        pub repair_ahead: bool,
         pub speed: f64,
     }
 

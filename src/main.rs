@@ -175,6 +175,12 @@ enum Command {
         /// if no leg is found.
         #[arg(long, default_value_t = defaults::REPLAN_LEG, value_name = "METRES", value_parser = within::real(&limits::REPLAN_LEG))]
         replan_leg: f64,
+        /// With --closed-loop: search a repair on a thread of its own while the arm plays
+        /// the part of the rest still valid, instead of holding the arm while it searches
+        /// (off by default: on the dense scenes it cut the median re-planning latency to a
+        /// twelfth but lost dense 19; BENCHMARKS.md, "Repairs searched ahead").
+        #[arg(long, default_value_t = defaults::REPAIR_AHEAD, value_name = "BOOL", action = clap::ArgAction::Set)]
+        repair_ahead: bool,
     },
     /// Benchmark planners on scenes with OMPL's benchmark tooling: every (scene, planner,
     /// run) in a process of its own, the logs merged into DIR/results.db (Planner Arena's
@@ -494,6 +500,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
             max_replans,
             replan_budget,
             replan_leg,
+            repair_ahead,
         } => execute(
             &plan,
             ExecuteOptions {
@@ -513,6 +520,7 @@ fn run(command: Command) -> Result<ExitCode, String> {
                         max_replans,
                         replan_budget,
                         replan_leg,
+                        repair_ahead,
                     },
                 )),
             },

@@ -41,6 +41,7 @@ namespace pushplan
             settings.max_replans = options.max_replans.value_or(settings.max_replans);
             settings.replan_budget = options.replan_budget.value_or(settings.replan_budget);
             settings.replan_leg = options.replan_leg.value_or(settings.replan_leg);
+            settings.repair_ahead = options.repair_ahead.value_or(settings.repair_ahead);
             settings.speed = options.speed.value_or(settings.speed);
             detail::FlatPath path;
             detail::appendControls(path, plan, 0, plan.controls.size());

@@ -413,6 +413,12 @@ namespace pushplan
         /// plan that reached the goal (m; 0: no legs); where that point lies off the goal
         /// disc, the leg is searched first and the goal only if none is found. Default 0.1.
         std::optional<double> replan_leg;
+        /// Search a repair on a thread of its own while the arm plays the part of the rest
+        /// still valid, instead of holding the arm while it searches (step() returns the
+        /// next control at once; the repair is taken up at a later step, once it is done
+        /// and the controls played since have lasted as long at `speed`). Default false
+        /// (BENCHMARKS.md, "Repairs searched ahead").
+        std::optional<bool> repair_ahead;
         /// The pace the application plays controls at, against the plan's (the polish's
         /// budget per control). Default 1.
         std::optional<double> speed;

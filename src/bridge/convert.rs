@@ -34,6 +34,7 @@ pub(super) fn executor_defaults() -> bridge::ExecutorSettings {
         max_replans: defaults::MAX_REPLANS,
         replan_budget: defaults::REPLAN_BUDGET,
         replan_leg: defaults::REPLAN_LEG,
+        repair_ahead: defaults::REPAIR_AHEAD,
         speed: 1.0,
     }
 }

@@ -15,7 +15,7 @@ use std::fmt::Display;
 static OMPL: OmplSearch = OmplSearch;
 
 /// A plan's closed-loop executor, asked after each observation what to play.
-pub struct Executor(closed_loop::Executor<'static>);
+pub struct Executor(closed_loop::Executor);
 
 impl Executor {
     /// The executor of the plan `controls` / `steps` (flat, from `problem`'s start) in
@@ -122,6 +122,7 @@ fn settings_of(s: &ffi::ExecutorSettings) -> Result<(ClosedLoopSettings, f64), S
         max_replans: within(&MAX_REPLANS, s.max_replans)?,
         replan_budget: within(&REPLAN_BUDGET, s.replan_budget)?,
         replan_leg: within(&REPLAN_LEG, s.replan_leg)?,
+        repair_ahead: s.repair_ahead,
     };
     Ok((
         options.settings(s.planner, s.seed),

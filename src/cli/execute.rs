@@ -26,7 +26,7 @@ pub struct ExecuteOptions<'a> {
     /// Write the nominal execution's animation into this folder (open loop).
     pub render: Option<&'a Path>,
     /// Closed loop, re-planning with this search, as the flags say.
-    pub closed_loop: Option<(&'a dyn Search, ClosedLoopOptions)>,
+    pub closed_loop: Option<(&'static dyn Search, ClosedLoopOptions)>,
 }
 
 pub fn execute(path: &Path, options: ExecuteOptions) -> Result<ExitCode, String> {

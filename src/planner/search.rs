@@ -99,8 +99,9 @@ pub struct Reached {
     pub waypoints: Vec<DVector<f64>>,
 }
 
-/// The search behind the applications.
-pub trait Search {
+/// The search behind the applications. Shared between threads: a closed loop searches a
+/// repair on a thread of its own while the arm plays.
+pub trait Search: Sync {
     /// Searches `scene` from its start as `settings` say (a start observed while a plan
     /// runs comes as `Scene::with_start` makes it). The scene is the one already loaded:
     /// a re-plan does not read and prepare its file again (for a dense scene that is

@@ -449,11 +449,12 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
 
 /// The closed-loop tests' executor, re-planning with `planner`: searches of 10 s at most,
 /// shortcut for 0.5 s and polished for 2 s of work, seed 1, `max_replans` searches and 60 s of searching per trial at most, the default
-/// tolerance and execution (rapier).
+/// tolerance and execution (rapier), repairs searched ahead (not the default: so that every
+/// closed-loop test also runs that thread's way).
 fn closed_loop(
     planner: pushplan::planning::PlannerKind,
     max_replans: usize,
-) -> pushplan::planner::closed_loop::ClosedLoop<'static> {
+) -> pushplan::planner::closed_loop::ClosedLoop {
     use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
     use pushplan::planning::execute::{ExecuteSettings, DRIFT};
     ClosedLoop {
@@ -469,6 +470,7 @@ fn closed_loop(
             search_budget: 60.0,
             tolerance: DRIFT,
             leg: 0.1,
+            repair_ahead: true,
         },
         execution: ExecuteSettings::default(),
     }
@@ -587,9 +589,8 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
         playing.stopped_by
     );
 
-    let closed = closed_loop(plan.settings.planner, 1)
-        .execute(&scene, &controls, &world)
-        .unwrap();
+    let mut closed_loop = closed_loop(plan.settings.planner, 1);
+    let closed = closed_loop.execute(&scene, &controls, &world).unwrap();
     assert!(closed.invalid_rests >= 1, "{closed:?}");
     // Counted by the rule the rest broke: the first observation is the world's start, where
     // the model's re-simulation above stopped.
@@ -613,6 +614,21 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
         closed.tipped.is_empty(),
         "the glass is not tipped: {closed:?}"
     );
+    // The repair was searched while the arm played the valid part: the arm waited for less
+    // of it than it took (none of it, where the controls played meanwhile lasted longer).
+    let repair = &closed.searches[0];
+    assert!(repair.ahead && repair.seconds > 0.0, "{repair:?}");
+    assert!(repair.waited < repair.seconds, "{repair:?}");
+    // Searched with the arm waiting, the same repair, and the latency counts its search.
+    closed_loop.settings.repair_ahead = false;
+    let waiting = closed_loop.execute(&scene, &controls, &world).unwrap();
+    assert_eq!((waiting.replans, waiting.repairs), (1, 1), "{waiting:?}");
+    let repair = &waiting.searches[0];
+    assert!(
+        !repair.ahead && repair.waited == repair.seconds,
+        "{repair:?}"
+    );
+    assert!(waiting.replan_latencies[0] >= repair.seconds, "{waiting:?}");
 }
 
 /// `pushplan replan PLAN --observed` on `observation` (written to the scratch folder) with
@@ -811,7 +827,7 @@ fn where_no_search_finds_the_goal_legs_along_the_plans_way_bring_the_object_near
         goal_from_within: Some((center, 0.15)),
     };
     let mut executor = closed_loop(plan.settings.planner, 40);
-    executor.search = &hard_from_far;
+    executor.search = Box::leak(Box::new(hard_from_far));
     let with_legs = executor
         .execute(&scene, &plan.path_controls(), &world)
         .unwrap();

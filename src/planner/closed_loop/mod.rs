@@ -10,6 +10,8 @@
 //! there. The planner never sees the world's own parameters (its masses and frictions may
 //! differ from the scene's): only what it observes.
 
+mod ahead;
+
 use super::search::Search;
 use crate::planning::execute::{trial_worlds, ExecuteSettings, DRIFT, TIPPED_TILT};
 use crate::planning::execute::{Engine, EngineKind, STEP};
@@ -22,6 +24,7 @@ use crate::planning::{FinishSettings, PlannerKind, Problem, RunSettings};
 use crate::propagate::Propagator;
 use crate::scene::{Clearances, Goal, Scene};
 use crate::state::State;
+use ahead::RepairAhead;
 use nalgebra::{DVector, Vector2};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -68,6 +71,12 @@ pub struct ClosedLoopSettings {
     /// the goal disc than a leg (the leg's aim off the disc) the leg is searched first,
     /// and the goal only where no leg is found.
     pub leg: f64,
+    /// Search a repair on a thread of its own while the arm plays the rest's valid part
+    /// ([`ahead`]), instead of holding the arm while it searches. A failed repair's time
+    /// (a quarter of `replan_time`, doubling with the failures in a row) is what the arm
+    /// waits on at most re-plans on the dense scenes (BENCHMARKS.md, "Dense scenes,
+    /// closed loop").
+    pub repair_ahead: bool,
 }
 
 /// The closed loop's options as a user gives them: `execute --closed-loop`'s flags, and the
@@ -88,6 +97,8 @@ pub struct ClosedLoopOptions {
     pub replan_budget: f64,
     /// [`ClosedLoopSettings::leg`] (m).
     pub replan_leg: f64,
+    /// [`ClosedLoopSettings::repair_ahead`].
+    pub repair_ahead: bool,
 }
 
 impl ClosedLoopOptions {
@@ -106,6 +117,7 @@ impl ClosedLoopOptions {
             search_budget: self.replan_budget,
             tolerance: DRIFT,
             leg: self.replan_leg,
+            repair_ahead: self.repair_ahead,
         }
     }
 }
@@ -126,6 +138,11 @@ pub mod defaults {
     pub const REPLAN_BUDGET: f64 = 300.0;
     /// [`super::ClosedLoopSettings::leg`] (m).
     pub const REPLAN_LEG: f64 = 0.1;
+    /// [`super::ClosedLoopSettings::repair_ahead`]: off. On the dense set it cut the median
+    /// re-planning latency from 0.296 s to 0.035 s, but lost dense 19's three trials (the
+    /// goal object stuck 580-630 mm out, every leg from there failing), which the arm
+    /// waiting won (BENCHMARKS.md, "Repairs searched ahead").
+    pub const REPAIR_AHEAD: bool = false;
 }
 
 /// Time the world gets after each control (or a control cut short) before it is observed:
@@ -167,7 +184,8 @@ pub struct ClosedLoopTrial {
     /// Of those, the searches from where the rest stopped being valid, or from its end
     /// where it ended short of the goal: the rest kept up to there, an ending added.
     pub repairs: usize,
-    /// Re-planning searches that found none in their time (the old rest played on).
+    /// Re-planning searches that found none in their time (the old rest played on), repairs
+    /// searched ahead among them.
     pub failed_replans: usize,
     /// Legs found and played: after such a search, or, far from the goal disc, before any
     /// ([`ClosedLoopSettings::leg`]).
@@ -220,6 +238,13 @@ pub struct SearchRecord {
     pub time: f64,
     /// The time it took, shortcutting included (s).
     pub seconds: f64,
+    /// A repair searched while the arm played the rest's valid part ([`ahead`]); it is on
+    /// the record where it was taken up, `after_controls` says where it began.
+    pub ahead: bool,
+    /// How long the arm waited for it (s, at the execution's pace): `seconds` for a search
+    /// the arm waits on, what a repair searched ahead took beyond the controls played
+    /// meanwhile.
+    pub waited: f64,
     /// What it found.
     pub found: SearchFound,
 }
@@ -282,16 +307,17 @@ impl Searched {
 /// the plan was made in, from each observed state (the scene loaded once: a re-plan does
 /// not read its file again).
 #[derive(Clone)]
-pub struct ClosedLoop<'a> {
-    /// The search of every re-plan.
-    pub search: &'a dyn Search,
+pub struct ClosedLoop {
+    /// The search of every re-plan (a repair's may run on a thread of its own beside the
+    /// arm: [`ClosedLoopSettings::repair_ahead`]).
+    pub search: &'static dyn Search,
     /// How it re-plans.
     pub settings: ClosedLoopSettings,
     /// How it plays, as open-loop execution does.
     pub execution: ExecuteSettings,
 }
 
-impl<'a> ClosedLoop<'a> {
+impl ClosedLoop {
     /// Plays `plan` (from `scene`'s start) closed loop in a world built from `world_scene`
     /// (the same scene, its objects and parameters perturbed or changed), re-planning in
     /// `scene`: an [`Executor`] decides after each observation of the world what to play.
@@ -364,7 +390,7 @@ impl<'a> ClosedLoop<'a> {
     /// An executor of `plan` (from `scene`'s start) that re-plans in `scene` as this closed
     /// loop does, for observations from anywhere: this crate's engines, or a robot's
     /// perception and encoders.
-    pub fn executor(&self, scene: &Scene, plan: &[PathControl]) -> Executor<'a> {
+    pub fn executor(&self, scene: &Scene, plan: &[PathControl]) -> Executor {
         Executor {
             closed_loop: self.clone(),
             scene: scene.clone(),
@@ -384,6 +410,7 @@ impl<'a> ClosedLoop<'a> {
                 &Problem::new(scene.clone(), self.settings.planner).simulate(plan, false),
             ),
             leg: None,
+            ahead: None,
             trial: ClosedLoopTrial {
                 reached: false,
                 goal_distance: f64::INFINITY,
@@ -531,15 +558,27 @@ impl<'a> ClosedLoop<'a> {
         time: f64,
         index: usize,
     ) -> Result<Vec<PathControl>, String> {
+        let ending = self.ending(from, end, time, index)?;
+        Ok([rest, &ending].concat())
+    }
+
+    /// A repair's ending: a plan from `end` (a state the model predicts from `from`'s
+    /// start) to `from`'s goal, searched with [`REPAIR_SHARE`] of `time`.
+    fn ending(
+        &self,
+        from: &Scene,
+        end: &State,
+        time: f64,
+        index: usize,
+    ) -> Result<Vec<PathControl>, String> {
         let at_end = from
             .with_start(end, Path::new("the rest's end"))
             .map_err(|e| e.to_string())?;
-        let ending = self.replan(
+        self.replan(
             &Problem::new(at_end, self.settings.planner),
             REPAIR_SHARE * time,
             index,
-        )?;
-        Ok([rest, &ending].concat())
+        )
     }
 
     /// The goal of a leg from `from`'s start (the observed state): the goal object to
@@ -644,8 +683,8 @@ pub enum Step {
 /// each observation and kept while it reaches the goal; else it is repaired, searched
 /// anew, or, where no search finds the goal, a leg along the track is searched
 /// ([`ClosedLoopSettings`]). Made by [`ClosedLoop::executor`].
-pub struct Executor<'a> {
-    closed_loop: ClosedLoop<'a>,
+pub struct Executor {
+    closed_loop: ClosedLoop,
     /// The scene the plan was made in: every re-plan plans it from an observed state.
     scene: Scene,
     rest: Vec<PathControl>,
@@ -659,10 +698,12 @@ pub struct Executor<'a> {
     track: Track,
     /// While a leg plays, the goal it aims at: the rest is judged by it.
     leg: Option<Goal>,
+    /// A repair searching while the arm plays the rest's valid part.
+    ahead: Option<RepairAhead>,
     trial: ClosedLoopTrial,
 }
 
-impl Executor<'_> {
+impl Executor {
     /// What to play after the world was observed in `observed` (the scene's joint and
     /// object orders; object poses in the world frame). The world must be at rest, as it
     /// is after a control and a short pause ([`OBSERVE_AFTER`]).
@@ -692,54 +733,82 @@ impl Executor<'_> {
     /// One decision from `observed`; Err(the arm's configuration) where the arm waits and
     /// the same state is to be decided on again.
     fn decide(&mut self, observed: &State) -> Result<Step, DVector<f64>> {
-        let ClosedLoop {
-            settings,
-            execution,
-            ..
-        } = &self.closed_loop;
-        let scene = &self.scene;
-        let trial = &mut self.trial;
         let started = Instant::now();
+        // The arm's wait for a repair searched ahead (s, robot time), and the wall-clock
+        // time spent on its thread here: the arm's wait counted in robot time, and, with an
+        // engine faster than the clock, the time a robot would have spent playing.
+        let (mut waited, mut joined) = (0.0, Duration::ZERO);
         let stop = |trial: &mut ClosedLoopTrial, why: String| {
             trial.stopped = Some(why.clone());
             Ok(Step::Stopped(why))
         };
-        let from = match scene.with_start(observed, Path::new("the observed world")) {
+        let from = match self
+            .scene
+            .with_start(observed, Path::new("the observed world"))
+        {
             Ok(from) => from,
             Err(e) => {
-                trial.refused_observation = Some(ObservedState::of(scene, observed));
-                return stop(trial, format!("the observed state is no valid start: {e}"));
+                self.trial.refused_observation = Some(ObservedState::of(&self.scene, observed));
+                return stop(
+                    &mut self.trial,
+                    format!("the observed state is no valid start: {e}"),
+                );
             }
         };
         let moved = |(a, b): (&crate::Pose2, &crate::Pose2)| a.x != b.x || a.y != b.y;
         if from.start.objects.iter().zip(&observed.objects).any(moved) {
-            trial.separations += 1;
+            self.trial.separations += 1;
         }
         // The rest is re-simulated, and played, with half the margins spent.
-        let playing = Problem::new(margins_half_spent(&from), settings.planner);
-        let leg = &mut self.leg;
-        let (mut verdict, simulated) = playing.rest_from(&self.rest, |s| {
-            still_reaches(leg.as_ref().unwrap_or(&from.goal), s)
-        });
-        if leg.is_some() && (self.rest.is_empty() || verdict != RestFrom::Reaches) {
-            // The leg is played, or no longer gets there: the goal is the aim again.
-            *leg = None;
-            verdict = playing.verdict_on(&simulated, |s| still_reaches(&from.goal, s));
+        let playing = Problem::new(margins_half_spent(&from), self.closed_loop.settings.planner);
+        let (mut verdict, mut broken) = self.judge(&playing, &from);
+        // A repair searched ahead is taken up once it is due; where nothing valid is left
+        // to play before, the arm waits for it.
+        let mut replanned = false;
+        let mut ahead_failed = false;
+        if let Some(ahead) = &mut self.ahead {
+            let nothing_to_play = matches!(verdict, RestFrom::EndsShort { valid: 0, .. });
+            let joining = Instant::now();
+            let due = ahead.due();
+            if nothing_to_play && !due {
+                waited = ahead.wait();
+            }
+            joined = joining.elapsed();
+            if due || nothing_to_play {
+                let ahead = self.ahead.take().expect("a repair searched ahead");
+                let (repair, record) = ahead.take(waited);
+                self.trial.search_time += record.seconds;
+                self.trial.searches.push(record);
+                match repair {
+                    // A rest that reaches the goal again (the world moved its way) is kept.
+                    Ok(_) if verdict == RestFrom::Reaches => {}
+                    Ok(repair) => {
+                        self.rest = repair;
+                        self.adopted(true);
+                        replanned = true;
+                        (verdict, broken) = self.judge(&playing, &from);
+                    }
+                    Err(failure) => {
+                        ahead_failed = true;
+                        self.trial.failed_replans += 1;
+                        self.trial.last_failure = Some(failure);
+                    }
+                }
+            }
         }
-        if leg.is_none() && verdict == RestFrom::Reaches {
-            self.track = Track::of(&from.goal, &simulated);
-        }
-        if let Some((_, rule)) = &simulated.stopped_by {
+        let settings = &self.closed_loop.settings;
+        let trial = &mut self.trial;
+        if let Some(rule) = broken {
             trial.invalid_rests += 1;
-            *trial
-                .invalid_rest_rules
-                .entry(rule.kind().to_string())
-                .or_default() += 1;
+            *trial.invalid_rest_rules.entry(rule).or_default() += 1;
         }
         match verdict {
             RestFrom::Reaches => trial.kept += 1,
+            // The repair is still searching: the arm plays the valid part meanwhile (there
+            // is some, or it would have waited above).
+            RestFrom::EndsShort { valid, .. } if self.ahead.is_some() => self.rest.truncate(valid),
             RestFrom::EndsShort { valid, end, why } => {
-                if trial.replans + trial.failed_replans + trial.legs == settings.max_replans {
+                if trial.replans + trial.failed_replans + trial.legs >= settings.max_replans {
                     return stop(
                         trial,
                         format!(
@@ -766,92 +835,120 @@ impl Executor<'_> {
                 // searches again from the same state, up to WAITING_SEARCHES times.
                 let time = (settings.replan_time * f64::from(1 << self.failures_in_a_row.min(3)))
                     .min(budget_left);
-                let searching = Instant::now();
                 let index = trial.replans + trial.failed_replans + trial.legs;
-                let searched = self.closed_loop.search(
-                    &from,
-                    (&self.rest[..valid], &end),
-                    &self.track,
-                    (time, budget_left),
-                    index,
-                );
-                let seconds = searching.elapsed().as_secs_f64();
-                trial.search_time += seconds;
-                let found = searched.found(&from.goal);
-                trial.searches.push(SearchRecord {
+                let record = SearchRecord {
                     after_controls: trial.controls_played,
                     goal_distance: from.goal.task_distance(&from.start),
                     rest_valid: valid,
                     rest_ends: why.clone(),
                     time,
-                    seconds,
-                    found,
-                });
-                match searched {
-                    Searched::Plan { controls, repair } => {
-                        self.rest = controls;
-                        self.polish_left = settings.polish;
-                        trial.replans += 1;
-                        trial.repairs += usize::from(repair);
-                        trial.replan_latencies.push(started.elapsed().as_secs_f64());
-                        self.failures_in_a_row = 0;
-                        self.waiting_failures = 0;
-                    }
-                    Searched::Leg {
-                        controls,
-                        goal,
-                        failure,
-                    } => {
-                        if let Some(failure) = failure {
+                    seconds: 0.0,
+                    ahead: false,
+                    waited: 0.0,
+                    found: SearchFound::Nothing,
+                };
+                // Where part of the rest is valid, its repair is searched while the arm
+                // plays that part (not again right after one searched so failed).
+                if settings.repair_ahead && valid > 0 && !ahead_failed {
+                    let ahead = SearchRecord {
+                        ahead: true,
+                        ..record.clone()
+                    };
+                    let kept = (&self.rest[..valid], &end);
+                    self.ahead =
+                        RepairAhead::begin(&self.closed_loop, &from, kept, time, index, ahead);
+                }
+                if self.ahead.is_some() {
+                    self.rest.truncate(valid);
+                } else {
+                    let kept = if ahead_failed { 0 } else { valid };
+                    let searching = Instant::now();
+                    let searched = self.closed_loop.search(
+                        &from,
+                        (&self.rest[..kept], &end),
+                        &self.track,
+                        (time, budget_left),
+                        index,
+                    );
+                    let seconds = searching.elapsed().as_secs_f64();
+                    let trial = &mut self.trial;
+                    trial.search_time += seconds;
+                    trial.searches.push(SearchRecord {
+                        seconds,
+                        waited: seconds,
+                        found: searched.found(&from.goal),
+                        ..record
+                    });
+                    match searched {
+                        Searched::Plan { controls, repair } => {
+                            self.rest = controls;
+                            self.adopted(repair);
+                            replanned = true;
+                        }
+                        Searched::Leg {
+                            controls,
+                            goal,
+                            failure,
+                        } => {
+                            if let Some(failure) = failure {
+                                trial.failed_replans += 1;
+                                trial.failed_search_from =
+                                    Some(ObservedState::of(&self.scene, observed));
+                                trial.last_failure = Some(failure);
+                            }
+                            self.rest = controls;
+                            // The searches from a leg's end start over at their shortest:
+                            // the goal may be nearer. Not after a leg onto the goal disc:
+                            // the last stretch, among the disc's blockers, is the goal
+                            // search's work, and it needs its growing times (dense 10).
+                            if !onto_the_disc(&from.goal, &goal) {
+                                self.failures_in_a_row = 0;
+                            }
+                            self.leg = Some(goal);
+                            trial.legs += 1;
+                            // The polish shortens a path to the goal, which a leg is not.
+                            self.polish_left = 0.0;
+                            self.waiting_failures = 0;
+                            replanned = true;
+                        }
+                        Searched::Nothing(failure) => {
                             trial.failed_replans += 1;
-                            trial.failed_search_from = Some(ObservedState::of(scene, observed));
+                            trial.failed_search_from =
+                                Some(ObservedState::of(&self.scene, observed));
+                            self.failures_in_a_row += 1;
+                            // A rest no longer valid to its end is played up to where it
+                            // stops being valid: the arm goes on the way the plan went
+                            // (toward the goal), and the next search starts from there.
+                            self.rest.truncate(valid);
+                            let playable = !self.rest.is_empty();
+                            self.waiting_failures += u32::from(!playable);
+                            if self.waiting_failures == WAITING_SEARCHES {
+                                return stop(
+                                    trial,
+                                    format!(
+                                        "{failure} ({WAITING_SEARCHES} searches found nothing \
+                                         while the arm waited, the longest {time:.1} s: the \
+                                         rest of the plan is no longer valid, {why})"
+                                    ),
+                                );
+                            }
                             trial.last_failure = Some(failure);
-                        }
-                        self.rest = controls;
-                        // The searches from a leg's end start over at their shortest: the
-                        // goal may be nearer. Not after a leg onto the goal disc: the last
-                        // stretch, among the disc's blockers, is the goal search's work,
-                        // and it needs its growing times (dense 10).
-                        if !onto_the_disc(&from.goal, &goal) {
-                            self.failures_in_a_row = 0;
-                        }
-                        *leg = Some(goal);
-                        trial.legs += 1;
-                        // The polish shortens a path to the goal, which a leg is not.
-                        self.polish_left = 0.0;
-                        trial.replan_latencies.push(started.elapsed().as_secs_f64());
-                        self.waiting_failures = 0;
-                    }
-                    Searched::Nothing(failure) => {
-                        trial.failed_replans += 1;
-                        trial.failed_search_from = Some(ObservedState::of(scene, observed));
-                        self.failures_in_a_row += 1;
-                        // A rest no longer valid to its end is played up to where it stops
-                        // being valid: the arm goes on the way the plan went (toward the
-                        // goal), and the next search starts from there.
-                        self.rest.truncate(valid);
-                        let playable = !self.rest.is_empty();
-                        self.waiting_failures += u32::from(!playable);
-                        if self.waiting_failures == WAITING_SEARCHES {
-                            return stop(
-                                trial,
-                                format!(
-                                    "{failure} ({WAITING_SEARCHES} searches found nothing while \
-                                     the arm waited, the longest {time:.1} s: the rest of the \
-                                     plan is no longer valid, {why})"
-                                ),
-                            );
-                        }
-                        trial.last_failure = Some(failure);
-                        if !playable {
-                            trial.latencies.push(started.elapsed().as_secs_f64());
-                            return Err(from.start.q);
+                            if !playable {
+                                let latency = waited + (started.elapsed() - joined).as_secs_f64();
+                                trial.latencies.push(latency);
+                                return Err(from.start.q);
+                            }
                         }
                     }
                 }
             }
         }
-        trial.latencies.push(started.elapsed().as_secs_f64());
+        let trial = &mut self.trial;
+        let latency = waited + (started.elapsed() - joined).as_secs_f64();
+        trial.latencies.push(latency);
+        if replanned {
+            trial.replan_latencies.push(latency);
+        }
         if self.rest.is_empty() {
             return Ok(Step::Finished);
         }
@@ -863,29 +960,39 @@ impl Executor<'_> {
             Ok(timed) => timed,
             Err(e) => return stop(trial, format!("internal error: {e}")),
         };
-        if self.polish_left > 0.0 && self.rest.len() > 2 {
-            let seconds = (trajectory.times.last().copied().unwrap_or(0.0) / execution.speed)
-                .min(self.polish_left);
-            self.polish_left -= seconds;
-            // The arm plays the control meanwhile: the work stops where the control ends,
-            // in wall-clock time too. A step among many objects in contact costs several
-            // times what `from_seconds` counts on (dense scenes), and a step budget alone
-            // would hold the arm far longer than the control lasts.
-            let polish = ShortcutSettings {
-                deadline: Some(Instant::now() + Duration::from_secs_f64(seconds)),
-                ..ShortcutSettings::from_seconds(
-                    seconds,
-                    settings.seed ^ trial.controls_played as u64,
-                )
-            };
-            let polished = shortcut(
-                &mut Propagator::new(from.clone()),
-                next.final_state(),
-                &self.rest[1..],
-                &polish,
-            );
-            self.rest.truncate(1);
-            self.rest.extend(polished.controls);
+        let ClosedLoop {
+            settings,
+            execution,
+            ..
+        } = &self.closed_loop;
+        let seconds = trajectory.times.last().copied().unwrap_or(0.0) / execution.speed;
+        match &mut self.ahead {
+            Some(ahead) => ahead.played(seconds),
+            // The polish changes the rest, which a repair searched ahead carries on from.
+            None if self.polish_left > 0.0 && self.rest.len() > 2 => {
+                let seconds = seconds.min(self.polish_left);
+                self.polish_left -= seconds;
+                // The arm plays the control meanwhile: the work stops where the control
+                // ends, in wall-clock time too. A step among many objects in contact costs
+                // several times what `from_seconds` counts on (dense scenes), and a step
+                // budget alone would hold the arm far longer than the control lasts.
+                let polish = ShortcutSettings {
+                    deadline: Some(Instant::now() + Duration::from_secs_f64(seconds)),
+                    ..ShortcutSettings::from_seconds(
+                        seconds,
+                        settings.seed ^ trial.controls_played as u64,
+                    )
+                };
+                let polished = shortcut(
+                    &mut Propagator::new(from.clone()),
+                    next.final_state(),
+                    &self.rest[1..],
+                    &polish,
+                );
+                self.rest.truncate(1);
+                self.rest.extend(polished.controls);
+            }
+            None => {}
         }
         trial.controls_played += 1;
         Ok(Step::Play {
@@ -893,6 +1000,40 @@ impl Executor<'_> {
             trajectory,
             predicted: next.final_state().clone(),
         })
+    }
+
+    /// Re-simulates the rest from `from`'s start in `playing` and judges it: by the leg's
+    /// goal while a leg plays and gets there, else by the goal. A rest that reaches the
+    /// goal gives the track legs follow. Also the rule the rest broke, if it stopped being
+    /// valid ([`crate::validity::Invalid::kind`]).
+    fn judge(&mut self, playing: &Problem, from: &Scene) -> (RestFrom, Option<String>) {
+        let leg = &mut self.leg;
+        let (mut verdict, simulated) = playing.rest_from(&self.rest, |s| {
+            still_reaches(leg.as_ref().unwrap_or(&from.goal), s)
+        });
+        if leg.is_some() && (self.rest.is_empty() || verdict != RestFrom::Reaches) {
+            // The leg is played, or no longer gets there: the goal is the aim again.
+            *leg = None;
+            verdict = playing.verdict_on(&simulated, |s| still_reaches(&from.goal, s));
+        }
+        if leg.is_none() && verdict == RestFrom::Reaches {
+            self.track = Track::of(&from.goal, &simulated);
+        }
+        let broken = simulated
+            .stopped_by
+            .as_ref()
+            .map(|(_, rule)| rule.kind().to_string());
+        (verdict, broken)
+    }
+
+    /// A plan to the goal found (a repair or not) becomes the rest: its searches start
+    /// over at their shortest, and the polish shortens it while it plays.
+    fn adopted(&mut self, repair: bool) {
+        self.polish_left = self.closed_loop.settings.polish;
+        self.trial.replans += 1;
+        self.trial.repairs += usize::from(repair);
+        self.failures_in_a_row = 0;
+        self.waiting_failures = 0;
     }
 }
 
@@ -1004,7 +1145,7 @@ pub struct ClosedLoopReport {
     pub replan_latency_p95: f64,
 }
 
-impl ClosedLoop<'_> {
+impl ClosedLoop {
     /// The execution's trials of `plan`, closed loop: the first in the scene as it is, the
     /// others in worlds perturbed by its noise, which the planner does not know.
     pub fn trials(&self, scene: &Scene, plan: &[PathControl]) -> Result<ClosedLoopReport, String> {
