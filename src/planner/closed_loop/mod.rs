@@ -761,7 +761,10 @@ impl Executor {
         }
         // The rest is re-simulated, and played, with half the margins spent.
         let playing = Problem::new(margins_half_spent(&from), self.closed_loop.settings.planner);
+        // A leg's remainder that no longer reaches its aim has none left: not played on.
+        let leg_ended = self.leg.is_some();
         let (mut verdict, mut broken) = self.judge(&playing, &from);
+        let leg_ended = leg_ended && self.leg.is_none();
         // A repair searched ahead is taken up once it is due; where nothing valid is left
         // to play before, the arm waits for it.
         let mut replanned = false;
@@ -849,7 +852,7 @@ impl Executor {
                 };
                 // Where part of the rest is valid, its repair is searched while the arm
                 // plays that part (not again right after one searched so failed).
-                if settings.repair_ahead && valid > 0 && !ahead_failed {
+                if settings.repair_ahead && valid > 0 && !ahead_failed && !leg_ended {
                     let ahead = SearchRecord {
                         ahead: true,
                         ..record.clone()
