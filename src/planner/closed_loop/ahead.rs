@@ -21,7 +21,10 @@ type Ending = (Result<Vec<PathControl>, String>, f64);
 
 /// A repair's search running beside the arm ([`RepairAhead::begin`]).
 pub(super) struct RepairAhead {
-    search: Searching,
+    /// The search's thread, until it is joined.
+    searching: Option<JoinHandle<Ending>>,
+    /// What it found, once joined.
+    done: Option<Ending>,
     /// When the search began (wall clock).
     began: Instant,
     /// The rest after the control played as the search began, up to where the ending is
@@ -31,13 +34,9 @@ pub(super) struct RepairAhead {
     played: usize,
     /// Their duration at the execution's pace (s).
     played_for: f64,
-    /// The search on the record (its `seconds` and `found` filled in when taken up).
+    /// The search on the record (its `seconds`, `waited` and `found` filled in when taken
+    /// up).
     record: SearchRecord,
-}
-
-enum Searching {
-    Running(JoinHandle<Ending>),
-    Done(Ending),
 }
 
 impl RepairAhead {
@@ -75,7 +74,8 @@ impl RepairAhead {
             })
             .ok()?;
         Some(RepairAhead {
-            search: Searching::Running(handle),
+            searching: Some(handle),
+            done: None,
             began: Instant::now(),
             prefix: valid.get(1..).unwrap_or_default().to_vec(),
             played: 0,
@@ -96,45 +96,41 @@ impl RepairAhead {
     /// what it finds in that time.
     pub(super) fn due(&mut self) -> bool {
         let robot_time = self.began + Duration::from_secs_f64(self.played_for);
-        if let Searching::Running(handle) = &self.search {
+        if let Some(handle) = &self.searching {
             while !handle.is_finished() && Instant::now() < robot_time {
                 std::thread::sleep(Duration::from_millis(1));
             }
             if !handle.is_finished() {
                 return false;
             }
-            self.join();
+            self.wait();
         }
-        match &self.search {
-            Searching::Done((_, seconds)) => *seconds <= self.played_for,
-            Searching::Running(_) => false,
-        }
+        self.done
+            .as_ref()
+            .is_some_and(|(_, seconds)| *seconds <= self.played_for)
     }
 
-    /// Waits for the search, nothing valid being left to play: the arm's wait in robot
-    /// time (s), what the search took beyond the controls played since it began.
-    pub(super) fn wait(&mut self) -> f64 {
-        self.join();
-        match &self.search {
-            Searching::Done((_, seconds)) => (seconds - self.played_for).max(0.0),
-            Searching::Running(_) => unreachable!("joined"),
+    /// Waits for the search to end (a search that panicked found nothing, and says so):
+    /// where nothing valid is left to play, and before the search is dropped.
+    pub(super) fn wait(&mut self) {
+        if let Some(handle) = self.searching.take() {
+            let ending = handle
+                .join()
+                .unwrap_or_else(|_| (Err("the repair's search panicked".to_string()), 0.0));
+            self.done = Some(ending);
         }
     }
 
     /// The repair (the prefix less the controls played since the search began, then the
-    /// ending), or why the search found none; and the search's record, with `waited` (the
-    /// arm's wait for it, s). Call when [`RepairAhead::due`] or after
-    /// [`RepairAhead::wait`].
-    pub(super) fn take(mut self, waited: f64) -> (Result<Vec<PathControl>, String>, SearchRecord) {
-        self.join();
-        let Searching::Done((ending, seconds)) =
-            std::mem::replace(&mut self.search, Searching::Done((Err(String::new()), 0.0)))
-        else {
-            unreachable!("joined")
-        };
+    /// ending), or why the search found none; and the search's record, `waited` the arm's
+    /// wait for it in robot time (what it took beyond the controls played since it began:
+    /// none where it was [`RepairAhead::due`]). Waits for the search if it runs.
+    pub(super) fn take(mut self) -> (Result<Vec<PathControl>, String>, SearchRecord) {
+        self.wait();
+        let (ending, seconds) = self.done.take().expect("the search joined");
         let mut record = self.record.clone();
         record.seconds = seconds;
-        record.waited = waited;
+        record.waited = (seconds - self.played_for).max(0.0);
         record.found = match ending {
             Ok(_) => SearchFound::Repair,
             Err(_) => SearchFound::Nothing,
@@ -143,27 +139,13 @@ impl RepairAhead {
         let repair = ending.map(|ending| [&self.prefix[played_since..], &ending].concat());
         (repair, record)
     }
-
-    /// The search's outcome, waiting for it if it runs (a search that panicked found
-    /// nothing, and says so).
-    fn join(&mut self) {
-        let search = std::mem::replace(&mut self.search, Searching::Done((Ok(vec![]), 0.0)));
-        self.search = match search {
-            Searching::Running(handle) => Searching::Done(
-                handle
-                    .join()
-                    .unwrap_or_else(|_| (Err("the repair's search panicked".to_string()), 0.0)),
-            ),
-            done => done,
-        };
-    }
 }
 
 impl Drop for RepairAhead {
     /// A search still running when the execution ends is waited for: it calls into OMPL,
     /// which must not be torn down under it when the process exits.
     fn drop(&mut self) {
-        self.join();
+        self.wait();
     }
 }
 
@@ -219,7 +201,7 @@ mod tests {
         ahead.played(0.24);
         ahead.played(0.25);
         assert!(ahead.due());
-        let (repair, record) = ahead.take(0.0);
+        let (repair, record) = ahead.take();
         // Controls 1 to 3 were played (control 1 as the search began): the repair is the
         // rest of the valid part, then the ending.
         assert_eq!(steps(&repair.unwrap()), [4, 99]);
@@ -243,11 +225,11 @@ mod tests {
     fn with_nothing_left_to_play_the_arm_waits_what_the_search_took_beyond_its_controls() {
         let mut ahead = ahead_of(0.3);
         ahead.played(0.1);
-        let waited = ahead.wait();
-        let (repair, record) = ahead.take(waited);
+        ahead.wait();
+        let (repair, record) = ahead.take();
+        let waited = record.waited;
         assert!((0.2..0.5).contains(&waited), "{waited}");
         assert!((record.seconds - 0.1 - waited).abs() < 1e-9, "{record:?}");
-        assert_eq!(record.waited, waited);
         // One control played, the first of the valid part: the prefix is whole.
         assert_eq!(steps(&repair.unwrap()), [2, 3, 4, 99]);
     }
@@ -259,7 +241,7 @@ mod tests {
         let mut ahead = RepairAhead::searching(&valid, ending, record()).unwrap();
         ahead.played(0.1);
         ahead.wait();
-        let (repair, record) = ahead.take(0.0);
+        let (repair, record) = ahead.take();
         assert!(repair.unwrap_err().contains("panicked"));
         assert_eq!(record.found, SearchFound::Nothing);
     }

@@ -761,10 +761,7 @@ impl Executor {
         }
         // The rest is re-simulated, and played, with half the margins spent.
         let playing = Problem::new(margins_half_spent(&from), self.closed_loop.settings.planner);
-        // A leg's remainder that no longer reaches its aim has none left: not played on.
-        let leg_ended = self.leg.is_some();
-        let (mut verdict, mut broken) = self.judge(&playing, &from);
-        let leg_ended = leg_ended && self.leg.is_none();
+        let (mut verdict, mut broken, leg_ended) = self.judge(&playing, &from);
         // A repair searched ahead is taken up once it is due; where nothing valid is left
         // to play before, the arm waits for it.
         let mut replanned = false;
@@ -772,14 +769,12 @@ impl Executor {
         if let Some(ahead) = &mut self.ahead {
             let nothing_to_play = matches!(verdict, RestFrom::EndsShort { valid: 0, .. });
             let joining = Instant::now();
-            let due = ahead.due();
-            if nothing_to_play && !due {
-                waited = ahead.wait();
-            }
+            let take_up = ahead.due() || nothing_to_play;
             joined = joining.elapsed();
-            if due || nothing_to_play {
+            if take_up {
                 let ahead = self.ahead.take().expect("a repair searched ahead");
-                let (repair, record) = ahead.take(waited);
+                let (repair, record) = ahead.take();
+                (waited, joined) = (record.waited, joining.elapsed());
                 self.trial.search_time += record.seconds;
                 self.trial.searches.push(record);
                 match repair {
@@ -789,7 +784,7 @@ impl Executor {
                         self.rest = repair;
                         self.adopted(true);
                         replanned = true;
-                        (verdict, broken) = self.judge(&playing, &from);
+                        (verdict, broken, _) = self.judge(&playing, &from);
                     }
                     Err(failure) => {
                         ahead_failed = true;
@@ -799,6 +794,9 @@ impl Executor {
                 }
             }
         }
+        // The arm's wait from the observation to what it plays next (s): for a repair
+        // searched ahead, in robot time, then the decision's own work.
+        let latency = || waited + (started.elapsed() - joined).as_secs_f64();
         let settings = &self.closed_loop.settings;
         let trial = &mut self.trial;
         if let Some(rule) = broken {
@@ -851,7 +849,8 @@ impl Executor {
                     found: SearchFound::Nothing,
                 };
                 // Where part of the rest is valid, its repair is searched while the arm
-                // plays that part (not again right after one searched so failed).
+                // plays that part (not again right after one searched so failed, nor for a
+                // leg's remainder that no longer reaches its aim: it has none left).
                 if settings.repair_ahead && valid > 0 && !ahead_failed && !leg_ended {
                     let ahead = SearchRecord {
                         ahead: true,
@@ -937,8 +936,7 @@ impl Executor {
                             }
                             trial.last_failure = Some(failure);
                             if !playable {
-                                let latency = waited + (started.elapsed() - joined).as_secs_f64();
-                                trial.latencies.push(latency);
+                                trial.latencies.push(latency());
                                 return Err(from.start.q);
                             }
                         }
@@ -947,7 +945,7 @@ impl Executor {
             }
         }
         let trial = &mut self.trial;
-        let latency = waited + (started.elapsed() - joined).as_secs_f64();
+        let latency = latency();
         trial.latencies.push(latency);
         if replanned {
             trial.replan_latencies.push(latency);
@@ -1008,15 +1006,18 @@ impl Executor {
     /// Re-simulates the rest from `from`'s start in `playing` and judges it: by the leg's
     /// goal while a leg plays and gets there, else by the goal. A rest that reaches the
     /// goal gives the track legs follow. Also the rule the rest broke, if it stopped being
-    /// valid ([`crate::validity::Invalid::kind`]).
-    fn judge(&mut self, playing: &Problem, from: &Scene) -> (RestFrom, Option<String>) {
+    /// valid ([`crate::validity::Invalid::kind`]), and whether a leg ended here (played,
+    /// or no longer reaching its aim).
+    fn judge(&mut self, playing: &Problem, from: &Scene) -> (RestFrom, Option<String>, bool) {
         let leg = &mut self.leg;
+        let mut leg_ended = false;
         let (mut verdict, simulated) = playing.rest_from(&self.rest, |s| {
             still_reaches(leg.as_ref().unwrap_or(&from.goal), s)
         });
         if leg.is_some() && (self.rest.is_empty() || verdict != RestFrom::Reaches) {
             // The leg is played, or no longer gets there: the goal is the aim again.
             *leg = None;
+            leg_ended = true;
             verdict = playing.verdict_on(&simulated, |s| still_reaches(&from.goal, s));
         }
         if leg.is_none() && verdict == RestFrom::Reaches {
@@ -1026,7 +1027,7 @@ impl Executor {
             .stopped_by
             .as_ref()
             .map(|(_, rule)| rule.kind().to_string());
-        (verdict, broken)
+        (verdict, broken, leg_ended)
     }
 
     /// A plan to the goal found (a repair or not) becomes the rest: its searches start
