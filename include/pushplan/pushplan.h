@@ -416,8 +416,9 @@ namespace pushplan
         /// Search a repair on a thread of its own while the arm plays the part of the rest
         /// still valid, instead of holding the arm while it searches (step() returns the
         /// next control at once; the repair is taken up at a later step, once it is done
-        /// and the controls played since have lasted as long at `speed`). Default false
-        /// (BENCHMARKS.md, "Repairs searched ahead").
+        /// and the controls played since have lasted as long at `speed`); not where that
+        /// part ends more than a leg from the goal. Default true (BENCHMARKS.md, "Repairs
+        /// searched ahead").
         std::optional<bool> repair_ahead;
         /// The pace the application plays controls at, against the plan's (the polish's
         /// budget per control). Default 1.

@@ -449,8 +449,7 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
 
 /// The closed-loop tests' executor, re-planning with `planner`: searches of 10 s at most,
 /// shortcut for 0.5 s and polished for 2 s of work, seed 1, `max_replans` searches and 60 s of searching per trial at most, the default
-/// tolerance and execution (rapier), repairs searched ahead (not the default: so that every
-/// closed-loop test also runs that thread's way).
+/// tolerance and execution (rapier), repairs searched ahead (as by default).
 fn closed_loop(
     planner: pushplan::planning::PlannerKind,
     max_replans: usize,
@@ -590,6 +589,9 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     );
 
     let mut closed_loop = closed_loop(plan.settings.planner, 1);
+    // Legs of 0.3 m: the valid part ends within a leg of the goal (the box starts 0.17 m
+    // out), so its repair is searched ahead.
+    closed_loop.settings.leg = 0.3;
     let closed = closed_loop.execute(&scene, &controls, &world).unwrap();
     assert!(closed.invalid_rests >= 1, "{closed:?}");
     // Counted by the rule the rest broke: the first observation is the world's start, where
@@ -629,6 +631,13 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
         "{repair:?}"
     );
     assert!(waiting.replan_latencies[0] >= repair.seconds, "{waiting:?}");
+    // Where the valid part ends more than a leg from the goal (a leg of 1 mm here), the
+    // repair is not searched ahead but from where the arm stands, as with the arm waiting.
+    closed_loop.settings.repair_ahead = true;
+    closed_loop.settings.leg = 0.001;
+    let far = closed_loop.execute(&scene, &controls, &world).unwrap();
+    assert_eq!((far.replans, far.repairs), (1, 1), "{far:?}");
+    assert!(!far.searches[0].ahead, "{far:?}");
 }
 
 /// `pushplan replan PLAN --observed` on `observation` (written to the scratch folder) with

@@ -72,10 +72,10 @@ pub struct ClosedLoopSettings {
     /// and the goal only where no leg is found.
     pub leg: f64,
     /// Search a repair on a thread of its own while the arm plays the rest's valid part
-    /// ([`ahead`]), instead of holding the arm while it searches. A failed repair's time
-    /// (a quarter of `replan_time`, doubling with the failures in a row) is what the arm
-    /// waits on at most re-plans on the dense scenes (BENCHMARKS.md, "Dense scenes,
-    /// closed loop").
+    /// ([`ahead`]), instead of holding the arm while it searches; not where the valid part
+    /// ends more than a leg from the goal (there the searches run at once from where the
+    /// arm stands, and try a leg). A repair is found in a fraction of a second near the
+    /// goal, and the arm need not stop for it (BENCHMARKS.md, "Repairs searched ahead").
     pub repair_ahead: bool,
 }
 
@@ -138,11 +138,10 @@ pub mod defaults {
     pub const REPLAN_BUDGET: f64 = 300.0;
     /// [`super::ClosedLoopSettings::leg`] (m).
     pub const REPLAN_LEG: f64 = 0.1;
-    /// [`super::ClosedLoopSettings::repair_ahead`]: off. On the dense set it cut the median
-    /// re-planning latency from 0.296 s to 0.035 s, but lost dense 19's three trials (the
-    /// goal object stuck 580-630 mm out, every leg from there failing), which the arm
-    /// waiting won (BENCHMARKS.md, "Repairs searched ahead").
-    pub const REPAIR_AHEAD: bool = false;
+    /// [`super::ClosedLoopSettings::repair_ahead`]: on. Side by side with the arm waiting
+    /// on the dense set: 54 of 57 trials against 52 of 57, the arm's waits per trial 6.7 s
+    /// against 9.6 s at the median (BENCHMARKS.md, "Repairs searched ahead").
+    pub const REPAIR_AHEAD: bool = true;
 }
 
 /// Time the world gets after each control (or a control cut short) before it is observed:
@@ -850,8 +849,15 @@ impl Executor {
                 };
                 // Where part of the rest is valid, its repair is searched while the arm
                 // plays that part (not again right after one searched so failed, nor for a
-                // leg's remainder that no longer reaches its aim: it has none left).
-                if settings.repair_ahead && valid > 0 && !ahead_failed && !leg_ended {
+                // leg's remainder that no longer reaches its aim: it has none left). Nor
+                // where the valid part ends more than a leg from the goal: an ending from
+                // there is a long search that often finds nothing, while the arm would
+                // play on along a rest that misses; the searches from where the arm stands
+                // go on to a leg at once (dense 19: repairs searched ahead from half a
+                // metre short found nothing, and its trials were lost).
+                let ends_far = from.goal.task_distance(&end) > settings.leg
+                    && self.closed_loop.leg_goal(&from, &self.track).is_some();
+                if settings.repair_ahead && valid > 0 && !ahead_failed && !leg_ended && !ends_far {
                     let ahead = SearchRecord {
                         ahead: true,
                         ..record.clone()
