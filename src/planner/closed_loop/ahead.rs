@@ -110,9 +110,8 @@ impl RepairAhead {
             .is_some_and(|(_, seconds)| *seconds <= self.played_for)
     }
 
-    /// Waits for the search to end (a search that panicked found nothing, and says so):
-    /// where nothing valid is left to play, and before the search is dropped.
-    pub(super) fn wait(&mut self) {
+    /// Waits for the search to end (a search that panicked found nothing, and says so).
+    fn wait(&mut self) {
         if let Some(handle) = self.searching.take() {
             let ending = handle
                 .join()
@@ -225,7 +224,6 @@ mod tests {
     fn with_nothing_left_to_play_the_arm_waits_what_the_search_took_beyond_its_controls() {
         let mut ahead = ahead_of(0.3);
         ahead.played(0.1);
-        ahead.wait();
         let (repair, record) = ahead.take();
         let waited = record.waited;
         assert!((0.2..0.5).contains(&waited), "{waited}");
@@ -240,7 +238,6 @@ mod tests {
         let ending = || -> Result<Vec<PathControl>, String> { panic!("a bug in the search") };
         let mut ahead = RepairAhead::searching(&valid, ending, record()).unwrap();
         ahead.played(0.1);
-        ahead.wait();
         let (repair, record) = ahead.take();
         assert!(repair.unwrap_err().contains("panicked"));
         assert_eq!(record.found, SearchFound::Nothing);

@@ -855,9 +855,12 @@ impl Executor {
                 // play on along a rest that misses; the searches from where the arm stands
                 // go on to a leg at once (dense 19: repairs searched ahead from half a
                 // metre short found nothing, and its trials were lost).
-                let ends_far = from.goal.task_distance(&end) > settings.leg
-                    && self.closed_loop.leg_goal(&from, &self.track).is_some();
-                if settings.repair_ahead && valid > 0 && !ahead_failed && !leg_ended && !ends_far {
+                let ends_far = || {
+                    from.goal.task_distance(&end) > settings.leg
+                        && self.closed_loop.leg_goal(&from, &self.track).is_some()
+                };
+                if settings.repair_ahead && valid > 0 && !ahead_failed && !leg_ended && !ends_far()
+                {
                     let ahead = SearchRecord {
                         ahead: true,
                         ..record.clone()
