@@ -640,6 +640,100 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     assert!(!far.searches[0].ahead, "{far:?}");
 }
 
+/// The rest of a plan is judged with half the planner's reserves spent, the tipping margin
+/// (`physics.tipping_margin`, 0.3) among them. A box of half-width b = 0.05 m on mu_g = 0.4,
+/// pushed flat on through its centre by a hand whose lowest point is h above the table,
+/// slides with the table's whole friction mu_g m g, which shifts its support pressure's centre
+/// by mu_g h (closed form): it tips beyond h = b / mu_g = 0.125 m, and with the margin m the
+/// model refuses h > (1 - m) b / mu_g, 0.0875 m with the whole margin, 0.106 m with half.
+/// A straight push into the goal disc at h = 0.097 m is refused by the planner's model and
+/// played to the goal by the executor without a search; at h = 0.115 m the executor refuses
+/// it too, before the first control.
+#[test]
+fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
+    use pushplan::planner::closed_loop::Step;
+    use pushplan::planning::path::PathControl;
+    use pushplan::planning::{PlannerKind, Problem};
+    use pushplan::robot::EeAction;
+    let scratch = common::Scratch::new("closed-loop-tipping-margin");
+    let (b, mu_g, margin, hand) = (0.05, 0.4, 0.3, 0.02);
+    let (whole, half) = ((1.0 - margin) * b / mu_g, (1.0 - 0.5 * margin) * b / mu_g);
+    // The hand 2 cm thick, its frame `lowest + 1 cm` above the table; the box 20 cm tall,
+    // above the hand's top.
+    let scene_at = |lowest: f64| {
+        let yaml = format!(
+            "name: tipping-margin\n\
+             robot:\n  type: planar_hand\n  shape: {{type: box, size: [0.04, 0.12, {hand}]}}\n  \
+             start: [0.4, 0.0, 0.0]\n  height: {}\n\
+             table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}\n\
+             physics: {{tipping_margin: {margin}}}\n\
+             objects:\n  - name: box\n    shape: {{type: box, size: [{}, {}, 0.2]}}\n    \
+             pose: [0.6, 0.0, 0.0]\n    mass: 1.0\n    mu_g: {mu_g}\n    mu_c: 0.3\n\
+             goal: {{object: box, center: [0.8, 0.0], radius: 0.1}}\n",
+            lowest + 0.5 * hand,
+            2.0 * b,
+            2.0 * b,
+        );
+        let path = scratch.join(&format!("scene-{lowest}.yaml"));
+        std::fs::write(&path, yaml).unwrap();
+        pushplan::Scene::load(&path).unwrap()
+    };
+    // Straight ahead at 0.1 m/s: 0.13 m to the box, then 0.2 m pushing it, its centre to
+    // the goal's.
+    let push: Vec<PathControl> = (0..11)
+        .map(|_| PathControl {
+            action: EeAction::planar(0.1, 0.0, 0.0),
+            steps: 30,
+        })
+        .collect();
+    let planner = PlannerKind::PushKpiece;
+    let mut closed_loop = closed_loop(planner, 0);
+    closed_loop.search = &FindsNothing {
+        goal_from_within: None,
+    };
+    for (lowest, kept) in [(0.097, true), (0.115, false)] {
+        assert!(whole < lowest && (lowest < half) == kept && lowest < b / mu_g);
+        let scene = scene_at(lowest);
+        // The model with the whole margin refuses the push: it tips the box.
+        let planned = Problem::new(scene.clone(), planner).simulate(&push, false);
+        let refused = planned.stopped_by.as_ref().map(|(_, rule)| rule.kind());
+        assert!(
+            matches!(refused, Some("tips" | "closes in at tipping height")),
+            "h = {lowest}: {refused:?}"
+        );
+        // The executor fed the model's own predictions, the reserves half spent.
+        let mut executor = closed_loop.executor(&scene, &push);
+        let mut observed = scene.start.clone();
+        let mut played = 0;
+        let end = loop {
+            match executor.step(&observed) {
+                Step::Play { predicted, .. } => observed = predicted,
+                other => break other,
+            }
+            played += 1;
+        };
+        let trial = executor.trial();
+        if kept {
+            assert!(
+                end == Step::Finished && played == push.len() && trial.invalid_rests == 0,
+                "h = {lowest}: {end:?} {trial:?}"
+            );
+            assert!(trial.searches.is_empty(), "{trial:?}");
+            assert!(scene.goal.task_distance(&observed) < 0.0, "{observed:?}");
+        } else {
+            let rules: Vec<&String> = trial.invalid_rest_rules.keys().collect();
+            assert!(
+                matches!(end, Step::Stopped(_))
+                    && played == 0
+                    && rules
+                        .iter()
+                        .all(|r| ["tips", "closes in at tipping height"].contains(&r.as_str())),
+                "h = {lowest}: {end:?} {trial:?}"
+            );
+        }
+    }
+}
+
 /// `pushplan replan PLAN --observed` on `observation` (written to the scratch folder) with
 /// `more` options, the new plan to `replanned.json` there: exit status, stdout, stderr.
 fn replan_observed(

@@ -1099,8 +1099,8 @@ fn onto_the_disc(goal: &Goal, leg: &Goal) -> bool {
 /// ends within half the planning margin of the goal disc less its margin, that is, the
 /// margin may be half spent. The plan was made to end a margin inside the disc so that
 /// errors in the world still leave the object in; a re-plan for every millimetre of that
-/// error would thrash, and the next observation corrects what builds up. The object
-/// clearance is spent the same way ([`margins_half_spent`]).
+/// error would thrash, and the next observation corrects what builds up. The clearances
+/// and the tipping margin are spent the same way ([`margins_half_spent`]).
 fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
     match goal {
         crate::scene::Goal::ObjectInDisc { margin, .. } => goal.distance(state) <= 0.5 * margin,
@@ -1108,13 +1108,19 @@ fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
     }
 }
 
-/// `from` with half its object clearance (`physics.object_clearance`), as the rest of a
-/// plan is judged: objects a plan kept a clearance apart come closer in a world that is not
-/// the model, and a re-plan whenever two pass a millimetre closer than planned would
-/// thrash. What is spent of the clearance is still no contact; re-plans keep it whole.
+/// `from` with half its reserves spent, as the rest of a plan is judged: its object and
+/// arm clearances (`physics.object_clearance`, `physics.arm_clearance`) and its tipping
+/// margin (`physics.tipping_margin`). Objects a plan kept a clearance apart come closer in
+/// a world that is not the model, and a push planned within the tipping margin presses a
+/// little higher or more sideways on an object that stands a little elsewhere; a re-plan
+/// whenever a reserve is touched would thrash. What is spent of a clearance is still no
+/// contact, and half the tipping margin still keeps the support pressure well inside the
+/// footprint; re-plans keep the reserves whole.
 fn margins_half_spent(from: &Scene) -> Scene {
     let mut scene = from.clone();
     scene.physics.object_clearance *= 0.5;
+    scene.physics.arm_clearance *= 0.5;
+    scene.physics.tipping_margin *= 0.5;
     scene.clearances = Clearances::at_start(&scene).with_start_overhangs(&scene);
     scene
 }
