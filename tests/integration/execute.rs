@@ -655,28 +655,19 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
     use pushplan::planning::path::PathControl;
     use pushplan::planning::{PlannerKind, Problem};
     use pushplan::robot::EeAction;
-    let scratch = common::Scratch::new("closed-loop-tipping-margin");
-    let (b, mu_g, margin, hand) = (0.05, 0.4, 0.3, 0.02);
+    let (b, mu_g, margin, hand) = (0.05, 0.4, 0.3, 0.01);
     let (whole, half) = ((1.0 - margin) * b / mu_g, (1.0 - 0.5 * margin) * b / mu_g);
-    // The hand 2 cm thick, its frame `lowest + 1 cm` above the table; the box 20 cm tall,
-    // above the hand's top.
+    // The thin hand's frame half its thickness above its lowest point; the box 20 cm
+    // tall, above the hand's top; the goal disc straight ahead.
     let scene_at = |lowest: f64| {
-        let yaml = format!(
-            "name: tipping-margin\n\
-             robot:\n  type: planar_hand\n  shape: {{type: box, size: [0.04, 0.12, {hand}]}}\n  \
-             start: [0.4, 0.0, 0.0]\n  height: {}\n\
-             table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}\n\
-             physics: {{tipping_margin: {margin}}}\n\
-             objects:\n  - name: box\n    shape: {{type: box, size: [{}, {}, 0.2]}}\n    \
-             pose: [0.6, 0.0, 0.0]\n    mass: 1.0\n    mu_g: {mu_g}\n    mu_c: 0.3\n\
-             goal: {{object: box, center: [0.8, 0.0], radius: 0.1}}\n",
-            lowest + 0.5 * hand,
-            2.0 * b,
-            2.0 * b,
-        );
-        let path = scratch.join(&format!("scene-{lowest}.yaml"));
-        std::fs::write(&path, yaml).unwrap();
-        pushplan::Scene::load(&path).unwrap()
+        let shape = format!("{{type: box, size: [{}, {}, 0.2]}}", 2.0 * b, 2.0 * b);
+        let physics = format!("physics: {{tipping_margin: {margin}}}");
+        let mut scene =
+            common::thin_hand_scene("box", &shape, 0.6, lowest + 0.5 * hand, mu_g, &physics);
+        if let pushplan::scene::Goal::ObjectInDisc { center, .. } = &mut scene.goal {
+            *center = nalgebra::Vector2::new(0.8, 0.0);
+        }
+        scene
     };
     // Straight ahead at 0.1 m/s: 0.13 m to the box, then 0.2 m pushing it, its centre to
     // the goal's.
@@ -687,10 +678,8 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
         })
         .collect();
     let planner = PlannerKind::PushKpiece;
-    let mut closed_loop = closed_loop(planner, 0);
-    closed_loop.search = &FindsNothing {
-        goal_from_within: None,
-    };
+    // No re-plans: a rest refused stops the execution.
+    let closed_loop = closed_loop(planner, 0);
     for (lowest, kept) in [(0.097, true), (0.115, false)] {
         assert!(whole < lowest && (lowest < half) == kept && lowest < b / mu_g);
         let scene = scene_at(lowest);
