@@ -640,6 +640,45 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     assert!(!far.searches[0].ahead, "{far:?}");
 }
 
+/// The executor of `closed_loop` fed the model's own predictions as its observations,
+/// from `scene`'s start along `controls`: how it ended, the controls played, the last
+/// observation and the trial.
+fn played_on_predictions(
+    closed_loop: &pushplan::planner::closed_loop::ClosedLoop,
+    scene: &Scene,
+    controls: &[pushplan::planning::path::PathControl],
+) -> (
+    pushplan::planner::closed_loop::Step,
+    usize,
+    pushplan::State,
+    pushplan::planner::closed_loop::ClosedLoopTrial,
+) {
+    use pushplan::planner::closed_loop::Step;
+    let mut executor = closed_loop.executor(scene, controls);
+    let mut observed = scene.start.clone();
+    let mut played = 0;
+    let end = loop {
+        match executor.step(&observed) {
+            Step::Play { predicted, .. } => observed = predicted,
+            other => break other,
+        }
+        played += 1;
+    };
+    (end, played, observed, executor.trial().clone())
+}
+
+/// `n` controls moving the planar hand straight ahead (+x) at 0.1 m/s, `steps` each.
+fn straight_ahead(n: usize, steps: usize) -> Vec<pushplan::planning::path::PathControl> {
+    use pushplan::planning::path::PathControl;
+    use pushplan::robot::EeAction;
+    (0..n)
+        .map(|_| PathControl {
+            action: EeAction::planar(0.1, 0.0, 0.0),
+            steps,
+        })
+        .collect()
+}
+
 /// The rest of a plan is judged with half the planner's reserves spent, the tipping margin
 /// (`physics.tipping_margin`, 0.3) among them. A box of half-width b = 0.05 m on mu_g = 0.4,
 /// pushed flat on through its centre by a hand whose lowest point is h above the table,
@@ -652,9 +691,7 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
 #[test]
 fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
     use pushplan::planner::closed_loop::Step;
-    use pushplan::planning::path::PathControl;
     use pushplan::planning::{PlannerKind, Problem};
-    use pushplan::robot::EeAction;
     let (b, mu_g, margin, hand) = (0.05, 0.4, 0.3, 0.01);
     let (whole, half) = ((1.0 - margin) * b / mu_g, (1.0 - 0.5 * margin) * b / mu_g);
     // The thin hand's frame half its thickness above its lowest point; the box 20 cm
@@ -671,12 +708,7 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
     };
     // Straight ahead at 0.1 m/s: 0.13 m to the box, then 0.2 m pushing it, its centre to
     // the goal's.
-    let push: Vec<PathControl> = (0..11)
-        .map(|_| PathControl {
-            action: EeAction::planar(0.1, 0.0, 0.0),
-            steps: 30,
-        })
-        .collect();
+    let push = straight_ahead(11, 30);
     let planner = PlannerKind::PushKpiece;
     // No re-plans: a rest refused stops the execution.
     let closed_loop = closed_loop(planner, 0);
@@ -691,17 +723,7 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
             "h = {lowest}: {refused:?}"
         );
         // The executor fed the model's own predictions, the reserves half spent.
-        let mut executor = closed_loop.executor(&scene, &push);
-        let mut observed = scene.start.clone();
-        let mut played = 0;
-        let end = loop {
-            match executor.step(&observed) {
-                Step::Play { predicted, .. } => observed = predicted,
-                other => break other,
-            }
-            played += 1;
-        };
-        let trial = executor.trial();
+        let (end, played, observed, trial) = played_on_predictions(&closed_loop, &scene, &push);
         if kept {
             assert!(
                 end == Step::Finished && played == push.len() && trial.invalid_rests == 0,
@@ -714,10 +736,68 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
             assert!(
                 matches!(end, Step::Stopped(_))
                     && played == 0
+                    && trial.invalid_rests == 1
                     && rules
                         .iter()
                         .all(|r| ["tips", "closes in at tipping height"].contains(&r.as_str())),
                 "h = {lowest}: {end:?} {trial:?}"
+            );
+        }
+    }
+}
+
+/// The rest of a plan is judged with half the arm clearance spent (`physics.arm_clearance`,
+/// 10 mm). The thin hand, its lowest point at 0.115 m (where a push that slid the box
+/// would tip it even with half the tipping margin spent: the previous test's closed form),
+/// moves straight at a box that already stands in the goal disc and stops short of it.
+/// Stopping 7 mm short, between the half and the whole clearance, the planner's model
+/// refuses it ("closes in at tipping height") and the executor plays it to its end;
+/// stopping 3 mm short, the executor refuses it too, before the first control.
+#[test]
+fn the_rest_is_judged_with_half_the_arm_clearance_spent() {
+    use pushplan::planner::closed_loop::Step;
+    use pushplan::planning::{PlannerKind, Problem};
+    let (b, mu_g, clearance, hand) = (0.05, 0.4, 0.01, 0.01);
+    let shape = format!("{{type: box, size: [{}, {}, 0.2]}}", 2.0 * b, 2.0 * b);
+    let physics = format!("physics: {{arm_clearance: {clearance}}}");
+    // The box at x = 0.6 (its near face 0.13 m ahead of the hand's front face at 0.42), the
+    // goal disc around it.
+    let mut scene = common::thin_hand_scene("box", &shape, 0.6, 0.115 + 0.5 * hand, mu_g, &physics);
+    if let pushplan::scene::Goal::ObjectInDisc { center, .. } = &mut scene.goal {
+        *center = nalgebra::Vector2::new(0.6, 0.0);
+    }
+    assert!(scene.goal.task_distance(&scene.start) < 0.0);
+    let planner = PlannerKind::PushKpiece;
+    let closed_loop = closed_loop(planner, 0);
+    // 1 mm a step (0.1 m/s for 10 ms): the hand stops (130 - short) mm ahead.
+    for (short_mm, kept) in [(7, true), (3, false)] {
+        let approach = straight_ahead(1, 130 - short_mm);
+        let short = 1e-3 * short_mm as f64;
+        assert!((0.5 * clearance < short) == kept && short < clearance);
+        let planned = Problem::new(scene.clone(), planner).simulate(&approach, false);
+        assert_eq!(
+            planned.stopped_by.as_ref().map(|(_, rule)| rule.kind()),
+            Some("closes in at tipping height"),
+            "{short_mm} mm short"
+        );
+        let (end, played, observed, trial) = played_on_predictions(&closed_loop, &scene, &approach);
+        if kept {
+            assert!(
+                end == Step::Finished
+                    && played == 1
+                    && trial.invalid_rests == 0
+                    && trial.searches.is_empty(),
+                "{short_mm} mm short: {end:?} {trial:?}"
+            );
+            // The hand stopped short: the box did not move.
+            assert_eq!(observed.objects[0], scene.start.objects[0]);
+        } else {
+            assert!(
+                matches!(end, Step::Stopped(_))
+                    && played == 0
+                    && trial.invalid_rests == 1
+                    && trial.invalid_rest_rules.get("closes in at tipping height") == Some(&1),
+                "{short_mm} mm short: {end:?} {trial:?}"
             );
         }
     }
