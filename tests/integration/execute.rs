@@ -757,12 +757,15 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
 fn the_rest_is_judged_with_half_the_arm_clearance_spent() {
     use pushplan::planner::closed_loop::Step;
     use pushplan::planning::{PlannerKind, Problem};
-    let (b, mu_g, clearance, hand) = (0.05, 0.4, 0.01, 0.01);
+    let (b, mu_g, clearance, hand, lowest) = (0.05, 0.4, 0.01, 0.01, 0.115);
     let shape = format!("{{type: box, size: [{}, {}, 0.2]}}", 2.0 * b, 2.0 * b);
     let physics = format!("physics: {{arm_clearance: {clearance}}}");
     // The box at x = 0.6 (its near face 0.13 m ahead of the hand's front face at 0.42), the
     // goal disc around it.
-    let mut scene = common::thin_hand_scene("box", &shape, 0.6, 0.115 + 0.5 * hand, mu_g, &physics);
+    let mut scene =
+        common::thin_hand_scene("box", &shape, 0.6, lowest + 0.5 * hand, mu_g, &physics);
+    // Above the height where a sliding push tips the box with half the tipping margin spent.
+    assert!(lowest > (1.0 - 0.5 * scene.physics.tipping_margin) * b / mu_g);
     if let pushplan::scene::Goal::ObjectInDisc { center, .. } = &mut scene.goal {
         *center = nalgebra::Vector2::new(0.6, 0.0);
     }
