@@ -679,6 +679,25 @@ fn straight_ahead(n: usize, steps: usize) -> Vec<pushplan::planning::path::PathC
         .collect()
 }
 
+/// Half-width (m) and support friction of the box the reserve tests push or close in on.
+const RESERVE_BOX: (f64, f64) = (0.05, 0.4);
+
+/// The thin hand (1 cm thick), its lowest point `lowest` m above the table, a box of
+/// [`RESERVE_BOX`] 20 cm tall at x = 0.6 (its near face 0.13 m ahead of the hand's front
+/// face at 0.42, above the hand's top), the goal disc centred at (`goal_x`, 0) and
+/// `physics` (a scene's `physics:` line).
+fn thin_hand_and_box(lowest: f64, goal_x: f64, physics: &str) -> Scene {
+    let (b, mu_g) = RESERVE_BOX;
+    let hand = 0.01;
+    let shape = format!("{{type: box, size: [{}, {}, 0.2]}}", 2.0 * b, 2.0 * b);
+    // The thin hand's frame half its thickness above its lowest point.
+    let mut scene = common::thin_hand_scene("box", &shape, 0.6, lowest + 0.5 * hand, mu_g, physics);
+    if let pushplan::scene::Goal::ObjectInDisc { center, .. } = &mut scene.goal {
+        *center = nalgebra::Vector2::new(goal_x, 0.0);
+    }
+    scene
+}
+
 /// The rest of a plan is judged with half the planner's reserves spent, the tipping margin
 /// (`physics.tipping_margin`, 0.3) among them. A box of half-width b = 0.05 m on mu_g = 0.4,
 /// pushed flat on through its centre by a hand whose lowest point is h above the table,
@@ -692,20 +711,11 @@ fn straight_ahead(n: usize, steps: usize) -> Vec<pushplan::planning::path::PathC
 fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
     use pushplan::planner::closed_loop::Step;
     use pushplan::planning::{PlannerKind, Problem};
-    let (b, mu_g, margin, hand) = (0.05, 0.4, 0.3, 0.01);
+    let ((b, mu_g), margin) = (RESERVE_BOX, 0.3);
     let (whole, half) = ((1.0 - margin) * b / mu_g, (1.0 - 0.5 * margin) * b / mu_g);
-    // The thin hand's frame half its thickness above its lowest point; the box 20 cm
-    // tall, above the hand's top; the goal disc straight ahead.
-    let scene_at = |lowest: f64| {
-        let shape = format!("{{type: box, size: [{}, {}, 0.2]}}", 2.0 * b, 2.0 * b);
-        let physics = format!("physics: {{tipping_margin: {margin}}}");
-        let mut scene =
-            common::thin_hand_scene("box", &shape, 0.6, lowest + 0.5 * hand, mu_g, &physics);
-        if let pushplan::scene::Goal::ObjectInDisc { center, .. } = &mut scene.goal {
-            *center = nalgebra::Vector2::new(0.8, 0.0);
-        }
-        scene
-    };
+    // The goal disc straight ahead.
+    let physics = format!("physics: {{tipping_margin: {margin}}}");
+    let scene_at = |lowest: f64| thin_hand_and_box(lowest, 0.8, &physics);
     // Straight ahead at 0.1 m/s: 0.13 m to the box, then 0.2 m pushing it, its centre to
     // the goal's.
     let push = straight_ahead(11, 30);
@@ -757,18 +767,12 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
 fn the_rest_is_judged_with_half_the_arm_clearance_spent() {
     use pushplan::planner::closed_loop::Step;
     use pushplan::planning::{PlannerKind, Problem};
-    let (b, mu_g, clearance, hand, lowest) = (0.05, 0.4, 0.01, 0.01, 0.115);
-    let shape = format!("{{type: box, size: [{}, {}, 0.2]}}", 2.0 * b, 2.0 * b);
+    let ((b, mu_g), clearance, lowest) = (RESERVE_BOX, 0.01, 0.115);
     let physics = format!("physics: {{arm_clearance: {clearance}}}");
-    // The box at x = 0.6 (its near face 0.13 m ahead of the hand's front face at 0.42), the
-    // goal disc around it.
-    let mut scene =
-        common::thin_hand_scene("box", &shape, 0.6, lowest + 0.5 * hand, mu_g, &physics);
+    // The goal disc around the box.
+    let scene = thin_hand_and_box(lowest, 0.6, &physics);
     // Above the height where a sliding push tips the box with half the tipping margin spent.
     assert!(lowest > (1.0 - 0.5 * scene.physics.tipping_margin) * b / mu_g);
-    if let pushplan::scene::Goal::ObjectInDisc { center, .. } = &mut scene.goal {
-        *center = nalgebra::Vector2::new(0.6, 0.0);
-    }
     assert!(scene.goal.task_distance(&scene.start) < 0.0);
     let planner = PlannerKind::PushKpiece;
     let closed_loop = closed_loop(planner, 0);
