@@ -391,7 +391,15 @@ pub fn generate(
                 (0..100).find_map(|_| family_layout(&scene, design, i % 2 == 1, n, &mut rng))
             }
         }
-        .ok_or_else(|| format!("no valid layout with {n} objects found"))?;
+        .ok_or_else(|| {
+            format!(
+                "{}: no valid {} layout of {n} objects for the {} found (seed {seed}); \
+                 another seed or fewer objects may give one",
+                path.display(),
+                design.name(),
+                arm.name()
+            )
+        })?;
         crate::output::write_whole(&path, yaml)?;
         files.push(path);
     }
