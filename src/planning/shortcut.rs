@@ -12,7 +12,9 @@
 //! a configuration a few milliradians off pushes its objects a little differently until a
 //! later push tips one or a link closes in on one: most shortcuts of a long path used to
 //! fail so, far from the shortcut. Up to [`CLOSING_CONTROLS`] short controls after it
-//! close the gap to about 0.2 mrad, and the rest of the path replays as it was planned.
+//! close the gap to about 0.2 mrad, and the rest replays much as it was planned (a long
+//! Panda plan's shortcuts across free stretches: 240 of 256 failed in their tail before,
+//! 55 of 152 with them).
 //!
 //! Toward robustness ([`Criterion::MoreRobust`]) half the attempts are nudges instead: one
 //! control held for a different number of steps. A push held a little longer or stopped
@@ -372,9 +374,9 @@ fn nudge(controls: &[PathControl], rng: &mut SplitMix64) -> (usize, Vec<PathCont
     (i, nudged)
 }
 
-/// At most this many closing controls follow a connecting control ([`connection`]). Each
-/// leaves about a tenth to a hundredth of the gap before it (joint space); three leave
-/// about 0.2 mrad of gaps of 0.1-0.3 rad.
+/// At most this many closing controls follow a connecting control (`connection`). The
+/// first leaves about a tenth of the gap (joint space); three leave about 0.2 mrad of
+/// gaps of 0.15-0.3 rad.
 pub const CLOSING_CONTROLS: usize = 3;
 
 /// A closing control lasts at least this many steps: it closes its gap at a fraction of
