@@ -375,7 +375,7 @@ fn nudge(controls: &[PathControl], rng: &mut SplitMix64) -> (usize, Vec<PathCont
 }
 
 /// At most this many closing controls follow a connecting control (`connection`). The
-/// first leaves about a tenth of the gap (joint space); three leave about 0.2 mrad of
+/// first leaves a fifth to an eighth of the gap (joint space); three leave about 0.2 mrad of
 /// gaps of 0.15-0.3 rad.
 pub const CLOSING_CONTROLS: usize = 3;
 
