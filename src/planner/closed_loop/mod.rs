@@ -72,7 +72,7 @@ pub struct ClosedLoopSettings {
     /// and the goal only where no leg is found.
     pub leg: f64,
     /// Search a repair on a thread of its own while the arm plays the rest's valid part
-    /// ([`ahead`]), instead of holding the arm while it searches; not where the valid part
+    /// (the `ahead` module), instead of holding the arm while it searches; not where the valid part
     /// ends more than a leg from the goal (there the searches run at once from where the
     /// arm stands, and try a leg). A repair is found in a fraction of a second near the
     /// goal, and the arm need not stop for it (BENCHMARKS.md, "Repairs searched ahead").
@@ -237,7 +237,7 @@ pub struct SearchRecord {
     pub time: f64,
     /// The time it took, shortcutting included (s).
     pub seconds: f64,
-    /// A repair searched while the arm played the rest's valid part ([`ahead`]); it is on
+    /// A repair searched while the arm played the rest's valid part (the `ahead` module); it is on
     /// the record where it was taken up, `after_controls` says where it began.
     pub ahead: bool,
     /// How long the arm waited for it (s, at the execution's pace): `seconds` for a search
