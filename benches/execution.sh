@@ -58,7 +58,7 @@ judge() {
         "$bin" execute "$out/$n.json" --engine "$e" --trials "$trials" --json "$out/$n.$e.exec.json" > "$out/$n.$e.exec.txt" 2>&1
         echo "$n $e: $(head -1 "$out/$n.$e.exec.txt" | sed 's/.*speed: //')" >> "$summary"
       fi
-      if [ -n "${CLOSED_LOOP:-}" ]; then
+      if [ "${CLOSED_LOOP:-0}" != 0 ]; then
         # shellcheck disable=SC2086
         "$bin" execute "$out/$n.json" --engine "$e" --closed-loop --trials "$trials" ${CLOSED_LOOP_ARGS:-} --json "$out/$n.$e.closed.json" > "$out/$n.$e.closed.txt" 2> "$out/$n.$e.closed.log"
         # The report's first line, or the error that stopped it.
@@ -84,7 +84,7 @@ done
 for e in "${engines[@]}"; do
   reached=$(cat "$out"/*."$e".exec.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
   echo "$e: trials reaching the goal: $reached of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
-  if [ -n "${CLOSED_LOOP:-}" ]; then
+  if [ "${CLOSED_LOOP:-0}" != 0 ]; then
     closed=$(cat "$out"/*."$e".closed.txt 2>/dev/null | grep -o '[0-9]* reach the goal' | awk '{s += $1} END {print s + 0}')
     echo "$e closed loop: trials reaching the goal: $closed of $(( ${#scenes[@]} * trials ))" | tee -a "$out/summary.txt"
     python3 - "$out" "$e" <<'PY' | tee -a "$out/summary.txt"
