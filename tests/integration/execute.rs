@@ -550,16 +550,15 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     );
 }
 
-/// Closed loop where the world has an obstacle on the plan's way that the model's scene
-/// has out of the way: a glass too slender to push upright (it tips below the hand's
-/// height) stands where the hand passes in the plan's third control or later. The first
-/// observation finds the rest of the plan invalid there; the rest is kept up to where it
-/// stops being valid and only an ending is searched from there (a repair), not a new plan
-/// from the start: with one re-plan allowed, that one is the repair.
-#[test]
-fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_there() {
+/// A world with an obstacle on the plan's way that the model's scene has out of the way:
+/// the planar hand's scene with a glass too slender to push upright (it tips below the
+/// hand's height) off the plan's way, planned on one thread in `scratch`; in the world the
+/// glass stands where the hand passes three quarters of the way through the controls after
+/// the second. The plan, its scene and the world.
+fn glass_on_the_plans_way(
+    scratch: &common::Scratch,
+) -> (pushplan::planning::plan_file::PlanFile, Scene, Scene) {
     use pushplan::planning::Problem;
-    let scratch = common::Scratch::new("closed-loop-invalid-rest");
     let scene_path = scratch.join("scene.yaml");
     let base = std::fs::read_to_string("scenes/planar_hand_single_object.yaml").unwrap();
     // r / mu_g = 0.015 / 0.4 = 0.0375 m, below the hand's 0.05 m: pushing it tips it.
@@ -580,6 +579,20 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     let mut world = scene.clone();
     world.start.objects[1].x = hand[0];
     world.start.objects[1].y = hand[1];
+    (plan, scene, world)
+}
+
+/// Closed loop in `glass_on_the_plans_way`'s world, where the glass stands where the hand
+/// passes in the plan's third control or later. The first observation finds the rest of
+/// the plan invalid there; the rest is kept up to where it stops being valid and only an
+/// ending is searched from there (a repair), not a new plan from the start: with one
+/// re-plan allowed, that one is the repair.
+#[test]
+fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_there() {
+    use pushplan::planning::Problem;
+    let scratch = common::Scratch::new("closed-loop-invalid-rest");
+    let (plan, scene, world) = glass_on_the_plans_way(&scratch);
+    let controls = plan.path_controls();
     let playing = Problem::new(world.clone(), plan.settings.planner).simulate(&controls, false);
     let invalid_from = playing.stopped_by.as_ref().map(|s| s.0);
     assert!(
@@ -984,6 +997,39 @@ fn the_observation_a_search_failed_from_is_kept_and_searches_again_through_repla
     let replanned =
         pushplan::planning::plan_file::PlanFile::read(&scratch.join("replanned.json")).unwrap();
     assert!(replanned.solved, "{stdout}{stderr}");
+}
+
+/// With nothing valid left to play near the goal disc, the arm waits on searches of eight
+/// times `replan_time` from the first, and two of them finding nothing stop the trial. In
+/// `glass_on_the_plans_way`'s world no search finds a plan: the arm plays the rest as far
+/// as it is valid, its searches meanwhile getting `replan_time` and more, then waits. Legs
+/// are off, so no search is a leg first.
+#[test]
+fn near_the_disc_the_arm_waits_on_two_full_length_searches_at_most() {
+    let scratch = common::Scratch::new("closed-loop-waiting-near");
+    let (plan, scene, world) = glass_on_the_plans_way(&scratch);
+    let controls = plan.path_controls();
+
+    let mut executor = closed_loop(plan.settings.planner, 10);
+    executor.settings.replan_time = 2.0;
+    executor.settings.leg = 0.0;
+    executor.search = &FindsNothing {
+        goal_from_within: None,
+    };
+    let trial = executor.execute(&scene, &controls, &world).unwrap();
+    assert!(!trial.reached && trial.controls_played >= 2, "{trial:?}");
+    let (playing, waiting): (Vec<_>, Vec<_>) =
+        trial.searches.iter().partition(|r| r.rest_valid > 0);
+    assert_eq!(playing.first().map(|r| r.time), Some(2.0), "{trial:?}");
+    let waiting: Vec<f64> = waiting.iter().map(|r| r.time).collect();
+    assert_eq!(waiting, [16.0, 16.0], "{trial:?}");
+    assert!(
+        trial
+            .stopped
+            .as_deref()
+            .is_some_and(|why| why.contains("2 searches found nothing while the arm waited")),
+        "{trial:?}"
+    );
 }
 
 /// Where no search from the observed state finds the goal (here: none from farther than
