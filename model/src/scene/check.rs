@@ -341,7 +341,7 @@ const REACH_PRECISION: f64 = 0.01;
 /// How far the hand reaches on the pushing plane, where it cannot get behind the goal
 /// object ([`SceneWarning::GoalObjectBehindOutOfReach`]): the tool point's greatest
 /// distance (m) from the arm's base axis along the ray from the base through the
-/// unreachable point, to [`REACH_PRECISION`], bracketed by the goal object's near side
+/// unreachable point, to `REACH_PRECISION` (1 cm), bracketed by the goal object's near side
 /// (reachable, or the base itself) and that point. None where the hand gets behind it,
 /// without an object goal, at the goal at the start, or for a planar hand. An arm's reach
 /// on a plane is nearly a circle about its base axis (a first joint about z), so the
