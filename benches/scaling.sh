@@ -20,6 +20,8 @@ scenes=("$@")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 here=$(cd "$(dirname "$0")" && pwd)
+seed_list=$(seq "${FIRST_SEED:-1}" $(( ${FIRST_SEED:-1} + seeds - 1 )))
+read -r first _ <<< "$counts"
 
 jobs_for() {  # threads -> runs at once
   local pair
@@ -43,7 +45,7 @@ export here bin limit tmp
 start=$(date +%s)
 for threads in $counts; do
   for scene in "${scenes[@]}"; do
-    for seed in $(seq "${FIRST_SEED:-1}" $(( ${FIRST_SEED:-1} + seeds - 1 ))); do
+    for seed in $seed_list; do
       echo "$threads $scene $seed"
     done
   done | xargs -P "$(jobs_for "$threads")" -L1 bash -c 'run_one "$@"' _
@@ -55,7 +57,7 @@ echo "| scene | seed |$(for t in $counts; do printf ' %s thr. (s) |' "$t"; done)
 echo "|---|---|$(for t in $counts; do printf -- '---|'; done)"
 for scene in "${scenes[@]}"; do
   name=$(basename "$(dirname "$scene")")/$(basename "$scene" .yaml)
-  for seed in $(seq "${FIRST_SEED:-1}" $(( ${FIRST_SEED:-1} + seeds - 1 ))); do
+  for seed in $seed_list; do
     row="| $name | $seed |"
     for threads in $counts; do
       row+=" $(awk -v t="$threads" -v n="$name" -v s="$seed" '$1 == t && $2 == n && $3 == s { print $4 }' "$tmp/runs") |"
@@ -64,8 +66,8 @@ for scene in "${scenes[@]}"; do
   done
 done
 echo
-one=$(awk -v t="$(set -- $counts; echo "$1")" '$1 == t { print $4 }' "$tmp/runs" | median)
-echo "| threads | runs at once | solved within $limit s | median time to solve (s) | ratio of medians to $(set -- $counts; echo "$1") thread(s) |"
+one=$(awk -v t="$first" '$1 == t { print $4 }' "$tmp/runs" | median)
+echo "| threads | runs at once | solved within $limit s | median time to solve (s) | ratio of medians to $first thread(s) |"
 echo "|---|---|---|---|---|"
 for threads in $counts; do
   awk -v t="$threads" -v l="$limit" '$1 == t { n++; if ($4 < l) s++ } END { printf "%d %d\n", s, n }' "$tmp/runs" > "$tmp/solved"

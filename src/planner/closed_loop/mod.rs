@@ -524,7 +524,7 @@ impl ClosedLoop {
         // one in its seconds, and a leg takes a fraction of that (dense 16 and 19,
         // BENCHMARKS.md "Dense scenes, closed loop").
         let leg_goal = self.leg_goal(from, track);
-        let far = self.leg_first(from, track);
+        let far = leg_first(&from.goal, leg_goal.as_ref());
         if let (true, Some(goal)) = (far, &leg_goal) {
             if let Some(controls) = self.leg(from, goal, time_left(), index) {
                 return Searched::Leg {
@@ -596,13 +596,6 @@ impl ClosedLoop {
             REPAIR_SHARE * time,
             index,
         )
-    }
-
-    /// Is a leg searched first from `from`'s start: far from the goal disc, the aim of a
-    /// leg along `track` off the disc.
-    fn leg_first(&self, from: &Scene, track: &Track) -> bool {
-        self.leg_goal(from, track)
-            .is_some_and(|goal| !onto_the_disc(&from.goal, &goal))
     }
 
     /// The goal of a leg from `from`'s start (the observed state): the goal object to
@@ -859,7 +852,11 @@ impl Executor {
                 // With nothing valid to play the arm waits (the objects are at rest) and
                 // searches again from the same state, up to WAITING_SEARCHES times; near
                 // the goal disc WAITING_SEARCHES_NEAR times, each at full length.
-                let waiting_near = valid == 0 && !self.closed_loop.leg_first(&from, &self.track);
+                let waiting_near = valid == 0
+                    && !leg_first(
+                        &from.goal,
+                        self.closed_loop.leg_goal(&from, &self.track).as_ref(),
+                    );
                 let waiting_limit = if waiting_near {
                     WAITING_SEARCHES_NEAR
                 } else {
@@ -1118,6 +1115,12 @@ impl Track {
     }
 }
 
+/// Is `leg` (a leg's goal, if there is one) searched before `goal`: far from the goal
+/// disc, where the leg's aim lies off it.
+fn leg_first(goal: &Goal, leg: Option<&Goal>) -> bool {
+    leg.is_some_and(|leg| !onto_the_disc(goal, leg))
+}
+
 /// Does `leg` aim at a point on `goal`'s disc (both an object's disc)?
 fn onto_the_disc(goal: &Goal, leg: &Goal) -> bool {
     match (goal, leg) {
@@ -1262,6 +1265,8 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::{onto_the_disc, search_time, Track};
+    use crate::scene::Goal;
+    use nalgebra::{DVector, Vector2};
 
     #[test]
     fn a_search_the_arm_waits_on_near_the_disc_gets_eight_times_the_replan_time_from_the_first() {
@@ -1271,8 +1276,6 @@ mod tests {
         assert_eq!(search_time(2.0, 0, true), 16.0);
         assert_eq!(search_time(2.0, 5, true), 16.0);
     }
-    use crate::scene::Goal;
-    use nalgebra::{DVector, Vector2};
 
     fn track(points: &[[f64; 2]]) -> Track {
         Track(points.iter().map(|&[x, y]| Vector2::new(x, y)).collect())
