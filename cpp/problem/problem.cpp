@@ -284,14 +284,15 @@ namespace pushplan::detail
         if (fallback_steps == 0)
             return search;
         // PC RRT on the same problem, one search per thread of the first (a search on T
-        // threads has T + 1 lanes: lanesFor), counted from the lanes so that the searches
-        // depend on them, not on the threads: the first on the search's model with the
-        // search's seed, the others on lanes 1, 2, ... with theirs (lane 0 draws the
-        // search's own streams).
+        // threads has lanesFor(T) lanes), counted from the lanes (threadsFor) so that the
+        // searches depend on them, not on the threads: the first on the search's model
+        // with the search's seed, the others on lanes 1, 2, ... with theirs (lane 0 draws
+        // the search's own streams).
         std::vector<Search> fallbacks{
             pcRrtFallback(problem, problem.setup->getProblemDefinition()->getGoal(), seed, goal_bias,
                           intermediate_states)};
-        for (std::size_t l = 1; l + 1 < lanes_of_search.size(); ++l)
+        const std::size_t fallback_count = lanes_of_search.empty() ? 1 : threadsFor(lanes_of_search.size());
+        for (std::size_t l = 1; l < fallback_count; ++l)
         {
             const Lane &lane = lanes_of_search[l];
             const Problem on_lane{lane.model, std::static_pointer_cast<PushStateSpace>(lane.si->getStateSpace()),

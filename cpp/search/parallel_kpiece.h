@@ -25,6 +25,7 @@
 #include <ompl/base/Goal.h>
 #include <ompl/control/planners/kpiece/KPIECE1.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -42,11 +43,31 @@ namespace pushplan::detail
         std::uint64_t seed = 0;
     };
 
-    /// The lanes of one KPIECE search on `threads` (> 1) threads: one more than threads, so
-    /// that a thread whose next join waits on another's long extension extends the spare
+    /// The lanes of one KPIECE search on `threads` (> 1) threads: threads plus spare lanes,
+    /// so that a thread whose next join waits on another's long extension extends a spare
     /// lane meanwhile. More lanes keep the threads busier but make each selection blinder
-    /// to the extensions in flight (BENCHMARKS.md, "Lanes").
-    constexpr unsigned lanesFor(unsigned threads) { return threads + 1; }
+    /// to the extensions in flight. The spares grow with the square of the threads, up to
+    /// two per thread: the more threads, the more extensions finish while the head's runs
+    /// (an extension's time varies tenfold). One spare on two threads (the best of 2-4
+    /// lanes: BENCHMARKS.md, "Lanes"); 32 on sixteen, where one spare left the threads
+    /// idle half the time and 48 lanes solved the hard scenes fastest of 17, 32 and 48
+    /// (BENCHMARKS.md, "Sixteen cores"). Counts between are interpolated, not measured.
+    constexpr unsigned lanesFor(unsigned threads)
+    {
+        const unsigned spares = threads * threads / 8;
+        return threads + (spares < 1 ? 1 : spares > 2 * threads ? 2 * threads : spares);
+    }
+
+    /// The threads a search with `lanes` lanes was made for: the most whose lanesFor is at
+    /// most `lanes` (at least one). What a search runs once per thread (the fallback's PC
+    /// RRTs) is counted from its lanes with it, so that it depends on the lanes alone.
+    constexpr unsigned threadsFor(std::size_t lanes)
+    {
+        unsigned threads = 1;
+        while (lanesFor(threads + 1) <= lanes)
+            ++threads;
+        return threads;
+    }
 
     class ParallelKPIECE : public ompl::control::KPIECE1, public TreeSize
     {

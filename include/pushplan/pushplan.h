@@ -133,8 +133,8 @@ namespace pushplan
         /// check alone). Only with robust_trials > 0, in the pushing problem (not Static RRT).
         std::optional<unsigned> robust_particles;
         /// Threads to plan on; default: one per core. The KPIECE planners run one search
-        /// whose extensions run in parallel on threads + 1 lanes (a model each) and join the
-        /// tree in a fixed order; the others one search per thread, in lock-step rounds
+        /// whose extensions run in parallel on lanes (a model each: threads plus threads²/8,
+        /// at least one spare and at most two per thread) and join the tree in a fixed order; the others one search per thread, in lock-step rounds
         /// counted in propagation steps. Either way the same scene, seed and thread count
         /// give the same plan.
         std::optional<unsigned> threads;

@@ -113,6 +113,15 @@ int main()
     expect(same_on_any_threads && four.lane_steps > four.steps,
            "four lanes solve it the same way on one, two and four threads, extending the same iterations");
 
+    // The lane rule and its inverse: one spare lane on two threads, two per thread on
+    // sixteen, and the threads (what the fallback counts its searches by) found again from
+    // the lanes for every count, the lanes growing with the threads.
+    bool inverse = pd::lanesFor(2) == 3 && pd::lanesFor(16) == 48;
+    for (unsigned threads = 1; threads <= 256; ++threads)
+        inverse = inverse && pd::threadsFor(pd::lanesFor(threads)) == threads &&
+                  pd::lanesFor(threads + 1) > pd::lanesFor(threads) && pd::lanesFor(threads) <= 3 * threads;
+    expect(inverse, "threadsFor finds the thread count of every search's lanes");
+
     // The tree size progress reports show, against OMPL's planner data.
     bool counted = true;
     for (const Search *s : {&ompl_push, &one_lane_push, &ompl_plain, &one_lane_plain, &two})

@@ -259,7 +259,7 @@ fn a_time_limited_search_lifts_its_limit_when_it_returns() {
 
 #[test]
 fn parallel_kpiece_with_one_lane_is_ompl_kpiece1_bit_for_bit() {
-    run_internal_checks("tests/cpp/parallel_kpiece.cpp", "parallel-kpiece", 7);
+    run_internal_checks("tests/cpp/parallel_kpiece.cpp", "parallel-kpiece", 8);
 }
 
 #[test]
