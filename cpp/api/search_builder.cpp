@@ -31,7 +31,7 @@ namespace pushplan::detail
         Problem problem = makeProblem(models[0], seed, run.k);
         std::vector<Lane> lane_list;
         for (unsigned l = 0; l < lanes; ++l)
-            lane_list.push_back(makeLane(models[1 + l], seed, l, run.k));
+            lane_list.push_back(makeLane(problem, models[1 + l], seed, l));
         ompl::base::PlannerPtr planner =
             makePlanner(run.planner, problem, seed, run.goal_bias, run.intermediate_states, run.restart_steps,
                         run.fallback_steps, std::move(lane_list), run.threads);

@@ -99,16 +99,25 @@ namespace pushplan::detail
             [k](const oc::SpaceInformation *s) { return std::make_shared<oc::SimpleDirectedControlSampler>(s, k); });
     }
 
-    Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k)
+    /// The state space X = C_R x SE(2)^M of `model`'s problem: its state samplers seeded
+    /// from `seed`, its default projection on `model`.
+    static std::shared_ptr<PushStateSpace> makeSpace(const ModelHandlePtr &model, std::uint64_t seed)
     {
-        const bridge::SceneInfo &info = model->info();
-        // Spaces: X = C_R x SE(2)^M; actions (vx, vy, omega_z, null-space sample).
         auto space = std::make_shared<PushStateSpace>(*model);
         auto sampler_count = std::make_shared<std::uint64_t>(0);
         space->setStateSamplerAllocator([seed, sampler_count](const ob::StateSpace *s) {
             return std::make_shared<PushStateSampler>(s->as<PushStateSpace>(), subSeed(seed, 10 + (*sampler_count)++));
         });
         space->registerDefaultProjection(std::make_shared<PushProjection>(space.get(), *model));
+        return space;
+    }
+
+    /// The problem of `model` on `space` (its own, or a lane's search's): actions (vx, vy,
+    /// omega_z, null-space sample), propagation, validity, start and goal.
+    static Problem makeProblemOn(std::shared_ptr<PushStateSpace> space, ModelHandlePtr model, std::uint64_t seed,
+                                 unsigned k)
+    {
+        const bridge::SceneInfo &info = model->info();
         auto controls = makeControlSpace(space, info);
         useUniformControls(controls, seed, 1000);
 
@@ -123,6 +132,12 @@ namespace pushplan::detail
         // Path length in the model's metric: what SST (and any optimizing planner) minimizes.
         setup->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
         return Problem{std::move(model), std::move(space), std::move(setup), k};
+    }
+
+    Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k)
+    {
+        std::shared_ptr<PushStateSpace> space = makeSpace(model, seed);
+        return makeProblemOn(std::move(space), std::move(model), seed, k);
     }
 
     /// The problem's space information again, on the same state space and model, with
@@ -158,21 +173,33 @@ namespace pushplan::detail
             return {};
         std::vector<ob::ProjectionEvaluatorPtr> grids{si->getStateSpace()->getDefaultProjection()};
         for (const Lane &lane : lanes)
-            grids.push_back(lane.si->getStateSpace()->getDefaultProjection());
+            grids.push_back(lane.projection);
         return [grids](std::uint64_t attempt) {
             for (const ob::ProjectionEvaluatorPtr &grid : grids)
                 grid->setCellSizes(PushProjection::pushKpieceCellSizes(attempt));
         };
     }
 
-    Lane makeLane(ModelHandlePtr model, std::uint64_t search_seed, std::size_t index, unsigned k)
+    Lane makeLane(const Problem &search, ModelHandlePtr model, std::uint64_t search_seed, std::size_t index)
     {
         // Lane 0 draws the search's own streams: one lane is the search exactly.
         const std::uint64_t seed = index == 0 ? search_seed : subSeed(search_seed, 9500 + index);
-        const Problem problem = makeProblem(model, seed, k);
+        const Problem problem = makeProblemOn(search.space, model, seed, search.k);
         const oc::SpaceInformationPtr &si = problem.setup->getSpaceInformation();
         si->setup();
-        return Lane{si, std::move(model), problem.setup->getProblemDefinition()->getGoal(), seed};
+        auto projection = std::make_shared<PushProjection>(search.space.get(), *model);
+        projection->setup();
+        return Lane{si, std::move(model), std::move(projection), problem.setup->getProblemDefinition()->getGoal(),
+                    seed};
+    }
+
+    /// Lane `lane`'s problem with a state space of its own, as its search's is made
+    /// (makeSpace, the lane's seed): for a search that runs on the lane's thread beside
+    /// others with trees of their own (the fallback's PC RRTs draw states from their
+    /// spaces' samplers and measure distances with their spaces' buffers).
+    static Problem laneProblem(const Lane &lane, unsigned k)
+    {
+        return Problem{lane.model, makeSpace(lane.model, lane.seed), nullptr, k};
     }
 
     /// Fallback's PC RRT on `problem`'s model and state space, seeded with `seed`, with
@@ -295,9 +322,8 @@ namespace pushplan::detail
         for (std::size_t l = 1; l < fallback_count; ++l)
         {
             const Lane &lane = lanes_of_search[l];
-            const Problem on_lane{lane.model, std::static_pointer_cast<PushStateSpace>(lane.si->getStateSpace()),
-                                  nullptr, problem.k};
-            fallbacks.push_back(pcRrtFallback(on_lane, lane.goal, lane.seed, goal_bias, intermediate_states));
+            fallbacks.push_back(
+                pcRrtFallback(laneProblem(lane, problem.k), lane.goal, lane.seed, goal_bias, intermediate_states));
         }
         return std::make_shared<Fallback>(std::move(search), std::move(fallbacks), problem.model, fallback_steps);
     }

@@ -92,15 +92,16 @@ namespace pushplan::detail
     /// Sets up the problem: k is the number of control samples per extension (Alg. 1).
     Problem makeProblem(ModelHandlePtr model, std::uint64_t seed, unsigned k);
 
-    /// Lane `index` of a search seeded with `search_seed` (ParallelKPIECE), on `model`.
-    Lane makeLane(ModelHandlePtr model, std::uint64_t search_seed, std::size_t index, unsigned k);
+    /// Lane `index` of the search `search` seeded with `search_seed` (ParallelKPIECE), on
+    /// `model`, in the search's state space.
+    Lane makeLane(const Problem &search, ModelHandlePtr model, std::uint64_t search_seed, std::size_t index);
 
     /// A planner of the problem. Static RRT is the same RRT as PC RRT; the model decides
     /// that the clutter is static (ModelHandle's static-clutter mode). With restart_steps
     /// > 0 the search starts over when an attempt finds no solution (Restarting). With
     /// fallback_steps > 0 (Push KPIECE only; others throw) it hands over to PC RRT when
     /// that many steps have not moved the goal object (Fallback): as many independent PC
-    /// RRT searches as the first search had threads (lanes less one; one without lanes). With
+    /// RRT searches as the first search had threads (threadsFor its lanes; one without lanes). With
     /// lanes (the KPIECE planners only) the search extends on them (ParallelKPIECE), run
     /// by `threads` threads (0: one per lane); the search depends on the lanes, not on the
     /// threads.

@@ -97,7 +97,7 @@ namespace pushplan::detail
         e.at_goal.clear();
         if (e.reached < siC_->getMinControlDuration())
             return;
-        const ob::ProjectionEvaluator &projection = *l.si->getStateSpace()->getDefaultProjection();
+        const ob::ProjectionEvaluator &projection = *l.projection;
         for (unsigned i = 0; i < e.reached; ++i)
             projection.computeCoordinates(e.states[i], e.coords[i]);
         for (unsigned index = 0; index < e.reached;)

@@ -32,12 +32,17 @@
 namespace pushplan::detail
 {
     /// One thread's means to extend a tree: a model no other thread touches, with the
-    /// space information (propagator, validity, control sampler, projection) and goal
-    /// of its own problem.
+    /// space information (propagator, validity, control sampler), projection and goal of
+    /// its own. The state space is the search's: lanes only allocate and copy states in
+    /// it, which any thread may do at once (each OMPL state space is one more entry in a
+    /// list OMPL walks whenever one is destroyed: BENCHMARKS.md, "Lanes on sixteen
+    /// threads").
     struct Lane
     {
         ompl::control::SpaceInformationPtr si;
         ModelHandlePtr model;
+        /// The search's projection, computed on this lane's model.
+        ompl::base::ProjectionEvaluatorPtr projection;
         ompl::base::GoalPtr goal;
         /// The seed of the lane's random streams (its control sampler's).
         std::uint64_t seed = 0;

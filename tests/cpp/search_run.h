@@ -39,9 +39,9 @@ namespace test
         SearchRun run;
         run.model = load(scene);
         const unsigned k = run.model->info().planner.k;
-        for (unsigned i = 0; i < lanes; ++i)
-            run.lanes.push_back(pd::makeLane(load(scene), seed, i, k));
         run.problem = pd::makeProblem(run.model, seed, k);
+        for (unsigned i = 0; i < lanes; ++i)
+            run.lanes.push_back(pd::makeLane(run.problem, load(scene), seed, i));
         run.planner = pd::makePlanner(kind, run.problem, seed, 0.05, false, restart_steps, fallback_steps, run.lanes,
                                       threads);
         run.problem.setup->setPlanner(run.planner);
