@@ -24,6 +24,11 @@ namespace pushplan::detail
     {
     }
 
+    std::uint64_t Portfolio::roundSteps(std::uint64_t steps_taken)
+    {
+        return std::clamp(steps_taken / kRoundGrowth, kRoundSteps, kLongestRoundSteps);
+    }
+
     namespace
     {
         /// Where the searches meet at the end of each round. A search pauses in `pause`
@@ -97,14 +102,15 @@ namespace pushplan::detail
             // Past its model's time limit a search takes no more steps, so its round would
             // never end: it stops there.
             const auto steps = [&] { return model.propagator().steps(); };
-            std::uint64_t round_end = steps() + kRoundSteps;
+            const std::uint64_t first_step = steps();
+            std::uint64_t round_end = first_step + kRoundSteps;
             bool stopped = false;
             const ob::PlannerTerminationCondition ptc([&] {
                 if (stopped || out_of_time() || model.propagator().past_time_limit())
                     return true;
                 if (alone ? !report_due() : steps() < round_end)
                     return false;
-                round_end += kRoundSteps;
+                round_end += roundSteps(round_end - first_step);
                 return stopped = rendezvous.pause();
             });
             try

@@ -31,11 +31,22 @@ namespace pushplan::detail
     class Portfolio
     {
     public:
-        /// Propagation steps each search takes per round: about 5 ms of work. A round
-        /// ends when every search has taken them (or solved), so a search that solves
-        /// waits for the rest of the round: short rounds waste little, and a pause costs
-        /// no measurable time at this length (BENCHMARKS.md, "Every core").
+        /// Propagation steps each search takes in a round, at the least: about 5 ms of
+        /// work. A round ends when every search has taken its steps (or solved), so a
+        /// search that solves waits for the rest of the round, and every search waits for
+        /// the slowest. Short rounds bring an easy problem's plan at once; once a search
+        /// has taken many steps, longer rounds keep it from waiting so often: a round is
+        /// an eighth of the steps taken before it (kRoundGrowth), at most
+        /// kLongestRoundSteps (BENCHMARKS.md, "Rounds that grow").
         static constexpr std::uint64_t kRoundSteps = 1000;
+        /// The longest round: about 0.1 s of one thread's work in dense clutter, the most
+        /// a solved search waits for the others.
+        static constexpr std::uint64_t kLongestRoundSteps = 16000;
+        /// A round is this fraction of the steps a search has taken before it: a plan
+        /// found in it comes at most an eighth later, counted in steps.
+        static constexpr std::uint64_t kRoundGrowth = 8;
+        /// The steps of the round after `steps_taken` steps of a search.
+        static std::uint64_t roundSteps(std::uint64_t steps_taken);
 
         explicit Portfolio(std::vector<Search> searches);
 
