@@ -101,10 +101,10 @@ namespace pushplan::detail
     /// > 0 the search starts over when an attempt finds no solution (Restarting). With
     /// fallback_steps > 0 (Push KPIECE only; others throw) it hands over to PC RRT when
     /// that many steps have not moved the goal object (Fallback): as many independent PC
-    /// RRT searches as the first search had threads (threadsFor its lanes; one without lanes). With
-    /// lanes (the KPIECE planners only) the search extends on them (ParallelKPIECE), run
-    /// by `threads` threads (0: one per lane); the search depends on the lanes, not on the
-    /// threads.
+    /// RRT searches as the first search had threads (threadsFor its lanes; one without
+    /// lanes). With lanes (the KPIECE planners only) the search extends on them
+    /// (ParallelKPIECE), run by `threads` threads (0: one per lane); the search depends on
+    /// the lanes, not on the threads.
     ompl::base::PlannerPtr makePlanner(PlannerKind kind, const Problem &problem, std::uint64_t seed,
                                        double goal_bias, bool intermediate_states, std::uint64_t restart_steps,
                                        std::uint64_t fallback_steps, std::vector<Lane> lanes = {},
