@@ -323,11 +323,13 @@ impl Scene {
                 return Err((
                     self.objects[i].name.clone(),
                     format!(
-                        "link '{}' reaches {:.1} mm into it{}, further than the {} mm an \
-                         observation may be off",
+                        "link '{}' reaches {:.1} mm into it{} after it was moved {:.1} mm \
+                         from where it was observed, further than the {} mm an observation \
+                         may be off",
                         self.robot.chain.links[worst.link].name,
                         depth * 1e3,
                         if from_above(worst) { " from above" } else { "" },
+                        moved * 1e3,
                         MAX_SEPARATION * 1e3
                     ),
                 ));
