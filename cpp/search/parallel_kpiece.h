@@ -54,9 +54,10 @@ namespace pushplan::detail
     /// to the extensions in flight. The spares grow with the square of the threads, up to
     /// two per thread: the more threads, the more extensions finish while the head's runs
     /// (an extension's time varies tenfold). One spare on two threads (the best of 2-4
-    /// lanes: BENCHMARKS.md, "Lanes"); 32 on sixteen, where one spare left the threads
-    /// idle half the time and 48 lanes solved the hard scenes fastest of 17, 32 and 48
-    /// (BENCHMARKS.md, "Sixteen cores"). Counts between are interpolated, not measured.
+    /// lanes: docs/notes/dense-clutter-and-push-kpiece.md, "Lanes"); 32 on sixteen, where
+    /// one spare left the threads idle half the time and 48 lanes solved the hard scenes
+    /// fastest of 17, 32 and 48 (BENCHMARKS.md, "Lanes on sixteen threads"). Counts
+    /// between are interpolated, not measured.
     constexpr unsigned lanesFor(unsigned threads)
     {
         const unsigned spares = threads * threads / 8;
