@@ -35,7 +35,7 @@ namespace pushplan::detail
     /// space information (propagator, validity, control sampler), projection and goal of
     /// its own. The state space is the search's: lanes only allocate and copy states in
     /// it, which any thread may do at once (each OMPL state space is one more entry in a
-    /// list OMPL walks whenever one is destroyed: BENCHMARKS.md, "Lanes on sixteen
+    /// list OMPL walks whenever one is destroyed: docs/notes/any-arm.md, "Lanes on sixteen
     /// threads").
     struct Lane
     {
@@ -56,7 +56,7 @@ namespace pushplan::detail
     /// (an extension's time varies tenfold). One spare on two threads (the best of 2-4
     /// lanes: docs/notes/dense-clutter-and-push-kpiece.md, "Lanes"); 32 on sixteen, where
     /// one spare left the threads idle half the time and 48 lanes solved the hard scenes
-    /// fastest of 17, 32 and 48 (BENCHMARKS.md, "Lanes on sixteen threads"). Counts
+    /// fastest of 17, 32 and 48 (BENCHMARKS.md, "Sixteen cores"). Counts
     /// between are interpolated, not measured.
     constexpr unsigned lanesFor(unsigned threads)
     {
