@@ -605,6 +605,7 @@ namespace pushplan
             plan.propagation_steps = portfolio.propagationSteps();
             plan.search = detail::searchStats(every_model);
             plan.threads = threads;
+            plan.lanes = lane_count;
             plan.restarts = portfolio.restarts();
             plan.fallbacks = portfolio.fallbacks();
             detail::nameParts(plan, info);

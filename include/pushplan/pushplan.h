@@ -243,6 +243,10 @@ namespace pushplan
         std::uint64_t propagation_steps = 0;
         SearchStats search;           ///< summed over the searches
         unsigned threads = 1;         ///< threads planned on (Options::threads)
+        /// Lanes the one search's extensions ran on: more than the threads, so that a
+        /// thread rarely waits for another's extension (0: one thread, or a planner that
+        /// runs one search per thread).
+        unsigned lanes = 0;
         /// Attempts that found no solution within their budget and started over
         /// (Options::restart_steps), all searches.
         std::uint64_t restarts = 0;

@@ -236,11 +236,15 @@ pub fn plan_loaded(
         "not solved"
     };
     println!(
-        "{status} in {:.3} s: tree of {} states, {} propagation steps ({:.0} steps/s){}{}",
+        "{status} in {:.3} s: tree of {} states, {} propagation steps ({:.0} steps/s){}{}{}",
         solution.summary.planning_time,
         solution.summary.tree_size,
         solution.summary.propagation_steps,
         solution.summary.propagation_steps as f64 / solution.summary.planning_time.max(1e-9),
+        match solution.summary.lanes {
+            0 => String::new(),
+            n => format!(" on {n} lanes"),
+        },
         match solution.summary.restarts {
             0 => String::new(),
             1 => ", 1 restart".to_string(),

@@ -51,6 +51,9 @@ pub struct SearchSummary {
     pub restarts: u64,
     /// Searches that fell back to PC RRT.
     pub fallbacks: u64,
+    /// Lanes the one search's extensions ran on (0: one thread, or a planner that runs
+    /// one search per thread).
+    pub lanes: u32,
 }
 
 /// What a search found: how it went, and the path as found (not finished: the caller

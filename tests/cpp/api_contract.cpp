@@ -528,6 +528,13 @@ int main()
         expect(same && again.solved && again.replanned && !again.replanned->kept,
                "a Planner reads its scene file once: with the file removed it plans (as a Planner of the "
                "file in place does, bit for bit, on two threads) and re-plans");
+        // Push KPIECE on two threads: one search, its extensions on three lanes; one
+        // thread has none.
+        pushplan::Options one = o;
+        one.threads = 1;
+        one.time_limit = 0.01;
+        expect(plan.threads == 2 && plan.lanes == 3 && read_once.solve(one).lanes == 0,
+               "Plan::lanes: the lanes the one search ran on (three on two threads, none on one)");
     }
     {
         // Seeded fuzzing of Options through Planner::solve: every count, duration and rate
