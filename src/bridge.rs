@@ -227,6 +227,7 @@ pub mod ffi {
         pub repairs: usize,
         pub failed_replans: usize,
         pub legs: usize,
+        pub backoffs: usize,
         pub search_time: f64,
         pub latencies: Vec<f64>,
         pub replan_latencies: Vec<f64>,

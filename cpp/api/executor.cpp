@@ -97,6 +97,7 @@ namespace pushplan
         out.repairs = r.repairs;
         out.failed_replans = r.failed_replans;
         out.legs = r.legs;
+        out.backoffs = r.backoffs;
         out.search_time = r.search_time;
         out.latencies.assign(r.latencies.begin(), r.latencies.end());
         out.replan_latencies.assign(r.replan_latencies.begin(), r.replan_latencies.end());

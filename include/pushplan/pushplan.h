@@ -464,6 +464,10 @@ namespace pushplan
         std::size_t repairs = 0;          ///< of those, endings searched from where the rest stopped
         std::size_t failed_replans = 0;   ///< searches that found none in their time
         std::size_t legs = 0;             ///< legs found and played (after such a search, or first far from the disc)
+        /// Observations with a link deeper inside an object than an observation may be
+        /// off: the arm retraced the control it had just played (once; the next such
+        /// observation stops).
+        std::size_t backoffs = 0;
         double search_time = 0.0;         ///< s, found or not
         /// From each observation to the step returned (s); of the observations that
         /// re-planned only.
@@ -478,7 +482,10 @@ namespace pushplan
     /// each observation and kept while it reaches the goal; else it is repaired, searched
     /// anew (Planner::replan's steps), or, where no search finds the goal, a leg along
     /// the goal object's way is searched; searches that find nothing are tried again
-    /// with more time. What `pushplan execute --closed-loop` does in its engines.
+    /// with more time. An observation with a link deep inside an object (further than
+    /// the executor can put down to the observation's error) is met by retracing the
+    /// control just played: a Play step whose trajectory runs it backwards. What
+    /// `pushplan execute --closed-loop` does in its engines.
     ///
     ///   pushplan::Executor executor(planner, plan);
     ///   for (;;) {

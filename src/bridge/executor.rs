@@ -82,6 +82,7 @@ impl Executor {
             repairs: t.repairs,
             failed_replans: t.failed_replans,
             legs: t.legs,
+            backoffs: t.backoffs,
             search_time: t.search_time,
             latencies: t.latencies.clone(),
             replan_latencies: t.replan_latencies.clone(),

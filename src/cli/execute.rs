@@ -129,10 +129,14 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
 /// A closed-loop trial's line: outcome, controls, re-plans, time, and why it stopped.
 fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
     format!(
-        "  {}; {} controls played ({} cut short), rest kept {} times (invalid {} times{}), {} re-plans ({} repairs){}{}, {:.1} s searching, {:.0} s in all{}{}{}",
+        "  {}; {} controls played ({} cut short{}), rest kept {} times (invalid {} times{}), {} re-plans ({} repairs){}{}, {:.1} s searching, {:.0} s in all{}{}{}",
         trial_outcome(i, n, t.reached, t.goal_distance),
         t.controls_played,
         t.cut_short,
+        match t.backoffs {
+            0 => String::new(),
+            b => format!(", {b} retraced: a link deep in an object"),
+        },
         t.kept,
         t.invalid_rests,
         match t.invalid_rests {

@@ -41,6 +41,18 @@ impl PathControl {
             .collect())
     }
 
+    /// The control that moves the tool back the way this one moved it, for as many
+    /// steps: its tool velocity and null-space sample negated.
+    pub fn reversed(&self) -> PathControl {
+        PathControl {
+            action: EeAction {
+                velocity: self.action.velocity.map(|v| -v),
+                nullspace: -&self.action.nullspace,
+            },
+            steps: self.steps,
+        }
+    }
+
     /// The flat layout of [`PathControl::from_flat`]: the actions and the step counts.
     pub fn to_flat(controls: &[PathControl]) -> (Vec<f64>, Vec<usize>) {
         (

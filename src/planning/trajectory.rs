@@ -28,6 +28,21 @@ pub struct Trajectory {
     pub objects: Vec<Vec<[f64; 3]>>,
 }
 
+impl Trajectory {
+    /// The same joint motion backwards in time, from its end to its start, with every
+    /// object held at `objects` (a retreat pushes nothing the model knows of).
+    pub fn retraced(&self, objects: &[Pose2]) -> Trajectory {
+        let end = self.times.last().copied().unwrap_or(0.0);
+        let held: Vec<[f64; 3]> = objects.iter().map(|p| [p.x, p.y, p.theta]).collect();
+        Trajectory {
+            rate: self.rate,
+            times: self.times.iter().rev().map(|t| end - t).collect(),
+            q: self.q.iter().rev().cloned().collect(),
+            objects: vec![held; self.times.len()],
+        }
+    }
+}
+
 /// A trajectory played as a controller plays it: the joint values at increasing times,
 /// linearly interpolated between its samples and held at its end.
 pub struct Playback<'a> {

@@ -680,6 +680,82 @@ fn played_on_predictions(
     (end, played, observed, executor.trial().clone())
 }
 
+/// An observation with the hand 25 mm inside the box, deeper than the 20 mm an
+/// observation may be off (the model has no state near it), is met by retracing the
+/// control just played: its trajectory backwards, ending where it began, the box held where
+/// it was seen; once, so the same observation again stops the execution. From where the
+/// arm retreated to, the box 5 mm clear of the hand, the execution goes on.
+#[test]
+fn a_link_deep_in_an_object_retraces_the_control_just_played() {
+    use pushplan::planner::closed_loop::Step;
+    let scene = thin_hand_and_box(0.05, 0.8, "");
+    let push = straight_ahead(11, 30);
+    let closed_loop = closed_loop(pushplan::planning::PlannerKind::PushKpiece, 0);
+    let mut executor = closed_loop.executor(&scene, &push);
+    let Step::Play {
+        trajectory: first,
+        predicted,
+        ..
+    } = executor.step(&scene.start)
+    else {
+        panic!("the first control is played");
+    };
+    // The hand's front face 3 cm on (0.45 m), the box's near face 25 mm behind it.
+    assert!((predicted.q[0] - 0.43).abs() < 1e-6, "{:?}", predicted.q);
+    let mut deep = predicted.clone();
+    deep.objects[0].x = 0.45 + RESERVE_BOX.0 - 0.025;
+    assert!(
+        scene.with_start(&deep, Path::new("deep")).is_err(),
+        "the model refuses the observation"
+    );
+    let Step::Play {
+        control,
+        trajectory,
+        predicted: back,
+    } = executor.step(&deep)
+    else {
+        panic!("the arm retraces the control: {:?}", executor.trial());
+    };
+    assert_eq!(executor.trial().backoffs, 1);
+    assert_eq!(control.action.velocity, [-0.1, 0.0, 0.0]);
+    assert_eq!(trajectory.q.first(), first.q.last());
+    assert_eq!(trajectory.q.last(), first.q.first());
+    assert_eq!(trajectory.times.last(), first.times.last());
+    assert!(trajectory.times.windows(2).all(|t| t[0] < t[1]));
+    let held = [deep.objects[0].x, 0.0, 0.0];
+    assert!(trajectory.objects.iter().all(|o| o[0] == held));
+    assert_eq!(back.q, scene.start.q);
+    assert_eq!(back.objects, deep.objects);
+    // Once: the same observation again (the arm not retreated) stops.
+    let mut again = executor_after_one_backoff(&closed_loop, &scene, &push, &deep);
+    assert!(
+        matches!(again.step(&deep), Step::Stopped(why) if why.contains("no valid start")),
+        "{:?}",
+        again.trial()
+    );
+    // Retreated: the box stands 5 mm clear of the hand, and the executor goes on.
+    assert!(
+        matches!(executor.step(&back), Step::Play { .. }),
+        "{:?}",
+        executor.trial()
+    );
+}
+
+/// An executor of `push` in `scene` that has played its first control and retraced it
+/// after the observation `deep`.
+fn executor_after_one_backoff(
+    closed_loop: &pushplan::planner::closed_loop::ClosedLoop,
+    scene: &Scene,
+    push: &[pushplan::planning::path::PathControl],
+    deep: &pushplan::State,
+) -> pushplan::planner::closed_loop::Executor {
+    use pushplan::planner::closed_loop::Step;
+    let mut executor = closed_loop.executor(scene, push);
+    assert!(matches!(executor.step(&scene.start), Step::Play { .. }));
+    assert!(matches!(executor.step(deep), Step::Play { .. }));
+    executor
+}
+
 /// `n` controls moving the planar hand straight ahead (+x) at 0.1 m/s, `steps` each.
 fn straight_ahead(n: usize, steps: usize) -> Vec<pushplan::planning::path::PathControl> {
     use pushplan::planning::path::PathControl;

@@ -198,6 +198,9 @@ pub struct ClosedLoopTrial {
     /// Observations with an object inside the arm or inside another object, moved out to
     /// touch it instead ([`Scene::with_start`]: a soft contact's depth).
     pub separations: usize,
+    /// Observations with a link further inside an object than an observation may be off,
+    /// after which the arm retraced the control it had just played ([`Executor::step`]).
+    pub backoffs: usize,
     /// Re-planning searches that found a plan.
     pub replans: usize,
     /// Of those, the searches from where the rest stopped being valid, or from its end
@@ -430,6 +433,7 @@ impl ClosedLoop {
             ),
             leg: None,
             ahead: None,
+            last_played: None,
             trial: ClosedLoopTrial {
                 reached: false,
                 goal_distance: f64::INFINITY,
@@ -440,6 +444,7 @@ impl ClosedLoop {
                 invalid_rests: 0,
                 invalid_rest_rules: BTreeMap::new(),
                 separations: 0,
+                backoffs: 0,
                 replans: 0,
                 repairs: 0,
                 failed_replans: 0,
@@ -717,6 +722,8 @@ pub struct Executor {
     leg: Option<Goal>,
     /// A repair searching while the arm plays the rest's valid part.
     ahead: Option<RepairAhead>,
+    /// The control played last and its trajectory, while the arm may retrace it.
+    last_played: Option<(PathControl, Trajectory)>,
     trial: ClosedLoopTrial,
 }
 
@@ -724,6 +731,13 @@ impl Executor {
     /// What to play after the world was observed in `observed` (the scene's joint and
     /// object orders; object poses in the world frame). The world must be at rest, as it
     /// is after a control and a short pause ([`OBSERVE_AFTER`]).
+    ///
+    /// An observation with a link inside an object deeper than an observation may be off
+    /// ([`Scene::with_start`] refuses it: no state of the model is near it) is met as a
+    /// robot would meet it: the arm retraces the control it has just played, once, and
+    /// the world is observed again ([`ClosedLoopTrial::backoffs`]). A kinematic arm driven
+    /// into an object that cannot give way gets there (rapier, an arm link 6.5 mm into a
+    /// bowl pinned by its neighbours), and so may perception.
     pub fn step(&mut self, observed: &State) -> Step {
         let mut observed = observed.clone();
         // A search that finds nothing with nothing valid to play leaves the arm waiting:
@@ -765,6 +779,9 @@ impl Executor {
         {
             Ok(from) => from,
             Err(e) => {
+                if let Some(back) = self.back_off(observed, started) {
+                    return Ok(back);
+                }
                 self.trial.refused_observation = Some(ObservedState::of(&self.scene, observed));
                 return stop(
                     &mut self.trial,
@@ -1035,10 +1052,41 @@ impl Executor {
             None => {}
         }
         trial.controls_played += 1;
+        let control = self.rest.remove(0);
+        self.last_played = Some((control.clone(), trajectory.clone()));
         Ok(Step::Play {
-            control: self.rest.remove(0),
+            control,
             trajectory,
             predicted: next.final_state().clone(),
+        })
+    }
+
+    /// The control played last, retraced from `observed` back to where it began, if the
+    /// observation has a link inside an object (or pressing on one from above) and the
+    /// arm has not retraced it already; the objects are predicted to stay where observed.
+    /// The decision began at `started`.
+    fn back_off(&mut self, observed: &State, started: Instant) -> Option<Step> {
+        use crate::validity::{check_state, Invalid};
+        let inside = matches!(
+            check_state(&self.scene, observed),
+            Err(Invalid::ArmPenetratesObject { .. } | Invalid::PressesOnTop { .. })
+        );
+        if !inside {
+            return None;
+        }
+        let (control, trajectory) = self.last_played.take()?;
+        let back_to = DVector::from_column_slice(trajectory.q.first()?);
+        let trial = &mut self.trial;
+        trial.backoffs += 1;
+        trial.controls_played += 1;
+        trial.latencies.push(started.elapsed().as_secs_f64());
+        Some(Step::Play {
+            control: control.reversed(),
+            predicted: State {
+                q: back_to,
+                objects: observed.objects.clone(),
+            },
+            trajectory: trajectory.retraced(&observed.objects),
         })
     }
 
