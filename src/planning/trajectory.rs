@@ -29,16 +29,55 @@ pub struct Trajectory {
 }
 
 impl Trajectory {
-    /// The same joint motion backwards in time, from its end to its start, with every
-    /// object held at `objects` (a retreat pushes nothing the model knows of).
-    pub fn retraced(&self, objects: &[Pose2]) -> Trajectory {
-        let end = self.times.last().copied().unwrap_or(0.0);
+    /// The joint motion from `q` back to the trajectory's start, the way it came: `q` is
+    /// where the arm stands on the trajectory (its end after a whole play, or where a play
+    /// cut short left it), placed on the nearest of its segments, which it then runs
+    /// backwards at the same pace, every object held at `objects` (a retreat pushes
+    /// nothing the model knows of). Never a jump to a sample the arm did not reach.
+    pub fn retraced(&self, q: &DVector<f64>, objects: &[Pose2]) -> Trajectory {
+        let samples: Vec<DVector<f64>> = self
+            .q
+            .iter()
+            .map(|s| DVector::from_column_slice(s))
+            .collect();
+        // The segment (j, j + 1) nearest `q`, and where on it `q` lies (0 at j, 1 at j + 1).
+        let on_segment = |j: usize| {
+            let along = &samples[j + 1] - &samples[j];
+            let u = match along.norm_squared() {
+                0.0 => 0.0,
+                length => ((q - &samples[j]).dot(&along) / length).clamp(0.0, 1.0),
+            };
+            (u, (q - (&samples[j] + along * u)).norm())
+        };
+        let (j, u) = (0..samples.len().saturating_sub(1))
+            .map(|j| (j, on_segment(j)))
+            .min_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+            .map_or((0, 0.0), |(j, (u, _))| (j, u));
+        // From `q` to sample j, then back sample by sample.
+        let mut times = vec![0.0];
+        let mut path = vec![q.iter().copied().collect::<Vec<f64>>()];
+        let first = match self.times.get(j + 1) {
+            Some(t) => u * (t - self.times[j]),
+            None => 0.0,
+        };
+        for k in (0..=j).rev() {
+            let gap = if k == j {
+                first
+            } else {
+                self.times[k + 1] - self.times[k]
+            };
+            // `q` on sample j itself: no second sample there.
+            if gap > 0.0 {
+                times.push(times.last().expect("not empty") + gap);
+                path.push(self.q[k].clone());
+            }
+        }
         let held: Vec<[f64; 3]> = objects.iter().map(|p| [p.x, p.y, p.theta]).collect();
         Trajectory {
             rate: self.rate,
-            times: self.times.iter().rev().map(|t| end - t).collect(),
-            q: self.q.iter().rev().cloned().collect(),
-            objects: vec![held; self.times.len()],
+            objects: vec![held; times.len()],
+            times,
+            q: path,
         }
     }
 }
@@ -433,6 +472,45 @@ impl PathProfile {
             } else {
                 1.0 - 0.5 * u * (t1 - t0 - tau).powi(2)
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One joint from 0 to 0.3 rad in 0.3 s, sampled every 0.1 s.
+    fn ramp() -> Trajectory {
+        Trajectory {
+            rate: 10.0,
+            times: vec![0.0, 0.1, 0.2, 0.3],
+            q: vec![vec![0.0], vec![0.1], vec![0.2], vec![0.3]],
+            objects: vec![vec![[0.5, 0.0, 0.0]]; 4],
+        }
+    }
+
+    fn close(a: &[f64], b: &[f64]) -> bool {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12)
+    }
+
+    #[test]
+    fn a_retrace_runs_back_from_where_the_arm_stands_never_past_it() {
+        let held = [Pose2::new(0.6, 0.1, 0.2)];
+        let q = |v: f64| DVector::from_vec(vec![v]);
+        // From the end, after a whole play: every sample backwards at the same pace.
+        // Midway, where a play cut short left the arm: only the samples behind it. On a
+        // sample: that sample once.
+        for (at, path, times) in [
+            (0.3, vec![0.3, 0.2, 0.1, 0.0], vec![0.0, 0.1, 0.2, 0.3]),
+            (0.15, vec![0.15, 0.1, 0.0], vec![0.0, 0.05, 0.15]),
+            (0.2, vec![0.2, 0.1, 0.0], vec![0.0, 0.1, 0.2]),
+        ] {
+            let back = ramp().retraced(&q(at), &held);
+            let joint: Vec<f64> = back.q.iter().map(|s| s[0]).collect();
+            assert!(close(&joint, &path), "from {at}: {joint:?}");
+            assert!(close(&back.times, &times), "from {at}: {:?}", back.times);
+            assert!(back.objects.iter().all(|o| o == &vec![[0.6, 0.1, 0.2]]));
         }
     }
 }

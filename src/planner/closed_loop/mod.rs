@@ -1086,7 +1086,7 @@ impl Executor {
                 q: back_to,
                 objects: observed.objects.clone(),
             },
-            trajectory: trajectory.retraced(&observed.objects),
+            trajectory: trajectory.retraced(&observed.q, &observed.objects),
         })
     }
 
