@@ -53,24 +53,18 @@ impl Trajectory {
             .map(|j| (j, on_segment(j)))
             .min_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
             .map_or((0, 0.0), |(j, (u, _))| (j, u));
-        // From `q` to sample j, then back sample by sample.
-        let mut times = vec![0.0];
-        let mut path = vec![q.iter().copied().collect::<Vec<f64>>()];
-        let first = match self.times.get(j + 1) {
-            Some(t) => u * (t - self.times[j]),
-            None => 0.0,
-        };
-        for k in (0..=j).rev() {
-            let gap = if k == j {
-                first
-            } else {
-                self.times[k + 1] - self.times[k]
-            };
-            // `q` on sample j itself: no second sample there.
-            if gap > 0.0 {
-                times.push(times.last().expect("not empty") + gap);
-                path.push(self.q[k].clone());
-            }
+        // From `q` to sample j (the part u of its segment), then back sample by sample;
+        // no second sample where `q` is on sample j itself.
+        let to_j = self
+            .times
+            .get(j + 1)
+            .map_or(0.0, |t| u * (t - self.times[j]));
+        let gaps =
+            std::iter::once(to_j).chain((0..j).rev().map(|k| self.times[k + 1] - self.times[k]));
+        let (mut times, mut path) = (vec![0.0], vec![q.iter().copied().collect::<Vec<f64>>()]);
+        for (k, gap) in (0..=j).rev().zip(gaps).filter(|(_, gap)| *gap > 0.0) {
+            times.push(times.last().expect("not empty") + gap);
+            path.push(self.q[k].clone());
         }
         let held: Vec<[f64; 3]> = objects.iter().map(|p| [p.x, p.y, p.theta]).collect();
         Trajectory {
