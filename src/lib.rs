@@ -23,7 +23,7 @@ pub use pushplan_model::{
 };
 
 pub use distance::DistanceMetric;
-pub use error::{Error, Result};
+pub use error::{Error, Overlap, Result};
 pub use math::Pose2;
 pub use propagate::{Contact, Propagation, Propagator};
 pub use robot::EeAction;

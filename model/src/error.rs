@@ -1,6 +1,7 @@
 //! Errors of loading and validating models. Every error names the file it comes from and,
 //! where there is one, the field (a dotted path such as `objects[2].mu_c`).
 
+use crate::validity::Invalid;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -60,8 +61,31 @@ pub enum Error {
         /// The scene file.
         file: PathBuf,
         /// The rule broken.
-        reason: String,
+        rule: Invalid,
     },
+    /// An observed start the model has no state near ([`crate::Scene::with_start`]): a
+    /// link reaches into an object, or two objects into each other, further than an
+    /// observation may be off ([`crate::scene::MAX_SEPARATION`]).
+    DeepOverlap {
+        /// The file the state came from.
+        file: PathBuf,
+        /// The object moved out of the overlap, a dotted path (`objects.glass_5`).
+        field: String,
+        /// What overlaps.
+        between: Overlap,
+        /// How deep, and what was tried.
+        message: String,
+    },
+}
+
+/// What overlaps in an [`Error::DeepOverlap`]: what a robot can undo by moving its arm
+/// back, or not.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Overlap {
+    /// A link of the arm and an object.
+    ArmAndObject,
+    /// Two objects.
+    Objects,
 }
 
 impl Error {
@@ -91,7 +115,8 @@ impl Error {
             | Error::Urdf { file, .. }
             | Error::NoEndEffector { file, .. }
             | Error::Mesh { file, .. }
-            | Error::InvalidStart { file, .. } => file,
+            | Error::InvalidStart { file, .. }
+            | Error::DeepOverlap { file, .. } => file,
         }
     }
 }
@@ -117,6 +142,12 @@ impl fmt::Display for Error {
                 file,
                 field,
                 message,
+            }
+            | Error::DeepOverlap {
+                file,
+                field,
+                message,
+                ..
             } => write!(f, "{}: {field}: {message}", file.display()),
             Error::Urdf { file, message } | Error::NoEndEffector { file, message } => {
                 write!(f, "{}: URDF: {message}", file.display())
@@ -124,8 +155,8 @@ impl fmt::Display for Error {
             Error::Mesh { file, message } => {
                 write!(f, "{}: mesh: {message}", file.display())
             }
-            Error::InvalidStart { file, reason } => {
-                write!(f, "{}: start state is invalid: {reason}", file.display())
+            Error::InvalidStart { file, rule } => {
+                write!(f, "{}: start state is invalid: {rule}", file.display())
             }
         }
     }

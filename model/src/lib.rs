@@ -36,7 +36,7 @@ pub mod state;
 pub mod validity;
 
 pub use distance::DistanceMetric;
-pub use error::{Error, Result};
+pub use error::{Error, Overlap, Result};
 pub use math::Pose2;
 pub use propagate::{Contact, Propagation, Propagator};
 pub use robot::EeAction;

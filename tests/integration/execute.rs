@@ -743,6 +743,58 @@ fn a_link_deep_in_an_object_retraces_the_control_just_played() {
     );
 }
 
+/// The retrace is for what moving the arm back undoes. An observation the model refuses
+/// for something else is not retraced, even where a link is also deep in an object: the
+/// box 10 mm into the hand (which the model takes as touching it, moved out) and
+/// standing 2 cm into a post beside the push (which no arm motion mends) stops the
+/// execution at once, with the reason.
+#[test]
+fn an_observation_refused_for_what_a_retrace_cannot_mend_stops_without_one() {
+    use pushplan::planner::closed_loop::Step;
+    use pushplan::validity::{check_state, Invalid};
+    // A post of 3 cm radius beside the push, 2 cm clear of the box's path.
+    let post = "obstacles:\n  - {name: post, shape: {type: cylinder, radius: 0.03, height: 0.3}, pose: {xyz: [0.49, 0.1, 0.91]}}";
+    let scene = thin_hand_and_box(0.05, 0.8, post);
+    let push = straight_ahead(11, 30);
+    let closed_loop = closed_loop(pushplan::planning::PlannerKind::PushKpiece, 0);
+    let mut executor = closed_loop.executor(&scene, &push);
+    let Step::Play { predicted, .. } = executor.step(&scene.start) else {
+        panic!("the first control is played: {:?}", executor.trial());
+    };
+    // The hand's front face at 0.45 m: the box's near face 10 mm behind it, the box's
+    // side (y up to 0.09) 2 cm into the post (y from 0.07).
+    let mut observed = predicted.clone();
+    observed.objects[0].x = 0.45 + RESERVE_BOX.0 - 0.010;
+    observed.objects[0].y = 0.04;
+    assert!(
+        matches!(
+            check_state(&scene, &observed),
+            Err(Invalid::ArmPenetratesObject { .. })
+        ),
+        "the first rule the raw observation breaks is the hand's: {:?}",
+        check_state(&scene, &observed)
+    );
+    let refused = scene
+        .with_start(&observed, Path::new("observed"))
+        .unwrap_err();
+    assert!(
+        matches!(
+            refused,
+            pushplan::Error::InvalidStart {
+                rule: Invalid::ObjectHitsObstacle { .. },
+                ..
+            }
+        ),
+        "the box taken out of the hand still stands in the post: {refused}"
+    );
+    assert!(
+        matches!(executor.step(&observed), Step::Stopped(why) if why.contains("overlaps obstacle 'post'")),
+        "{:?}",
+        executor.trial()
+    );
+    assert_eq!(executor.trial().backoffs, 0);
+}
+
 /// An executor of `push` in `scene` that has played its first control and retraced it
 /// after the observation `deep`.
 fn executor_after_one_backoff(

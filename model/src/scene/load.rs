@@ -356,10 +356,10 @@ impl Loader<'_> {
             allowed,
         };
         scene.clearances = Clearances::at_start(&scene);
-        if let Err(reason) = crate::validity::check_state(&scene, &scene.start) {
+        if let Err(rule) = crate::validity::check_state(&scene, &scene.start) {
             self.start_problem(Error::InvalidStart {
                 file: self.file.to_path_buf(),
-                reason: reason.to_string(),
+                rule,
             })?;
         }
         Ok(scene)

@@ -15,7 +15,7 @@ use crate::contact::{
     find_arm_contacts, object_bounds, object_pair_contacts, ArmBounds, ArmContact,
     ObjectPairContact,
 };
-use crate::error::{Error, Result};
+use crate::error::{Error, Overlap, Result};
 use crate::math::Pose2;
 use crate::robot::RobotKind;
 use crate::state::State;
@@ -134,19 +134,26 @@ impl Scene {
         let observed = scene.start.objects.clone();
         for _ in 0..SEPARATION_PASSES {
             let before = scene.start.objects.clone();
+            let deep = |between: Overlap| {
+                move |(object, message): (String, String)| Error::DeepOverlap {
+                    file: source.to_path_buf(),
+                    field: format!("objects.{object}"),
+                    between,
+                    message,
+                }
+            };
             self.separate_objects(&mut scene.start, &observed)
-                .and_then(|()| self.separate_from_arm(&mut scene.start, &observed))
-                .map_err(|(object, message)| invalid(format!("objects.{object}"), message))?;
+                .map_err(deep(Overlap::Objects))?;
+            self.separate_from_arm(&mut scene.start, &observed)
+                .map_err(deep(Overlap::ArmAndObject))?;
             if scene.start.objects == before {
                 break;
             }
         }
         scene.clearances = Clearances::at_start(&scene).with_start_overhangs(&scene);
-        crate::validity::check_state(&scene, &scene.start).map_err(|reason| {
-            Error::InvalidStart {
-                file: source.to_path_buf(),
-                reason: reason.to_string(),
-            }
+        crate::validity::check_state(&scene, &scene.start).map_err(|rule| Error::InvalidStart {
+            file: source.to_path_buf(),
+            rule,
         })?;
         Ok(scene)
     }

@@ -2,7 +2,7 @@
 //! file's start would: checked, an arm's tool brought onto its pushing plane, yaws
 //! wrapped, and a wrong one refused with the file and field named.
 
-use pushplan_model::{Error, Scene};
+use pushplan_model::{Error, Overlap, Scene};
 use std::path::Path;
 
 fn herb() -> Scene {
@@ -109,17 +109,29 @@ fn an_object_observed_inside_the_hand_is_taken_to_touch_it() {
     assert_eq!((pose.y, pose.theta), (0.01, 0.0), "and only along it");
     // 25 mm inside: not a contact's depth; refused, the object named.
     observed.objects[0].x = HAND_FRONT_X + BOX_HALF - 0.025;
-    refused_naming_the_box(&scene, &observed);
+    let error = refused_naming_the_box(&scene, &observed);
+    assert!(
+        matches!(
+            error,
+            Error::DeepOverlap {
+                between: Overlap::ArmAndObject,
+                ..
+            }
+        ),
+        "what moving the arm back undoes: {error:?}"
+    );
 }
 
-fn refused_naming_the_box(scene: &Scene, observed: &pushplan_model::State) {
+fn refused_naming_the_box(scene: &Scene, observed: &pushplan_model::State) -> Error {
     let error = scene
         .with_start(observed, Path::new("observed.json"))
         .unwrap_err();
     assert!(
-        matches!(&error, Error::Invalid { field, .. } if field == "objects.box"),
+        matches!(&error, Error::Invalid { field, .. } | Error::DeepOverlap { field, .. }
+            if field == "objects.box"),
         "{error}"
     );
+    error
 }
 
 #[test]
@@ -151,7 +163,8 @@ fn an_object_observed_over_the_edge_may_be_pushed_back_but_not_further_out() {
     assert!(pushplan_model::validity::check_state(&scene, &state).is_err());
     // Its centre off the table: fallen, not standing; refused, the object named.
     observed.objects[0].x = TABLE_END_X + 0.01;
-    refused_naming_the_box(&scene, &observed);
+    let error = refused_naming_the_box(&scene, &observed);
+    assert!(matches!(error, Error::Invalid { .. }), "{error:?}");
 }
 
 #[test]
@@ -222,7 +235,17 @@ goal: {object: box, center: [0.85, 0.1], radius: 0.1}";
     );
     // 2.5 cm under the hand: further than an observation may be off.
     observed.objects[0].x = hand_front + 0.05 - 0.025;
-    refused_naming_the_box(&scene, &observed);
+    let error = refused_naming_the_box(&scene, &observed);
+    assert!(
+        matches!(
+            error,
+            Error::DeepOverlap {
+                between: Overlap::ArmAndObject,
+                ..
+            }
+        ),
+        "{error:?}"
+    );
 }
 
 #[test]
@@ -266,7 +289,7 @@ fn two_objects_observed_pressed_into_each_other_are_moved_apart_as_far_as_they_o
         .with_start(&pressed(0.025), Path::new("observed.json"))
         .unwrap_err();
     assert!(
-        matches!(&error, Error::Invalid { field, message, .. }
+        matches!(&error, Error::DeepOverlap { field, between: Overlap::Objects, message, .. }
             if field == "objects.glass_5" && message.contains("'glass_4' overlaps it by 25.0 mm")),
         "{error}"
     );

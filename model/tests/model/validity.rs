@@ -77,7 +77,13 @@ fn the_arm_in_the_table_is_invalid() {
         Path::new("scenes/x.yaml"),
     );
     assert!(
-        matches!(scene, Err(pushplan_model::Error::InvalidStart { ref reason, .. }) if reason.contains("hits the table")),
+        matches!(
+            scene,
+            Err(pushplan_model::Error::InvalidStart {
+                rule: Invalid::ArmHitsTable { .. },
+                ..
+            })
+        ),
         "{scene:?}"
     );
     // The arm's shoulder pitched forward drives the hand down into the table.
@@ -99,9 +105,9 @@ fn the_arm_in_a_static_obstacle_is_invalid() {
     let obstacle = "obstacles:\n  - {name: post, shape: {type: cylinder, radius: 0.03, height: 0.5}, pose: {xyz: [0.55, 0.15, 1.0]}}";
     let scene = herb_scene(HAND_NEAR, &parked_goal(), obstacle);
     match scene {
-        Err(pushplan_model::Error::InvalidStart { file, reason }) => {
+        Err(pushplan_model::Error::InvalidStart { file, rule }) => {
             assert!(file.ends_with("test-scene.yaml"));
-            assert_eq!(reason, "link 'hand' hits obstacle 'post'");
+            assert_eq!(rule.to_string(), "link 'hand' hits obstacle 'post'");
         }
         other => panic!("{other:?}"),
     }
@@ -309,7 +315,7 @@ fn allowed_collisions_let_the_named_pairs_touch_and_nothing_else() {
         )
     };
     let start_error = |extra: &str| match herb_scene(HAND_NEAR, &objects, extra) {
-        Err(pushplan_model::Error::InvalidStart { reason, .. }) => reason,
+        Err(pushplan_model::Error::InvalidStart { rule, .. }) => rule.to_string(),
         other => panic!("expected an invalid start, got {:?}", other.map(|s| s.name)),
     };
     assert_eq!(

@@ -13,6 +13,7 @@
 mod ahead;
 
 use super::search::Search;
+use crate::error::{Error, Overlap};
 use crate::planning::execute::{trial_worlds, ExecuteSettings, DRIFT, TIPPED_TILT};
 use crate::planning::execute::{Engine, EngineKind, STEP};
 use crate::planning::observed::ObservedState;
@@ -779,7 +780,7 @@ impl Executor {
         {
             Ok(from) => from,
             Err(e) => {
-                if let Some(back) = self.back_off(observed, started) {
+                if let Some(back) = self.back_off(&e, observed, started) {
                     return Ok(back);
                 }
                 self.trial.refused_observation = Some(ObservedState::of(&self.scene, observed));
@@ -1061,17 +1062,23 @@ impl Executor {
         })
     }
 
-    /// The control played last, retraced from `observed` back to where it began, if the
-    /// observation has a link inside an object (or pressing on one from above) and the
-    /// arm has not retraced it already; the objects are predicted to stay where observed.
-    /// The decision began at `started`.
-    fn back_off(&mut self, observed: &State, started: Instant) -> Option<Step> {
-        use crate::validity::{check_state, Invalid};
-        let inside = matches!(
-            check_state(&self.scene, observed),
-            Err(Invalid::ArmPenetratesObject { .. } | Invalid::PressesOnTop { .. })
+    /// The control played last, retraced from `observed` back to where it began, if
+    /// `observed` was `refused` for a link inside an object (or pressing on one from
+    /// above), what moving the arm back undoes, and the arm has not retraced it already;
+    /// the objects are predicted to stay where observed. The decision began at `started`.
+    fn back_off(&mut self, refused: &Error, observed: &State, started: Instant) -> Option<Step> {
+        use crate::validity::Invalid;
+        let arm_in_object = matches!(
+            refused,
+            Error::DeepOverlap {
+                between: Overlap::ArmAndObject,
+                ..
+            } | Error::InvalidStart {
+                rule: Invalid::ArmPenetratesObject { .. } | Invalid::PressesOnTop { .. },
+                ..
+            }
         );
-        if !inside {
+        if !arm_in_object {
             return None;
         }
         let (control, trajectory) = self.last_played.take()?;
