@@ -125,10 +125,10 @@ pub fn check(
             "  then a reach of a grasp of '{}' through {} waypoints{}",
             reach.object,
             reach.waypoints.len(),
-            if report.problems.iter().any(|p| p.starts_with("reach:")) {
-                ""
-            } else {
+            if report.reach_valid {
                 ", every segment valid, ending in a grasp region"
+            } else {
+                ""
             }
         );
     }

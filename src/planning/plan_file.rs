@@ -436,6 +436,9 @@ pub struct CheckReport {
     pub states_match: bool,
     /// The last state satisfies the goal.
     pub goal_reached: bool,
+    /// The reach after the controls, if the plan has one (`plan --grasp`), is valid and
+    /// ends in a grasp region; false where one was asked for and none found.
+    pub reach_valid: bool,
     /// Everything else the file records about the path agrees with the re-simulation.
     pub record_matches: bool,
     /// Human-readable details of any failure.
@@ -917,8 +920,10 @@ impl PlanFile {
         if !goal_reached {
             problems.push("the goal is not reached".to_string());
         }
+        let mut reach_valid = true;
         if let (Some(object), None) = (&self.grasp_after, &self.reach) {
             goal_reached = false;
+            reach_valid = false;
             problems.push(format!(
                 "reach: a grasp of '{object}' after the controls was asked for (`plan --grasp`) \
                  and none was found: the plan is not solved"
@@ -936,6 +941,7 @@ impl PlanFile {
                 });
             if let Err(why) = checked {
                 goal_reached = false;
+                reach_valid = false;
                 problems.push(format!("reach: {why}"));
             }
         }
@@ -961,6 +967,7 @@ impl PlanFile {
             all_valid: sim.valid(),
             states_match,
             goal_reached,
+            reach_valid,
             record_matches,
             problems,
         })

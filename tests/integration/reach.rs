@@ -121,6 +121,10 @@ fn push_then_grasp_solves_the_default_scene() {
     let (code, stdout, _) = pushplan(&["check", plan_path.to_str().unwrap()]);
     assert_eq!(code, 0, "{stdout}");
     assert!(
+        stdout.contains("every segment valid, ending in a grasp region"),
+        "{stdout}"
+    );
+    assert!(
         stdout.contains("the same plan, byte for byte"),
         "made again: {stdout}"
     );
@@ -130,7 +134,7 @@ fn push_then_grasp_solves_the_default_scene() {
     let reach = broken.reach.as_mut().unwrap();
     reach.waypoints.truncate(1);
     let report = broken.check(&plan_path).unwrap();
-    assert!(!report.passed(), "{report:?}");
+    assert!(!report.passed() && !report.reach_valid, "{report:?}");
     assert!(
         report.problems.iter().any(|p| p.starts_with("reach:")),
         "{report:?}"
@@ -143,7 +147,7 @@ fn push_then_grasp_solves_the_default_scene() {
     not_found.reach = None;
     not_found.solved = false;
     let report = not_found.check(&plan_path).unwrap();
-    assert!(!report.passed(), "{report:?}");
+    assert!(!report.passed() && !report.reach_valid, "{report:?}");
     assert_eq!(
         report.problems,
         [
