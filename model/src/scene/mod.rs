@@ -15,7 +15,7 @@ mod start;
 pub use check::SceneWarning;
 pub use clearances::Clearances;
 pub use load::{MAX_CONTROL_STEPS, MAX_FRICTION, MAX_K, MAX_MASS, MAX_OBJECTS, MAX_STEP, MIN_STEP};
-pub use start::{LIMIT_SLACK, MAX_SEPARATION};
+pub use start::MAX_SEPARATION;
 
 use crate::collision::Geometry;
 use crate::math::Pose2;

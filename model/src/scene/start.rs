@@ -132,16 +132,16 @@ impl Scene {
         // moves an object (each halves what the other left), every object bounded by
         // MAX_SEPARATION from where it was observed.
         let observed = scene.start.objects.clone();
+        let deep = |between: Overlap| {
+            move |(object, message): (String, String)| Error::DeepOverlap {
+                file: source.to_path_buf(),
+                field: format!("objects.{object}"),
+                between,
+                message,
+            }
+        };
         for _ in 0..SEPARATION_PASSES {
             let before = scene.start.objects.clone();
-            let deep = |between: Overlap| {
-                move |(object, message): (String, String)| Error::DeepOverlap {
-                    file: source.to_path_buf(),
-                    field: format!("objects.{object}"),
-                    between,
-                    message,
-                }
-            };
             self.separate_objects(&mut scene.start, &observed)
                 .map_err(deep(Overlap::Objects))?;
             self.separate_from_arm(&mut scene.start, &observed)
