@@ -340,6 +340,8 @@ pub mod ffi {
         fn closest_distance(self: &Goal) -> f64;
         /// The largest goal distance of a state so far.
         fn farthest_distance(self: &Goal) -> f64;
+        /// Forgets the distances met: the closest and farthest start over.
+        fn forget_met(self: &Goal);
         fn sample_grasp(self: &Goal, state: &[f64], object: usize, seed: u64) -> Result<Vec<f64>>;
 
         type Projection;

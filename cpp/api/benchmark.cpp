@@ -86,6 +86,7 @@ namespace pushplan::bridge
             props["threads INTEGER"] = std::to_string(threads);
             props["restarts INTEGER"] = std::to_string(detail::restartsOf(planner));
             props["fell back INTEGER"] = std::to_string(detail::fellBack(planner) ? 1 : 0);
+            props["handed back INTEGER"] = std::to_string(detail::handedBack(planner));
             // Only the planners that propagate controls through the model have a rate.
             const double propagated = static_cast<double>(model->propagationSteps() - steps_before);
             const double time = std::stod(props["time REAL"]);

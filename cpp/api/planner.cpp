@@ -345,6 +345,7 @@ namespace pushplan
                     repaired.threads = ending.threads;
                     repaired.restarts = ending.restarts;
                     repaired.fallbacks = ending.fallbacks;
+                    repaired.handed_back = ending.handed_back;
                     repaired.replanned = Replanned{at, false, verdict.valid};
                     return repaired;
                 }
@@ -449,7 +450,7 @@ namespace pushplan
             // Each report: totals, then the rate since the last one and the share of that
             // time spent propagating (the rest is the planner: nearest neighbours, sampling).
             double next_report = 1.0, last_t = 0.0, last_propagating = 0.0;
-            std::uint64_t last_steps = 0, told_fallbacks = 0;
+            std::uint64_t last_steps = 0, told_fallbacks = 0, told_handed_back = 0;
             // An event rather than a periodic report: the totals so far and what happened.
             const auto tell_event = [&](std::string what) {
                 if (!tell)
@@ -474,6 +475,11 @@ namespace pushplan
                                " propagation steps: PC RRT searches on" +
                                (threads > 1 ? ", " + std::to_string(threads) + " independent searches" : ""));
                     told_fallbacks = fallbacks;
+                }
+                if (const std::uint64_t handed_back = portfolio.handedBack(); handed_back > told_handed_back)
+                {
+                    tell_event("PC RRT has moved the goal object nearer the goal: Push KPIECE searches on from there");
+                    told_handed_back = handed_back;
                 }
                 Progress p;
                 p.seconds = t;
@@ -608,6 +614,7 @@ namespace pushplan
             plan.lanes = lane_count;
             plan.restarts = portfolio.restarts();
             plan.fallbacks = portfolio.fallbacks();
+            plan.handed_back = portfolio.handedBack();
             detail::nameParts(plan, info);
             for (std::size_t i = 0; i < portfolio.size(); ++i)
             {

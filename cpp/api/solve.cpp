@@ -25,7 +25,8 @@ namespace pushplan::bridge
         out.summary = detail::SearchSummary{plan.solved,          !plan.solved && !plan.controls.empty(),
                                             plan.planning_time,   plan.tree_size,
                                             plan.propagation_steps, plan.restarts,
-                                            plan.fallbacks,       plan.lanes};
+                                            plan.fallbacks,       plan.handed_back,
+                                            plan.lanes};
         out.robustness = plan.robustness;
         out.robustness_trials = plan.robustness_trials;
         out.search.propagations = plan.search.propagations;

@@ -70,6 +70,15 @@ namespace pushplan::detail
             credited_closest_ = std::min(credited_closest_, distance);
             credited_farthest_ = std::max(credited_farthest_, distance);
         }
+        /// From here on, the goal distances of this model's own states are read alone
+        /// (`goal().closest_distance()`); those met before stay counted as credited, so
+        /// closestGoalDistance() and farthestGoalDistance() do not change.
+        void restartGoalWatch()
+        {
+            credited_closest_ = std::min(credited_closest_, goal_->closest_distance());
+            credited_farthest_ = std::max(credited_farthest_, goal_->farthest_distance());
+            goal_->forget_met();
+        }
 
     private:
         mutable rust::Box<bridge::Problem> problem_;

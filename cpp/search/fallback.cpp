@@ -2,6 +2,7 @@
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ProblemDefinition.h>
+#include <ompl/control/PathControl.h>
 #include <ompl/control/SimpleSetup.h>
 
 #include <atomic>
@@ -9,6 +10,7 @@
 #include <utility>
 
 namespace ob = ompl::base;
+namespace oc = ompl::control;
 
 namespace pushplan::detail
 {
@@ -52,6 +54,7 @@ namespace pushplan::detail
             // search from the start, their models' counts credited from here on.
             search_->clear();
             search_ = fallbacks_[0].planner;
+            handback_distance_ = *start_distance_;
             for (std::size_t i = 0; i < fallbacks_.size(); ++i)
             {
                 const ob::ProblemDefinitionPtr &pdef = fallbacks_[i].problem.setup->getProblemDefinition();
@@ -69,27 +72,107 @@ namespace pushplan::detail
     ob::PlannerStatus Fallback::solveWithFallbacks(const ob::PlannerTerminationCondition &ptc)
     {
         ob::PlannerStatus status = ob::PlannerStatus::TIMEOUT;
-        if (fallbacks_.size() == 1)
-            status = fallbacks_[0].planner->solve(ptc);
-        else
+        // The fallbacks search until one solves, the time is up, or one's tree holds a
+        // state to hand back (then the first search from there; if it finds nothing, the
+        // fallbacks go on).
+        const auto stop_due = [&] { return ptc() || nearerThanHandedBack().has_value(); };
+        for (;;)
         {
-            // The caller's termination condition is asked on this thread only, once a round
-            // (its own rounds may pause there: Portfolio's lone search); the fallbacks'
-            // threads read the answer.
-            std::atomic<bool> stop{false};
-            fallbacks_.solve([&] { return stop.load(); }, [] { return true; },
-                             [&] {
-                                 creditFallbacks();
-                                 stop = ptc();
-                             });
-            creditFallbacks();
+            if (fallbacks_.size() == 1)
+                status = fallbacks_[0].planner->solve(ob::PlannerTerminationCondition(stop_due));
+            else
+            {
+                // The caller's termination condition is asked on this thread only, once a
+                // round (its own rounds may pause there: Portfolio's lone search); the
+                // fallbacks' threads read the answer.
+                std::atomic<bool> stop{false};
+                fallbacks_.solve([&] { return stop.load(); }, [] { return true; },
+                                 [&] {
+                                     creditFallbacks();
+                                     stop = stop_due();
+                                 });
+                creditFallbacks();
+            }
+            const std::optional<std::size_t> best = fallbacks_.best();
+            if (best && fallbacks_[*best].problem.setup->getProblemDefinition()->hasExactSolution())
+                break;
+            const std::optional<std::size_t> nearer = nearerThanHandedBack();
+            if (!nearer || ptc())
+                break;
+            if (searchFromFallback(*nearer, ptc))
+                return ob::PlannerStatus::EXACT_SOLUTION;
+            if (ptc())
+                break;
         }
         const std::optional<std::size_t> best = fallbacks_.best();
         if (!best)
             return status;
         const ob::ProblemDefinitionPtr &found = fallbacks_[*best].problem.setup->getProblemDefinition();
         pdef_->addSolutionPath(found->getSolutions().front());
-        return found->hasExactSolution() ? ob::PlannerStatus::EXACT_SOLUTION : ob::PlannerStatus::APPROXIMATE_SOLUTION;
+        return pdef_->hasExactSolution() ? ob::PlannerStatus::EXACT_SOLUTION : ob::PlannerStatus::APPROXIMATE_SOLUTION;
+    }
+
+    std::optional<std::size_t> Fallback::nearerThanHandedBack() const
+    {
+        std::optional<std::size_t> nearest;
+        double nearest_distance = handback_distance_;
+        for (std::size_t i = 0; i < fallbacks_.size(); ++i)
+        {
+            const double distance = fallbacks_[i].problem.model->goal().closest_distance();
+            if (distance < nearest_distance)
+                nearest = i, nearest_distance = distance;
+        }
+        return nearest;
+    }
+
+    bool Fallback::searchFromFallback(std::size_t i, const ob::PlannerTerminationCondition &ptc)
+    {
+        // The fallback stopped with its closest state in its tree: OMPL's RRT gives the path
+        // to it as its approximate solution, the best of its problem definition's (every
+        // state it met before is farther from the goal).
+        const ob::ProblemDefinitionPtr &reached = fallbacks_[i].problem.setup->getProblemDefinition();
+        if (!reached->hasSolution())
+            return false;
+        // (getSolutions() returns a copy.)
+        const ob::PlannerSolution to_state = reached->getSolutions().front();
+        const auto prefix = std::dynamic_pointer_cast<oc::PathControl>(to_state.path_);
+        if (!prefix || prefix->getStateCount() == 0)
+            return false;
+        handback_distance_ = fallbacks_[i].problem.model->goal().closest_distance();
+        ++handed_back_;
+
+        auto from = std::make_shared<ob::ProblemDefinition>(si_);
+        from->addStartState(prefix->getStates().back());
+        from->setGoal(pdef_->getGoal());
+        first_->clear();
+        first_->setProblemDefinition(from);
+        const std::uint64_t end = model_->propagationSteps() + patience_steps_;
+        first_->solve(ob::PlannerTerminationCondition([&] { return ptc() || model_->propagationSteps() >= end; }));
+        // As before the handover: a search that has brought the goal object nearer the goal
+        // keeps the problem; one that has not goes back to the fallbacks.
+        if (!from->hasExactSolution() && from->hasSolution() && from->getSolutionDifference() < handback_distance_)
+            first_->solve(ptc);
+        first_->setProblemDefinition(pdef_);
+        // What the fallbacks meet from here on is theirs alone: the first search's states,
+        // met on the same models, must not hand back again, and its lanes' steps, credited
+        // by the search itself, are not the fallbacks' to credit.
+        for (std::size_t f = 0; f < fallbacks_.size(); ++f)
+        {
+            const ModelHandle &model = *fallbacks_[f].problem.model;
+            fallbacks_[f].problem.model->restartGoalWatch();
+            credited_steps_[f] = model.propagationSteps();
+            credited_seconds_[f] = model.propagationSeconds();
+        }
+        if (!from->hasSolution())
+            return false;
+        // The fallback's path to the state, then the first search's path from it.
+        const ob::PlannerSolution onward = from->getSolutions().front();
+        auto joined = std::make_shared<oc::PathControl>(*prefix);
+        const auto &tail = *onward.path_->as<oc::PathControl>();
+        for (std::size_t k = 0; k < tail.getControlCount(); ++k)
+            joined->append(tail.getState(k + 1), tail.getControl(k), tail.getControlDuration(k));
+        pdef_->addSolutionPath(joined, onward.approximate_, onward.difference_, getName());
+        return !onward.approximate_;
     }
 
     void Fallback::creditFallbacks()
@@ -118,7 +201,12 @@ namespace pushplan::detail
         // is the scene's doing, not its tree's. Back in the first search it would not hand
         // over again, as the model's goal distances now hold the fallbacks' moves.
         if (fellBack())
+        {
+            handback_distance_ = *start_distance_;
+            for (std::size_t i = 0; i < fallbacks_.size(); ++i)
+                fallbacks_[i].problem.model->restartGoalWatch();
             return;
+        }
         first_->clear();
         began_at_ = model_->propagationSteps();
         kept_ = false;
@@ -150,11 +238,20 @@ namespace pushplan::detail
         }
         for (std::size_t i = 0; i < fallbacks_.size(); ++i)
             fallbacks_[i].planner->getPlannerData(data);
+        // The first search's tree from the last state handed back.
+        if (handed_back_ > 0)
+            first_->getPlannerData(data);
     }
 
     bool fellBack(const ob::PlannerPtr &planner)
     {
         const Fallback *fallback = wrapperOf<Fallback>(planner);
         return fallback != nullptr && fallback->fellBack();
+    }
+
+    std::uint64_t handedBack(const ob::PlannerPtr &planner)
+    {
+        const Fallback *fallback = wrapperOf<Fallback>(planner);
+        return fallback != nullptr ? fallback->handedBack() : 0;
     }
 }  // namespace pushplan::detail

@@ -24,6 +24,21 @@
 // Portfolio: the first to reach the goal, lowest-numbered within a round, gives the plan,
 // whatever the timing. Their steps and goal distances are credited to the search's model
 // after each round, so its counts (progress, benchmark logs) are every thread's.
+//
+// The fallback's PC RRT is slow at the push itself, and Push KPIECE is fast at it once
+// the hand is at the goal object. In dense 17, PC RRT's trees first moved the goal box
+// after 6-24 s in five of eight runs (the others not within 30 s), and only two of those
+// five solved within 30 s, 1-3 s later; from the state where each of five PC RRT paths
+// first moved it, Push KPIECE solved in 0.3-5.4 s with each of three seeds
+// (docs/notes/dense-clutter-and-push-kpiece.md). So the search hands the problem back: as
+// soon as a fallback's tree holds a state that has moved the goal object nearer the goal
+// than any state handed back before, Push KPIECE searches from that state for
+// `patience_steps`; its path, after the fallback's path to that state, is the plan. Within
+// that, it must bring the goal object nearer the goal than the state it started from, or
+// the fallbacks go on with their trees as they were; if it does, it keeps the problem, as
+// the first search does before the handover. Each fallback's own goal distances are read
+// (the models' goal watch restarts after each search from a handed-back state), so the
+// first search's states, met on the same models, never hand back.
 #pragma once
 
 #include "pushplan/cpp/problem/model_handle.h"
@@ -54,13 +69,16 @@ namespace pushplan::detail
         void clear() override;
         void setup() override;
         void setProblemDefinition(const ompl::base::ProblemDefinitionPtr &pdef) override;
-        /// The first search's tree, or once it has handed over every fallback's.
+        /// The first search's tree, or once it has handed over every fallback's (and the
+        /// first search's from the last state handed back, once it has).
         void getPlannerData(ompl::base::PlannerData &data) const override;
 
         /// The first search (search() is the one running).
         const ompl::base::PlannerPtr &wrapped() const override { return first_; }
         /// Whether the fallback has taken over.
         bool fellBack() const { return search_ == fallbacks_[0].planner; }
+        /// How often the first search has run again from a state a fallback reached.
+        std::uint64_t handedBack() const { return handed_back_; }
         /// The fallback's searches (the first runs on the model of this search).
         const Portfolio &fallbacks() const { return fallbacks_; }
 
@@ -72,6 +90,13 @@ namespace pushplan::detail
         /// Runs the fallbacks (in rounds, on their threads, when there are several) and adds
         /// the best path among them to the problem definition.
         ompl::base::PlannerStatus solveWithFallbacks(const ompl::base::PlannerTerminationCondition &ptc);
+        /// The lowest-numbered fallback whose tree holds a state nearer the goal than
+        /// `handback_distance_`, if any (read from its goal's own closest distance).
+        std::optional<std::size_t> nearerThanHandedBack() const;
+        /// The first search from the end of fallback `i`'s closest path, for the patience
+        /// or until `ptc`; adds the joined path to the problem definition if it solves
+        /// (returns true then).
+        bool searchFromFallback(std::size_t i, const ompl::base::PlannerTerminationCondition &ptc);
         /// Credits the model with the fallbacks' steps, seconds and goal distances since
         /// the last call (the first fallback's model is the model itself).
         void creditFallbacks();
@@ -89,8 +114,14 @@ namespace pushplan::detail
         std::optional<double> start_distance_;
         /// The first search has moved the goal object: it keeps the problem.
         bool kept_ = false;
+        /// The goal distance of the last state handed back (the start's at first).
+        double handback_distance_ = 0.0;
+        std::uint64_t handed_back_ = 0;
     };
 
     /// Whether a planner is or wraps a Fallback that has handed over.
     bool fellBack(const ompl::base::PlannerPtr &planner);
+    /// How often a planner that is or wraps a Fallback has handed the problem back to its
+    /// first search (0 for any other planner).
+    std::uint64_t handedBack(const ompl::base::PlannerPtr &planner);
 }  // namespace pushplan::detail

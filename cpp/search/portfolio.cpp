@@ -234,18 +234,28 @@ namespace pushplan::detail
         return count;
     }
 
+    std::uint64_t Portfolio::handedBack() const
+    {
+        std::uint64_t count = 0;
+        for (const Search &s : searches_)
+            count += pushplan::detail::handedBack(s.planner);
+        return count;
+    }
+
     std::optional<std::size_t> Portfolio::treeStates() const
     {
         std::size_t states = 0;
         for (const Search &s : searches_)
         {
-            // A search that fell back searches on in its fallback's trees, all of them.
+            // A search that fell back searches on in its fallback's trees, all of them, and,
+            // once it has handed back, in its first search's tree from the state handed back.
             if (const Fallback *fallback = wrapperOf<Fallback>(s.planner); fallback != nullptr && fallback->fellBack())
             {
                 const std::optional<std::size_t> fallback_states = fallback->fallbacks().treeStates();
-                if (!fallback_states)
+                const auto *first = dynamic_cast<const TreeSize *>(&innerPlanner(fallback->wrapped()));
+                if (!fallback_states || (fallback->handedBack() > 0 && first == nullptr))
                     return std::nullopt;
-                states += *fallback_states;
+                states += *fallback_states + (fallback->handedBack() > 0 ? first->treeSize() : 0);
                 continue;
             }
             const auto *tree = dynamic_cast<const TreeSize *>(&innerPlanner(s.planner));

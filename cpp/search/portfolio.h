@@ -83,6 +83,8 @@ namespace pushplan::detail
         std::uint64_t restarts() const;
         /// Searches that handed over to their fallback (Fallback).
         std::uint64_t fallbacks() const;
+        /// Times the searches that fell back handed the problem back (Fallback::handedBack).
+        std::uint64_t handedBack() const;
 
     private:
         std::vector<Search> searches_;

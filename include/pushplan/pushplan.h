@@ -252,6 +252,9 @@ namespace pushplan
         std::uint64_t restarts = 0;
         /// Searches that handed over to PC RRT (Options::fallback_steps).
         std::uint64_t fallbacks = 0;
+        /// Times such a search handed the problem back to Push KPIECE, from a state where
+        /// PC RRT had moved the goal object nearer the goal.
+        std::uint64_t handed_back = 0;
         double step = 0.0;            ///< propagation step (s)
         std::vector<std::string> joint_names;
         std::vector<std::string> object_names;

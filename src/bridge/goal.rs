@@ -55,6 +55,13 @@ impl Goal {
         self.farthest.get()
     }
 
+    /// Forgets the goal distances met so far: from here on the closest and farthest are
+    /// those of the states asked about next.
+    pub fn forget_met(&self) {
+        self.closest.set(f64::INFINITY);
+        self.farthest.set(f64::NEG_INFINITY);
+    }
+
     /// A grasp goal's sample: one try at a configuration in a grasp region of `object`
     /// at its pose in `state`, valid for the arm alone (a target the pushing planner may
     /// clear the way to), drawn from `seed`. Empty if this try found none.

@@ -250,9 +250,11 @@ pub fn plan_loaded(
             1 => ", 1 restart".to_string(),
             n => format!(", {n} restarts"),
         },
-        match solution.summary.fallbacks {
-            0 => "",
-            _ => ", then PC RRT (the goal object had not moved)",
+        match (solution.summary.fallbacks, solution.summary.handed_back) {
+            (0, _) => String::new(),
+            (_, 0) => ", then PC RRT (the goal object had not moved)".to_string(),
+            (_, 1) => ", then PC RRT (the goal object had not moved), then Push KPIECE from where PC RRT moved it".to_string(),
+            (_, n) => format!(", then PC RRT (the goal object had not moved), then Push KPIECE from where PC RRT moved it ({n} times)"),
         }
     );
     if !solution.summary.exact && !found.is_empty() {

@@ -51,6 +51,9 @@ pub struct SearchSummary {
     pub restarts: u64,
     /// Searches that fell back to PC RRT.
     pub fallbacks: u64,
+    /// Times a fallen-back search handed the problem back to Push KPIECE from a state
+    /// where PC RRT had moved the goal object nearer the goal.
+    pub handed_back: u64,
     /// Lanes the one search's extensions ran on (0: one thread, or a planner that runs
     /// one search per thread).
     pub lanes: u32,

@@ -3,6 +3,9 @@
 // the goal object, and changes nothing otherwise. The oracle for "moved" is the first
 // search's own tree, run alone for the patience: the goal object's pose in each vertex
 // (OMPL's planner data) against its pose at the start; the Fallback reads goal distances.
+// Once PC RRT's tree has moved the goal object nearer the goal, Push KPIECE searches on
+// from that state; the joined plan is checked by propagating its controls from the start
+// with a model of its own, and its first part against PC RRT's tree.
 #include "pushplan/cpp/search/fallback.h"
 #include "pushplan/cpp/problem/problem.h"
 #include "pushplan/cpp/search/restarts.h"
@@ -31,6 +34,8 @@ namespace
     struct Search
     {
         bool fell_back = false;
+        std::uint64_t handed_back = 0;
+        bool solved = false;
         bool pc_rrt_tree = false;
         std::uint64_t restarts = 0;
         std::uint64_t steps = 0;
@@ -40,6 +45,8 @@ namespace
         unsigned tree_states = 0;
         /// Tree vertices whose goal object stands elsewhere than at the start.
         unsigned goal_object_moved = 0;
+        /// The vertices of the fallback's PC RRT trees, once it has handed over (flat states).
+        std::vector<std::vector<double>> pc_rrt_vertices;
         pd::FlatPath path;
     };
 
@@ -55,6 +62,8 @@ namespace
         const ob::PlannerPtr &planner = run.planner;
         Search s;
         s.fell_back = pd::fellBack(planner);
+        s.handed_back = pd::handedBack(planner);
+        s.solved = problem.setup->getProblemDefinition()->hasExactSolution();
         s.pc_rrt_tree = dynamic_cast<const pd::SeededRRT *>(&pd::innerPlanner(planner)) != nullptr;
         s.restarts = pd::restartsOf(planner);
         s.steps = model->propagationSteps();
@@ -72,9 +81,65 @@ namespace
             if (!std::equal(vertex.begin() + at, vertex.begin() + at + 3, start.begin() + at))
                 ++s.goal_object_moved;
         }
+        if (const pd::Fallback *fallback = pd::wrapperOf<pd::Fallback>(planner); fallback && fallback->fellBack())
+        {
+            for (std::size_t i = 0; i < fallback->fallbacks().size(); ++i)
+            {
+                const pd::Search &pc_rrt = fallback->fallbacks()[i];
+                ob::PlannerData trees(pc_rrt.problem.setup->getSpaceInformation());
+                pc_rrt.planner->getPlannerData(trees);
+                for (unsigned v = 0; v < trees.numVertices(); ++v)
+                {
+                    model->view()->read(trees.getVertex(v).getState(), vertex);
+                    s.pc_rrt_vertices.push_back(vertex);
+                }
+            }
+        }
         if (problem.setup->getProblemDefinition()->hasSolution())
             s.path = model->view()->readPath(problem.setup->getSolutionPath());
         return s;
+    }
+
+    /// Whether `path` is what its controls do: each state propagated from the one before
+    /// with a model of its own (the scene loaded again), bit for bit, from the scene's
+    /// start; and whether its last state is in the goal region (goal distance <= 0).
+    bool reproducedToGoal(const std::string &scene, const pd::FlatPath &path)
+    {
+        const rust::Box<pushplan::bridge::Problem> problem = pushplan::bridge::Problem::load(scene);
+        rust::Box<pushplan::bridge::Propagator> propagator = pushplan::bridge::Propagator::make(*problem);
+        const rust::Box<pushplan::bridge::Goal> goal = pushplan::bridge::Goal::make(*problem);
+        const pushplan::bridge::SceneInfo info = problem->info();
+        const std::size_t n = info.start.size(), m = 3 + info.dof;
+        if (path.steps.empty() || path.states.size() != n * (path.steps.size() + 1) ||
+            !std::equal(info.start.begin(), info.start.end(), path.states.begin()))
+            return false;
+        std::vector<double> next(n);
+        const rust::Slice<const double> none;
+        for (std::size_t k = 0; k < path.steps.size(); ++k)
+        {
+            const rust::Slice<const double> x(path.states.data() + k * n, n), u(path.controls.data() + k * m, m);
+            if (!propagator->propagate(x, none, u, path.steps[k], rust::Slice<double>(next.data(), n),
+                                       rust::Slice<double>()) ||
+                !std::equal(next.begin(), next.end(), path.states.begin() + (k + 1) * n))
+                return false;
+        }
+        return goal->distance(rust::Slice<const double>(next.data(), n), none) <= 0.0;
+    }
+
+    /// How many of `path`'s states, from its first, are vertices of the fallback's PC RRT trees.
+    std::size_t statesInTree(const Search &search, const pd::FlatPath &path)
+    {
+        const std::size_t n = search.pc_rrt_vertices.empty() ? 1 : search.pc_rrt_vertices.front().size();
+        std::size_t k = 0;
+        for (; (k + 1) * n <= path.states.size(); ++k)
+        {
+            const auto at = path.states.begin() + static_cast<std::ptrdiff_t>(k * n);
+            const bool in_tree = std::any_of(search.pc_rrt_vertices.begin(), search.pc_rrt_vertices.end(),
+                                             [&](const std::vector<double> &v) { return std::equal(v.begin(), v.end(), at); });
+            if (!in_tree)
+                break;
+        }
+        return k;
     }
 
     bool same(const Search &a, const Search &b)
@@ -136,6 +201,32 @@ int main()
     std::cout << "  with restarts: " << restarting.restarts << " before the handover\n";
     expect(restarting.fell_back && restarting.restarts == 5,
            "the restarts before the handover are still counted after it");
+
+    // Benchmark scene 01 with a patience of 200 steps: Push KPIECE hands over before its
+    // hand has reached the goal box; PC RRT's tree soon pushes the box nearer the goal,
+    // and Push KPIECE searches on from there. The plan begins in PC RRT's tree and leaves
+    // it where Push KPIECE took over.
+    {
+        const std::string scene = "scenes/benchmark/scene_01.yaml";
+        const Search back = search(scene, 200, 0, 200000);
+        const std::size_t in_tree = statesInTree(back, back.path);
+        std::cout << "  scene 01, a patience of 200 steps: handed back " << back.handed_back << " time(s), "
+                  << back.path.steps.size() << " controls, the first " << in_tree << " states in PC RRT's tree\n";
+        expect(back.fell_back && back.handed_back == 1 && back.solved, "scene 01: it hands over, then back, and solves");
+        expect(reproducedToGoal(scene, back.path),
+               "the joined plan is what its controls do from the start, and it ends in the goal region");
+        expect(in_tree >= 2 && in_tree <= back.path.steps.size(),
+               "it begins with PC RRT's path (more than the start) and ends beyond PC RRT's tree");
+        const Search back_again = search(scene, 200, 0, 200000);
+        expect(same(back, back_again) && back_again.handed_back == 1, "the same plan again, bit for bit");
+        const Search lanes_one = search(scene, 200, 0, 200000, 3, 1);
+        const Search lanes_two = search(scene, 200, 0, 200000, 3, 2);
+        std::cout << "  three lanes: handed back " << lanes_two.handed_back << " time(s), "
+                  << (lanes_two.solved ? "solved" : "not solved") << "\n";
+        expect(lanes_two.fell_back && lanes_two.handed_back >= 1 && lanes_two.solved &&
+                   reproducedToGoal(scene, lanes_two.path) && same(lanes_one, lanes_two),
+               "with three lanes (two PC RRTs), the same on one thread and on two, and a plan that is what it does");
+    }
 
     // Benchmark scene 22: Push KPIECE moves the goal box early but does not solve the
     // scene within the budget; the fallback never fires and the search is the one without

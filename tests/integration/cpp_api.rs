@@ -263,8 +263,9 @@ fn parallel_kpiece_with_one_lane_is_ompl_kpiece1_bit_for_bit() {
 }
 
 #[test]
-fn push_kpiece_falls_back_to_pc_rrt_only_without_progress() {
-    run_internal_checks("tests/cpp/fallback.cpp", "fallback", 10);
+fn push_kpiece_falls_back_to_pc_rrt_only_without_progress_and_takes_over_where_pc_rrt_moves_the_goal(
+) {
+    run_internal_checks("tests/cpp/fallback.cpp", "fallback", 15);
 }
 
 #[test]
