@@ -194,12 +194,14 @@ namespace pushplan::detail
     void Fallback::clear()
     {
         ob::Planner::clear();
+        first_->clear();
         for (std::size_t i = 0; i < fallbacks_.size(); ++i)
             fallbacks_.restart(i);
         // Once handed over, the fallbacks start over (robust planning sets a solution
         // aside and searches anew): that the first search could not move the goal object
         // is the scene's doing, not its tree's. Back in the first search it would not hand
-        // over again, as the model's goal distances now hold the fallbacks' moves.
+        // over again, as the model's goal distances now hold the fallbacks' moves. What
+        // the new fallback trees meet may hand back again.
         if (fellBack())
         {
             handback_distance_ = *start_distance_;
@@ -207,7 +209,6 @@ namespace pushplan::detail
                 fallbacks_[i].problem.model->restartGoalWatch();
             return;
         }
-        first_->clear();
         began_at_ = model_->propagationSteps();
         kept_ = false;
     }
