@@ -73,8 +73,8 @@ namespace pushplan::detail
     {
         ob::PlannerStatus status = ob::PlannerStatus::TIMEOUT;
         // The fallbacks search until one solves, the time is up, or one's tree holds a
-        // state to hand back (then the first search from there; if it finds nothing, the
-        // fallbacks go on).
+        // state to hand back (then the first search from there; if it brings the goal
+        // object no nearer, the fallbacks go on).
         const auto stop_due = [&] { return ptc() || nearerThanHandedBack().has_value(); };
         for (;;)
         {
@@ -130,6 +130,9 @@ namespace pushplan::detail
         // The fallback stopped with its closest state in its tree: OMPL's RRT gives the path
         // to it as its approximate solution, the best of its problem definition's (every
         // state it met before is farther from the goal).
+        // The state is handed back once, whatever follows: only a nearer one is handed back
+        // next.
+        handback_distance_ = fallbacks_[i].problem.model->goal().closest_distance();
         const ob::ProblemDefinitionPtr &reached = fallbacks_[i].problem.setup->getProblemDefinition();
         if (!reached->hasSolution())
             return false;
@@ -138,7 +141,6 @@ namespace pushplan::detail
         const auto prefix = std::dynamic_pointer_cast<oc::PathControl>(to_state.path_);
         if (!prefix || prefix->getStateCount() == 0)
             return false;
-        handback_distance_ = fallbacks_[i].problem.model->goal().closest_distance();
         ++handed_back_;
 
         auto from = std::make_shared<ob::ProblemDefinition>(si_);
