@@ -60,8 +60,7 @@ namespace pushplan::detail
                 const ob::ProblemDefinitionPtr &pdef = fallbacks_[i].problem.setup->getProblemDefinition();
                 pdef->clearStartStates();
                 pdef->addStartState(pdef_->getStartState(0));
-                credited_steps_[i] = fallbacks_[i].problem.model->propagationSteps();
-                credited_seconds_[i] = fallbacks_[i].problem.model->propagationSeconds();
+                creditedUpToNow(i);
             }
             if (ptc())
                 return status;
@@ -127,12 +126,12 @@ namespace pushplan::detail
 
     bool Fallback::searchFromFallback(std::size_t i, const ob::PlannerTerminationCondition &ptc)
     {
-        // The fallback stopped with its closest state in its tree: OMPL's RRT gives the path
-        // to it as its approximate solution, the best of its problem definition's (every
-        // state it met before is farther from the goal).
         // The state is handed back once, whatever follows: only a nearer one is handed back
         // next.
         handback_distance_ = fallbacks_[i].problem.model->goal().closest_distance();
+        // The fallback stopped with that state in its tree: OMPL's RRT gives the path to it
+        // as its approximate solution, the best of its problem definition's (every state
+        // it met before is farther from the goal).
         const ob::ProblemDefinitionPtr &reached = fallbacks_[i].problem.setup->getProblemDefinition();
         if (!reached->hasSolution())
             return false;
@@ -160,10 +159,8 @@ namespace pushplan::detail
         // by the search itself, are not the fallbacks' to credit.
         for (std::size_t f = 0; f < fallbacks_.size(); ++f)
         {
-            const ModelHandle &model = *fallbacks_[f].problem.model;
             fallbacks_[f].problem.model->restartGoalWatch();
-            credited_steps_[f] = model.propagationSteps();
-            credited_seconds_[f] = model.propagationSeconds();
+            creditedUpToNow(f);
         }
         if (!from->hasSolution())
             return false;
@@ -184,13 +181,19 @@ namespace pushplan::detail
             const ModelHandle &model = *fallbacks_[i].problem.model;
             model_->credit(model.propagationSteps() - credited_steps_[i],
                            model.propagationSeconds() - credited_seconds_[i]);
-            credited_steps_[i] = model.propagationSteps();
-            credited_seconds_[i] = model.propagationSeconds();
+            creditedUpToNow(i);
             // Infinite while the model has met no goal distance.
             for (const double distance : {model.closestGoalDistance(), model.farthestGoalDistance()})
                 if (std::isfinite(distance))
                     model_->creditGoalDistance(distance);
         }
+    }
+
+    void Fallback::creditedUpToNow(std::size_t i)
+    {
+        const ModelHandle &model = *fallbacks_[i].problem.model;
+        credited_steps_[i] = model.propagationSteps();
+        credited_seconds_[i] = model.propagationSeconds();
     }
 
     void Fallback::clear()

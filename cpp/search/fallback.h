@@ -97,6 +97,8 @@ namespace pushplan::detail
         /// or until `ptc`; adds the joined path to the problem definition if it solves
         /// (returns true then).
         bool searchFromFallback(std::size_t i, const ompl::base::PlannerTerminationCondition &ptc);
+        /// Fallback `i`'s model's steps and seconds so far count as credited.
+        void creditedUpToNow(std::size_t i);
         /// Credits the model with the fallbacks' steps, seconds and goal distances since
         /// the last call (the first fallback's model is the model itself).
         void creditFallbacks();

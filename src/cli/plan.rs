@@ -236,7 +236,7 @@ pub fn plan_loaded(
         "not solved"
     };
     println!(
-        "{status} in {:.3} s: tree of {} states, {} propagation steps ({:.0} steps/s){}{}{}",
+        "{status} in {:.3} s: tree of {} states, {} propagation steps ({:.0} steps/s){}{}{}{}",
         solution.summary.planning_time,
         solution.summary.tree_size,
         solution.summary.propagation_steps,
@@ -250,11 +250,14 @@ pub fn plan_loaded(
             1 => ", 1 restart".to_string(),
             n => format!(", {n} restarts"),
         },
-        match (solution.summary.fallbacks, solution.summary.handed_back) {
-            (0, _) => String::new(),
-            (_, 0) => ", then PC RRT (the goal object had not moved)".to_string(),
-            (_, 1) => ", then PC RRT (the goal object had not moved), then Push KPIECE from where PC RRT moved it".to_string(),
-            (_, n) => format!(", then PC RRT (the goal object had not moved), then Push KPIECE from where PC RRT moved it ({n} times)"),
+        match solution.summary.fallbacks {
+            0 => "",
+            _ => ", then PC RRT (the goal object had not moved)",
+        },
+        match solution.summary.handed_back {
+            0 => String::new(),
+            1 => ", then Push KPIECE from where PC RRT moved it".to_string(),
+            n => format!(", then Push KPIECE from where PC RRT moved it ({n} times)"),
         }
     );
     if !solution.summary.exact && !found.is_empty() {
