@@ -244,24 +244,31 @@ namespace pushplan::detail
 
     std::optional<std::size_t> Portfolio::treeStates() const
     {
+        // The tree a planner grows, if it tells its size.
+        const auto tree_of = [](const ob::PlannerPtr &planner) -> std::optional<std::size_t> {
+            const auto *tree = dynamic_cast<const TreeSize *>(&innerPlanner(planner));
+            return tree != nullptr ? std::optional<std::size_t>(tree->treeSize()) : std::nullopt;
+        };
         std::size_t states = 0;
         for (const Search &s : searches_)
         {
+            std::optional<std::size_t> searched;
             // A search that fell back searches on in its fallback's trees, all of them, and,
             // once it has handed back, in its first search's tree from the state handed back.
             if (const Fallback *fallback = wrapperOf<Fallback>(s.planner); fallback != nullptr && fallback->fellBack())
             {
-                const std::optional<std::size_t> fallback_states = fallback->fallbacks().treeStates();
-                const auto *first = dynamic_cast<const TreeSize *>(&innerPlanner(fallback->wrapped()));
-                if (!fallback_states || (fallback->handedBack() > 0 && first == nullptr))
-                    return std::nullopt;
-                states += *fallback_states + (fallback->handedBack() > 0 ? first->treeSize() : 0);
-                continue;
+                searched = fallback->fallbacks().treeStates();
+                if (searched && fallback->handedBack() > 0)
+                {
+                    const std::optional<std::size_t> first = tree_of(fallback->wrapped());
+                    searched = first ? std::optional<std::size_t>(*searched + *first) : std::nullopt;
+                }
             }
-            const auto *tree = dynamic_cast<const TreeSize *>(&innerPlanner(s.planner));
-            if (tree == nullptr)
+            else
+                searched = tree_of(s.planner);
+            if (!searched)
                 return std::nullopt;
-            states += tree->treeSize();
+            states += *searched;
         }
         return states;
     }
