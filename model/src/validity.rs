@@ -90,8 +90,9 @@ pub enum Invalid {
         /// The obstacle.
         obstacle: String,
     },
-    /// An object's footprint is not wholly on the table (or, from a start observed with it
-    /// hanging over the edge, hangs further over than it did there).
+    /// An object's footprint is not wholly on the table (from a start observed in the
+    /// world: hangs further over than it did there and than its support allows,
+    /// `Clearances::with_start_overhangs`).
     ObjectOffTable {
         /// The object.
         object: String,
@@ -389,7 +390,10 @@ pub fn check_objects(
             continue;
         }
         let object = &scene.objects[i];
-        if scene.table.overhang(&object.footprint, pose) > scene.clearances.overhang(i) {
+        if !scene
+            .clearances
+            .on_table(&scene.table, i, &object.footprint, pose)
+        {
             return Err(Invalid::ObjectOffTable {
                 object: object.name.clone(),
             });

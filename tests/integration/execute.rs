@@ -133,20 +133,39 @@ fn a_glass_pushed_flat_on_slides_below_r_over_mu_g_and_tips_above() {
     }
 }
 
+/// The thin hand (1 cm tall, at 5 cm) at x = 0.4 on a table of `extent` (`x: [..], y:
+/// [..]`), with `objects` (YAML list items) and `goal` (its YAML map).
+fn hand_on_table(extent: &str, objects: &str, goal: &str, file: &str) -> Scene {
+    let yaml = format!(
+        "robot:
+  type: planar_hand
+  shape: {{type: box, size: [0.04, 0.12, 0.01]}}
+  start: [0.4, 0.0, 0.0]
+  height: 0.05
+table: {{height: 0.76, {extent}}}
+objects:
+{objects}goal: {goal}
+"
+    );
+    Scene::from_yaml(&yaml, Path::new(file)).unwrap()
+}
+
+/// The hand's path of these tests: 0.2 m along +x in 101 poses (2 s, 20 ms apart).
+fn push_path() -> Vec<DVector<f64>> {
+    (0..=100)
+        .map(|k| DVector::from_vec(vec![0.4 + 0.002 * k as f64, 0.0, 0.0]))
+        .collect()
+}
+
 #[test]
 fn a_box_pushed_over_the_table_edge_has_fallen_off_and_a_tipped_one_has_not() {
     // The thin hand's push, on a table that ends 4 cm beyond the box's far face.
-    let yaml = "robot:
-  type: planar_hand
-  shape: {type: box, size: [0.04, 0.12, 0.01]}
-  start: [0.4, 0.0, 0.0]
-  height: 0.05
-table: {height: 0.76, x: [0.27, 0.56], y: [-0.6, 0.6]}
-objects:
-  - {name: box, shape: {type: box, size: [0.1, 0.1, 0.3]}, pose: [0.4705, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}
-goal: {object: box, center: [0.4, 0.3], radius: 0.1}
-";
-    let scene = Scene::from_yaml(yaml, Path::new("scenes/short-table-test.yaml")).unwrap();
+    let scene = hand_on_table(
+        "x: [0.27, 0.56], y: [-0.6, 0.6]",
+        "  - {name: box, shape: {type: box, size: [0.1, 0.1, 0.3]}, pose: [0.4705, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}\n",
+        "{object: box, center: [0.4, 0.3], radius: 0.1}",
+        "scenes/short-table-test.yaml",
+    );
     let hand = |x: f64| DVector::from_vec(vec![x, 0.0, 0.0]);
     let mut poses = Vec::new();
     for engine in EngineKind::ALL {
@@ -156,8 +175,7 @@ goal: {object: box, center: [0.4, 0.3], radius: 0.1}
             !world.object_fell_off(0),
             "{engine}: it starts on the table"
         );
-        // 0.2 m in 2 s, 20 ms apart.
-        let path: Vec<DVector<f64>> = (0..=100).map(|k| hand(0.4 + 0.002 * k as f64)).collect();
+        let path = push_path();
         world.follow(&scene.robot.chain, &path, 0.02);
         assert!(
             world.object_fell_off(0),
@@ -173,6 +191,55 @@ goal: {object: box, center: [0.4, 0.3], radius: 0.1}
             world.object_tilt(0) > TIPPED_TILT && !world.object_fell_off(0),
             "{engine}: tipped on the table: {}",
             world.object_pose(0)
+        );
+    }
+}
+
+#[test]
+fn a_box_hanging_over_an_edge_as_far_as_a_replan_allows_is_pushed_along_it_upright() {
+    // A re-plan from an observed start lets a box (not the goal's) hang over the table's
+    // edge until the footprint the tipping check keeps the support pressure in (shrunk by
+    // the 30 % margin: a 7 cm square) reaches it (`Clearances::with_start_overhangs`).
+    // Here the table's side edge runs 3.5 cm from the box's centre line (15 mm of the box
+    // over), and the hand pushes the box 15 cm along it below the tipping height (b /
+    // mu_g = 0.125 m): in both engines it slides on, upright and on the table.
+    let file = hand_on_table(
+        "x: [0.27, 1.03], y: [-0.6, 0.0351]",
+        "  - {name: box, shape: {type: box, size: [0.1, 0.1, 0.3]}, pose: [0.4705, -0.5, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}
+  - {name: goal, shape: {type: box, size: [0.1, 0.1, 0.2]}, pose: [0.9, -0.5, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}\n",
+        "{object: goal, center: [0.8, -0.3], radius: 0.1}",
+        "scenes/edge-test.yaml",
+    );
+    // The box observed at the edge: the model plans from there.
+    let mut observed = file.start.clone();
+    observed.objects[0].y = 0.0;
+    let scene = file
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    // The model takes the push along: the box 15 cm on, as far over the edge.
+    let mut pushed = scene.start.clone();
+    pushed.objects[0].x += 0.15;
+    pushplan::validity::check_state(&scene, &pushed).unwrap();
+    let path = push_path();
+    for engine in EngineKind::ALL {
+        let mut poses = Vec::new();
+        scene.robot.chain.forward_kinematics(&path[0], &mut poses);
+        let mut world = world(engine, &scene, &poses);
+        let mut tilt: f64 = 0.0;
+        for pair in path.windows(2) {
+            world.follow(&scene.robot.chain, pair, 0.02);
+            tilt = tilt.max(world.object_tilt(0));
+        }
+        let pose = world.object_pose2(0);
+        assert!(
+            !world.object_fell_off(0) && tilt < 0.1,
+            "{engine}: on the table and upright: {pose:?}, largest tilt {tilt}"
+        );
+        // Pushed along by the hand's 0.2 m less the 5 mm gap, less a few mm of a soft
+        // contact; turned a little by the support the edge cuts off.
+        assert!(
+            pose.x > 0.4705 + 0.15 && pose.y.abs() < 0.02 && pose.theta.abs() < 0.2,
+            "{engine}: pushed along the edge: {pose:?}"
         );
     }
 }

@@ -1,11 +1,18 @@
 //! The clearances objects keep (`physics.object_clearance`), fixed once per scene from
 //! its start state.
 
-use super::Scene;
+use super::{Scene, Table};
 use crate::collision::footprint;
 use crate::collision::query::signed_distance;
 use crate::collision::Geometry;
+use crate::math::Pose2;
+use crate::physics::Footprint;
 use nalgebra::Isometry3;
+
+/// How near the table's edge an observed object stands (m) for a re-plan to give it the
+/// room its support allows over the edge ([`Clearances::with_start_overhangs`]): what an
+/// observation may be off, so that an object seen just short of the edge counts as at it.
+const AT_EDGE: f64 = 0.002;
 
 /// The least distance each object keeps from every other object and obstacle (m):
 /// `physics.object_clearance`, or the pair's distance in the start state when that is
@@ -19,6 +26,11 @@ pub struct Clearances {
     to_obstacles: Vec<f64>,
     /// Per object: how far it may reach past the table's edge (empty: nowhere).
     overhangs: Vec<f64>,
+    /// Per object, from a start observed in the world: the scale (1 -
+    /// `physics.tipping_margin`) of its footprint, about its centroid, that must stay on
+    /// the table where it reaches further past the edge than `overhangs` allow; None for
+    /// the goal's object (empty: a scene file's start).
+    edge_support: Vec<Option<f64>>,
 }
 
 impl Clearances {
@@ -67,15 +79,31 @@ impl Clearances {
             between_objects,
             to_obstacles,
             overhangs: Vec::new(),
+            edge_support: Vec::new(),
         }
     }
 
-    /// These clearances, with each object allowed to reach past the table's edge as far as
-    /// it does in `scene`'s start ([`Table::overhang`](super::Table::overhang)), and no
-    /// further: a start observed in the world, where an object was pushed partly over the
-    /// edge and still stands (its centre on the table), may be planned from, and the
-    /// object pushed back, but no plan takes it further over. A scene file's start has
-    /// none: every footprint starts wholly on the table.
+    /// These clearances from a start observed in the world, where objects pushed to the
+    /// table's edge may hang a little over it and still stand. Each object may reach past
+    /// the edge as far as it does in `scene`'s start ([`Table::overhang`]). One the world
+    /// brought to the edge (within 2 mm of it, or over it) may also go as far over
+    /// as the footprint the tipping check keeps the support pressure in (shrunk by
+    /// `physics.tipping_margin` about its centroid, [`Table::overhang_scaled`]) stays on
+    /// the table: that shrunk footprint then lies within the table's true support (the
+    /// footprint cut by the edge, both convex), so a push the tipping check lets stand
+    /// does not tip the object over the edge. A re-plan may so push such an object along
+    /// the edge, or turn it there (dense 16 in MuJoCo: a box 4 mm over the far edge
+    /// blocked every search from where a trial stood; docs/notes/plans-in-the-world.md,
+    /// "Objects at the table's edge").
+    ///
+    /// Not the goal's object: it must end where the plan says, and the planar model
+    /// spreads its support friction over the whole footprint, part of which the table no
+    /// longer carries (dense 19: legs that took the goal box along the edge did not carry
+    /// it in MuJoCo). Not objects away from the edge either: given the room, re-plans
+    /// pushed neighbours over to the new limit, where they blocked the next search.
+    ///
+    /// [`Table::overhang`]: super::Table::overhang
+    /// [`Table::overhang_scaled`]: super::Table::overhang_scaled
     pub fn with_start_overhangs(mut self, scene: &Scene) -> Clearances {
         self.overhangs = scene
             .objects
@@ -83,13 +111,33 @@ impl Clearances {
             .zip(&scene.start.objects)
             .map(|(object, pose)| scene.table.overhang(&object.footprint, pose).max(0.0))
             .collect();
+        let goal_object = scene.goal.object();
+        let at_edge = |i: usize| {
+            scene
+                .table
+                .overhang(&scene.objects[i].footprint, &scene.start.objects[i])
+                > -AT_EDGE
+        };
+        self.edge_support = (0..scene.objects.len())
+            .map(|i| {
+                (goal_object != Some(i) && at_edge(i)).then_some(1.0 - scene.physics.tipping_margin)
+            })
+            .collect();
         self
     }
 
-    /// How far object `i` may reach past the table's edge (m; zero but for a start
-    /// observed hanging over, [`Clearances::with_start_overhangs`]).
-    pub fn overhang(&self, i: usize) -> f64 {
-        self.overhangs.get(i).copied().unwrap_or(0.0)
+    /// Does `table` carry object `i` (its `footprint` at `pose`) as these clearances
+    /// allow? Wholly, but for a start observed in the world
+    /// ([`Clearances::with_start_overhangs`]).
+    pub fn on_table(&self, table: &Table, i: usize, footprint: &Footprint, pose: &Pose2) -> bool {
+        let allowed = self.overhangs.get(i).copied().unwrap_or(0.0);
+        table.overhang(footprint, pose) <= allowed
+            || self
+                .edge_support
+                .get(i)
+                .copied()
+                .flatten()
+                .is_some_and(|scale| table.overhang_scaled(footprint, pose, scale) <= 0.0)
     }
 
     /// Between objects `i` and `j` (m).

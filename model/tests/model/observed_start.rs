@@ -2,6 +2,7 @@
 //! file's start would: checked, an arm's tool brought onto its pushing plane, yaws
 //! wrapped, and a wrong one refused with the file and field named.
 
+use crate::common::{herb_scene, object, parked_goal, HAND_NEAR};
 use pushplan_model::{Error, Overlap, Scene};
 use std::path::Path;
 
@@ -133,33 +134,102 @@ fn refused_naming_the_box(
 }
 
 #[test]
-fn an_object_observed_over_the_edge_may_be_pushed_back_but_not_further_out() {
-    let scene = planar_hand();
+fn an_object_observed_at_the_edge_may_hang_over_as_far_as_its_support_carries_a_push_and_no_other()
+{
+    // A 10 cm box (not the goal's) near the table's far edge (x = 1.03), the goal box
+    // parked near its side edge (y = -0.93).
+    let objects = parked_goal()
+        + &object(
+            "box",
+            "{type: box, size: [0.1, 0.1, 0.14]}",
+            [0.7, -0.3, 0.0],
+        );
+    let scene = herb_scene(HAND_NEAR, &objects, "").unwrap();
+    assert_eq!(scene.physics.tipping_margin, 0.3);
     let mut observed = scene.start.clone();
-    // 5 mm of the box past the table's far edge, its centre 4.5 cm inside.
-    observed.objects[0].x = TABLE_END_X - BOX_HALF + 0.005;
+    // 5 mm of the box past the far edge, its centre 4.5 cm inside.
+    observed.objects[1].x = TABLE_END_X - BOX_HALF + 0.005;
     let from = scene
         .with_start(&observed, Path::new("observed.json"))
         .unwrap();
-    let at = |x: f64| {
+    let at = |from: &Scene, i: usize, (x, y, yaw): (f64, f64, f64)| {
         let mut state = from.start.clone();
-        state.objects[0].x = x;
-        pushplan_model::validity::check_state(&from, &state)
+        state.objects[i].x = x;
+        state.objects[i].y = y;
+        state.objects[i].theta = yaw;
+        pushplan_model::validity::check_state(from, &state)
     };
-    assert!(at(observed.objects[0].x - 0.01).is_ok(), "pushed back");
-    let further = at(observed.objects[0].x + 0.001).unwrap_err();
-    assert!(
+    let off_table = |from: &Scene, i: usize, pose: (f64, f64, f64)| {
         matches!(
-            further,
-            pushplan_model::validity::Invalid::ObjectOffTable { .. }
-        ),
-        "{further}"
+            at(from, i, pose),
+            Err(pushplan_model::validity::Invalid::ObjectOffTable { .. })
+        )
+    };
+    let y = observed.objects[1].y;
+    // The tipping check keeps the support pressure inside the footprint shrunk by the
+    // 30 % margin about its centre, a 7 cm square: the box may go on over the edge until
+    // that square's face reaches it (centre 3.5 cm inside, 15 mm of the box over).
+    let shrunk_half = 0.7 * BOX_HALF;
+    assert!(at(&from, 1, (TABLE_END_X - shrunk_half - 1e-4, y, 0.0)).is_ok());
+    assert!(off_table(
+        &from,
+        1,
+        (TABLE_END_X - shrunk_half + 1e-4, y, 0.0)
+    ));
+    // Turned 45 degrees, its corner leads: the shrunk square's half-diagonal.
+    let corner = shrunk_half * std::f64::consts::SQRT_2;
+    let quarter = std::f64::consts::FRAC_PI_4;
+    assert!(at(&from, 1, (TABLE_END_X - corner - 1e-4, y, quarter)).is_ok());
+    assert!(off_table(
+        &from,
+        1,
+        (TABLE_END_X - corner + 1e-4, y, quarter)
+    ));
+    assert!(
+        at(&from, 1, (observed.objects[1].x - 0.01, y, 0.0)).is_ok(),
+        "pushed back"
     );
     // The scene file's own start keeps every footprint wholly on the table.
-    let mut state = scene.start.clone();
-    state.objects[0].x = observed.objects[0].x;
-    assert!(pushplan_model::validity::check_state(&scene, &state).is_err());
+    assert!(off_table(
+        &scene,
+        1,
+        (TABLE_END_X - BOX_HALF + 1e-4, y, 0.0)
+    ));
+    // Observed further over than that (2 cm): it may stay, or be pushed back, but not go
+    // further out.
+    observed.objects[1].x = TABLE_END_X - BOX_HALF + 0.02;
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    let x = observed.objects[1].x;
+    assert!(at(&from, 1, (x, y, 0.0)).is_ok());
+    assert!(at(&from, 1, (x - 0.01, y, 0.0)).is_ok(), "pushed back");
+    assert!(off_table(&from, 1, (x + 1e-4, y, 0.0)));
+    // The goal's object, observed 5 mm over the side edge, goes no further over: it must
+    // end where the plan says, and the model spreads its support over the whole footprint.
+    let goal_half = 0.051;
+    let table_side_y = -0.93;
+    observed.objects[1].x = 0.7;
+    observed.objects[0].y = table_side_y + goal_half - 0.005;
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    let goal = (observed.objects[0].x, observed.objects[0].y, 0.0);
+    assert!(at(&from, 0, goal).is_ok());
+    assert!(off_table(&from, 0, (goal.0, goal.1 - 1e-4, 0.0)));
+    // The box, observed 28 cm from the edge, gets no room over it: a re-plan keeps it
+    // wholly on, as the scene file's start does.
+    assert!(at(&from, 1, (TABLE_END_X - BOX_HALF - 1e-4, y, 0.0)).is_ok());
+    assert!(off_table(&from, 1, (TABLE_END_X - BOX_HALF + 1e-4, y, 0.0)));
+    // Observed 1 mm short of the edge (within what an observation may be off), it does.
+    observed.objects[1].x = TABLE_END_X - BOX_HALF - 0.001;
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    assert!(at(&from, 1, (TABLE_END_X - shrunk_half - 1e-4, y, 0.0)).is_ok());
     // Its centre off the table: fallen, not standing; refused, the object named.
+    let scene = planar_hand();
+    let mut observed = scene.start.clone();
     observed.objects[0].x = TABLE_END_X + 0.01;
     refused_naming_the_box(&scene, &observed, None);
 }
