@@ -29,7 +29,8 @@ pub struct Clearances {
     /// Per object, from a start observed in the world: the scale (1 -
     /// `physics.tipping_margin`) of its footprint, about its centroid, that must stay on
     /// the table where it reaches further past the edge than `overhangs` allow; None for
-    /// the goal's object (empty: a scene file's start).
+    /// the goal's object and for objects observed away from the edge (empty: a scene
+    /// file's start).
     edge_support: Vec<Option<f64>>,
 }
 
