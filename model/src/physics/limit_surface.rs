@@ -49,6 +49,26 @@ impl Footprint {
         }
     }
 
+    /// This footprint scaled by `scale` about its centroid: with `scale` = 1 -
+    /// `physics.tipping_margin`, the region the tipping check keeps the support pressure
+    /// in.
+    pub fn scaled_about_centroid(&self, scale: f64) -> Footprint {
+        match self {
+            Footprint::Circle { radius } => Footprint::Circle {
+                radius: scale * radius,
+            },
+            Footprint::Polygon { vertices } => {
+                let centroid = self.centroid();
+                Footprint::Polygon {
+                    vertices: vertices
+                        .iter()
+                        .map(|v| centroid + scale * (v - centroid))
+                        .collect(),
+                }
+            }
+        }
+    }
+
     /// Is the point `p` (object frame, m) inside the footprint or on its edge?
     pub fn contains(&self, p: Vector2<f64>) -> bool {
         match self {

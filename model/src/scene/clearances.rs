@@ -26,12 +26,12 @@ pub struct Clearances {
     to_obstacles: Vec<f64>,
     /// Per object: how far it may reach past the table's edge (empty: nowhere).
     overhangs: Vec<f64>,
-    /// Per object, from a start observed in the world: the scale (1 -
-    /// `physics.tipping_margin`) of its footprint, about its centroid, that must stay on
-    /// the table where it reaches further past the edge than `overhangs` allow; None for
-    /// the goal's object and for objects observed away from the edge (empty: a scene
-    /// file's start).
-    edge_support: Vec<Option<f64>>,
+    /// Per object, from a start observed in the world: its footprint shrunk by
+    /// `physics.tipping_margin` about its centroid, which must stay on the table where
+    /// the object reaches further past the edge than `overhangs` allow; None for the
+    /// goal's object and for objects observed away from the edge (empty: a scene file's
+    /// start).
+    edge_support: Vec<Option<Footprint>>,
 }
 
 impl Clearances {
@@ -87,12 +87,12 @@ impl Clearances {
     /// These clearances from a start observed in the world, where objects pushed to the
     /// table's edge may hang a little over it and still stand. Each object may reach past
     /// the edge as far as it does in `scene`'s start ([`Table::overhang`]). One the world
-    /// brought to the edge (within 2 mm of it, or over it) may also go as far over
-    /// as the footprint the tipping check keeps the support pressure in (shrunk by
-    /// `physics.tipping_margin` about its centroid, [`Table::overhang_scaled`]) stays on
-    /// the table: that shrunk footprint then lies within the table's true support (the
-    /// footprint cut by the edge, both convex), so a push the tipping check lets stand
-    /// does not tip the object over the edge. A re-plan may so push such an object along
+    /// brought to the edge (within 2 mm of it, or over it) may also go as far over as the
+    /// footprint the tipping check keeps the support pressure in (shrunk by
+    /// `physics.tipping_margin` about its centroid, [`Footprint::scaled_about_centroid`])
+    /// stays on the table: that shrunk footprint then lies within the table's true
+    /// support (the footprint cut by the edge, both convex), so a push the tipping check
+    /// lets stand does not tip the object over the edge. A re-plan may so push such an object along
     /// the edge, or turn it there (dense 16 in MuJoCo: a box 4 mm over the far edge
     /// blocked every search from where a trial stood; docs/notes/plans-in-the-world.md,
     /// "Objects at the table's edge").
@@ -104,26 +104,23 @@ impl Clearances {
     /// pushed neighbours over to the new limit, where they blocked the next search.
     ///
     /// [`Table::overhang`]: super::Table::overhang
-    /// [`Table::overhang_scaled`]: super::Table::overhang_scaled
     pub fn with_start_overhangs(mut self, scene: &Scene) -> Clearances {
-        self.overhangs = scene
+        let goal_object = scene.goal.object();
+        let support = 1.0 - scene.physics.tipping_margin;
+        (self.overhangs, self.edge_support) = scene
             .objects
             .iter()
             .zip(&scene.start.objects)
-            .map(|(object, pose)| scene.table.overhang(&object.footprint, pose).max(0.0))
-            .collect();
-        let goal_object = scene.goal.object();
-        let at_edge = |i: usize| {
-            scene
-                .table
-                .overhang(&scene.objects[i].footprint, &scene.start.objects[i])
-                > -AT_EDGE
-        };
-        self.edge_support = (0..scene.objects.len())
-            .map(|i| {
-                (goal_object != Some(i) && at_edge(i)).then_some(1.0 - scene.physics.tipping_margin)
+            .enumerate()
+            .map(|(i, (object, pose))| {
+                let overhang = scene.table.overhang(&object.footprint, pose);
+                let room = goal_object != Some(i) && overhang > -AT_EDGE;
+                (
+                    overhang.max(0.0),
+                    room.then(|| object.footprint.scaled_about_centroid(support)),
+                )
             })
-            .collect();
+            .unzip();
         self
     }
 
@@ -136,9 +133,8 @@ impl Clearances {
             || self
                 .edge_support
                 .get(i)
-                .copied()
-                .flatten()
-                .is_some_and(|scale| table.overhang_scaled(footprint, pose, scale) <= 0.0)
+                .and_then(Option::as_ref)
+                .is_some_and(|support| table.holds(support, pose))
     }
 
     /// Between objects `i` and `j` (m).

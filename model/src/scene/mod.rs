@@ -128,13 +128,6 @@ impl Table {
     /// zero or less when the table carries it whole (then minus its least distance from
     /// an edge).
     pub fn overhang(&self, footprint: &Footprint, pose: &Pose2) -> f64 {
-        self.overhang_scaled(footprint, pose, 1.0)
-    }
-
-    /// [`Table::overhang`] of `footprint` scaled by `scale` about its centroid (a
-    /// footprint shrunk as the tipping check shrinks it, `scale` = 1 -
-    /// `physics.tipping_margin`).
-    pub fn overhang_scaled(&self, footprint: &Footprint, pose: &Pose2, scale: f64) -> f64 {
         let beyond = |p: Vector2<f64>, radius: f64| {
             (self.x.0 - (p.x - radius))
                 .max(p.x + radius - self.x.1)
@@ -142,15 +135,11 @@ impl Table {
                 .max(p.y + radius - self.y.1)
         };
         match footprint {
-            Footprint::Circle { radius } => beyond(pose.translation(), scale * radius),
-            Footprint::Polygon { vertices } => {
-                let centroid = footprint.centroid();
-                vertices
-                    .iter()
-                    .map(|v| centroid + scale * (v - centroid))
-                    .map(|v| beyond(pose.translation() + pose.rotation() * v, 0.0))
-                    .fold(f64::NEG_INFINITY, f64::max)
-            }
+            Footprint::Circle { radius } => beyond(pose.translation(), *radius),
+            Footprint::Polygon { vertices } => vertices
+                .iter()
+                .map(|v| beyond(pose.translation() + pose.rotation() * v, 0.0))
+                .fold(f64::NEG_INFINITY, f64::max),
         }
     }
 }
