@@ -96,6 +96,10 @@ pub enum Invalid {
     ObjectOffTable {
         /// The object.
         object: String,
+        /// How far its footprint reaches past the table's edge (m, [`Table::overhang`]).
+        ///
+        /// [`Table::overhang`]: crate::scene::Table::overhang
+        overhang: f64,
     },
     /// An object is squeezed between pushers: no motion satisfies every contact.
     Jammed {
@@ -205,8 +209,9 @@ impl fmt::Display for Invalid {
             Invalid::ObjectHitsObstacle { object, obstacle } => {
                 write!(f, "object '{object}' overlaps obstacle '{obstacle}'")
             }
-            Invalid::ObjectOffTable { object } => {
-                write!(f, "object '{object}' is not wholly on the table")
+            Invalid::ObjectOffTable { object, overhang } => {
+                let mm = overhang * 1e3;
+                write!(f, "object '{object}' reaches {mm:.1} mm past the table's edge")
             }
             Invalid::Jammed { object } => write!(f, "object '{object}' is jammed between pushers"),
             Invalid::Tips { object, link } => {
@@ -396,6 +401,7 @@ pub fn check_objects(
         {
             return Err(Invalid::ObjectOffTable {
                 object: object.name.clone(),
+                overhang: scene.table.overhang(&object.footprint, pose),
             });
         }
         for (j, other_pose) in objects.iter().enumerate() {

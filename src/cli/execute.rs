@@ -135,7 +135,14 @@ fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
         t.cut_short,
         match t.backoffs {
             0 => String::new(),
-            b => format!(", {b} retraced: a link deep in an object"),
+            b => format!(
+                ", {b} retraced: a link deep in an object (control {})",
+                t.backoffs_at
+                    .iter()
+                    .map(usize::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
         },
         t.kept,
         t.invalid_rests,
@@ -169,7 +176,11 @@ fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
         if t.tipped.is_empty() {
             String::new()
         } else {
-            format!("; tipped: {}", t.tipped.join(", "))
+            let during = t.tipped.iter().zip(&t.tipped_during);
+            let tipped: Vec<String> = during
+                .map(|(object, control)| format!("{object} (control {control})"))
+                .collect();
+            format!("; tipped: {}", tipped.join(", "))
         },
         t.stopped
             .as_ref()

@@ -617,6 +617,59 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     );
 }
 
+/// A trial names the control during which an object tipped in the world. A 1 cm tall
+/// hand pushes a 0.1 m box (0.3 m tall) at 0.08 m. The model's table grips it with
+/// `mu_g` 0.4: sliding it takes 0.4 m g, whose moment about the box's far bottom edge
+/// (0.032 m m g) stays within its weight's at the half width shrunk by the tipping
+/// margin (0.7 x 0.05 m), so the model has it slide. The world's grips it with `mu_g` 1.0
+/// and the hand is slippery (`mu_c` 0.05): 0.08 m m g against 0.05 m m g for the weight
+/// and 0.005 for the hand's friction holding the near face down (0.05 of the push, 0.1 m
+/// out), so the first push tips it. It cannot tip before the hand first touches it: not
+/// before the first control the model moves it in.
+#[test]
+fn a_closed_loop_trial_names_the_control_an_object_tipped_in() {
+    let scratch = common::Scratch::new("closed-loop-tipped");
+    let scene_yaml = |mu_g: f64, mu_c: f64| {
+        format!(
+            "robot:
+  type: planar_hand
+  shape: {{type: box, size: [0.04, 0.12, 0.01]}}
+  start: [0.4, 0.0, 0.0]
+  height: 0.08
+table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}
+objects:
+  - {{name: box, shape: {{type: box, size: [0.1, 0.1, 0.3]}}, pose: [0.55, 0.0, 0.0], mass: 1.0, mu_g: {mu_g}, mu_c: {mu_c}}}
+goal: {{object: box, center: [0.8, 0.0], radius: 0.1}}
+"
+        )
+    };
+    let (scene_path, world_path) = (scratch.join("scene.yaml"), scratch.join("world.yaml"));
+    std::fs::write(&scene_path, scene_yaml(0.4, 0.3)).unwrap();
+    std::fs::write(&world_path, scene_yaml(1.0, 0.05)).unwrap();
+    let (plan, scene) = planned(&scene_path, &scratch.join("plan.json"));
+    let world = Scene::load(&world_path).unwrap();
+    let controls = plan.path_controls();
+    let model = pushplan::planning::Problem::new(scene.clone(), plan.settings.planner)
+        .simulate(&controls, false);
+    let start = scene.start.objects[0];
+    // The first control (counted from 1) at whose end the model has moved the box.
+    let first_push = 1 + model.states[1..]
+        .iter()
+        .position(|s| (s.objects[0].translation() - start.translation()).norm() > 1e-4)
+        .expect("the plan pushes the box");
+
+    let mut closed_loop = closed_loop(plan.settings.planner, 4);
+    closed_loop.settings.search_budget = 10.0;
+    let closed = closed_loop.execute(&scene, &controls, &world).unwrap();
+    assert_eq!(closed.tipped, ["box"], "{closed:?}");
+    let during = closed.tipped_during[0];
+    assert!(
+        during >= first_push && during <= closed.controls_played,
+        "tipped during control {during}, the first push is control {first_push}: {closed:?}"
+    );
+    assert!(!closed.reached, "{closed:?}");
+}
+
 /// A world with an obstacle on the plan's way that the model's scene has out of the way:
 /// the planar hand's scene with a glass too slender to push upright (it tips below the
 /// hand's height) off the plan's way, planned on one thread in `scratch`; in the world the
@@ -684,6 +737,12 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     assert_eq!(
         closed.invalid_rest_rules.values().sum::<usize>(),
         closed.invalid_rests,
+        "{closed:?}"
+    );
+    // Each verdict in full, in order: the first, from the world's start, names the glass.
+    assert_eq!(closed.invalid_rest_details.len(), closed.invalid_rests);
+    assert!(
+        closed.invalid_rest_details[0].contains("'glass'"),
         "{closed:?}"
     );
     assert_eq!(
@@ -784,6 +843,11 @@ fn a_link_deep_in_an_object_retraces_the_control_just_played() {
         panic!("the arm retraces the control: {:?}", executor.trial());
     };
     assert_eq!(executor.trial().backoffs, 1);
+    assert_eq!(
+        executor.trial().backoffs_at,
+        [2],
+        "the second control played"
+    );
     assert_eq!(control.action.velocity, [-0.1, 0.0, 0.0]);
     assert_eq!(trajectory.q.first().unwrap(), predicted.q.as_slice());
     assert_eq!(trajectory.q.last(), first.q.first());

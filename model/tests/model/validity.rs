@@ -198,7 +198,7 @@ fn an_object_must_stand_wholly_on_the_table() {
     let off_table = |pose: Pose2| {
         matches!(
             check_state(&scene, &with_object(&scene, 1, pose)),
-            Err(Invalid::ObjectOffTable { object }) if object == "box"
+            Err(Invalid::ObjectOffTable { object, .. }) if object == "box"
         )
     };
     let inside = with_object(&scene, 1, Pose2::new(0.97, -0.2, 0.0)); // face at 1.02
@@ -219,6 +219,19 @@ fn an_object_must_stand_wholly_on_the_table() {
         std::f64::consts::FRAC_PI_4
     )));
     assert!(off_table(Pose2::new(1.04, -0.2, 0.0)));
+    // The verdict says how far over: the turned corner's reach less the edge's x.
+    let turned = with_object(
+        &scene,
+        1,
+        Pose2::new(0.97, -0.2, std::f64::consts::FRAC_PI_4),
+    );
+    match check_state(&scene, &turned) {
+        Err(Invalid::ObjectOffTable { overhang, .. }) => {
+            let corner = 0.97 + 0.05 * std::f64::consts::SQRT_2;
+            assert!((overhang - (corner - 1.03)).abs() < 1e-12, "{overhang}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]

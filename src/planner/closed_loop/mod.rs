@@ -25,6 +25,7 @@ use crate::planning::{FinishSettings, PlannerKind, Problem, RunSettings};
 use crate::propagate::Propagator;
 use crate::scene::{Clearances, Goal, Scene};
 use crate::state::State;
+use crate::validity::Invalid;
 use ahead::RepairAhead;
 use nalgebra::{DVector, Vector2};
 use serde::Serialize;
@@ -183,6 +184,9 @@ pub struct ClosedLoopTrial {
     pub goal_distance: f64,
     /// Objects that tilted beyond [`TIPPED_TILT`] at some time.
     pub tipped: Vec<String>,
+    /// For each of `tipped`, the control during or after which it first tilted beyond
+    /// [`TIPPED_TILT`] (counted from 1 among the controls played, retraces included).
+    pub tipped_during: Vec<usize>,
     /// Controls played (whole or cut short).
     pub controls_played: usize,
     /// Controls cut short because an object left its predicted pose.
@@ -196,12 +200,18 @@ pub struct ClosedLoopTrial {
     /// "objects too close", "object off table", ...): what a world unlike the model does
     /// to the plan.
     pub invalid_rest_rules: BTreeMap<String, usize>,
+    /// Those observations' broken rules in full, in order: names and numbers (an object
+    /// off the table with how far it reaches over), to trace which object a world unlike
+    /// the model keeps breaking the rest on.
+    pub invalid_rest_details: Vec<String>,
     /// Observations with an object inside the arm or inside another object, moved out to
     /// touch it instead ([`Scene::with_start`]: a soft contact's depth).
     pub separations: usize,
     /// Observations with a link further inside an object than an observation may be off,
     /// after which the arm retraced the control it had just played ([`Executor::step`]).
     pub backoffs: usize,
+    /// Those retraces, each by its number among the controls played.
+    pub backoffs_at: Vec<usize>,
     /// Re-planning searches that found a plan.
     pub replans: usize,
     /// Of those, the searches from where the rest stopped being valid, or from its end
@@ -362,7 +372,8 @@ impl ClosedLoop {
             &self.execution.solver,
         )?;
         let mut executor = self.executor(scene, plan);
-        let mut tipped = vec![false; objects];
+        // Per object, the control during or after which it first tipped.
+        let mut tipped: Vec<Option<usize>> = vec![None; objects];
         let mut q = scene.start.q.clone();
         loop {
             // Observe: the arm where it was driven, the objects where the world has them.
@@ -380,18 +391,26 @@ impl ClosedLoop {
             };
             // After a whole control the arm is where the model's control ends (the
             // trajectory's last sample is interpolated onto it).
-            if self.play(world.as_mut(), robot, &trajectory, &mut q, &mut tipped) {
+            let tips = Tips {
+                flags: &mut tipped,
+                control: executor.trial.controls_played,
+            };
+            if self.play(world.as_mut(), robot, &trajectory, &mut q, tips) {
                 executor.trial.cut_short += 1;
             } else {
                 q.clone_from(&predicted.q);
             }
-            settle(world.as_mut(), &mut tipped, OBSERVE_AFTER);
+            let tips = Tips {
+                flags: &mut tipped,
+                control: executor.trial.controls_played,
+            };
+            settle(world.as_mut(), tips, OBSERVE_AFTER);
         }
-        settle(
-            world.as_mut(),
-            &mut tipped,
-            crate::planning::execute::SETTLE,
-        );
+        let tips = Tips {
+            flags: &mut tipped,
+            control: executor.trial.controls_played,
+        };
+        settle(world.as_mut(), tips, crate::planning::execute::SETTLE);
         let mut trial = executor.trial;
         let mut end_state = scene.start.clone();
         end_state.q = q;
@@ -402,10 +421,10 @@ impl ClosedLoop {
             .object()
             .is_none_or(|object| world.object_tilt(object) < TIPPED_TILT);
         trial.reached = trial.goal_distance <= 0.0 && upright;
-        trial.tipped = (0..objects)
-            .filter(|&i| tipped[i] && !world.object_fell_off(i))
-            .map(|i| scene.objects[i].name.clone())
-            .collect();
+        (trial.tipped, trial.tipped_during) = (0..objects)
+            .filter(|&i| !world.object_fell_off(i))
+            .filter_map(|i| Some((scene.objects[i].name.clone(), tipped[i]?)))
+            .unzip();
         trial.wall_time = began.elapsed().as_secs_f64();
         Ok(trial)
     }
@@ -439,13 +458,16 @@ impl ClosedLoop {
                 reached: false,
                 goal_distance: f64::INFINITY,
                 tipped: Vec::new(),
+                tipped_during: Vec::new(),
                 controls_played: 0,
                 cut_short: 0,
                 kept: 0,
                 invalid_rests: 0,
                 invalid_rest_rules: BTreeMap::new(),
+                invalid_rest_details: Vec::new(),
                 separations: 0,
                 backoffs: 0,
+                backoffs_at: Vec::new(),
                 replans: 0,
                 repairs: 0,
                 failed_replans: 0,
@@ -472,7 +494,7 @@ impl ClosedLoop {
         robot: &crate::robot::Robot,
         trajectory: &Trajectory,
         q: &mut DVector<f64>,
-        tipped: &mut [bool],
+        mut tips: Tips,
     ) -> bool {
         let mut playback = Playback::new(trajectory);
         let end = playback.end();
@@ -484,7 +506,7 @@ impl ClosedLoop {
             robot.chain.forward_kinematics(q, &mut poses);
             world.move_arm(&poses);
             world.step();
-            note_tipping(world, tipped);
+            tips.note(world);
             let predicted = &trajectory.objects[playback.segment()];
             let off = predicted.iter().enumerate().any(|(i, &[x, y, _])| {
                 let p = world.object_pose2(i);
@@ -836,7 +858,11 @@ impl Executor {
         let trial = &mut self.trial;
         if let Some(rule) = broken {
             trial.invalid_rests += 1;
-            *trial.invalid_rest_rules.entry(rule).or_default() += 1;
+            *trial
+                .invalid_rest_rules
+                .entry(rule.kind().to_string())
+                .or_default() += 1;
+            trial.invalid_rest_details.push(rule.to_string());
         }
         match verdict {
             RestFrom::Reaches => trial.kept += 1,
@@ -1067,7 +1093,6 @@ impl Executor {
     /// above), what moving the arm back undoes, and the arm has not retraced it already;
     /// the objects are predicted to stay where observed. The decision began at `started`.
     fn back_off(&mut self, refused: &Error, observed: &State, started: Instant) -> Option<Step> {
-        use crate::validity::Invalid;
         let arm_in_object = matches!(
             refused,
             Error::DeepOverlap {
@@ -1086,6 +1111,7 @@ impl Executor {
         let trial = &mut self.trial;
         trial.backoffs += 1;
         trial.controls_played += 1;
+        trial.backoffs_at.push(trial.controls_played);
         trial.latencies.push(started.elapsed().as_secs_f64());
         Some(Step::Play {
             control: control.reversed(),
@@ -1102,7 +1128,7 @@ impl Executor {
     /// goal gives the track legs follow. Also the rule the rest broke, if it stopped being
     /// valid ([`crate::validity::Invalid::kind`]), and whether a leg ended here (played,
     /// or no longer reaching its aim).
-    fn judge(&mut self, playing: &Problem, from: &Scene) -> (RestFrom, Option<String>, bool) {
+    fn judge(&mut self, playing: &Problem, from: &Scene) -> (RestFrom, Option<Invalid>, bool) {
         let leg = &mut self.leg;
         let mut leg_ended = false;
         let (mut verdict, simulated) = playing.rest_from(&self.rest, |s| {
@@ -1117,10 +1143,7 @@ impl Executor {
         if leg.is_none() && verdict == RestFrom::Reaches {
             self.track = Track::of(&from.goal, &simulated);
         }
-        let broken = simulated
-            .stopped_by
-            .as_ref()
-            .map(|(_, rule)| rule.kind().to_string());
+        let broken = simulated.stopped_by.map(|(_, rule)| rule);
         (verdict, broken, leg_ended)
     }
 
@@ -1220,16 +1243,27 @@ fn margins_half_spent(from: &Scene) -> Scene {
 }
 
 /// Steps the world `seconds` with the arm still.
-fn settle(world: &mut dyn Engine, tipped: &mut [bool], seconds: f64) {
+fn settle(world: &mut dyn Engine, mut tips: Tips, seconds: f64) {
     for _ in 0..(seconds / STEP).round() as usize {
         world.step();
-        note_tipping(world, tipped);
+        tips.note(world);
     }
 }
 
-fn note_tipping(world: &dyn Engine, tipped: &mut [bool]) {
-    for (i, flag) in tipped.iter_mut().enumerate() {
-        *flag |= world.object_tilt(i) > TIPPED_TILT;
+/// Per object, the control during or after which it first tilted beyond [`TIPPED_TILT`]
+/// (`flags`), while `control` plays or the world settles after it.
+struct Tips<'a> {
+    flags: &'a mut [Option<usize>],
+    control: usize,
+}
+
+impl Tips<'_> {
+    fn note(&mut self, world: &dyn Engine) {
+        for (i, flag) in self.flags.iter_mut().enumerate() {
+            if flag.is_none() && world.object_tilt(i) > TIPPED_TILT {
+                *flag = Some(self.control);
+            }
+        }
     }
 }
 
