@@ -372,8 +372,10 @@ impl ClosedLoop {
             &self.execution.solver,
         )?;
         let mut executor = self.executor(scene, plan);
-        // Per object, the control during or after which it first tipped.
-        let mut tipped: Vec<Option<usize>> = vec![None; objects];
+        let mut tips = Tips {
+            first: vec![None; objects],
+            control: 0,
+        };
         let mut q = scene.start.q.clone();
         loop {
             // Observe: the arm where it was driven, the objects where the world has them.
@@ -391,26 +393,15 @@ impl ClosedLoop {
             };
             // After a whole control the arm is where the model's control ends (the
             // trajectory's last sample is interpolated onto it).
-            let tips = Tips {
-                flags: &mut tipped,
-                control: executor.trial.controls_played,
-            };
-            if self.play(world.as_mut(), robot, &trajectory, &mut q, tips) {
+            tips.control = executor.trial.controls_played;
+            if self.play(world.as_mut(), robot, &trajectory, &mut q, &mut tips) {
                 executor.trial.cut_short += 1;
             } else {
                 q.clone_from(&predicted.q);
             }
-            let tips = Tips {
-                flags: &mut tipped,
-                control: executor.trial.controls_played,
-            };
-            settle(world.as_mut(), tips, OBSERVE_AFTER);
+            settle(world.as_mut(), &mut tips, OBSERVE_AFTER);
         }
-        let tips = Tips {
-            flags: &mut tipped,
-            control: executor.trial.controls_played,
-        };
-        settle(world.as_mut(), tips, crate::planning::execute::SETTLE);
+        settle(world.as_mut(), &mut tips, crate::planning::execute::SETTLE);
         let mut trial = executor.trial;
         let mut end_state = scene.start.clone();
         end_state.q = q;
@@ -423,7 +414,7 @@ impl ClosedLoop {
         trial.reached = trial.goal_distance <= 0.0 && upright;
         (trial.tipped, trial.tipped_during) = (0..objects)
             .filter(|&i| !world.object_fell_off(i))
-            .filter_map(|i| Some((scene.objects[i].name.clone(), tipped[i]?)))
+            .filter_map(|i| Some((scene.objects[i].name.clone(), tips.first[i]?)))
             .unzip();
         trial.wall_time = began.elapsed().as_secs_f64();
         Ok(trial)
@@ -494,7 +485,7 @@ impl ClosedLoop {
         robot: &crate::robot::Robot,
         trajectory: &Trajectory,
         q: &mut DVector<f64>,
-        mut tips: Tips,
+        tips: &mut Tips,
     ) -> bool {
         let mut playback = Playback::new(trajectory);
         let end = playback.end();
@@ -1126,8 +1117,7 @@ impl Executor {
     /// Re-simulates the rest from `from`'s start in `playing` and judges it: by the leg's
     /// goal while a leg plays and gets there, else by the goal. A rest that reaches the
     /// goal gives the track legs follow. Also the rule the rest broke, if it stopped being
-    /// valid ([`crate::validity::Invalid::kind`]), and whether a leg ended here (played,
-    /// or no longer reaching its aim).
+    /// valid, and whether a leg ended here (played, or no longer reaching its aim).
     fn judge(&mut self, playing: &Problem, from: &Scene) -> (RestFrom, Option<Invalid>, bool) {
         let leg = &mut self.leg;
         let mut leg_ended = false;
@@ -1243,25 +1233,28 @@ fn margins_half_spent(from: &Scene) -> Scene {
 }
 
 /// Steps the world `seconds` with the arm still.
-fn settle(world: &mut dyn Engine, mut tips: Tips, seconds: f64) {
+fn settle(world: &mut dyn Engine, tips: &mut Tips, seconds: f64) {
     for _ in 0..(seconds / STEP).round() as usize {
         world.step();
         tips.note(world);
     }
 }
 
-/// Per object, the control during or after which it first tilted beyond [`TIPPED_TILT`]
-/// (`flags`), while `control` plays or the world settles after it.
-struct Tips<'a> {
-    flags: &'a mut [Option<usize>],
+/// Which objects have tipped in a trial's world, and when.
+struct Tips {
+    /// Per object, the control during or after which it first tilted beyond
+    /// [`TIPPED_TILT`] (counted from 1 among the controls played).
+    first: Vec<Option<usize>>,
+    /// The control playing, or the last played while the world settles.
     control: usize,
 }
 
-impl Tips<'_> {
+impl Tips {
+    /// Notes the objects that tilt beyond [`TIPPED_TILT`] now, for the first time.
     fn note(&mut self, world: &dyn Engine) {
-        for (i, flag) in self.flags.iter_mut().enumerate() {
-            if flag.is_none() && world.object_tilt(i) > TIPPED_TILT {
-                *flag = Some(self.control);
+        for (i, first) in self.first.iter_mut().enumerate() {
+            if first.is_none() && world.object_tilt(i) > TIPPED_TILT {
+                *first = Some(self.control);
             }
         }
     }
