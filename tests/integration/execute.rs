@@ -617,11 +617,11 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
     );
 }
 
-/// A trial names the control during which an object tipped in the world. A 1 cm tall
-/// hand pushes a 0.1 m box (0.3 m tall) at 0.08 m. The model's table grips it with
-/// `mu_g` 0.4: sliding it takes 0.4 m g, whose moment about the box's far bottom edge
-/// (0.032 m m g) stays within its weight's at the half width shrunk by the tipping
-/// margin (0.7 x 0.05 m), so the model has it slide. The world's grips it with `mu_g` 1.0
+/// A trial names the control during which an object tipped in the world. The 1 cm tall
+/// hand of `common::thin_hand_yaml` pushes a 0.1 m box (0.3 m tall) at 0.08 m. The
+/// model's table grips it with `mu_g` 0.4: sliding it takes 0.4 m g, whose moment about
+/// the box's far bottom edge (0.032 m m g) stays within its weight's at the half width
+/// shrunk by the tipping margin (0.7 x 0.05 m), so the model has it slide. The world's grips it with `mu_g` 1.0
 /// and the hand is slippery (`mu_c` 0.05): 0.08 m m g against 0.05 m m g for the weight
 /// and 0.005 for the hand's friction holding the near face down (0.05 of the push, 0.1 m
 /// out), so the first push tips it. It cannot tip before the hand first touches it: not
@@ -629,23 +629,20 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
 #[test]
 fn a_closed_loop_trial_names_the_control_an_object_tipped_in() {
     let scratch = common::Scratch::new("closed-loop-tipped");
-    let scene_yaml = |mu_g: f64, mu_c: f64| {
-        format!(
-            "robot:
-  type: planar_hand
-  shape: {{type: box, size: [0.04, 0.12, 0.01]}}
-  start: [0.4, 0.0, 0.0]
-  height: 0.08
-table: {{height: 0.76, x: [0.27, 1.03], y: [-0.6, 0.6]}}
-objects:
-  - {{name: box, shape: {{type: box, size: [0.1, 0.1, 0.3]}}, pose: [0.55, 0.0, 0.0], mass: 1.0, mu_g: {mu_g}, mu_c: {mu_c}}}
-goal: {{object: box, center: [0.8, 0.0], radius: 0.1}}
-"
+    let (scene_path, world_path) = (scratch.join("scene.yaml"), scratch.join("world.yaml"));
+    let tall_box = |mu_g| {
+        common::thin_hand_yaml(
+            "box",
+            "{type: box, size: [0.1, 0.1, 0.3]}",
+            0.55,
+            0.08,
+            mu_g,
+            "",
         )
     };
-    let (scene_path, world_path) = (scratch.join("scene.yaml"), scratch.join("world.yaml"));
-    std::fs::write(&scene_path, scene_yaml(0.4, 0.3)).unwrap();
-    std::fs::write(&world_path, scene_yaml(1.0, 0.05)).unwrap();
+    std::fs::write(&scene_path, tall_box(0.4)).unwrap();
+    let slippery_hand = tall_box(1.0).replace("mu_c: 0.3", "mu_c: 0.05");
+    std::fs::write(&world_path, slippery_hand).unwrap();
     let (plan, scene) = planned(&scene_path, &scratch.join("plan.json"));
     let world = Scene::load(&world_path).unwrap();
     let controls = plan.path_controls();

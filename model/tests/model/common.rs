@@ -72,7 +72,20 @@ pub fn thin_hand_scene(
     mu_g: f64,
     extra: &str,
 ) -> Scene {
-    let yaml = format!(
+    let yaml = thin_hand_yaml(name, shape, x, height, mu_g, extra);
+    Scene::from_yaml(&yaml, Path::new("scenes/thin-hand-test.yaml")).unwrap()
+}
+
+/// [`thin_hand_scene`]'s scene file, for tests that write it out (`mu_c` 0.3).
+pub fn thin_hand_yaml(
+    name: &str,
+    shape: &str,
+    x: f64,
+    height: f64,
+    mu_g: f64,
+    extra: &str,
+) -> String {
+    format!(
         "robot:
   type: planar_hand
   shape: {{type: box, size: [0.04, 0.12, 0.01]}}
@@ -83,8 +96,7 @@ objects:
   - {{name: {name}, shape: {shape}, pose: [{x}, 0.0, 0.0], mass: 1.0, mu_g: {mu_g}, mu_c: 0.3}}
 goal: {{object: {name}, center: [0.9, 0.3], radius: 0.1}}
 {extra}"
-    );
-    Scene::from_yaml(&yaml, Path::new("scenes/thin-hand-test.yaml")).unwrap()
+    )
 }
 
 /// A fresh folder `pushplan-{name}-{pid}` under the system temp dir, removed when dropped
