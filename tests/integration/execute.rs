@@ -969,21 +969,23 @@ fn thin_hand_and_box(lowest: f64, goal_x: f64, physics: &str) -> Scene {
     scene
 }
 
-/// The rest of a plan is judged with half the planner's reserves spent, the tipping margin
-/// (`physics.tipping_margin`, 0.3) among them. A box of half-width b = 0.05 m on mu_g = 0.4,
-/// pushed flat on through its centre by a hand whose lowest point is h above the table,
-/// slides with the table's whole friction mu_g m g, which shifts its support pressure's centre
-/// by mu_g h (closed form): it tips beyond h = b / mu_g = 0.125 m, and with the margin m the
-/// model refuses h > (1 - m) b / mu_g, 0.0875 m with the whole margin, 0.106 m with half.
-/// A straight push into the goal disc at h = 0.097 m is refused by the planner's model and
-/// played to the goal by the executor without a search; at h = 0.115 m the executor refuses
-/// it too, before the first control.
+/// The rest of a plan is judged with the planner's whole tipping margin
+/// (`physics.tipping_margin`, 0.3), where the clearances are half spent. A box of
+/// half-width b = 0.05 m on mu_g = 0.4, pushed flat on through its centre by a hand whose
+/// lowest point is h above the table, slides with the table's whole friction mu_g m g,
+/// which shifts its support pressure's centre by mu_g h (closed form): it tips beyond
+/// h = b / mu_g = 0.125 m, and with the margin m the model refuses h > (1 - m) b / mu_g,
+/// 0.0875 m with the whole margin (0.106 m with half of it, the rule before: a world with
+/// 1.2 times the support friction tips the box beyond 0.104 m). A straight push into the
+/// goal disc at h = 0.080 m is accepted by the planner's model and played to the goal by
+/// the executor without a search; at h = 0.097 m the planner's model refuses it, and the
+/// executor refuses it too, before the first control.
 #[test]
-fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
+fn the_rest_is_judged_with_the_whole_tipping_margin() {
     use pushplan::planner::closed_loop::Step;
     use pushplan::planning::{PlannerKind, Problem};
     let ((b, mu_g), margin) = (RESERVE_BOX, 0.3);
-    let (whole, half) = ((1.0 - margin) * b / mu_g, (1.0 - 0.5 * margin) * b / mu_g);
+    let whole = (1.0 - margin) * b / mu_g;
     // The goal disc straight ahead.
     let physics = format!("physics: {{tipping_margin: {margin}}}");
     let scene_at = |lowest: f64| thin_hand_and_box(lowest, 0.8, &physics);
@@ -993,17 +995,21 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
     let planner = PlannerKind::PushKpiece;
     // No re-plans: a rest refused stops the execution.
     let closed_loop = closed_loop(planner, 0);
-    for (lowest, kept) in [(0.097, true), (0.115, false)] {
-        assert!(whole < lowest && (lowest < half) == kept && lowest < b / mu_g);
+    for (lowest, kept) in [(0.080, true), (0.097, false)] {
+        assert!((lowest < whole) == kept && lowest < (1.0 - 0.5 * margin) * b / mu_g);
         let scene = scene_at(lowest);
-        // The model with the whole margin refuses the push: it tips the box.
+        // The planner's model accepts the push below the margin and refuses it above.
         let planned = Problem::new(scene.clone(), planner).simulate(&push, false);
         let refused = planned.stopped_by.as_ref().map(|(_, rule)| rule.kind());
-        assert!(
-            matches!(refused, Some("tips" | "closes in at tipping height")),
-            "h = {lowest}: {refused:?}"
-        );
-        // The executor fed the model's own predictions, the reserves half spent.
+        if kept {
+            assert!(refused.is_none(), "h = {lowest}: {refused:?}");
+        } else {
+            assert!(
+                matches!(refused, Some("tips" | "closes in at tipping height")),
+                "h = {lowest}: {refused:?}"
+            );
+        }
+        // The executor fed the model's own predictions.
         let (end, played, observed, trial) = played_on_predictions(&closed_loop, &scene, &push);
         if kept {
             assert!(
@@ -1029,7 +1035,7 @@ fn the_rest_is_judged_with_half_the_tipping_margin_spent() {
 
 /// The rest of a plan is judged with half the arm clearance spent (`physics.arm_clearance`,
 /// 10 mm). The thin hand, its lowest point at 0.115 m (where a push that slid the box
-/// would tip it even with half the tipping margin spent: the previous test's closed form),
+/// would tip it within the tipping margin: the previous test's closed form),
 /// moves straight at a box that already stands in the goal disc and stops short of it.
 /// Stopping 7 mm short, between the half and the whole clearance, the planner's model
 /// refuses it ("closes in at tipping height") and the executor plays it to its end;
@@ -1042,8 +1048,8 @@ fn the_rest_is_judged_with_half_the_arm_clearance_spent() {
     let physics = format!("physics: {{arm_clearance: {clearance}}}");
     // The goal disc around the box.
     let scene = thin_hand_and_box(lowest, 0.6, &physics);
-    // Above the height where a sliding push tips the box with half the tipping margin spent.
-    assert!(lowest > (1.0 - 0.5 * scene.physics.tipping_margin) * b / mu_g);
+    // Above the height where a sliding push tips the box within the tipping margin.
+    assert!(lowest > (1.0 - scene.physics.tipping_margin) * b / mu_g);
     assert!(scene.goal.task_distance(&scene.start) < 0.0);
     let planner = PlannerKind::PushKpiece;
     let closed_loop = closed_loop(planner, 0);

@@ -808,7 +808,10 @@ impl Executor {
             self.trial.separations += 1;
         }
         // The rest is re-simulated, and played, with half the margins spent.
-        let playing = Problem::new(margins_half_spent(&from), self.closed_loop.settings.planner);
+        let playing = Problem::new(
+            clearances_half_spent(&from),
+            self.closed_loop.settings.planner,
+        );
         let (mut verdict, mut broken, leg_ended) = self.judge(&playing, &from);
         // A repair searched ahead is taken up once it is due; where nothing valid is left
         // to play before, the arm waits for it.
@@ -1204,7 +1207,7 @@ fn onto_the_disc(goal: &Goal, leg: &Goal) -> bool {
 /// margin may be half spent. The plan was made to end a margin inside the disc so that
 /// errors in the world still leave the object in; a re-plan for every millimetre of that
 /// error would thrash, and the next observation corrects what builds up. The clearances
-/// and the tipping margin are spent the same way ([`margins_half_spent`]).
+/// are spent the same way ([`clearances_half_spent`]).
 fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
     match goal {
         crate::scene::Goal::ObjectInDisc { margin, .. } => goal.distance(state) <= 0.5 * margin,
@@ -1212,23 +1215,26 @@ fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
     }
 }
 
-/// `from` with half its reserves spent, as the rest of a plan is judged: its object and
-/// arm clearances (`physics.object_clearance`, `physics.arm_clearance`) and its tipping
-/// margin (`physics.tipping_margin`). Objects a plan kept a clearance apart come closer in
-/// a world that is not the model, and a push planned within the tipping margin presses a
-/// little higher or more sideways on an object that stands a little elsewhere; a re-plan
-/// whenever a reserve is touched would thrash. What is spent of a clearance is still no
-/// contact, and half the tipping margin still keeps the support pressure well inside the
-/// footprint; re-plans keep the reserves whole. How far an object may hang over the
-/// table's edge stays what re-plans allow (it is set by the whole tipping margin,
-/// [`Clearances::with_start_overhangs`]): a rest a re-plan made is not judged to leave the
-/// table where the re-plan kept it on.
-fn margins_half_spent(from: &Scene) -> Scene {
+/// `from` with half its clearances spent, as the rest of a plan is judged: its object and
+/// arm clearances (`physics.object_clearance`, `physics.arm_clearance`). Objects a plan
+/// kept a clearance apart come closer in a world that is not the model; a re-plan whenever
+/// a clearance is touched would thrash, and what is spent of one is still no contact.
+/// Re-plans keep the clearances whole.
+///
+/// The tipping margin (`physics.tipping_margin`) stays whole: it is what keeps a push
+/// below the height where the object tips in a world whose support friction is not the
+/// model's. The model's own noise draws `mu_g` up to 1.2 times the scene's
+/// ([`crate::planning::robustness::Noise`]), which lowers the tipping height r / `mu_g` to
+/// 1 / 1.2 = 0.83 of the model's; half the default margin (0.3) spent would allow pushes
+/// at 0.85 of it, and the world tipped a bottle the upper arm pushed there (BENCHMARKS.md,
+/// "Dense scenes, closed loop"). How far an object may hang over the table's edge stays
+/// what re-plans allow ([`Clearances::with_start_overhangs`]): a rest a re-plan made is
+/// not judged to leave the table where the re-plan kept it on.
+fn clearances_half_spent(from: &Scene) -> Scene {
     let mut scene = from.clone();
     scene.physics.object_clearance *= 0.5;
     scene.physics.arm_clearance *= 0.5;
     scene.clearances = Clearances::at_start(&scene).with_start_overhangs(&scene);
-    scene.physics.tipping_margin *= 0.5;
     scene
 }
 
