@@ -178,7 +178,16 @@ fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
         } else {
             let during = t.tipped.iter().zip(&t.tipped_during);
             let tipped: Vec<String> = during
-                .map(|(object, control)| format!("{object} (control {control})"))
+                .map(|(object, control)| {
+                    let onset = t.tilt_onsets.iter().find(|o| &o.object == object);
+                    match onset {
+                        Some(o) if o.control != *control => format!(
+                            "{object} (control {control}; tilting from control {})",
+                            o.control
+                        ),
+                        _ => format!("{object} (control {control})"),
+                    }
+                })
                 .collect();
             format!("; tipped: {}", tipped.join(", "))
         },

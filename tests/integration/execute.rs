@@ -590,6 +590,8 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
         closed.tipped.is_empty() && closed.stopped.is_none(),
         "{closed:?}"
     );
+    // Pushed below its tipping height, the box rocks no more than a hundredth of a radian.
+    assert!(closed.tilt_onsets.is_empty(), "{:?}", closed.tilt_onsets);
     assert!(
         closed.search_time > 0.0 && closed.search_time < 60.0,
         "{closed:?}"
@@ -665,6 +667,44 @@ fn a_closed_loop_trial_names_the_control_an_object_tipped_in() {
         "tipped during control {during}, the first push is control {first_push}: {closed:?}"
     );
     assert!(!closed.reached, "{closed:?}");
+
+    // It started to tip under the hand: the world when it first tilted beyond the onset,
+    // in `replan --observed`'s format, has the hand touching the box (parry's distance
+    // between the hand's plate and the box stood upright at its recorded planar pose; a
+    // tilt of 0.02 rad moves the box's face by 1.6 mm at the hand's 8 cm).
+    use pushplan::planner::closed_loop::TILT_ONSET;
+    use pushplan::planning::execute::TIPPED_TILT;
+    let [onset] = closed.tilt_onsets.as_slice() else {
+        panic!("one object started to tip: {:?}", closed.tilt_onsets)
+    };
+    assert_eq!(onset.object, "box");
+    assert!(
+        onset.control >= first_push && onset.control <= during,
+        "{onset:?}, tipped during control {during}"
+    );
+    assert!(
+        onset.tilt > TILT_ONSET && onset.tilt < TIPPED_TILT,
+        "{onset:?}"
+    );
+    let state = onset.world.state(&scene, Path::new("onset")).unwrap();
+    let (q, b) = (&state.q, state.objects[0]);
+    let at = |x: f64, y: f64, z: f64, yaw: f64| {
+        parry3d_f64::math::Isometry::new(
+            parry3d_f64::math::Vector::new(x, y, z),
+            parry3d_f64::math::Vector::z() * yaw,
+        )
+    };
+    let plate = parry3d_f64::shape::Cuboid::new(parry3d_f64::math::Vector::new(0.02, 0.06, 0.005));
+    let tall_box =
+        parry3d_f64::shape::Cuboid::new(parry3d_f64::math::Vector::new(0.05, 0.05, 0.15));
+    let gap = parry3d_f64::query::distance(
+        &at(q[0], q[1], 0.08, q[2]),
+        &plate,
+        &at(b.x, b.y, 0.15, b.theta),
+        &tall_box,
+    )
+    .unwrap();
+    assert!(gap < 0.005, "the hand {gap} m from the box: {onset:?}");
 }
 
 /// A world with an obstacle on the plan's way that the model's scene has out of the way:

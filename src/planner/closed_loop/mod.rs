@@ -175,6 +175,30 @@ fn search_time(replan_time: f64, failures_in_a_row: u32, waiting_near: bool) -> 
     replan_time * f64::from(1 << doublings)
 }
 
+/// Tilt beyond which an object in a trial's world is taken to be starting to tip (rad,
+/// about 1.1 degrees): an object pushed below its tipping height rocks on its support by
+/// a few thousandths of a radian at most, and one that tipped in MuJoCo had passed 0.03
+/// two controls before it reached [`TIPPED_TILT`] (BENCHMARKS.md, "Dense scenes, closed
+/// loop").
+pub const TILT_ONSET: f64 = 0.02;
+
+/// An object starting to tip in a trial's world: the first step it tilted beyond
+/// [`TILT_ONSET`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TiltOnset {
+    /// The object's name.
+    pub object: String,
+    /// The control playing then (counted from 1 among the controls played, as
+    /// [`ClosedLoopTrial::tipped_during`]), or the last played while the world settled.
+    pub control: usize,
+    /// Its tilt then (rad).
+    pub tilt: f64,
+    /// The world then, in `replan --observed`'s format: the arm's joints as driven and
+    /// every object's planar pose. `check` and `replan` on it say what the model makes of
+    /// the contacts there.
+    pub world: ObservedState,
+}
+
 /// One closed-loop execution.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ClosedLoopTrial {
@@ -187,6 +211,10 @@ pub struct ClosedLoopTrial {
     /// For each of `tipped`, the control during or after which it first tilted beyond
     /// [`TIPPED_TILT`] (counted from 1 among the controls played, retraces included).
     pub tipped_during: Vec<usize>,
+    /// Every object that tilted beyond [`TILT_ONSET`], tipped or not: when it started
+    /// and the world then, so that a tip can be traced after the trial (the closed loop
+    /// is not replayed bit for bit: its searches run on the clock).
+    pub tilt_onsets: Vec<TiltOnset>,
     /// Controls played (whole or cut short).
     pub controls_played: usize,
     /// Controls cut short because an object left its predicted pose.
@@ -374,6 +402,7 @@ impl ClosedLoop {
         let mut executor = self.executor(scene, plan);
         let mut tips = Tips {
             first: vec![None; objects],
+            onsets: Vec::new(),
             control: 0,
         };
         let mut q = scene.start.q.clone();
@@ -399,9 +428,14 @@ impl ClosedLoop {
             } else {
                 q.clone_from(&predicted.q);
             }
-            settle(world.as_mut(), &mut tips, OBSERVE_AFTER);
+            settle(world.as_mut(), &mut tips, &q, OBSERVE_AFTER);
         }
-        settle(world.as_mut(), &mut tips, crate::planning::execute::SETTLE);
+        settle(
+            world.as_mut(),
+            &mut tips,
+            &q,
+            crate::planning::execute::SETTLE,
+        );
         let mut trial = executor.trial;
         let mut end_state = scene.start.clone();
         end_state.q = q;
@@ -416,6 +450,7 @@ impl ClosedLoop {
             .filter(|&i| !world.object_fell_off(i))
             .filter_map(|i| Some((scene.objects[i].name.clone(), tips.first[i]?)))
             .unzip();
+        trial.tilt_onsets = tips.onsets(scene);
         trial.wall_time = began.elapsed().as_secs_f64();
         Ok(trial)
     }
@@ -450,6 +485,7 @@ impl ClosedLoop {
                 goal_distance: f64::INFINITY,
                 tipped: Vec::new(),
                 tipped_during: Vec::new(),
+                tilt_onsets: Vec::new(),
                 controls_played: 0,
                 cut_short: 0,
                 kept: 0,
@@ -497,7 +533,7 @@ impl ClosedLoop {
             robot.chain.forward_kinematics(q, &mut poses);
             world.move_arm(&poses);
             world.step();
-            tips.note(world);
+            tips.note(world, q);
             let predicted = &trajectory.objects[playback.segment()];
             let off = predicted.iter().enumerate().any(|(i, &[x, y, _])| {
                 let p = world.object_pose2(i);
@@ -1238,31 +1274,57 @@ fn clearances_half_spent(from: &Scene) -> Scene {
     scene
 }
 
-/// Steps the world `seconds` with the arm still.
-fn settle(world: &mut dyn Engine, tips: &mut Tips, seconds: f64) {
+/// Steps the world `seconds` with the arm still at `q`.
+fn settle(world: &mut dyn Engine, tips: &mut Tips, q: &DVector<f64>, seconds: f64) {
     for _ in 0..(seconds / STEP).round() as usize {
         world.step();
-        tips.note(world);
+        tips.note(world, q);
     }
 }
 
-/// Which objects have tipped in a trial's world, and when.
+/// Which objects have started to tip and tipped in a trial's world, and when.
 struct Tips {
     /// Per object, the control during or after which it first tilted beyond
     /// [`TIPPED_TILT`] (counted from 1 among the controls played).
     first: Vec<Option<usize>>,
+    /// The objects that tilted beyond [`TILT_ONSET`], in order, each once: the object,
+    /// the control, its tilt and the world's state then.
+    onsets: Vec<(usize, usize, f64, State)>,
     /// The control playing, or the last played while the world settles.
     control: usize,
 }
 
 impl Tips {
-    /// Notes the objects that tilt beyond [`TIPPED_TILT`] now, for the first time.
-    fn note(&mut self, world: &dyn Engine) {
-        for (i, first) in self.first.iter_mut().enumerate() {
-            if first.is_none() && world.object_tilt(i) > TIPPED_TILT {
-                *first = Some(self.control);
+    /// Notes the objects that tilt beyond [`TILT_ONSET`] or [`TIPPED_TILT`] now for the
+    /// first time, the arm at `q`.
+    fn note(&mut self, world: &dyn Engine, q: &DVector<f64>) {
+        let objects = self.first.len();
+        for i in 0..objects {
+            let tilt = world.object_tilt(i);
+            if tilt > TILT_ONSET && !self.onsets.iter().any(|(o, ..)| *o == i) {
+                let state = State {
+                    q: q.clone(),
+                    objects: (0..objects).map(|j| world.object_pose2(j)).collect(),
+                };
+                self.onsets.push((i, self.control, tilt, state));
+            }
+            if self.first[i].is_none() && tilt > TIPPED_TILT {
+                self.first[i] = Some(self.control);
             }
         }
+    }
+
+    /// The onsets by name, the worlds in `replan --observed`'s format.
+    fn onsets(&self, scene: &Scene) -> Vec<TiltOnset> {
+        self.onsets
+            .iter()
+            .map(|(i, control, tilt, state)| TiltOnset {
+                object: scene.objects[*i].name.clone(),
+                control: *control,
+                tilt: *tilt,
+                world: ObservedState::of(scene, state),
+            })
+            .collect()
     }
 }
 
