@@ -407,11 +407,7 @@ impl ClosedLoop {
         };
         let mut q = scene.start.q.clone();
         loop {
-            // Observe: the arm where it was driven, the objects where the world has them.
-            let observed = State {
-                q: q.clone(),
-                objects: (0..objects).map(|i| world.object_pose2(i)).collect(),
-            };
+            let observed = observe(world.as_ref(), &q, objects);
             let Step::Play {
                 trajectory,
                 predicted,
@@ -437,9 +433,7 @@ impl ClosedLoop {
             crate::planning::execute::SETTLE,
         );
         let mut trial = executor.trial;
-        let mut end_state = scene.start.clone();
-        end_state.q = q;
-        end_state.objects = (0..objects).map(|i| world.object_pose2(i)).collect();
+        let end_state = observe(world.as_ref(), &q, objects);
         trial.goal_distance = scene.goal.task_distance(&end_state);
         let upright = scene
             .goal
@@ -1274,6 +1268,15 @@ fn clearances_half_spent(from: &Scene) -> Scene {
     scene
 }
 
+/// What an observation sees: the arm at `q`, where it was driven, and the `objects`
+/// objects where the world has them (planar poses).
+fn observe(world: &dyn Engine, q: &DVector<f64>, objects: usize) -> State {
+    State {
+        q: q.clone(),
+        objects: (0..objects).map(|i| world.object_pose2(i)).collect(),
+    }
+}
+
 /// Steps the world `seconds` with the arm still at `q`.
 fn settle(world: &mut dyn Engine, tips: &mut Tips, q: &DVector<f64>, seconds: f64) {
     for _ in 0..(seconds / STEP).round() as usize {
@@ -1302,11 +1305,8 @@ impl Tips {
         for i in 0..objects {
             let tilt = world.object_tilt(i);
             if tilt > TILT_ONSET && !self.onsets.iter().any(|(o, ..)| *o == i) {
-                let state = State {
-                    q: q.clone(),
-                    objects: (0..objects).map(|j| world.object_pose2(j)).collect(),
-                };
-                self.onsets.push((i, self.control, tilt, state));
+                self.onsets
+                    .push((i, self.control, tilt, observe(world, q, objects)));
             }
             if self.first[i].is_none() && tilt > TIPPED_TILT {
                 self.first[i] = Some(self.control);
