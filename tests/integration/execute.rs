@@ -688,16 +688,12 @@ fn a_closed_loop_trial_names_the_control_an_object_tipped_in() {
     );
     let state = onset.world.state(&scene, Path::new("onset")).unwrap();
     let (q, b) = (&state.q, state.objects[0]);
-    let at = |x: f64, y: f64, z: f64, yaw: f64| {
-        parry3d_f64::math::Isometry::new(
-            parry3d_f64::math::Vector::new(x, y, z),
-            parry3d_f64::math::Vector::z() * yaw,
-        )
-    };
-    let plate = parry3d_f64::shape::Cuboid::new(parry3d_f64::math::Vector::new(0.02, 0.06, 0.005));
-    let tall_box =
-        parry3d_f64::shape::Cuboid::new(parry3d_f64::math::Vector::new(0.05, 0.05, 0.15));
-    let gap = parry3d_f64::query::distance(
+    use parry3d_f64::{math::Isometry, math::Vector, query, shape::Cuboid};
+    let at =
+        |x: f64, y: f64, z: f64, yaw: f64| Isometry::new(Vector::new(x, y, z), Vector::z() * yaw);
+    let plate = Cuboid::new(Vector::new(0.02, 0.06, 0.005));
+    let tall_box = Cuboid::new(Vector::new(0.05, 0.05, 0.15));
+    let gap = query::distance(
         &at(q[0], q[1], 0.08, q[2]),
         &plate,
         &at(b.x, b.y, 0.15, b.theta),

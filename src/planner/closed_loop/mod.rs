@@ -400,11 +400,7 @@ impl ClosedLoop {
             &self.execution.solver,
         )?;
         let mut executor = self.executor(scene, plan);
-        let mut tips = Tips {
-            first: vec![None; objects],
-            onsets: Vec::new(),
-            control: 0,
-        };
+        let mut tips = Tips::new(objects);
         let mut q = scene.start.q.clone();
         loop {
             let observed = observe(world.as_ref(), &q, objects);
@@ -837,7 +833,7 @@ impl Executor {
         if from.start.objects.iter().zip(&observed.objects).any(moved) {
             self.trial.separations += 1;
         }
-        // The rest is re-simulated, and played, with half the margins spent.
+        // The rest is re-simulated, and played, with half the clearances spent.
         let playing = Problem::new(
             clearances_half_spent(&from),
             self.closed_loop.settings.planner,
@@ -1298,6 +1294,15 @@ struct Tips {
 }
 
 impl Tips {
+    /// No object tipped or tilting yet among `objects`.
+    fn new(objects: usize) -> Tips {
+        Tips {
+            first: vec![None; objects],
+            onsets: Vec::new(),
+            control: 0,
+        }
+    }
+
     /// Notes the objects that tilt beyond [`TILT_ONSET`] or [`TIPPED_TILT`] now for the
     /// first time, the arm at `q`.
     fn note(&mut self, world: &dyn Engine, q: &DVector<f64>) {
