@@ -2,7 +2,7 @@
 //! what happened.
 
 use pushplan::planner::closed_loop::{
-    ClosedLoop, ClosedLoopOptions, ClosedLoopReport, ClosedLoopTrial,
+    ClosedLoop, ClosedLoopOptions, ClosedLoopReport, ClosedLoopTrial, TiltOnset,
 };
 use pushplan::planner::Search;
 use pushplan::planning::execute::{EngineKind, ExecuteSettings, ExecutionReport};
@@ -173,29 +173,57 @@ fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
             0 => String::new(),
             s => format!("; {s} observations had an object inside the arm or another object"),
         },
-        if t.tipped.is_empty() {
-            String::new()
-        } else {
-            let during = t.tipped.iter().zip(&t.tipped_during);
-            let tipped: Vec<String> = during
-                .map(|(object, control)| {
-                    let onset = t.tilt_onsets.iter().find(|o| &o.object == object);
-                    match onset {
-                        Some(o) if o.control != *control => format!(
-                            "{object} (control {control}; tilting from control {})",
-                            o.control
-                        ),
-                        _ => format!("{object} (control {control})"),
-                    }
-                })
-                .collect();
-            format!("; tipped: {}", tipped.join(", "))
-        },
+        tilts(t),
         t.stopped
             .as_ref()
             .map(|why| format!("; stopped: {why}"))
             .unwrap_or_default(),
     )
+}
+
+/// The objects a trial tipped, and those that started to tip and stood again: when they
+/// began and the link the model's geometry has nearest each then (`TiltOnset`).
+fn tilts(t: &ClosedLoopTrial) -> String {
+    let onset = |object: &str| t.tilt_onsets.iter().find(|o| o.object == object);
+    let touch = |o: &TiltOnset| {
+        o.touching
+            .first()
+            .map(|touch| {
+                format!(
+                    ", {} at it {:.3} m above the table",
+                    touch.link, touch.height
+                )
+            })
+            .unwrap_or_default()
+    };
+    let tipped: Vec<String> = t
+        .tipped
+        .iter()
+        .zip(&t.tipped_during)
+        .map(|(object, control)| match onset(object) {
+            Some(o) if o.control != *control => format!(
+                "{object} (control {control}; tilting from control {}{})",
+                o.control,
+                touch(o)
+            ),
+            Some(o) => format!("{object} (control {control}{})", touch(o)),
+            None => format!("{object} (control {control})"),
+        })
+        .collect();
+    let stood: Vec<String> = t
+        .tilt_onsets
+        .iter()
+        .filter(|o| !t.tipped.contains(&o.object))
+        .map(|o| format!("{} (control {}{})", o.object, o.control, touch(o)))
+        .collect();
+    let mut said = String::new();
+    if !tipped.is_empty() {
+        said += &format!("; tipped: {}", tipped.join(", "));
+    }
+    if !stood.is_empty() {
+        said += &format!("; started to tip and stood again: {}", stood.join(", "));
+    }
+    said
 }
 
 fn print_execution(path: &Path, scene: &Scene, report: &ExecutionReport) {

@@ -701,6 +701,15 @@ fn a_closed_loop_trial_names_the_control_an_object_tipped_in() {
     )
     .unwrap();
     assert!(gap < 0.005, "the hand {gap} m from the box: {onset:?}");
+    // The onset names it: the hand first, at the box within the plate's height span
+    // (0.075 to 0.085 m above the table), as far from it as parry says.
+    let touch = &onset.touching[0];
+    assert_eq!(touch.link, "hand", "{onset:?}");
+    assert!((0.075..=0.085).contains(&touch.height), "{onset:?}");
+    assert!(
+        (touch.distance.max(0.0) - gap).abs() < 1e-3,
+        "parry: {gap} m; {onset:?}"
+    );
 }
 
 /// A world with an obstacle on the plan's way that the model's scene has out of the way:

@@ -11,6 +11,7 @@
 //! differ from the scene's): only what it observes.
 
 mod ahead;
+mod tips;
 
 use super::search::Search;
 use crate::error::{Error, Overlap};
@@ -32,6 +33,8 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::{Duration, Instant};
+use tips::Tips;
+pub use tips::{TiltOnset, TiltTouch, TILT_ONSET, TOUCH_DISTANCE};
 
 /// How a closed-loop execution plays and re-plans.
 #[derive(Clone, Debug, PartialEq)]
@@ -173,30 +176,6 @@ fn search_time(replan_time: f64, failures_in_a_row: u32, waiting_near: bool) -> 
         failures_in_a_row.min(3)
     };
     replan_time * f64::from(1 << doublings)
-}
-
-/// Tilt beyond which an object in a trial's world is taken to be starting to tip (rad,
-/// about 1.1 degrees): an object pushed below its tipping height rocks on its support by
-/// a few thousandths of a radian at most, and one that tipped in MuJoCo had passed 0.03
-/// two controls before it reached [`TIPPED_TILT`] (BENCHMARKS.md, "Dense scenes, closed
-/// loop").
-pub const TILT_ONSET: f64 = 0.02;
-
-/// An object starting to tip in a trial's world: the first step it tilted beyond
-/// [`TILT_ONSET`].
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct TiltOnset {
-    /// The object's name.
-    pub object: String,
-    /// The control playing then (counted from 1 among the controls played, as
-    /// [`ClosedLoopTrial::tipped_during`]), or the last played while the world settled.
-    pub control: usize,
-    /// Its tilt then (rad).
-    pub tilt: f64,
-    /// The world then, in `replan --observed`'s format: the arm's joints as driven and
-    /// every object's planar pose. `check` and `replan` on it say what the model makes of
-    /// the contacts there.
-    pub world: ObservedState,
 }
 
 /// One closed-loop execution.
@@ -1278,58 +1257,6 @@ fn settle(world: &mut dyn Engine, tips: &mut Tips, q: &DVector<f64>, seconds: f6
     for _ in 0..(seconds / STEP).round() as usize {
         world.step();
         tips.note(world, q);
-    }
-}
-
-/// Which objects have started to tip and tipped in a trial's world, and when.
-struct Tips {
-    /// Per object, the control during or after which it first tilted beyond
-    /// [`TIPPED_TILT`] (counted from 1 among the controls played).
-    first: Vec<Option<usize>>,
-    /// The objects that tilted beyond [`TILT_ONSET`], in order, each once: the object,
-    /// the control, its tilt and the world's state then.
-    onsets: Vec<(usize, usize, f64, State)>,
-    /// The control playing, or the last played while the world settles.
-    control: usize,
-}
-
-impl Tips {
-    /// No object tipped or tilting yet among `objects`.
-    fn new(objects: usize) -> Tips {
-        Tips {
-            first: vec![None; objects],
-            onsets: Vec::new(),
-            control: 0,
-        }
-    }
-
-    /// Notes the objects that tilt beyond [`TILT_ONSET`] or [`TIPPED_TILT`] now for the
-    /// first time, the arm at `q`.
-    fn note(&mut self, world: &dyn Engine, q: &DVector<f64>) {
-        let objects = self.first.len();
-        for i in 0..objects {
-            let tilt = world.object_tilt(i);
-            if tilt > TILT_ONSET && !self.onsets.iter().any(|(o, ..)| *o == i) {
-                self.onsets
-                    .push((i, self.control, tilt, observe(world, q, objects)));
-            }
-            if self.first[i].is_none() && tilt > TIPPED_TILT {
-                self.first[i] = Some(self.control);
-            }
-        }
-    }
-
-    /// The onsets by name, the worlds in `replan --observed`'s format.
-    fn onsets(&self, scene: &Scene) -> Vec<TiltOnset> {
-        self.onsets
-            .iter()
-            .map(|(i, control, tilt, state)| TiltOnset {
-                object: scene.objects[*i].name.clone(),
-                control: *control,
-                tilt: *tilt,
-                world: ObservedState::of(scene, state),
-            })
-            .collect()
     }
 }
 
