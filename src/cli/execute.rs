@@ -186,15 +186,17 @@ fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
 fn tilts(t: &ClosedLoopTrial) -> String {
     let onset = |object: &str| t.tilt_onsets.iter().find(|o| o.object == object);
     let touch = |o: &TiltOnset| {
-        o.touching
+        let link = o.touching.first().map(|touch| {
+            format!(
+                ", {} at it {:.3} m above the table",
+                touch.link, touch.height
+            )
+        });
+        let neighbour = o
+            .neighbours
             .first()
-            .map(|touch| {
-                format!(
-                    ", {} at it {:.3} m above the table",
-                    touch.link, touch.height
-                )
-            })
-            .unwrap_or_default()
+            .map(|n| format!(", {} {:.1} mm from it", n.object, 1e3 * n.gap));
+        link.unwrap_or_default() + &neighbour.unwrap_or_default()
     };
     let tipped: Vec<String> = t
         .tipped

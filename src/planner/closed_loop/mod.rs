@@ -34,7 +34,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::{Duration, Instant};
 use tips::Tips;
-pub use tips::{TiltOnset, TiltTouch, TILT_ONSET, TOUCH_DISTANCE};
+pub use tips::{TiltNeighbour, TiltOnset, TiltTouch, TILT_ONSET, TOUCH_DISTANCE};
 
 /// How a closed-loop execution plays and re-plans.
 #[derive(Clone, Debug, PartialEq)]

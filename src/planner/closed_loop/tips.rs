@@ -5,7 +5,7 @@
 //! model's geometry has at it: where a push the planner never meant to make began.
 
 use super::observe;
-use crate::contact::{find_arm_contacts, object_bounds, ArmBounds};
+use crate::contact::{find_arm_contacts, object_bounds, object_pair_contacts, ArmBounds};
 use crate::planning::execute::{Engine, TIPPED_TILT};
 use crate::planning::observed::ObservedState;
 use crate::scene::Scene;
@@ -45,6 +45,9 @@ pub struct TiltOnset {
     /// The links within [`TOUCH_DISTANCE`] of the object in that world, in the model's
     /// geometry (the object upright at its planar pose), nearest first.
     pub touching: Vec<TiltTouch>,
+    /// The other objects within [`TOUCH_DISTANCE`] of it then, nearest first: an object
+    /// pushed into a neighbour, or pushed by one, tips at other heights than alone.
+    pub neighbours: Vec<TiltNeighbour>,
 }
 
 /// A link at an object where it started to tip, in the model's geometry.
@@ -57,6 +60,15 @@ pub struct TiltTouch {
     /// Height above the table top of the object's point nearest the link (m): compare
     /// it with the object's tipping height r / `mu_g`.
     pub height: f64,
+}
+
+/// An object beside one that started to tip, in the model's geometry.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TiltNeighbour {
+    /// The neighbour's name.
+    pub object: String,
+    /// The gap between their footprints (m; negative: overlapping).
+    pub gap: f64,
 }
 
 /// Which objects have started to tip and tipped in a trial's world, and when.
@@ -107,6 +119,7 @@ impl Tips {
                 tilt: *tilt,
                 world: ObservedState::of(scene, state),
                 touching: touching(scene, state, *i),
+                neighbours: neighbours(scene, state, *i),
             })
             .collect()
     }
@@ -146,4 +159,81 @@ fn touching(scene: &Scene, state: &State, object: usize) -> Vec<TiltTouch> {
     }
     touches.sort_by(|a, b| a.distance.total_cmp(&b.distance));
     touches
+}
+
+/// The objects within [`TOUCH_DISTANCE`] of `object` in `state`, nearest first (upright
+/// prisms on one table: their footprints' gap).
+fn neighbours(scene: &Scene, state: &State, object: usize) -> Vec<TiltNeighbour> {
+    let (mut scratch, mut contacts) = (Vec::new(), Vec::new());
+    object_pair_contacts(
+        scene,
+        &state.objects,
+        object,
+        TOUCH_DISTANCE,
+        &mut scratch,
+        &mut contacts,
+    );
+    let mut near: Vec<TiltNeighbour> = Vec::new();
+    for c in &contacts {
+        let name = &scene.objects[c.into].name;
+        match near.iter_mut().find(|n| &n.object == name) {
+            Some(n) => n.gap = n.gap.min(c.gap),
+            None => near.push(TiltNeighbour {
+                object: name.clone(),
+                gap: c.gap,
+            }),
+        }
+    }
+    near.sort_by(|a, b| a.gap.total_cmp(&b.gap));
+    near
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{neighbours, touching};
+    use crate::scene::Scene;
+    use std::path::Path;
+
+    /// The planar hand (a disc 5 mm in radius, 8 mm tall, centred 0.05 m above the
+    /// table) at `hand_x` on the x axis, and three boxes 0.1 m square: `a` with its near
+    /// face at x = 0.55, `b` beside it 5 mm off, `c` 30 mm off.
+    fn scene(hand_x: f64) -> Scene {
+        let yaml = format!(
+            "robot:
+  type: planar_hand
+  shape: {{type: cylinder, radius: 0.005, height: 0.008}}
+  start: [{hand_x}, 0.0, 0.0]
+  height: 0.05
+table: {{height: 0.76, x: [0.2, 1.0], y: [-0.6, 0.6]}}
+objects:
+  - {{name: a, shape: {{type: box, size: [0.1, 0.1, 0.2]}}, pose: [0.6, 0.0, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}}
+  - {{name: b, shape: {{type: box, size: [0.1, 0.1, 0.2]}}, pose: [0.6, 0.105, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}}
+  - {{name: c, shape: {{type: box, size: [0.1, 0.1, 0.2]}}, pose: [0.6, -0.13, 0.0], mass: 1.0, mu_g: 0.4, mu_c: 0.3}}
+goal: {{object: a, center: [0.8, 0.3], radius: 0.1}}
+"
+        );
+        Scene::from_yaml(&yaml, Path::new("tips.yaml")).unwrap()
+    }
+
+    #[test]
+    fn an_onset_names_the_links_and_objects_within_a_centimetre_at_their_distances() {
+        // The hand 3 mm short of a's near face (its centre 8 mm short).
+        let near = scene(0.542);
+        let touches = touching(&near, &near.start, 0);
+        let [touch] = touches.as_slice() else {
+            panic!("{touches:?}")
+        };
+        assert_eq!(touch.link, "hand");
+        assert!((touch.distance - 0.003).abs() < 1e-6, "{touch:?}");
+        // On a's face, within the hand's height span (0.046 to 0.054 m).
+        assert!((0.046..=0.054).contains(&touch.height), "{touch:?}");
+        // b's footprint 5 mm from a's; c's 30 mm, beyond the centimetre.
+        let beside = neighbours(&near, &near.start, 0);
+        assert_eq!(beside.len(), 1, "{beside:?}");
+        assert_eq!(beside[0].object, "b");
+        assert!((beside[0].gap - 0.005).abs() < 1e-6, "{beside:?}");
+        // The hand 20 mm short: nothing touches a.
+        let far = scene(0.525);
+        assert!(touching(&far, &far.start, 0).is_empty());
+    }
 }
