@@ -181,8 +181,9 @@ fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
     )
 }
 
-/// The objects a trial tipped, and those that started to tip and stood again: when they
-/// began and the link the model's geometry has nearest each then (`TiltOnset`).
+/// The objects a trial tipped, and those that started to tip and were not counted tipped
+/// (they rocked back, or left the table): when they began, and the link and the other
+/// object the model's geometry has nearest each then (`TiltOnset`).
 fn tilts(t: &ClosedLoopTrial) -> String {
     let onset = |object: &str| t.tilt_onsets.iter().find(|o| o.object == object);
     let touch = |o: &TiltOnset| {
@@ -223,7 +224,7 @@ fn tilts(t: &ClosedLoopTrial) -> String {
         said += &format!("; tipped: {}", tipped.join(", "));
     }
     if !stood.is_empty() {
-        said += &format!("; started to tip and stood again: {}", stood.join(", "));
+        said += &format!("; started to tip, not tipped: {}", stood.join(", "));
     }
     said
 }
