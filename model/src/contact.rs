@@ -135,6 +135,23 @@ pub fn find_arm_contacts(
     }
 }
 
+/// Every link-object contact point closer than `margin` (m) with the objects at
+/// `objects`, object by object: their bounding boxes ([`object_bounds`]) and
+/// [`find_arm_contacts`] in one call, for a single query (a loop that queries again keeps
+/// its buffers and calls those two).
+pub fn arm_contacts(
+    scene: &Scene,
+    poses: &[Isometry3<f64>],
+    bounds: &ArmBounds,
+    objects: &[Pose2],
+    margin: f64,
+) -> Vec<ArmContact> {
+    let (mut boxes, mut contacts) = (Vec::new(), Vec::new());
+    object_bounds(scene, objects, &mut boxes);
+    find_arm_contacts(scene, poses, bounds, objects, &boxes, margin, &mut contacts);
+    contacts
+}
+
 /// The runs of `contacts` (grouped by object, as [`find_arm_contacts`] appends them) that
 /// touch one object: the object and the run's index range.
 pub fn by_object(contacts: &[ArmContact]) -> impl Iterator<Item = (usize, Range<usize>)> + '_ {

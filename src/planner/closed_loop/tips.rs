@@ -5,7 +5,7 @@
 //! model's geometry has at it: where a push the planner never meant to make began.
 
 use super::observe;
-use crate::contact::{find_arm_contacts, object_bounds, object_pair_contacts, ArmBounds};
+use crate::contact::{arm_contacts, object_pair_contacts, ArmBounds};
 use crate::planning::execute::{Engine, TIPPED_TILT};
 use crate::planning::observed::ObservedState;
 use crate::scene::Scene;
@@ -131,34 +131,16 @@ fn touching(scene: &Scene, state: &State, object: usize) -> Vec<TiltTouch> {
     let poses = scene.robot.link_poses(&state.q);
     let mut bounds = ArmBounds::default();
     ArmBounds::compute(scene, &poses, &mut bounds);
-    let mut boxes = Vec::new();
-    object_bounds(scene, &state.objects, &mut boxes);
-    let mut contacts = Vec::new();
-    find_arm_contacts(
-        scene,
-        &poses,
-        &bounds,
-        &state.objects,
-        &boxes,
-        TOUCH_DISTANCE,
-        &mut contacts,
-    );
-    let mut touches: Vec<TiltTouch> = Vec::new();
-    for c in contacts.iter().filter(|c| c.object == object) {
-        let link = &scene.robot.chain.links[c.link].name;
-        let touch = TiltTouch {
-            link: link.clone(),
+    let contacts = arm_contacts(scene, &poses, &bounds, &state.objects, TOUCH_DISTANCE);
+    let touches = contacts
+        .iter()
+        .filter(|c| c.object == object)
+        .map(|c| TiltTouch {
+            link: scene.robot.chain.links[c.link].name.clone(),
             distance: c.point.distance,
             height: c.point.point_a.z - scene.table.top,
-        };
-        match touches.iter_mut().find(|t| &t.link == link) {
-            Some(t) if t.distance > touch.distance => *t = touch,
-            Some(_) => {}
-            None => touches.push(touch),
-        }
-    }
-    touches.sort_by(|a, b| a.distance.total_cmp(&b.distance));
-    touches
+        });
+    nearest_of_each(touches, |t| (&t.link, t.distance))
 }
 
 /// The objects within [`TOUCH_DISTANCE`] of `object` in `state`, nearest first (upright
@@ -173,19 +155,22 @@ fn neighbours(scene: &Scene, state: &State, object: usize) -> Vec<TiltNeighbour>
         &mut scratch,
         &mut contacts,
     );
-    let mut near: Vec<TiltNeighbour> = Vec::new();
-    for c in &contacts {
-        let name = &scene.objects[c.into].name;
-        match near.iter_mut().find(|n| &n.object == name) {
-            Some(n) => n.gap = n.gap.min(c.gap),
-            None => near.push(TiltNeighbour {
-                object: name.clone(),
-                gap: c.gap,
-            }),
-        }
-    }
-    near.sort_by(|a, b| a.gap.total_cmp(&b.gap));
-    near
+    let near = contacts.iter().map(|c| TiltNeighbour {
+        object: scene.objects[c.into].name.clone(),
+        gap: c.gap,
+    });
+    nearest_of_each(near, |n| (&n.object, n.gap))
+}
+
+/// The nearest of `items` per name, nearest first: `by` gives an item's name and
+/// distance. Of equally near items of one name, the first is kept.
+fn nearest_of_each<T>(items: impl Iterator<Item = T>, by: impl Fn(&T) -> (&String, f64)) -> Vec<T> {
+    let mut items: Vec<T> = items.collect();
+    // A stable sort: the first of equals stays first.
+    items.sort_by(|a, b| by(a).1.total_cmp(&by(b).1));
+    let mut seen = std::collections::BTreeSet::new();
+    items.retain(|item| seen.insert(by(item).0.clone()));
+    items
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! with the tool, whose configuration follows by inverse kinematics step by step.
 
 use super::{hand_links, Cage, PrimitiveFailure};
-use crate::contact::{find_arm_contacts, object_bounds};
+use crate::contact::arm_contacts;
 use crate::math::{wrap_angle, Pose2};
 use crate::robot::IkSettings;
 use crate::state::State;
@@ -61,17 +61,12 @@ pub fn carry(
 /// [`crate::validity::check_state`] except that the hand may overlap the object it cages.
 pub fn check_carrying(scene: &Scene, state: &State, object: usize) -> Result<(), Invalid> {
     let (poses, bounds) = check_arm(scene, &state.q)?;
-    let mut boxes = Vec::new();
-    object_bounds(scene, &state.objects, &mut boxes);
-    let mut contacts = Vec::new();
-    find_arm_contacts(
+    let mut contacts = arm_contacts(
         scene,
         &poses,
         &bounds,
         &state.objects,
-        &boxes,
         scene.physics.contact_margin,
-        &mut contacts,
     );
     let hand = hand_links(&scene.robot);
     contacts.retain(|c| !(c.object == object && hand.contains(&c.link)));
