@@ -191,6 +191,7 @@ pub mod ffi {
         pub replan_threads: u32,
         pub replan_shortcut: f64,
         pub replan_polish: f64,
+        pub replan_mend: f64,
         pub max_replans: usize,
         pub replan_budget: f64,
         pub replan_leg: f64,

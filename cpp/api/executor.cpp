@@ -38,6 +38,7 @@ namespace pushplan
             settings.replan_time = options.replan_time.value_or(settings.replan_time);
             settings.replan_shortcut = options.replan_shortcut.value_or(settings.replan_shortcut);
             settings.replan_polish = options.replan_polish.value_or(settings.replan_polish);
+            settings.replan_mend = options.replan_mend.value_or(settings.replan_mend);
             settings.max_replans = options.max_replans.value_or(settings.max_replans);
             settings.replan_budget = options.replan_budget.value_or(settings.replan_budget);
             settings.replan_leg = options.replan_leg.value_or(settings.replan_leg);

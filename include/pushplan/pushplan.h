@@ -410,6 +410,11 @@ namespace pushplan
         /// Shortcutting of a re-planned path while the arm plays it (s of work, as much per
         /// control as the control lasts at `speed`, until this is spent). Default 2.
         std::optional<double> replan_polish;
+        /// Where the rest no longer reaches the goal, edits of it where it fails (a detour
+        /// round the control that stops being valid, a push held longer or shorter) tried
+        /// before any search (s of work; 0: none); one that is valid and reaches the goal
+        /// is played on. Default 0 (none; why: `execute --help`).
+        std::optional<double> replan_mend;
         /// Searches at most, found or not (repairs and legs count); then step() stops.
         /// Default 400.
         std::optional<std::size_t> max_replans;

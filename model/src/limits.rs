@@ -257,6 +257,8 @@ pub const REPLAN_THREADS: Limit = count("--replan-threads", "", 1, 256, "threads
 pub const REPLAN_SHORTCUT: Limit = seconds("--replan-shortcut", "", false, DAY, "seconds of work");
 /// `execute --replan-polish`: shortcutting while a re-plan is played (s of work).
 pub const REPLAN_POLISH: Limit = seconds("--replan-polish", "", false, DAY, "seconds of work");
+/// `execute --replan-mend`: mending a rest that no longer reaches the goal (s of work).
+pub const REPLAN_MEND: Limit = seconds("--replan-mend", "", false, DAY, "seconds of work");
 /// `scenes generate --count`: scene files written.
 pub const SCENES: Limit = count("--count", "", 1, 1_000, "scene files");
 /// `pick-place --grasps`: grasps drawn per grasp region.
@@ -273,7 +275,7 @@ pub const RUNS: Limit = count("--runs", "", 1, 10_000, "runs");
 pub const JOBS: Limit = count("--jobs", "", 1, 1_024, "processes");
 
 /// Every limit, for the table in docs/commands.md and its test.
-pub const ALL: [&Limit; 26] = [
+pub const ALL: [&Limit; 27] = [
     &K,
     &THREADS,
     &ROBUST_TRIALS,
@@ -293,6 +295,7 @@ pub const ALL: [&Limit; 26] = [
     &REPLAN_THREADS,
     &REPLAN_SHORTCUT,
     &REPLAN_POLISH,
+    &REPLAN_MEND,
     &SCENES,
     &GRASPS,
     &CHECK_BUDGET,

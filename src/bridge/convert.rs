@@ -31,6 +31,7 @@ pub(super) fn executor_defaults() -> bridge::ExecutorSettings {
         replan_threads: 1,
         replan_shortcut: defaults::REPLAN_SHORTCUT,
         replan_polish: defaults::REPLAN_POLISH,
+        replan_mend: defaults::REPLAN_MEND,
         max_replans: defaults::MAX_REPLANS,
         replan_budget: defaults::REPLAN_BUDGET,
         replan_leg: defaults::REPLAN_LEG,

@@ -120,6 +120,7 @@ fn settings_of(s: &ffi::ExecutorSettings) -> Result<(ClosedLoopSettings, f64), S
         replan_threads: within(&REPLAN_THREADS, s.replan_threads)?,
         replan_shortcut: within(&REPLAN_SHORTCUT, s.replan_shortcut)?,
         replan_polish: within(&REPLAN_POLISH, s.replan_polish)?,
+        replan_mend: within(&REPLAN_MEND, s.replan_mend)?,
         max_replans: within(&MAX_REPLANS, s.max_replans)?,
         replan_budget: within(&REPLAN_BUDGET, s.replan_budget)?,
         replan_leg: within(&REPLAN_LEG, s.replan_leg)?,

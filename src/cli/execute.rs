@@ -129,7 +129,7 @@ fn print_closed_loop(path: &Path, report: &ClosedLoopReport, speed: f64, engine:
 /// A closed-loop trial's line: outcome, controls, re-plans, time, and why it stopped.
 fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
     format!(
-        "  {}; {} controls played ({} cut short{}), rest kept {} times (invalid {} times{}), {} re-plans ({} repairs){}{}, {:.1} s searching, {:.0} s in all{}{}{}",
+        "  {}; {} controls played ({} cut short{}), rest kept {} times (invalid {} times{}), {}{} re-plans ({} repairs){}{}, {:.1} s searching, {:.0} s in all{}{}{}",
         trial_outcome(i, n, t.reached, t.goal_distance),
         t.controls_played,
         t.cut_short,
@@ -156,6 +156,10 @@ fn closed_loop_trial_line(i: usize, n: usize, t: &ClosedLoopTrial) -> String {
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
+        },
+        match t.mends {
+            0 => String::new(),
+            m => format!("{m} mends ({:.1} s mending), ", t.mend_time),
         },
         t.replans,
         t.repairs,

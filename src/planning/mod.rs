@@ -4,7 +4,8 @@
 //!   kinds ([`PlannerKind`]);
 //! - paths of controls ([`path`]), their re-simulation, shortcutting ([`shortcut`]),
 //!   robustness to parameter noise ([`robustness`]), executable trajectories
-//!   ([`trajectory`]) and the one way a found path is finished ([`finish`]);
+//!   ([`trajectory`]), the one way a found path is finished ([`finish`]) and mending the
+//!   rest of a plan a world off the model broke ([`mend`]);
 //! - plan files ([`plan_file`]);
 //! - DARRT's primitives ([`darrt`]), straight joint-space lines ([`transit`]), reaching a
 //!   grasp ([`reach`]) and the manipulation graph ([`manipulation`]);
@@ -20,6 +21,7 @@ pub mod export;
 mod finish;
 mod kind;
 pub mod manipulation;
+pub mod mend;
 pub mod observed;
 pub mod path;
 pub mod plan_file;

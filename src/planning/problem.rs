@@ -5,6 +5,7 @@
 
 use super::PlannerKind;
 use super::{finish, FinishSettings, FinishedPath};
+use crate::planning::mend::{mend, MendSettings, Mended};
 use crate::planning::path::{simulate, PathControl, SimulatedPath};
 use crate::planning::robustness::{robustness, Noise, RobustnessReport};
 use crate::planning::static_clutter::StaticClutter;
@@ -86,6 +87,29 @@ impl Problem {
             record_steps,
         );
         self.whole(path)
+    }
+
+    /// The rest `controls` from the scene's start (an observed state) mended where it
+    /// fails ([`mend`]): the first edit valid to its end whose final state (of the whole
+    /// scene) `reaches` accepts, within `settings`' budget.
+    pub fn mend(
+        &self,
+        controls: &[PathControl],
+        reaches: impl Fn(&State) -> bool,
+        settings: &MendSettings,
+    ) -> Option<Mended> {
+        let start = &self.searched_scene().start;
+        let whole = |s: &State| match &self.pinned {
+            Some(view) => view.expand(s),
+            None => s.clone(),
+        };
+        mend(
+            &mut self.searched_propagator(),
+            start,
+            controls,
+            |s| reaches(&whole(s)),
+            settings,
+        )
     }
 
     /// Finishes a found path ([`finish`]); `states` are the planner's, of the whole scene.

@@ -11,6 +11,11 @@
 //!    short ending fast);
 //! 3. its first control is not valid, or the repair finds nothing: the scene is searched
 //!    anew from the observed state.
+//!
+//! The executor tries one thing before 2: the rest **mended** where it fails, with no
+//! search ([`crate::planning::mend`], [`Problem::mend`]); a mend that is valid and reaches
+//! the goal is played on. `replan` and `Planner::replan` do not mend: a re-plan file
+//! records a rest kept, repaired or searched anew, which `check` makes again.
 
 use super::path::{PathControl, SimulatedPath};
 use super::Problem;

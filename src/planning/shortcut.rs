@@ -359,10 +359,19 @@ fn splice(path: &SimulatedPath, i: usize, tail: SimulatedPath, dt: f64) -> Simul
     }
 }
 
-/// `controls` with one of them, `i`, held for a different number of steps: up to half as
-/// many more or fewer, at least one step.
+/// `controls` with one of them, drawn at random, held for a different number of steps
+/// ([`nudge_at`]).
 fn nudge(controls: &[PathControl], rng: &mut SplitMix64) -> (usize, Vec<PathControl>) {
-    let i = rng.below(controls.len());
+    nudge_at(controls, rng.below(controls.len()), rng)
+}
+
+/// `controls` with control `i` held for a different number of steps: up to half as many
+/// more or fewer, at least one step.
+pub(crate) fn nudge_at(
+    controls: &[PathControl],
+    i: usize,
+    rng: &mut SplitMix64,
+) -> (usize, Vec<PathControl>) {
     let steps = controls[i].steps;
     let change = 1 + rng.below(steps.div_ceil(2));
     let mut nudged = controls.to_vec();
@@ -389,7 +398,7 @@ const CLOSING_STEPS: usize = 5;
 /// joint is off by more than 1 nrad. `None` if the connecting control is not valid; the
 /// closing controls stop before the first that is not. The steps simulated are added to
 /// `work`.
-fn connection(
+pub(crate) fn connection(
     propagator: &mut Propagator,
     from: &State,
     to: &State,
@@ -443,7 +452,11 @@ fn stretched(mut control: PathControl, steps: usize) -> PathControl {
 /// The action that moves the end effector in a straight line (and turns it) from its pose
 /// in state `a` to its pose in state `b` at the scene's speed bounds, pulling the joints
 /// towards `b`'s configuration through the null space.
-fn connecting_control(propagator: &Propagator, a: &State, b: &State) -> Option<PathControl> {
+pub(crate) fn connecting_control(
+    propagator: &Propagator,
+    a: &State,
+    b: &State,
+) -> Option<PathControl> {
     let scene = propagator.scene();
     let robot = &scene.robot;
     let (ta, tb) = (

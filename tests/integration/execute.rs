@@ -516,7 +516,7 @@ physics: {{tipping_margin: 0.0, pressure_shift: {pressure_shift}}}"
 
 /// The closed-loop tests' executor, re-planning with `planner`: searches of 10 s at most,
 /// shortcut for 0.5 s and polished for 2 s of work, seed 1, `max_replans` searches and 60 s of searching per trial at most, the default
-/// tolerance and execution (rapier), repairs searched ahead (as by default).
+/// tolerance and execution (rapier), repairs searched ahead and no mends (as by default).
 fn closed_loop(
     planner: pushplan::planning::PlannerKind,
     max_replans: usize,
@@ -537,6 +537,7 @@ fn closed_loop(
             tolerance: DRIFT,
             leg: 0.1,
             repair_ahead: true,
+            mend: 0.0,
         },
         execution: ExecuteSettings::default(),
     }
@@ -617,6 +618,61 @@ fn closed_loop_reaches_the_goal_where_the_world_differs_and_open_loop_misses() {
             .is_some_and(|why| why.contains("s of search time are spent")),
         "{stopped:?}"
     );
+}
+
+/// A closed loop mends the rest where it fails, with no search: the planar hand of
+/// `tests/data/hand_round_a_stick.yaml` swings out and back (to y = 0.08 m) on its way
+/// to push the box into the goal disc, where the world has a thin stick the scene has
+/// elsewhere. From the first observation the rest stops being valid (the hand closes in
+/// on the stick where a push would tip it); a detour round it, then the rest's pushes as
+/// planned, reaches the goal in rapier with the stick untouched (0.2 s of work). With no
+/// mend (the default), the executor must search instead.
+#[test]
+fn a_closed_loop_mends_the_rest_round_an_object_the_plan_did_not_expect() {
+    use pushplan::planner::closed_loop::{ClosedLoop, ClosedLoopSettings};
+    use pushplan::planning::path::PathControl;
+    use pushplan::EeAction;
+    let scene = Scene::load("tests/data/hand_round_a_stick.yaml").unwrap();
+    let control = |vx: f64, vy: f64| PathControl {
+        action: EeAction::planar(vx, vy, 0.0),
+        steps: 20,
+    };
+    let mut plan = vec![control(0.2, 0.2), control(0.2, 0.2)];
+    plan.extend([control(0.2, -0.2), control(0.2, -0.2)]);
+    plan.extend((0..7).map(|_| control(0.2, 0.0)));
+    let mut world = scene.clone();
+    world.start.objects[1] = pushplan::Pose2::new(0.45, 0.11, 0.0);
+
+    let searching = closed_loop(pushplan::planning::PlannerKind::PushKpiece, 10);
+    let closed_loop = ClosedLoop {
+        settings: ClosedLoopSettings {
+            mend: 0.2,
+            ..searching.settings.clone()
+        },
+        execution: searching.execution.clone(),
+        ..searching
+    };
+    let mended = closed_loop.execute(&scene, &plan, &world).unwrap();
+    assert!(mended.reached, "{mended:?}");
+    assert!(mended.mends >= 1, "{mended:?}");
+    assert!(
+        mended.invalid_rest_details[0].contains("'stick'"),
+        "{mended:?}"
+    );
+    // No search: the mend alone got round the stick, which never tipped.
+    assert_eq!(
+        (mended.replans, mended.failed_replans, mended.search_time),
+        (0, 0, 0.0),
+        "{mended:?}"
+    );
+    assert!(
+        mended.tipped.is_empty() && mended.tilt_onsets.is_empty(),
+        "{mended:?}"
+    );
+
+    let unmended = searching.execute(&scene, &plan, &world).unwrap();
+    assert_eq!(unmended.mends, 0);
+    assert!(unmended.search_time > 0.0, "{unmended:?}");
 }
 
 /// A trial names the control during which an object tipped in the world. The 1 cm tall
@@ -1086,7 +1142,7 @@ fn the_rest_is_judged_with_the_whole_tipping_margin() {
 /// planner's model accepts it and the executor plays it to its end; stopping 7 mm short,
 /// between the half and the whole clearance (the judge's rule before), the planner's model
 /// refuses it ("closes in at tipping height") and the executor refuses it too, before the
-/// first control.
+/// first control, and stops there.
 #[test]
 fn the_rest_is_judged_with_the_whole_arm_clearance() {
     use pushplan::planner::closed_loop::Step;
