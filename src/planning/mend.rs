@@ -85,20 +85,27 @@ pub fn mend(
     reaches: impl Fn(&State) -> bool,
     settings: &MendSettings,
 ) -> Option<Mended> {
+    let n = controls.len();
+    if n == 0 {
+        return None;
+    }
     let path = simulate(propagator, start, controls, false);
     let mut work = path.steps() as u64 + 1;
-    let n = controls.len();
     // The control that stops being valid, or none where the rest ends short.
     let stop = match &path.stopped_by {
         Some((k, _)) => Some(*k),
         None if reaches(path.final_state()) => return None,
         None => None,
     };
-    if n == 0 {
-        return None;
-    }
-    let scene = propagator.shared_scene();
-    let arm = arm_configurations(&scene.robot, &start.q, controls, propagator.step_size());
+    // The configurations a detour may join: up to REACH controls after the stop (none
+    // where the rest ends short: only nudges are tried).
+    let joinable = stop.map_or(0, |k| (k + 1 + REACH).min(n));
+    let arm = arm_configurations(
+        &propagator.scene().robot,
+        &start.q,
+        &controls[..joinable],
+        propagator.step_size(),
+    );
     let mut rng = SplitMix64::new(settings.seed ^ 0x3E4D_0F7E);
     let mut attempts = 0;
     while work < settings.budget_steps && !passed(settings.deadline) {
