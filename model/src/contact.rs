@@ -175,7 +175,9 @@ pub fn by_object(contacts: &[ArmContact]) -> impl Iterator<Item = (usize, Range<
 /// object); the pusher velocity is the horizontal displacement over the step of the link's
 /// material point at the contact, divided by `dt`. Points closer than 1 mm with the same
 /// normal (the stacked corners of a face contact, seen from above) are merged,
-/// keeping the lowest height (the tipping check's point of application).
+/// keeping the lowest height (the tipping check's point of application). Each contact
+/// also gets its gap at the step's end, were the object still: the gap plus the link
+/// point's displacement along the 3D normal (first order; exact for a flat face).
 pub fn planar_contacts(
     contacts: &[ArmContact],
     pose: &Pose2,
@@ -194,6 +196,8 @@ pub fn planar_contacts(
         // p_W moved with the link: X_WL(q_new) X_WL(q)^-1 p_W.
         let moved = poses_new[c.link] * (poses[c.link].inverse() * p);
         let v = (moved - p) / dt;
+        // n points out of the object, at the link: moving against it closes the gap.
+        let gap_at_end = c.point.distance + (moved - p).dot(&n);
         let elevation = ContactElevation {
             height: c.point.point_a.z - table_top,
             slope: 0.0,
@@ -204,16 +208,17 @@ pub fn planar_contacts(
             // a little elsewhere.
             let speed = v.xy().norm();
             if speed > 1e-9 {
-                out.passing_over.push((
-                    c.link,
-                    PlanarContact {
+                out.passing_over.push(PassingOver {
+                    link: c.link,
+                    contact: PlanarContact {
                         point: pose.point_to_local(c.point.point_a.xy().coords),
                         normal: pose.vector_to_local(v.xy() / speed),
                         pusher_velocity: pose.vector_to_local(v.xy()),
                         gap: c.point.distance,
                     },
                     elevation,
-                ));
+                    gap_at_end,
+                });
             }
             continue;
         }
@@ -239,11 +244,13 @@ pub fn planar_contacts(
                     out.elevations[i].slope = elevation.slope;
                 }
                 out.elevations[i].height = lowest;
+                out.gaps_at_end[i] = out.gaps_at_end[i].min(gap_at_end);
             }
             None => {
                 out.planar.push(contact);
                 out.links.push(c.link);
                 out.elevations.push(elevation);
+                out.gaps_at_end.push(gap_at_end);
             }
         }
     }
@@ -311,9 +318,24 @@ pub struct ObjectContacts {
     pub links: Vec<usize>,
     /// Where each contact lies in 3D (its height on the object).
     pub elevations: Vec<ContactElevation>,
-    /// Links passing over the object's top (vertical normals): the link, a contact
-    /// whose normal is the way the link moves, and its height.
-    pub passing_over: Vec<(usize, PlanarContact, ContactElevation)>,
+    /// Per planar contact: its gap at the step's end were the object still (m).
+    pub gaps_at_end: Vec<f64>,
+    /// Links passing over the object's top (vertical normals).
+    pub passing_over: Vec<PassingOver>,
+}
+
+/// A link passing over an object's top (a vertical normal): outside the planar model,
+/// but were the object a little elsewhere the link would push the way it moves.
+#[derive(Clone, Debug)]
+pub struct PassingOver {
+    /// The link.
+    pub link: usize,
+    /// The contact, its normal the way the link moves (object frame).
+    pub contact: PlanarContact,
+    /// Its height on the object.
+    pub elevation: ContactElevation,
+    /// Its gap at the step's end were the object still (m).
+    pub gap_at_end: f64,
 }
 
 impl ObjectContacts {
@@ -321,14 +343,18 @@ impl ObjectContacts {
         self.planar.clear();
         self.links.clear();
         self.elevations.clear();
+        self.gaps_at_end.clear();
         self.passing_over.clear();
     }
 
-    /// The first link closer than `clearance` (m) that closes in on the object where a
-    /// push that slid it would tip it ([`sliding_push_tips`], `margin` as in the tipping
-    /// balance): a planar contact that does not push (`normal_forces[i] <= 0`) with the
-    /// link moving into the object, or a link passing over its top. Returns the link
-    /// and its distance (m).
+    /// The first link that comes closer than `clearance` (m) to the object during the
+    /// step, closing in where a push that slid it would tip it ([`sliding_push_tips`],
+    /// `margin` as in the tipping balance): a planar contact that does not push
+    /// (`normal_forces[i] <= 0`) with the link moving into the object, or a link passing
+    /// over its top. The gap is read at both ends of the step (at the end as if the object
+    /// stood still, as "closing in" takes it), so the rule is the same for a step of any
+    /// length: a fast step that stops inside the clearance is refused as a slow one is.
+    /// Returns the link and the smaller of the two gaps (m).
     pub fn closing_in_at_tipping_height(
         &self,
         object: &MovableObject,
@@ -341,17 +367,27 @@ impl ObjectContacts {
             .iter()
             .zip(&self.links)
             .zip(&self.elevations)
+            .zip(&self.gaps_at_end)
             .zip(normal_forces)
-            .filter(|(((c, _), _), &force)| force <= 0.0 && c.pusher_velocity.dot(&c.normal) > 0.0)
-            .map(|(((c, &link), e), _)| (link, c, e));
-        let over = self.passing_over.iter().map(|(link, c, e)| (*link, c, e));
+            .filter(|((((c, _), _), _), &force)| {
+                force <= 0.0 && c.pusher_velocity.dot(&c.normal) > 0.0
+            })
+            .map(|((((c, &link), e), &end), _)| (link, c, e, c.gap.min(end)));
+        let over = self.passing_over.iter().map(|o| {
+            (
+                o.link,
+                &o.contact,
+                &o.elevation,
+                o.contact.gap.min(o.gap_at_end),
+            )
+        });
         planar
             .chain(over)
-            .find(|(_, c, e)| {
+            .find(|&(_, c, e, closest)| {
                 clearance > 0.0
-                    && c.gap < clearance
+                    && closest < clearance
                     && sliding_push_tips(object.mass, object.mu_g, &object.footprint, c, e, margin)
             })
-            .map(|(link, c, _)| (link, c.gap))
+            .map(|(link, _, _, closest)| (link, closest.max(0.0)))
     }
 }

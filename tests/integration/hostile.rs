@@ -232,14 +232,16 @@ fn check_compares_everything_a_plan_file_claims_with_the_re_simulation() {
 #[test]
 fn check_makes_the_plan_again_and_names_what_its_settings_do_not_make() {
     // A shortcut plan: its path as found (the metrics before shortcutting) is not in the
-    // file, and no re-simulation can say which planner, seed or settings made it.
+    // file, and no re-simulation can say which planner, seed or settings made it. (Seed 1:
+    // a seed whose plan shortcutting shortens; seed 3's no longer is, since the arm
+    // clearance reads the gap at a step's end too.)
     let scratch = common::Scratch::new("hostile-remade-plans");
     let path = scratch.join("base.json");
     let (code, stdout, stderr) = pushplan(&[
         "plan",
         "scenes/herb_single_object.yaml",
         "--seed",
-        "3",
+        "1",
         "--time",
         "30",
         "--shortcut",

@@ -315,6 +315,45 @@ fn a_link_closing_in_where_a_sliding_push_would_tip_stops_before_the_touch() {
 }
 
 #[test]
+fn a_link_closing_in_at_tipping_height_keeps_the_clearance_at_any_speed() {
+    // The hand's face (x = 0.42 m at the start) approaches the tall box's near face
+    // (x = 0.50 m) at tipping height, at speeds from 0.5 to 9 mm a step. Whatever the
+    // step, the approach stops with the face at least `arm_clearance` (10 mm) from the box,
+    // and the refused step is the one that would have ended inside it: read from the
+    // geometry here, the hand's own x against the box's face.
+    let box_shape = "{type: box, size: [0.1, 0.1, 0.3]}";
+    let margin = pushplan_model::scene::PhysicsParams::default().tipping_margin;
+    let h_max = (1.0 - margin) * 0.05 / MU_G + 0.005;
+    let physics = "physics: {arm_clearance: 0.01}";
+    let scene = common::thin_hand_scene("tall", box_shape, 0.55, 1.05 * h_max, MU_G, physics);
+    let (face, clearance) = (0.50, 0.01);
+    let mut propagator = Propagator::new(&scene);
+    let dt = propagator.step_size();
+    for speed in [0.05, 0.1, 0.3, 0.73, 0.9] {
+        // Long enough to cover the 80 mm and more.
+        let run = propagator.propagate(
+            &scene.start,
+            &EeAction::planar(speed, 0.0, 0.0),
+            0.1 / speed,
+        );
+        let gap = face - (run.state.q[0] + 0.02);
+        let step = speed * dt;
+        assert!(
+            gap >= clearance - 1e-9 && gap - step < clearance,
+            "{speed} m/s: stopped {gap} m from the box, steps of {step} m"
+        );
+        match run.stopped_by {
+            Some(Invalid::ClosesInAtTippingHeight { distance, .. }) => assert!(
+                (distance - (gap - step)).abs() < 1e-6,
+                "{speed} m/s: refused at {distance} m, the step would end {} m off",
+                gap - step
+            ),
+            other => panic!("{speed} m/s: expected the approach to stop, got {other:?}"),
+        }
+    }
+}
+
+#[test]
 fn a_link_passing_over_a_tall_object_keeps_the_clearance_a_low_one_needs_none() {
     // The 1 cm hand at 0.12 m (its underside at 0.115 m) starts over a box 0.11 m tall
     // and moves on 5 mm over its top. A narrow box (half-width 2 cm) tips when pushed that high by a sliding push
