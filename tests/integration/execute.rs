@@ -890,16 +890,34 @@ fn played_on_predictions(
     pushplan::State,
     pushplan::planner::closed_loop::ClosedLoopTrial,
 ) {
+    played_on_observations(closed_loop, scene, controls, |_, predicted| predicted)
+}
+
+/// As [`played_on_predictions`], the world observed after each control as `world(controls
+/// played, the model's prediction)` says.
+fn played_on_observations(
+    closed_loop: &pushplan::planner::closed_loop::ClosedLoop,
+    scene: &Scene,
+    controls: &[pushplan::planning::path::PathControl],
+    world: impl Fn(usize, pushplan::State) -> pushplan::State,
+) -> (
+    pushplan::planner::closed_loop::Step,
+    usize,
+    pushplan::State,
+    pushplan::planner::closed_loop::ClosedLoopTrial,
+) {
     use pushplan::planner::closed_loop::Step;
     let mut executor = closed_loop.executor(scene, controls);
     let mut observed = scene.start.clone();
     let mut played = 0;
     let end = loop {
         match executor.step(&observed) {
-            Step::Play { predicted, .. } => observed = predicted,
+            Step::Play { predicted, .. } => {
+                played += 1;
+                observed = world(played, predicted);
+            }
             other => break other,
         }
-        played += 1;
     };
     (end, played, observed, executor.trial().clone())
 }
@@ -1135,17 +1153,23 @@ fn the_rest_is_judged_with_the_whole_tipping_margin() {
 }
 
 /// The rest of a plan is judged with the whole arm clearance (`physics.arm_clearance`,
-/// 10 mm), as it is planned: it is a tipping reserve, not a spacing. The thin hand, its
-/// lowest point at 0.115 m (where a push that slid the box would tip it within the tipping
-/// margin: the previous test's closed form), moves straight at a box that already stands
-/// in the goal disc and stops short of it. Stopping 13 mm short, beyond the clearance, the
-/// planner's model accepts it and the executor plays it to its end; stopping 7 mm short,
-/// between the half and the whole clearance (the judge's rule before), the planner's model
-/// refuses it ("closes in at tipping height") and the executor refuses it too, before the
-/// first control, and stops there.
+/// 10 mm) for an object the world has moved, and with half of it for an object that
+/// stands where it was first observed: the clearance is a tipping reserve against an
+/// object being a few millimetres elsewhere, which an untouched object observed where it
+/// stands is not. The thin hand, its lowest point at 0.115 m (where a push that slid the
+/// box would tip it within the tipping margin: the previous test's closed form), moves
+/// straight at a box that already stands in the goal disc, 1 mm a step, in two controls
+/// (60 steps, then the rest), and stops short of it. Stopping 7 mm short, between the half
+/// and the whole clearance, the planner's model refuses it ("closes in at tipping
+/// height"); the executor plays it to its end where the box is observed where it stood,
+/// and refuses the rest after the first control where the box is observed 5 mm to the
+/// side (its face as far from the hand: only the world's having moved it differs).
+/// Stopping 3 mm short, within half the clearance, the executor refuses it before the
+/// first control.
 #[test]
-fn the_rest_is_judged_with_the_whole_arm_clearance() {
+fn the_rest_keeps_the_whole_arm_clearance_from_objects_the_world_moved_and_half_from_others() {
     use pushplan::planner::closed_loop::Step;
+    use pushplan::planning::path::PathControl;
     use pushplan::planning::{PlannerKind, Problem};
     let ((b, mu_g), clearance, lowest) = (RESERVE_BOX, 0.01, 0.115);
     let physics = format!("physics: {{arm_clearance: {clearance}}}");
@@ -1155,36 +1179,47 @@ fn the_rest_is_judged_with_the_whole_arm_clearance() {
     assert!(lowest > (1.0 - scene.physics.tipping_margin) * b / mu_g);
     assert!(scene.goal.task_distance(&scene.start) < 0.0);
     let planner = PlannerKind::PushKpiece;
+    // No re-plans: a rest refused stops the execution.
     let closed_loop = closed_loop(planner, 0);
-    // 1 mm a step (0.1 m/s for 10 ms): the hand stops (130 - short) mm ahead.
-    for (short_mm, kept) in [(13, true), (7, false)] {
-        let approach = straight_ahead(1, 130 - short_mm);
-        let short = 1e-3 * short_mm as f64;
-        assert!((short > clearance) == kept && short > 0.5 * clearance);
-        let planned = Problem::new(scene.clone(), planner).simulate(&approach, false);
-        assert_eq!(
-            planned.stopped_by.as_ref().map(|(_, rule)| rule.kind()),
-            (!kept).then_some("closes in at tipping height"),
-            "{short_mm} mm short"
-        );
-        let (end, played, observed, trial) = played_on_predictions(&closed_loop, &scene, &approach);
+    let approach = |short_mm: usize| -> Vec<PathControl> {
+        [60, 70 - short_mm]
+            .iter()
+            .flat_map(|&steps| straight_ahead(1, steps))
+            .collect()
+    };
+    let planned = Problem::new(scene.clone(), planner).simulate(&approach(7), false);
+    assert_eq!(
+        planned.stopped_by.as_ref().map(|(_, rule)| rule.kind()),
+        Some("closes in at tipping height")
+    );
+    // (mm short, the box's sideways shift (m) in the observation after the first control,
+    // controls played, the rest kept to the end)
+    for (short_mm, shift, played_expected, kept) in
+        [(7, 0.0, 2, true), (7, 0.005, 1, false), (3, 0.0, 0, false)]
+    {
+        let case = format!("{short_mm} mm short, the box shifted {shift} m");
+        let world = |played: usize, mut predicted: pushplan::State| {
+            if played == 1 {
+                predicted.objects[0].y += shift;
+            }
+            predicted
+        };
+        let (end, played, observed, trial) =
+            played_on_observations(&closed_loop, &scene, &approach(short_mm), world);
+        assert_eq!(played, played_expected, "{case}: {end:?} {trial:?}");
         if kept {
             assert!(
-                end == Step::Finished
-                    && played == 1
-                    && trial.invalid_rests == 0
-                    && trial.searches.is_empty(),
-                "{short_mm} mm short: {end:?} {trial:?}"
+                end == Step::Finished && trial.invalid_rests == 0 && trial.searches.is_empty(),
+                "{case}: {end:?} {trial:?}"
             );
             // The hand stopped short: the box did not move.
             assert_eq!(observed.objects[0], scene.start.objects[0]);
         } else {
             assert!(
                 matches!(end, Step::Stopped(_))
-                    && played == 0
                     && trial.invalid_rests == 1
                     && trial.invalid_rest_rules.get("closes in at tipping height") == Some(&1),
-                "{short_mm} mm short: {end:?} {trial:?}"
+                "{case}: {end:?} {trial:?}"
             );
         }
     }

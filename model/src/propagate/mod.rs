@@ -541,7 +541,7 @@ fn no_link_closes_in(
     match contacts.closing_in_at_tipping_height(
         body,
         normal_forces,
-        scene.physics.arm_clearance,
+        scene.clearances.arm(object, scene.physics.arm_clearance),
         scene.physics.tipping_margin,
     ) {
         Some((link, distance)) => Err(Invalid::ClosesInAtTippingHeight {

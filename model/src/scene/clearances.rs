@@ -1,5 +1,5 @@
 //! The clearances objects keep (`physics.object_clearance`), fixed once per scene from
-//! its start state.
+//! its start state, and the arm clearance of each object (`physics.arm_clearance`).
 
 use super::{Scene, Table};
 use crate::collision::footprint;
@@ -32,6 +32,9 @@ pub struct Clearances {
     /// goal's object and for objects observed away from the edge (empty: a scene file's
     /// start).
     edge_support: Vec<Option<Footprint>>,
+    /// Per object: the arm clearance it is given (m), where it is not
+    /// `physics.arm_clearance` (empty: every object has that).
+    arm: Vec<f64>,
 }
 
 impl Clearances {
@@ -81,7 +84,23 @@ impl Clearances {
             to_obstacles,
             overhangs: Vec::new(),
             edge_support: Vec::new(),
+            arm: Vec::new(),
         }
+    }
+
+    /// These clearances with object `i` given arm clearance `arm[i]` (m) instead of
+    /// `physics.arm_clearance` (the closed loop judges the rest with less of it for objects
+    /// the world has not moved: `pushplan::planner::closed_loop`).
+    pub fn with_arm_clearances(mut self, arm: Vec<f64>) -> Clearances {
+        debug_assert_eq!(arm.len(), self.objects);
+        self.arm = arm;
+        self
+    }
+
+    /// The arm clearance of object `i` (m): `physics_arm_clearance` unless these
+    /// clearances give it another ([`Clearances::with_arm_clearances`]).
+    pub fn arm(&self, i: usize, physics_arm_clearance: f64) -> f64 {
+        self.arm.get(i).copied().unwrap_or(physics_arm_clearance)
     }
 
     /// These clearances from a start observed in the world, where objects pushed to the
