@@ -1285,9 +1285,9 @@ fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
 /// model; a re-plan whenever the clearance is touched would thrash, and what is spent of
 /// it is still no contact. Re-plans keep both whole.
 ///
-/// The tipping reserves stay whole where the world has moved the object: they keep a push
-/// below the height where the object tips in a world that is not the model. The tipping
-/// margin (`physics.tipping_margin`):
+/// The tipping reserves stay whole, the arm clearance where the world has moved the
+/// object: they keep a push below the height where the object tips in a world that is not
+/// the model. The tipping margin (`physics.tipping_margin`):
 /// the model's own noise draws `mu_g` up to 1.2 times the scene's
 /// ([`crate::planning::robustness::Noise`]), which lowers the tipping height r / `mu_g` to
 /// 1 / 1.2 = 0.83 of the model's; half the default margin (0.3) spent would allow pushes
