@@ -164,8 +164,7 @@ enum Command {
         /// many on the clock; by default 0: none); one that is valid and reaches the goal
         /// is played on with no search. Not the default: side by side on five hard dense
         /// scenes in MuJoCo, in two runs, 16 of 24 trials reached the goal with mends and
-        /// without (docs/notes/plans-in-the-world.md), and a detour's fast step can stop a
-        /// link inside the arm clearance, which the model reads at a step's start only.
+        /// without (docs/notes/plans-in-the-world.md).
         #[arg(long, default_value_t = defaults::REPLAN_MEND, value_name = "SECONDS", value_parser = within::real(&limits::REPLAN_MEND))]
         replan_mend: f64,
         /// With --closed-loop: searches per trial at most (found or not; repairs and legs count);

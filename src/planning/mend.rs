@@ -26,7 +26,7 @@
 //! The executor mends only when asked (`--replan-mend`): side by side on hard dense
 //! scenes in MuJoCo mends reached the goal as often as searches alone, and they do not
 //! free dense 17's trials, where the arm passes a glass 9 mm off along a long stretch of
-//! the plan (BENCHMARKS.md, "Mending the rest before searching").
+//! the plan (docs/notes/plans-in-the-world.md, "Mending the rest before searching").
 
 use crate::planning::passed;
 use crate::planning::path::{simulate, PathControl, SimulatedPath};

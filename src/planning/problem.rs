@@ -62,6 +62,14 @@ impl Problem {
         }
     }
 
+    /// The whole-scene state of a searched scene's state (the clutter at rest).
+    fn whole_state(&self, state: &State) -> State {
+        match &self.pinned {
+            Some(view) => view.expand(state),
+            None => state.clone(),
+        }
+    }
+
     /// A path of the searched scene in whole-scene states (the clutter at rest).
     fn whole(&self, mut path: SimulatedPath) -> SimulatedPath {
         if let Some(view) = &self.pinned {
@@ -98,16 +106,11 @@ impl Problem {
         reaches: impl Fn(&State) -> bool,
         settings: &MendSettings,
     ) -> Option<Mended> {
-        let start = &self.searched_scene().start;
-        let whole = |s: &State| match &self.pinned {
-            Some(view) => view.expand(s),
-            None => s.clone(),
-        };
         mend(
             &mut self.searched_propagator(),
-            start,
+            &self.searched_scene().start,
             controls,
-            |s| reaches(&whole(s)),
+            |s| reaches(&self.whole_state(s)),
             settings,
         )
     }

@@ -159,8 +159,7 @@ pub mod defaults {
     /// [`super::ClosedLoopSettings::mend`] (s of work): none. Side by side in MuJoCo on
     /// five hard dense scenes, in two runs, mends reached the goal in 16 of 24 trials and
     /// so did no mends (docs/notes/plans-in-the-world.md, "Mending the rest before
-    /// searching"); and a detour's fast connection can stop a link inside the arm
-    /// clearance, which the model's rule reads at a step's start only.
+    /// searching").
     pub const REPLAN_MEND: f64 = 0.0;
 }
 
