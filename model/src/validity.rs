@@ -90,13 +90,15 @@ pub enum Invalid {
         /// The obstacle.
         obstacle: String,
     },
-    /// An object's footprint is not wholly on the table (from a start observed in the
-    /// world: hangs further over than it did there and than its support allows,
+    /// An object's footprint is not wholly on the table, or comes closer to its edge
+    /// than `physics.edge_clearance` (from a start observed in the world: hangs further
+    /// over than it did there and than its support allows,
     /// `Clearances::with_start_overhangs`).
     ObjectOffTable {
         /// The object.
         object: String,
-        /// How far its footprint reaches past the table's edge (m, [`Table::overhang`]).
+        /// How far its footprint reaches past the table's edge (m, [`Table::overhang`];
+        /// negative: minus its least distance from an edge).
         ///
         /// [`Table::overhang`]: crate::scene::Table::overhang
         overhang: f64,
@@ -209,9 +211,16 @@ impl fmt::Display for Invalid {
             Invalid::ObjectHitsObstacle { object, obstacle } => {
                 write!(f, "object '{object}' overlaps obstacle '{obstacle}'")
             }
-            Invalid::ObjectOffTable { object, overhang } => {
+            Invalid::ObjectOffTable { object, overhang } if *overhang > 0.0 => {
                 let mm = overhang * 1e3;
                 write!(f, "object '{object}' reaches {mm:.1} mm past the table's edge")
+            }
+            Invalid::ObjectOffTable { object, overhang } => {
+                let mm = -overhang * 1e3;
+                write!(
+                    f,
+                    "object '{object}' comes {mm:.1} mm from the table's edge, closer than the clearance"
+                )
             }
             Invalid::Jammed { object } => write!(f, "object '{object}' is jammed between pushers"),
             Invalid::Tips { object, link } => {

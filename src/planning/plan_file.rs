@@ -223,6 +223,10 @@ pub struct Margins {
     pub goal: f64,
     /// Smallest distance a moving object keeps from other objects and obstacles (m).
     pub object_clearance: f64,
+    /// Smallest distance a moving object keeps from the table's edges (m; plans written
+    /// before it existed read as 0).
+    #[serde(default)]
+    pub edge_clearance: f64,
     /// Fraction of the footprint kept free of the support's centre of pressure.
     pub tipping: f64,
     /// Smallest distance a link closing in on an object keeps from it where a sliding
@@ -739,6 +743,7 @@ impl PlanFile {
                     }
                 },
                 object_clearance: scene.physics.object_clearance,
+                edge_clearance: scene.physics.edge_clearance,
                 tipping: scene.physics.tipping_margin,
                 arm_clearance: scene.physics.arm_clearance,
             }),

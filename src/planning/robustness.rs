@@ -125,8 +125,8 @@ impl Noise {
     }
 
     /// A copy of `scene` with every object's start pose and parameters perturbed, drawn
-    /// from `rng`: a possible real world. The planner's reserves (tipping margin, object
-    /// and arm clearance) are off in it, since the perturbation stands for what they reserve
+    /// from `rng`: a possible real world. The planner's reserves (tipping margin, object,
+    /// edge and arm clearance) are off in it, since the perturbation stands for what they reserve
     /// against, and objects push one another (`physics.object_pushing`): a real object a
     /// neighbour drifts into is pushed along, which may or may not spoil the plan.
     /// Perturbed start poses that would be invalid (overlapping objects) are drawn again,
@@ -137,6 +137,7 @@ impl Noise {
             let mut s = scene.clone();
             s.physics.tipping_margin = 0.0;
             s.physics.object_clearance = 0.0;
+            s.physics.edge_clearance = 0.0;
             s.physics.arm_clearance = 0.0;
             s.physics.object_pushing = true;
             for object in &mut s.objects {

@@ -1,5 +1,6 @@
-//! The clearances objects keep (`physics.object_clearance`), fixed once per scene from
-//! its start state, and the arm clearance of each object (`physics.arm_clearance`).
+//! The clearances objects keep (`physics.object_clearance`, `physics.edge_clearance`),
+//! fixed once per scene from its start state, and the arm clearance of each object
+//! (`physics.arm_clearance`).
 
 use super::{Scene, Table};
 use crate::collision::footprint;
@@ -24,7 +25,8 @@ pub struct Clearances {
     between_objects: Vec<f64>,
     /// Row-major, objects x obstacles.
     to_obstacles: Vec<f64>,
-    /// Per object: how far it may reach past the table's edge (empty: nowhere).
+    /// Per object: how far it may reach past the table's edge (m; negative: how far
+    /// inside the edge it must stay, `physics.edge_clearance`; empty: 0 for every object).
     overhangs: Vec<f64>,
     /// Per object, from a start observed in the world: its footprint shrunk by
     /// `physics.tipping_margin` about its centroid, which must stay on the table where
@@ -78,11 +80,24 @@ impl Clearances {
             .flat_map(|i| scene.obstacles.iter().map(move |o| (i, o)))
             .map(|(i, o)| gap(&objects[i].geometry, &poses[i], &o.geometry, &o.pose))
             .collect();
+        // Each object keeps `physics.edge_clearance` from the table's edges, or its
+        // distance in the start state where that is smaller.
+        let edge = scene.physics.edge_clearance;
+        let overhangs = if edge > 0.0 {
+            (objects.iter().zip(&scene.start.objects))
+                .map(|(o, pose)| {
+                    let from_edge = (-scene.table.overhang(&o.footprint, pose)).max(0.0);
+                    -edge.min(from_edge)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         Clearances {
             objects: objects.len(),
             between_objects,
             to_obstacles,
-            overhangs: Vec::new(),
+            overhangs,
             edge_support: Vec::new(),
             arm: Vec::new(),
         }
@@ -126,6 +141,7 @@ impl Clearances {
     pub fn with_start_overhangs(mut self, scene: &Scene) -> Clearances {
         let goal_object = scene.goal.object();
         let support = 1.0 - scene.physics.tipping_margin;
+        let kept = std::mem::take(&mut self.overhangs);
         (self.overhangs, self.edge_support) = scene
             .objects
             .iter()
@@ -135,7 +151,7 @@ impl Clearances {
                 let overhang = scene.table.overhang(&object.footprint, pose);
                 let room = goal_object != Some(i) && overhang > -AT_EDGE;
                 (
-                    overhang.max(0.0),
+                    overhang.max(kept.get(i).copied().unwrap_or(0.0)),
                     room.then(|| object.footprint.scaled_about_centroid(support)),
                 )
             })

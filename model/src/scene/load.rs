@@ -1158,11 +1158,13 @@ impl Loader<'_> {
                 format!("must be in [0, 1), got {}", p.tipping_margin),
             ));
         }
-        if !(p.object_clearance.is_finite() && p.object_clearance >= 0.0) {
-            return Err(self.invalid(
-                "physics.object_clearance",
-                format!("must be zero or positive, got {}", p.object_clearance),
-            ));
+        for (field, value) in [
+            ("physics.object_clearance", p.object_clearance),
+            ("physics.edge_clearance", p.edge_clearance),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(self.invalid(field, format!("must be zero or positive, got {value}")));
+            }
         }
         if !(p.arm_clearance.is_finite() && (0.0..=p.contact_margin).contains(&p.arm_clearance)) {
             return Err(self.invalid(

@@ -153,6 +153,15 @@ fn nan_anywhere_is_rejected() {
     assert!(message.contains("planner.step"), "{message}");
     let (_, message) = error_of(&format!("{}\nphysics: {{contact_margin: -1}}\n", base()));
     assert!(message.contains("physics.contact_margin"), "{message}");
+    for bad in ["-0.01", ".nan", ".inf"] {
+        let yaml = format!("{}\nphysics: {{edge_clearance: {bad}}}\n", base());
+        let (_, message) = error_of(&yaml);
+        assert!(
+            message.contains("physics.edge_clearance")
+                && (bad != "-0.01" || message.contains("must be zero or positive")),
+            "{bad}: {message}"
+        );
+    }
     // The arm clearance is checked among the contacts, so it cannot exceed their margin.
     for bad in ["-0.01", ".nan", "0.03"] {
         let yaml = format!("{}\nphysics: {{arm_clearance: {bad}}}\n", base());

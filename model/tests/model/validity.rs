@@ -453,3 +453,57 @@ fn arm_bounds_kept_between_configurations_are_the_bounds_computed_afresh() {
     }
     assert!(moved_links > 0, "the configurations move the arm");
 }
+
+#[test]
+fn an_object_keeps_the_edge_clearance_from_the_table_s_edges_or_its_start_distance() {
+    // `physics.edge_clearance` 1 cm. The 0.1 m box starts with its face 18 cm from the
+    // far edge (x = 1.03): it may come to 1 cm of it, no nearer.
+    let scene_with_box_at = |x: f64, y: f64| {
+        herb_scene(
+            HAND_NEAR,
+            &(parked_goal() + &object("box", BOX, [x, y, 0.0])),
+            "physics: {edge_clearance: 0.01}",
+        )
+        .unwrap()
+    };
+    let at = |scene: &Scene, x: f64, y: f64| {
+        check_state(scene, &with_object(scene, 1, Pose2::new(x, y, 0.0)))
+    };
+    let scene = scene_with_box_at(0.8, -0.2);
+    assert_eq!(at(&scene, 0.97 - 1e-4, -0.2), Ok(()));
+    match at(&scene, 0.97 + 1e-4, -0.2) {
+        Err(invalid @ Invalid::ObjectOffTable { .. }) => assert!(
+            invalid
+                .to_string()
+                .contains("comes 9.9 mm from the table's edge, closer than the clearance"),
+            "{invalid}"
+        ),
+        other => panic!("{other:?}"),
+    }
+    // A side edge (y = -0.93) the same.
+    assert_eq!(at(&scene, 0.8, -0.87 + 1e-4), Ok(()));
+    assert!(matches!(
+        at(&scene, 0.8, -0.87 - 1e-4),
+        Err(Invalid::ObjectOffTable { .. })
+    ));
+    // Without it (the default) an object may touch the edge.
+    assert_eq!(at(&herb(), 0.98 - 1e-6, -0.2), Ok(()));
+    // A box that starts 4 mm from the edge may stay there, but not come nearer.
+    let near = scene_with_box_at(0.976, -0.2);
+    assert_eq!(check_state(&near, &near.start), Ok(()));
+    assert!(matches!(
+        at(&near, 0.976 + 1e-4, -0.2),
+        Err(Invalid::ObjectOffTable { .. })
+    ));
+    // So does one observed 3 mm from it in the world (a re-plan's start).
+    let observed = with_object(&scene, 1, Pose2::new(0.977, -0.2, 0.0));
+    let from = scene
+        .with_start(&observed, Path::new("observed.json"))
+        .unwrap();
+    assert_eq!(at(&from, 0.977, -0.2), Ok(()));
+    assert_eq!(at(&from, 0.9, -0.2), Ok(()), "pushed back");
+    assert!(matches!(
+        at(&from, 0.977 + 1e-4, -0.2),
+        Err(Invalid::ObjectOffTable { .. })
+    ));
+}

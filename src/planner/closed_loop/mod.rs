@@ -1278,11 +1278,12 @@ fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
     }
 }
 
-/// `from` with half its object clearance spent (`physics.object_clearance`), and half the
-/// arm clearance of each object the world has not moved (`moved`), as the rest of a plan
-/// is judged. Objects a plan kept a clearance apart come closer in a world that is not the
-/// model; a re-plan whenever the clearance is touched would thrash, and what is spent of
-/// it is still no contact. Re-plans keep both whole.
+/// `from` with half its object clearance spent (`physics.object_clearance`, and
+/// `physics.edge_clearance` from the table's edges), and half the arm clearance of each
+/// object the world has not moved (`moved`), as the rest of a plan is judged. Objects a
+/// plan kept a clearance apart come closer in a world that is not the model; a re-plan
+/// whenever the clearance is touched would thrash, and what is spent of it is still no
+/// contact. Re-plans keep them whole.
 ///
 /// The tipping reserves stay whole, the arm clearance where the world has moved the
 /// object: they keep a push below the height where the object tips in a world that is not
@@ -1304,6 +1305,7 @@ fn still_reaches(goal: &crate::scene::Goal, state: &State) -> bool {
 fn clearances_spent(from: &Scene, moved: &Moved) -> Scene {
     let mut scene = from.clone();
     scene.physics.object_clearance *= 0.5;
+    scene.physics.edge_clearance *= 0.5;
     let whole = scene.physics.arm_clearance;
     let arm = (0..scene.objects.len())
         .map(|i| if moved.get(i) { whole } else { 0.5 * whole })
