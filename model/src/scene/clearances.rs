@@ -26,7 +26,8 @@ pub struct Clearances {
     /// Row-major, objects x obstacles.
     to_obstacles: Vec<f64>,
     /// Per object: how far it may reach past the table's edge (m; negative: how far
-    /// inside the edge it must stay, `physics.edge_clearance`; empty: 0 for every object).
+    /// inside the edge it must stay, `physics.edge_clearance`; empty, in
+    /// `Clearances::default()`: 0 for every object).
     overhangs: Vec<f64>,
     /// Per object, from a start observed in the world: its footprint shrunk by
     /// `physics.tipping_margin` about its centroid, which must stay on the table where
@@ -83,16 +84,12 @@ impl Clearances {
         // Each object keeps `physics.edge_clearance` from the table's edges, or its
         // distance in the start state where that is smaller.
         let edge = scene.physics.edge_clearance;
-        let overhangs = if edge > 0.0 {
-            (objects.iter().zip(&scene.start.objects))
-                .map(|(o, pose)| {
-                    let from_edge = (-scene.table.overhang(&o.footprint, pose)).max(0.0);
-                    -edge.min(from_edge)
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let overhangs = (objects.iter().zip(&scene.start.objects))
+            .map(|(o, pose)| {
+                let from_edge = (-scene.table.overhang(&o.footprint, pose)).max(0.0);
+                -edge.min(from_edge)
+            })
+            .collect();
         Clearances {
             objects: objects.len(),
             between_objects,
