@@ -444,11 +444,11 @@ pub struct PhysicsSpec {
     #[serde(deserialize_with = "number")]
     pub object_clearance: f64,
     /// Smallest distance a moving object keeps from the table's edges (m), or its
-    /// distance in the start state where that is smaller. 0 (the default): an object may
-    /// touch an edge but not reach past it. A plan that slides an object flush along an
+    /// distance in the start state where that is smaller (default 0.01; 0: an object may
+    /// touch an edge but not reach past it). A plan that slides an object flush along an
     /// edge leaves the world no room: a box pushed along it creeps over by a millimetre
-    /// or so in MuJoCo, and every rest from there is refused
-    /// (docs/notes/plans-in-the-world.md).
+    /// or so in MuJoCo, and every rest from there is refused (BENCHMARKS.md, "Room at
+    /// the table's edge").
     #[serde(deserialize_with = "number")]
     pub edge_clearance: f64,
     /// Smallest distance a link closing in on an object keeps from it where a push
@@ -491,7 +491,7 @@ impl Default for PhysicsSpec {
             tilt_tolerance: 0.01,
             tipping_margin: 0.3,
             object_clearance: 0.01,
-            edge_clearance: 0.0,
+            edge_clearance: 0.01,
             arm_clearance: 0.01,
             model: PhysicsModel::Quasistatic,
             t_max: 8.0,

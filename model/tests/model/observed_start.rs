@@ -137,14 +137,15 @@ fn refused_naming_the_box(
 fn an_object_observed_at_the_edge_may_hang_over_as_far_as_its_support_carries_a_push_and_no_other()
 {
     // A 10 cm box (not the goal's) near the table's far edge (x = 1.03), the goal box
-    // parked near its side edge (y = -0.93).
+    // parked near its side edge (y = -0.93); no edge clearance, so that the room over the
+    // edge is the observed start's alone (the clearance's own test: validity.rs).
     let objects = parked_goal()
         + &object(
             "box",
             "{type: box, size: [0.1, 0.1, 0.14]}",
             [0.7, -0.3, 0.0],
         );
-    let scene = herb_scene(HAND_NEAR, &objects, "").unwrap();
+    let scene = herb_scene(HAND_NEAR, &objects, "physics: {edge_clearance: 0}").unwrap();
     assert_eq!(scene.physics.tipping_margin, 0.3);
     let mut observed = scene.start.clone();
     // 5 mm of the box past the far edge, its centre 4.5 cm inside.
