@@ -11,10 +11,15 @@ use std::path::Path;
 const BOX: &str = "{type: box, size: [0.1, 0.1, 0.14]}";
 
 fn herb() -> Scene {
+    herb_with_box_at(0.8, -0.2, "")
+}
+
+/// The goal box parked, the 0.1 m box at (x, y), and `extra` scene lines (or "").
+fn herb_with_box_at(x: f64, y: f64, extra: &str) -> Scene {
     herb_scene(
         HAND_NEAR,
-        &(parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0])),
-        "",
+        &(parked_goal() + &object("box", BOX, [x, y, 0.0])),
+        extra,
     )
     .unwrap()
 }
@@ -195,12 +200,7 @@ fn an_object_must_stand_wholly_on_the_table() {
     // The 0.1 m box near the table's far edge (x = 1.03): its footprint, not only its
     // centre, must be on the table, turned corners included (no edge clearance here: the
     // footprint rule alone).
-    let scene = herb_scene(
-        HAND_NEAR,
-        &(parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0])),
-        "physics: {edge_clearance: 0}",
-    )
-    .unwrap();
+    let scene = herb_with_box_at(0.8, -0.2, "physics: {edge_clearance: 0}");
     let off_table = |pose: Pose2| {
         matches!(
             check_state(&scene, &with_object(&scene, 1, pose)),
@@ -243,12 +243,7 @@ fn an_object_must_stand_wholly_on_the_table() {
 #[test]
 fn an_object_in_a_static_obstacle_is_invalid() {
     let obstacle = "obstacles:\n  - {name: wall, shape: {type: box, size: [0.02, 0.5, 0.3]}, pose: {xyz: [0.95, -0.4, 0.91]}}";
-    let scene = herb_scene(
-        HAND_NEAR,
-        &(parked_goal() + &object("box", BOX, [0.8, -0.2, 0.0])),
-        obstacle,
-    )
-    .unwrap();
+    let scene = herb_with_box_at(0.8, -0.2, obstacle);
     let into_wall = with_object(&scene, 1, Pose2::new(0.92, -0.4, 0.0));
     assert!(
         matches!(check_state(&scene, &into_wall), Err(Invalid::ObjectHitsObstacle { object, obstacle }) if object == "box" && obstacle == "wall")
@@ -464,18 +459,10 @@ fn arm_bounds_kept_between_configurations_are_the_bounds_computed_afresh() {
 fn an_object_keeps_the_edge_clearance_from_the_table_s_edges_or_its_start_distance() {
     // `physics.edge_clearance` 1 cm, the default. The 0.1 m box starts with its face
     // 18 cm from the far edge (x = 1.03): it may come to 1 cm of it, no nearer.
-    let scene_with_box_at = |x: f64, y: f64, physics: &str| {
-        herb_scene(
-            HAND_NEAR,
-            &(parked_goal() + &object("box", BOX, [x, y, 0.0])),
-            physics,
-        )
-        .unwrap()
-    };
     let at = |scene: &Scene, x: f64, y: f64| {
         check_state(scene, &with_object(scene, 1, Pose2::new(x, y, 0.0)))
     };
-    let scene = scene_with_box_at(0.8, -0.2, "");
+    let scene = herb_with_box_at(0.8, -0.2, "");
     assert_eq!(at(&scene, 0.97 - 1e-4, -0.2), Ok(()));
     match at(&scene, 0.97 + 1e-4, -0.2) {
         Err(invalid @ Invalid::ObjectOffTable { .. }) => assert!(
@@ -493,14 +480,14 @@ fn an_object_keeps_the_edge_clearance_from_the_table_s_edges_or_its_start_distan
         Err(Invalid::ObjectOffTable { .. })
     ));
     // Without it (0) an object may touch the edge, but not reach past it.
-    let touching = scene_with_box_at(0.8, -0.2, "physics: {edge_clearance: 0}");
+    let touching = herb_with_box_at(0.8, -0.2, "physics: {edge_clearance: 0}");
     assert_eq!(at(&touching, 0.98 - 1e-6, -0.2), Ok(()));
     assert!(matches!(
         at(&touching, 0.98 + 1e-4, -0.2),
         Err(Invalid::ObjectOffTable { .. })
     ));
     // A box that starts 4 mm from the edge may stay there, but not come nearer.
-    let near = scene_with_box_at(0.976, -0.2, "");
+    let near = herb_with_box_at(0.976, -0.2, "");
     assert_eq!(check_state(&near, &near.start), Ok(()));
     assert!(matches!(
         at(&near, 0.976 + 1e-4, -0.2),
