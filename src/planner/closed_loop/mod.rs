@@ -540,9 +540,10 @@ impl ClosedLoop {
     /// The searches after an observation whose rest of the plan does not reach the goal
     /// (`from`'s start): a repair of the rest `kept` up to where it stops being valid
     /// (`kept.1`, its end), then, far from the goal disc, a leg along `track`, then a new
-    /// plan to the goal, then (if no leg was searched) a leg. The first search gets
-    /// `time`; each after it no more than what is left of it and of `budget_left`
-    /// (counted from the call). The `index`-th search of the execution.
+    /// plan to the goal, then (if no leg was searched) a leg. Each search gets `time`,
+    /// no more than what is left of `budget_left` (counted from the call): a leg and a
+    /// search to the goal may take twice `time` together (a trial's search record shows
+    /// it: `seconds` up to twice `time`). The `index`-th search of the execution.
     fn search(
         &self,
         from: &Scene,
