@@ -540,10 +540,10 @@ impl ClosedLoop {
     /// The searches after an observation whose rest of the plan does not reach the goal
     /// (`from`'s start): a repair of the rest `kept` up to where it stops being valid
     /// (`kept.1`, its end), then, far from the goal disc, a leg along `track`, then a new
-    /// plan to the goal, then (if no leg was searched) a leg. Each search gets `time`,
-    /// no more than what is left of `budget_left` (counted from the call): a leg and a
-    /// search to the goal may take twice `time` together (a trial's search record shows
-    /// it: `seconds` up to twice `time`). The `index`-th search of the execution.
+    /// plan to the goal, then (if no leg was searched) a leg. The repair gets
+    /// [`REPAIR_SHARE`] of `time`, each search after it the whole `time`, no more than
+    /// what is left of `budget_left` (counted from the call): a leg and a search to the
+    /// goal may take twice `time` together. The `index`-th search of the execution.
     fn search(
         &self,
         from: &Scene,
