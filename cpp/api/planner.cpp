@@ -435,7 +435,7 @@ namespace pushplan
                 every_model.insert(every_model.end(), built.models.begin(), built.models.end());
                 searches.push_back(detail::Search{std::move(built.problem), std::move(built.planner)});
             }
-            detail::Portfolio portfolio(std::move(searches));
+            detail::Portfolio portfolio(std::move(searches), !bridge::planner_cut_at_time_limit(run.planner));
 
             // Search until an exact solution or the time limit; progress once a second.
             const auto elapsed = [&] {
@@ -443,7 +443,8 @@ namespace pushplan
             };
             const std::function<bool()> out_of_time = [&] { return elapsed() >= time_limit; };
             // The models refuse to propagate past the limit: an extension of k long controls
-            // (OMPL checks the limit only between extensions) ends on time. Not PDST's.
+            // (OMPL checks the limit only between extensions) ends on time. Not PDST's: it
+            // stops before an iteration as long as its longest so far would overrun.
             if (bridge::planner_cut_at_time_limit(run.planner))
                 for (const detail::ModelHandlePtr &m : every_model)
                     m->propagator().set_time_limit(time_limit - elapsed());
@@ -497,7 +498,7 @@ namespace pushplan
             const auto search = [&] {
                 try
                 {
-                    return portfolio.solve(out_of_time, report_due, report);
+                    return portfolio.solve([&](double within) { return elapsed() + within >= time_limit; }, report_due, report);
                 }
                 catch (const rust::Error &e)
                 {

@@ -18,7 +18,7 @@ namespace pushplan::detail
                        std::uint64_t patience_steps)
       : WrappedSearch(search)
       , first_(std::move(search))
-      , fallbacks_(std::move(fallbacks))
+      , fallbacks_(std::move(fallbacks), /*iterations_run_whole=*/false)
       , credited_steps_(fallbacks_.size(), 0)
       , credited_seconds_(fallbacks_.size(), 0.0)
       , model_(std::move(model))
@@ -85,7 +85,7 @@ namespace pushplan::detail
                 // round (its own rounds may pause there: Portfolio's lone search); the
                 // fallbacks' threads read the answer.
                 std::atomic<bool> stop{false};
-                fallbacks_.solve([&] { return stop.load(); }, [] { return true; },
+                fallbacks_.solve([&](double) { return stop.load(); }, [] { return true; },
                                  [&] {
                                      creditFallbacks();
                                      stop = stop_due();

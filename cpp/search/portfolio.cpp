@@ -4,6 +4,7 @@
 #include "pushplan/cpp/search/restarts.h"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 
 #include <condition_variable>
@@ -20,7 +21,8 @@ namespace pushplan::detail
         return index == 0 ? seed : subSeed(seed, 9000 + index);
     }
 
-    Portfolio::Portfolio(std::vector<Search> searches) : searches_(std::move(searches))
+    Portfolio::Portfolio(std::vector<Search> searches, bool iterations_run_whole)
+      : searches_(std::move(searches)), iterations_run_whole_(iterations_run_whole)
     {
     }
 
@@ -85,7 +87,7 @@ namespace pushplan::detail
         };
     }  // namespace
 
-    std::optional<std::size_t> Portfolio::solve(const std::function<bool()> &out_of_time,
+    std::optional<std::size_t> Portfolio::solve(const std::function<bool(double)> &out_of_time,
                                                 const std::function<bool()> &report_due,
                                                 const std::function<void()> &report)
     {
@@ -105,13 +107,27 @@ namespace pushplan::detail
             const std::uint64_t first_step = steps();
             std::uint64_t round_end = first_step + kRoundSteps;
             bool stopped = false;
+            // The longest time between two checks outside a pause (s), where iterations run
+            // whole: the time the next iteration may take past the limit.
+            using Clock = std::chrono::steady_clock;
+            Clock::time_point last_check = Clock::now();
+            double longest_iteration = 0.0;
             const ob::PlannerTerminationCondition ptc([&] {
-                if (stopped || out_of_time() || model.propagator().past_time_limit())
+                if (iterations_run_whole_)
+                {
+                    const Clock::time_point now = Clock::now();
+                    const double gap = std::chrono::duration<double>(now - last_check).count();
+                    longest_iteration = std::max(longest_iteration, gap);
+                    last_check = now;
+                }
+                if (stopped || out_of_time(longest_iteration) || model.propagator().past_time_limit())
                     return true;
                 if (alone ? !report_due() : steps() < round_end)
                     return false;
                 round_end += roundSteps(round_end - first_step);
-                return stopped = rendezvous.pause();
+                stopped = rendezvous.pause();
+                last_check = Clock::now();
+                return stopped;
             });
             try
             {
@@ -155,7 +171,7 @@ namespace pushplan::detail
                     report_failure = std::current_exception();
                 }
             }
-            const bool stop = report_failure || running == 0 || first_solved() || failed() || out_of_time();
+            const bool stop = report_failure || running == 0 || first_solved() || failed() || out_of_time(0.0);
             rendezvous.release(stop);
             if (stop)
                 break;

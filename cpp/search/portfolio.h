@@ -48,9 +48,15 @@ namespace pushplan::detail
         /// The steps of the round after `steps_taken` steps of a search.
         static std::uint64_t roundSteps(std::uint64_t steps_taken);
 
-        explicit Portfolio(std::vector<Search> searches);
+        /// `searches`, whose models cut a propagation at the time limit unless
+        /// `iterations_run_whole` (PDST: `PlannerKind::cut_at_time_limit`). OMPL checks a
+        /// search's termination condition only between its iterations, so such a search
+        /// stops once the time left is shorter than its longest iteration so far: a PDST
+        /// iteration re-propagates its cell's motions one step at a time, which took 0.3 s
+        /// on a scene of 0.1 ms steps (tests/time_limit).
+        Portfolio(std::vector<Search> searches, bool iterations_run_whole);
 
-        /// Runs rounds until one ends with an exact solution or `out_of_time` (asked from
+        /// Runs rounds until one ends with an exact solution or `out_of_time(0)` (asked from
         /// every thread) says stop, or every search's model is past its time limit; every
         /// search runs on a thread of its own, and `report`
         /// on the calling thread after a round when `report_due` says so, while every
@@ -58,7 +64,8 @@ namespace pushplan::detail
         /// when a report is due (a pause wakes the calling thread, which, every 1 000
         /// steps, cost a lone search a few per cent: BENCHMARKS.md, "The tree's turn").
         /// Returns the lowest-numbered search holding an exact solution.
-        std::optional<std::size_t> solve(const std::function<bool()> &out_of_time,
+        /// `out_of_time(s)`: whether the time runs out within `s` seconds.
+        std::optional<std::size_t> solve(const std::function<bool(double)> &out_of_time,
                                          const std::function<bool()> &report_due,
                                          const std::function<void()> &report);
 
@@ -88,5 +95,6 @@ namespace pushplan::detail
 
     private:
         std::vector<Search> searches_;
+        bool iterations_run_whole_;
     };
 }  // namespace pushplan::detail

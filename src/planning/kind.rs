@@ -173,7 +173,8 @@ impl PlannerKind {
     /// searches, so that an extension of k long controls ends on time (OMPL checks the
     /// limit only between extensions). Not PDST's: it propagates its motions again, to
     /// split them at cell borders and to return its path, and a propagation refused
-    /// there would put wrong states in its tree.
+    /// there would put wrong states in its tree. It stops instead once the time left is
+    /// shorter than its longest iteration so far (`cpp/search/portfolio.h`).
     pub fn cut_at_time_limit(self) -> bool {
         !matches!(self, PlannerKind::Pdst)
     }

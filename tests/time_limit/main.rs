@@ -28,14 +28,18 @@ fn timed(args: &[&str]) -> (f64, i32, String) {
 /// thousand robustness trials ran 8 s past a 2 s limit (a check measured twice, neither
 /// stopping at the limit), and a path of tens of thousands of 0.1 ms steps was
 /// re-simulated three times after the search had used the whole limit. A run over the
-/// bound is tried once more before it fails: the machine may be shared.
+/// bound is tried once more before it fails: the machine may be shared. PDST alone may
+/// finish an iteration past the limit, which the model cannot cut (PDST propagates its
+/// motions again, one step at a time, to split them and to return its path): on
+/// `fine_steps.yaml` (0.1 ms steps) one iteration took 0.1-0.45 s on the 2-core VM, so
+/// PDST's bound there is half a second longer.
 #[test]
 fn the_time_limit_bounds_the_whole_plan_command() {
     let scratch = Scratch::new("time-limit");
     let out = scratch.join("plan.json");
     let out = out.to_str().unwrap();
-    let within = |args: &[&str], seconds: f64| -> (i32, String) {
-        let bound = 1.05 * seconds + 0.2;
+    let within = |args: &[&str], seconds: f64, iteration: f64| -> (i32, String) {
+        let bound = 1.05 * seconds + 0.2 + iteration;
         let mut walls = vec![];
         for _ in 0..2 {
             let (wall, code, stdout) = timed(args);
@@ -61,6 +65,7 @@ fn the_time_limit_bounds_the_whole_plan_command() {
             out,
         ],
         2.0,
+        0.0,
     );
     assert_eq!(code, 0, "{stdout}");
     // Its robustness record, over the trials the limit left, is what `check` measures.
@@ -107,6 +112,7 @@ fn the_time_limit_bounds_the_whole_plan_command() {
             out,
         ],
         3.0,
+        0.0,
     );
     for planner in [
         "push_kpiece",
@@ -130,6 +136,7 @@ fn the_time_limit_bounds_the_whole_plan_command() {
                 out,
             ],
             1.0,
+            if planner == "pdst" { 0.5 } else { 0.0 },
         );
         let (code, checked, stderr) = pushplan(&["check", out]);
         assert!(
