@@ -147,7 +147,7 @@ impl Invalid {
     pub fn kind(&self) -> &'static str {
         match self {
             Invalid::JointLimit { .. } => "joint limit",
-            Invalid::Projection(ProjectionFailure::JointStepTooLarge { .. }) => "singular step",
+            Invalid::Projection(ProjectionFailure::JointTooFast { .. }) => "singular step",
             Invalid::Projection(ProjectionFailure::OffPlane { .. }) => "tool off its plane",
             Invalid::Projection(ProjectionFailure::NotFinite) => "not finite",
             Invalid::SelfCollision { .. } => "self-collision",

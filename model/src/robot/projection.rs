@@ -126,8 +126,11 @@ impl EeAction {
 pub struct ProjectionSettings {
     /// Damping of the pseudoinverse (m); keeps steps bounded near singularities.
     pub damping: f64,
-    /// Largest joint motion in one step (rad or m); more means a singularity.
-    pub max_joint_step: f64,
+    /// Fastest joint motion a step may ask (rad/s or m/s); faster means a singularity.
+    /// A speed, not a step: a step of `dt` may move a joint `max_joint_speed * dt`, so
+    /// that the same action near the same singularity is refused at any step size (a
+    /// limit per step let 0.1 ms steps chatter at 190 rad/s: `physics.max_joint_speed`).
+    pub max_joint_speed: f64,
     /// Tolerated distance of the tool from its plane (m).
     pub height_tolerance: f64,
     /// Tolerated tilt of the tool (rad).
@@ -138,7 +141,7 @@ impl Default for ProjectionSettings {
     fn default() -> Self {
         Self {
             damping: 1e-3,
-            max_joint_step: 0.05,
+            max_joint_speed: 5.0,
             height_tolerance: 1e-3,
             tilt_tolerance: 0.01,
         }
@@ -166,12 +169,12 @@ impl ProjectionSettings {
 /// Why a projected step was refused.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ProjectionFailure {
-    /// A joint would move more than the step allows (a singularity).
-    JointStepTooLarge {
+    /// A joint would move faster than the projection allows (a singularity).
+    JointTooFast {
         /// The joint (configuration index).
         joint: usize,
-        /// How far it would move (rad or m).
-        step: f64,
+        /// How fast it would move (rad/s or m/s).
+        speed: f64,
     },
     /// The tool could not be brought back to its plane.
     OffPlane {
@@ -187,10 +190,10 @@ pub enum ProjectionFailure {
 impl std::fmt::Display for ProjectionFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Self::JointStepTooLarge { joint, step } => {
+            Self::JointTooFast { joint, speed } => {
                 write!(
                     f,
-                    "joint {joint} would move {step:.3} in one step (singular)"
+                    "joint {joint} would move at {speed:.3} per second (singular)"
                 )
             }
             Self::OffPlane {
@@ -271,10 +274,10 @@ impl Robot {
         let qdot = self.joint_velocity(poses, &task, &action.nullspace, settings.damping)?;
         q_new.copy_from(q);
         q_new.axpy(dt, &qdot, 1.0);
-        self.check_step(q, q_new, settings)?;
+        self.check_step(q, q_new, settings, dt)?;
         self.chain.forward_kinematics(q_new, poses_new);
         self.restore_plane(q_new, poses_new, settings)?;
-        self.check_step(q, q_new, settings)
+        self.check_step(q, q_new, settings, dt)
     }
 
     /// Brings the tool of `q` onto its pushing plane as a start state's is held
@@ -314,16 +317,23 @@ impl Robot {
         }
     }
 
+    /// Refuses a step of `dt` seconds from `q` to `q_new` that moves a joint faster than
+    /// `settings.max_joint_speed`.
     fn check_step(
         &self,
         q: &DVector<f64>,
         q_new: &DVector<f64>,
         settings: &ProjectionSettings,
+        dt: f64,
     ) -> Result<(), ProjectionFailure> {
+        let largest = settings.max_joint_speed * dt;
         for i in 0..q.len() {
             let step = (q_new[i] - q[i]).abs();
-            if step.is_nan() || step > settings.max_joint_step {
-                return Err(ProjectionFailure::JointStepTooLarge { joint: i, step });
+            if step.is_nan() || step > largest {
+                return Err(ProjectionFailure::JointTooFast {
+                    joint: i,
+                    speed: step / dt,
+                });
             }
         }
         Ok(())

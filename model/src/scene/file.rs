@@ -422,9 +422,11 @@ pub struct PhysicsSpec {
     /// A contact whose normal is within this angle of vertical is invalid (rad).
     #[serde(deserialize_with = "number")]
     pub vertical_normal_angle: f64,
-    /// Largest joint motion per step (rad or m).
+    /// Fastest joint motion a step may ask (rad/s or m/s); faster means a singularity.
+    /// A speed, so that the same action near the same singularity is refused at any
+    /// `planner.step` (at the default 0.01 s: 0.05 rad per step).
     #[serde(deserialize_with = "number")]
-    pub max_joint_step: f64,
+    pub max_joint_speed: f64,
     /// Tolerated distance of the tool from its plane (m) and tilt (rad).
     #[serde(deserialize_with = "number")]
     pub plane_tolerance: f64,
@@ -486,7 +488,7 @@ impl Default for PhysicsSpec {
             penetration_tolerance: 0.003,
             overlap_tolerance: 0.001,
             vertical_normal_angle: 0.35,
-            max_joint_step: 0.05,
+            max_joint_speed: 5.0,
             plane_tolerance: 1e-3,
             tilt_tolerance: 0.01,
             tipping_margin: 0.3,

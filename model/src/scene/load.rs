@@ -321,7 +321,7 @@ impl Loader<'_> {
             self.positive(field, value)?;
         }
         let settings = ProjectionSettings {
-            max_joint_step: physics.max_joint_step,
+            max_joint_speed: physics.max_joint_speed,
             height_tolerance: physics.plane_tolerance,
             tilt_tolerance: physics.tilt_tolerance,
             ..ProjectionSettings::default()
@@ -1146,7 +1146,7 @@ impl Loader<'_> {
             ("physics.penetration_tolerance", p.penetration_tolerance),
             ("physics.overlap_tolerance", p.overlap_tolerance),
             ("physics.vertical_normal_angle", p.vertical_normal_angle),
-            ("physics.max_joint_step", p.max_joint_step),
+            ("physics.max_joint_speed", p.max_joint_speed),
             ("physics.plane_tolerance", p.plane_tolerance),
             ("physics.tilt_tolerance", p.tilt_tolerance),
         ] {
