@@ -18,7 +18,9 @@ pub mod wgr;
 
 pub use chain::{Joint, JointKind, KinematicChain, Link};
 pub use ik::IkSettings;
-pub use projection::{EeAction, ProjectionFailure, ProjectionSettings, PushingPlane};
+pub use projection::{
+    EeAction, ProjectionFailure, ProjectionSettings, PushingPlane, MAX_JOINT_STEP,
+};
 
 use nalgebra::{DVector, Isometry3};
 

@@ -127,9 +127,10 @@ pub struct ProjectionSettings {
     /// Damping of the pseudoinverse (m); keeps steps bounded near singularities.
     pub damping: f64,
     /// Fastest joint motion a step may ask (rad/s or m/s); faster means a singularity.
-    /// A speed, not a step: a step of `dt` may move a joint `max_joint_speed * dt`, so
-    /// that the same action near the same singularity is refused at any step size (a
-    /// limit per step let 0.1 ms steps chatter at 190 rad/s: `physics.max_joint_speed`).
+    /// A speed, not a step: a step of `dt` may move a joint `max_joint_speed * dt` (at
+    /// most [`MAX_JOINT_STEP`]), so that the same action near the same singularity is
+    /// refused at any step size (a limit per step let 0.1 ms steps chatter at 190 rad/s:
+    /// `physics.max_joint_speed`).
     pub max_joint_speed: f64,
     /// Tolerated distance of the tool from its plane (m).
     pub height_tolerance: f64,
@@ -213,6 +214,11 @@ impl std::fmt::Display for ProjectionFailure {
 }
 
 const NEWTON_ITERATIONS: usize = 5;
+
+/// Most a joint may move in one step, at any speed (rad or m): a link a metre out then
+/// moves at most 5 cm between two collision checks, as far as the tool may
+/// (`scene::load::MAX_STEP_TRAVEL`). It binds at steps longer than the default 10 ms.
+pub const MAX_JOINT_STEP: f64 = 0.05;
 
 impl Robot {
     /// Joint velocity that realises the task twist `task` (6 rows) plus the null-space
@@ -318,7 +324,7 @@ impl Robot {
     }
 
     /// Refuses a step of `dt` seconds from `q` to `q_new` that moves a joint faster than
-    /// `settings.max_joint_speed`.
+    /// `settings.max_joint_speed`, or farther than [`MAX_JOINT_STEP`].
     fn check_step(
         &self,
         q: &DVector<f64>,
@@ -326,7 +332,7 @@ impl Robot {
         settings: &ProjectionSettings,
         dt: f64,
     ) -> Result<(), ProjectionFailure> {
-        let largest = settings.max_joint_speed * dt;
+        let largest = (settings.max_joint_speed * dt).min(MAX_JOINT_STEP);
         for i in 0..q.len() {
             let step = (q_new[i] - q[i]).abs();
             if step.is_nan() || step > largest {
