@@ -441,7 +441,12 @@ namespace pushplan
             const auto elapsed = [&] {
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             };
-            const std::function<bool()> out_of_time = [&] { return elapsed() >= time_limit; };
+            // Whether the time runs out within `within` seconds (the searches ask it ahead
+            // of an iteration they cannot cut: Portfolio), and whether it has.
+            const std::function<bool(double)> out_of_time_within = [&](double within) {
+                return elapsed() + within >= time_limit;
+            };
+            const std::function<bool()> out_of_time = [&] { return out_of_time_within(0.0); };
             // The models refuse to propagate past the limit: an extension of k long controls
             // (OMPL checks the limit only between extensions) ends on time. Not PDST's: it
             // stops before an iteration as long as its longest so far would overrun.
@@ -498,7 +503,7 @@ namespace pushplan
             const auto search = [&] {
                 try
                 {
-                    return portfolio.solve([&](double within) { return elapsed() + within >= time_limit; }, report_due, report);
+                    return portfolio.solve(out_of_time_within, report_due, report);
                 }
                 catch (const rust::Error &e)
                 {
