@@ -52,7 +52,7 @@ namespace pushplan::detail
         /// `iterations_run_whole` (PDST: `PlannerKind::cut_at_time_limit`). OMPL checks a
         /// search's termination condition only between its iterations, so such a search
         /// stops once the time left is shorter than its longest iteration so far: a PDST
-        /// iteration re-propagates its cell's motions one step at a time, which took 0.3 s
+        /// iteration re-propagates its cell's motions one step at a time, which took 0.1-0.45 s
         /// on a scene of 0.1 ms steps (tests/time_limit).
         Portfolio(std::vector<Search> searches, bool iterations_run_whole);
 
