@@ -2,6 +2,7 @@
 //! Units: metres, radians, kilograms, seconds. See the README for an annotated example.
 
 use super::number::number;
+use crate::robot::ProjectionSettings;
 use serde::Deserialize;
 use std::path::PathBuf;
 
@@ -483,14 +484,16 @@ pub struct PhysicsSpec {
 
 impl Default for PhysicsSpec {
     fn default() -> Self {
+        // The projection's limits and tolerances are the projection's own defaults.
+        let projection = ProjectionSettings::default();
         Self {
             contact_margin: 0.02,
             penetration_tolerance: 0.003,
             overlap_tolerance: 0.001,
             vertical_normal_angle: 0.35,
-            max_joint_speed: 5.0,
-            plane_tolerance: 1e-3,
-            tilt_tolerance: 0.01,
+            max_joint_speed: projection.max_joint_speed,
+            plane_tolerance: projection.height_tolerance,
+            tilt_tolerance: projection.tilt_tolerance,
             tipping_margin: 0.3,
             object_clearance: 0.01,
             edge_clearance: 0.01,
