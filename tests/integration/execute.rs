@@ -9,6 +9,7 @@ use nalgebra::{DVector, Vector3};
 use pushplan::planning::execute::rapier::{RapierWorld, SolverSettings};
 use pushplan::planning::execute::TIPPED_TILT;
 use pushplan::planning::execute::{Engine, EngineKind, STEP};
+use pushplan::planning::trajectory::{Playback, Trajectory};
 use pushplan::Scene;
 use std::path::Path;
 
@@ -375,8 +376,7 @@ fn the_feet_spread_the_support_as_the_scene_says() {
 /// `times`).
 struct Recorded {
     scene: Scene,
-    times: Vec<f64>,
-    q: Vec<DVector<f64>>,
+    trajectory: Trajectory,
 }
 
 impl Recorded {
@@ -390,15 +390,15 @@ impl Recorded {
                 .map(|x| x.as_f64().unwrap())
                 .collect()
         };
+        let times = numbers(&data["times"]);
         Recorded {
             scene: Scene::load(data["scene"].as_str().unwrap()).unwrap(),
-            times: numbers(&data["times"]),
-            q: data["q"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|row| DVector::from_vec(numbers(row)))
-                .collect(),
+            trajectory: Trajectory {
+                rate: 1.0 / (times[1] - times[0]),
+                q: data["q"].as_array().unwrap().iter().map(numbers).collect(),
+                objects: Vec::new(),
+                times,
+            },
         }
     }
 
@@ -408,27 +408,21 @@ impl Recorded {
         self.scene
             .robot
             .chain
-            .forward_kinematics(&self.q[0], &mut poses);
+            .forward_kinematics(&Playback::new(&self.trajectory).at(0.0), &mut poses);
         poses
     }
 
-    /// Drives the arm of `world` along the trajectory (joints interpolated linearly
-    /// between samples); returns the first object's planar pose every 0.1 s.
+    /// Drives the arm of `world` along the trajectory as a controller plays it
+    /// ([`Playback`]); returns the first object's planar pose every 0.1 s.
     fn play(&self, world: &mut dyn Engine) -> Vec<[f64; 3]> {
-        let (times, q) = (&self.times, &self.q);
+        let mut playback = Playback::new(&self.trajectory);
         let mut poses = Vec::new();
         let mut path = Vec::new();
-        let mut k = 0;
-        for n in 1..=(times[times.len() - 1] / STEP) as usize {
-            let t = n as f64 * STEP;
-            while k + 2 < times.len() && times[k + 1] <= t {
-                k += 1;
-            }
-            let s = ((t - times[k]) / (times[k + 1] - times[k])).clamp(0.0, 1.0);
+        for n in 1..=(playback.end() / STEP) as usize {
             self.scene
                 .robot
                 .chain
-                .forward_kinematics(&(&q[k] * (1.0 - s) + &q[k + 1] * s), &mut poses);
+                .forward_kinematics(&playback.at(n as f64 * STEP), &mut poses);
             world.move_arm(&poses);
             world.step();
             if n % 100 == 0 {
