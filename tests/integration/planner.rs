@@ -174,9 +174,12 @@ fn pdst_out_of_time_returns_an_approximate_path_that_re_simulates() {
 #[test]
 fn parallel_searches_give_the_same_plan_for_the_same_seed_and_thread_count() {
     let scene = "scenes/herb_fig1_clutter.yaml";
+    // The limit only bounds a search that finds nothing: three threads share two cores
+    // with a competing search here, and one run beside two benchmark processes once took
+    // longer than 60 s. The plan does not depend on how long the search may run.
     let threads = |n: u32| RunSettings {
         threads: n,
-        ..options("pcrrt", 1, 60.0)
+        ..options("pcrrt", 1, 300.0)
     };
     let a = the_same_plan_under_load(scene, &threads(3), &options("pcrrt", 9, 60.0));
     assert!(plan_file(scene, "pcrrt", 1, &a)
