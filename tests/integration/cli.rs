@@ -296,7 +296,7 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
     let plan: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     // The reserves it was planned with are in the file.
-    assert_eq!(plan["margins"]["goal"], 0.03);
+    assert_eq!(plan["margins"]["goal"], 0.06);
     assert_eq!(plan["margins"]["object_clearance"], 0.01);
     assert_eq!(plan["margins"]["tipping"], 0.3);
     let robustness = &plan["robustness"];

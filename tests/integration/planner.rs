@@ -248,7 +248,7 @@ fn luby(i: u64) -> u64 {
 #[test]
 fn a_search_without_a_solution_starts_over_with_luby_budgets() {
     let scene = "scenes/herb_fig1_clutter.yaml";
-    let base = 2_000;
+    let base = 1_000;
     let restarting = RunSettings {
         restart_steps: base,
         ..options("push_kpiece", 1, 60.0)

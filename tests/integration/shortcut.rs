@@ -10,9 +10,9 @@ const SCENE: &str = "scenes/herb_fig1_clutter.yaml";
 
 use crate::common;
 
-/// The PC RRT plan of the default scene for seed 5.
+/// The PC RRT plan of the default scene for seed 2.
 fn found_plan() -> (Scene, Vec<PathControl>) {
-    common::default_scene_plan(5)
+    common::default_scene_plan(2)
 }
 
 #[test]
@@ -44,7 +44,7 @@ fn shortcutting_shortens_the_manipulator_path_and_keeps_the_plan_valid() {
     assert_eq!(again, outcome);
 
     // The plan file records both metrics and passes its check.
-    let plan_settings = common::plan_settings("pcrrt", 5, 1.0);
+    let plan_settings = common::plan_settings("pcrrt", 2, 1.0);
     let plan = PlanFile::build(
         SCENE,
         scene.clone(),
@@ -104,7 +104,7 @@ fn a_zero_budget_changes_nothing() {
 #[test]
 fn the_trajectory_respects_velocity_acceleration_and_object_speed_limits_and_follows_the_plan() {
     let (scene, controls) = found_plan();
-    let settings = common::plan_settings("pcrrt", 5, 0.0);
+    let settings = common::plan_settings("pcrrt", 2, 0.0);
     let plan = PlanFile::build(SCENE, scene.clone(), &settings, &controls, None).unwrap();
     let t = &plan.trajectory;
     assert_eq!(t.rate, 50.0);
@@ -242,10 +242,9 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_holds_up_else
 
     // In worlds it was not fitted to (the requirement's own), robust finishing (shortening,
     // then toward robustness) reaches the goal in more of them than the path as found, and
-    // in about as many as shortening alone: means over four finishing seeds (before the
-    // closing controls 0.46 against 0.25 and 0.38; with them 0.65, 0.25 and 0.68). With the
-    // closing controls, shortening alone is about as robust on this plan as the robust
-    // stage (seeds 1-8: 0.66 against 0.63; before them 0.49 against 0.53).
+    // in about as many as shortening alone: means over four finishing seeds (this plan,
+    // seed 2 with the goal margin of 0.06 m: 0.64 against 0.20 as found and 0.61 shortened
+    // alone; seed 5's plan with the margin of 0.03 m: 0.65, 0.25 and 0.68).
     let states = simulate(&mut Propagator::new(&scene), &scene.start, &controls, false).states;
     let rate = |controls: &[PathControl]| requirement.success_rate(&scene, controls, 1, None).rate;
     let finished_rate = |seed, robust| {

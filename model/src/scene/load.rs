@@ -7,7 +7,7 @@ use super::file::{
 };
 use super::Clearances;
 use super::{
-    AllowedCollisions, Goal, Grasp, MovableObject, Obstacle, Scene, Table, DEFAULT_GOAL_MARGIN,
+    default_goal_margin, AllowedCollisions, Goal, Grasp, MovableObject, Obstacle, Scene, Table,
 };
 use crate::collision::{Geometry, Primitive};
 use crate::error::{Error, Result};
@@ -946,7 +946,7 @@ impl Loader<'_> {
                     self.invalid("goal.radius", "missing (the goal disc's radius)")
                 })?;
                 self.length("goal.radius", radius)?;
-                let margin = g.margin.unwrap_or(DEFAULT_GOAL_MARGIN);
+                let margin = g.margin.unwrap_or_else(|| default_goal_margin(radius));
                 if !(margin.is_finite() && (0.0..radius).contains(&margin)) {
                     return Err(self.invalid(
                         "goal.margin",
