@@ -61,8 +61,25 @@ fn goals_measure_their_distance() {
     inside.objects[0] = Pose2::new(0.85 + 0.08, -0.25, 0.0);
     assert!(scene.goal.task_distance(&inside) < 0.0 && !scene.goal.is_satisfied(&inside));
 
-    // A robot-configuration goal.
+    // A small disc keeps a target: the default margin is at most 60 % of its radius
+    // (0.05 m: 0.03 m), and a margin the scene gives is taken as it is.
     let text = std::fs::read_to_string("scenes/herb_single_object.yaml").unwrap();
+    let goal_line = "goal: {object: green_box, center: [0.85, -0.25], radius: 0.1}";
+    let to_small_disc = (0.1f64.powi(2) + 0.25f64.powi(2)).sqrt() - 0.05;
+    for (goal, margin) in [
+        ("radius: 0.05}", 0.03),
+        ("radius: 0.05, margin: 0.01}", 0.01),
+    ] {
+        let small = text.replace(goal_line, &goal_line.replace("radius: 0.1}", goal));
+        let scene = Scene::from_yaml(&small, std::path::Path::new("scenes/x.yaml")).unwrap();
+        let distance = scene.goal.distance(&scene.start);
+        assert!(
+            (distance - (to_small_disc + margin)).abs() < 1e-12,
+            "{goal}: {distance}"
+        );
+    }
+
+    // A robot-configuration goal.
     let text = text.replace(
         "goal: {object: green_box, center: [0.85, -0.25], radius: 0.1}",
         "goal: {configuration: [1.0, 0.9, -0.7, 1.8, 0.6, -0.4, 0.2], tolerance: 0.1}",
