@@ -65,7 +65,8 @@ fn goals_measure_their_distance() {
     // (0.05 m: 0.03 m), and a margin the scene gives is taken as it is.
     let text = std::fs::read_to_string("scenes/herb_single_object.yaml").unwrap();
     let goal_line = "goal: {object: green_box, center: [0.85, -0.25], radius: 0.1}";
-    let to_small_disc = (0.1f64.powi(2) + 0.25f64.powi(2)).sqrt() - 0.05;
+    // Half the radius: the disc's edge 0.05 m further off.
+    let to_small_disc = to_disc + 0.05;
     for (goal, margin) in [
         ("radius: 0.05}", 0.03),
         ("radius: 0.05, margin: 0.01}", 0.01),
@@ -81,7 +82,7 @@ fn goals_measure_their_distance() {
 
     // A robot-configuration goal.
     let text = text.replace(
-        "goal: {object: green_box, center: [0.85, -0.25], radius: 0.1}",
+        goal_line,
         "goal: {configuration: [1.0, 0.9, -0.7, 1.8, 0.6, -0.4, 0.2], tolerance: 0.1}",
     );
     let scene = Scene::from_yaml(&text, std::path::Path::new("scenes/x.yaml")).unwrap();
