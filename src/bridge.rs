@@ -144,6 +144,9 @@ pub mod ffi {
         pub seed: u64,
         pub robust_trials: usize,
         pub robust_rate: f64,
+        /// The whole budget toward robustness (a solution not robust enough yet), not
+        /// shortening first: `planner::FinishSettings::only_toward_robustness`.
+        pub only_toward_robustness: bool,
         /// The found path's rate, already measured with the same seed over `found_trials`
         /// trials (negative: not measured).
         pub found_rate: f64,

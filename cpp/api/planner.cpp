@@ -284,7 +284,7 @@ namespace pushplan
             path.states.assign(states.begin(), states.end());
             const bridge::FinishedPath finished = finish(
                 finisher, path, true,
-                bridge::FinishSettings{0.0, 0, 0, 0.0, -1.0, 0, std::numeric_limits<double>::infinity()});
+                bridge::FinishSettings{0.0, 0, 0, 0.0, false, -1.0, 0, std::numeric_limits<double>::infinity()});
             Plan out;
             out.solved = true;
             nameParts(out, info);
@@ -555,10 +555,13 @@ namespace pushplan
                 const auto surely = [&](double rate, std::size_t trials) {
                     return rate * static_cast<double>(trials) / run.robust_trials;
                 };
+                // Shortcutting toward robustness spends the whole budget on it (only toward
+                // robustness: true), not shortening first.
                 const auto finished = [&](double shortcut, double found_rate, std::size_t found_trials) {
                     return detail::finish(*finisher, found, true,
                                           bridge::FinishSettings{shortcut, seed, run.robust_trials, run.robust_rate,
-                                                                 found_rate, found_trials, time_limit - elapsed()});
+                                                                 true, found_rate, found_trials,
+                                                                 time_limit - elapsed()});
                 };
                 const bridge::FinishedPath as_found = finished(0.0, -1.0, 0);
                 const bridge::FinishedPath made_robust =
@@ -580,12 +583,13 @@ namespace pushplan
                                         surely(most_robust->robustness, most_robust->trials))
                     most_robust = SetAside{*winner, std::move(as_made_robust), plan.robustness, plan.robustness_trials};
                 {
-                    char note[256];
+                    char note[320];
                     std::snprintf(note, sizeof note,
                                   "a solution reaches the goal in %.0f %% of %zu perturbed re-simulations "
-                                  "(%zu of %zu controls kept shortcutting toward robustness): searching on",
-                                  100.0 * plan.robustness, plan.robustness_trials, made_robust.steps.size(),
-                                  found.steps.size());
+                                  "(%.0f %% as found; %zu of %zu controls kept shortcutting toward robustness): "
+                                  "searching on",
+                                  100.0 * plan.robustness, plan.robustness_trials, 100.0 * as_found.robustness,
+                                  made_robust.steps.size(), found.steps.size());
                     tell_event(note);
                 }
                 if (out_of_time())
@@ -646,7 +650,7 @@ namespace pushplan
             const rust::Box<bridge::Finisher> finisher = bridge::Finisher::make(model->problem());
             const bridge::FinishedPath path = detail::finish(
                 *finisher, found, solved,
-                bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate,
+                bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate, false,
                                        solved && run.robust_trials > 0 ? plan.robustness : -1.0,
                                        plan.robustness_trials, time_limit - elapsed()});
             describe(plan, *finisher, info, path);

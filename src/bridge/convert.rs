@@ -198,6 +198,7 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 trials: s.robust_trials,
                 rate: s.robust_rate,
             }),
+            only_toward_robustness: s.only_toward_robustness,
             found_rate: (s.found_rate >= 0.0).then_some(MeasuredRate {
                 rate: s.found_rate,
                 trials: s.found_trials,

@@ -65,6 +65,9 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
             trials: options.robust_trials as usize,
             rate: options.robust_rate,
         }),
+        // The found solution is robust enough (or the most robust in time): shortened
+        // first, kept only as robust.
+        only_toward_robustness: false,
         found_rate: found.robustness,
         deadline: Some(request.deadline),
         progress: request.shortcut_progress,

@@ -22,6 +22,13 @@ pub struct FinishSettings {
     pub seed: u64,
     /// The robustness a solution must keep, if any.
     pub robust: Option<RobustRequirement>,
+    /// With `robust`: the whole budget toward robustness, for a solution not robust
+    /// enough yet (robust planning's search loop); else shortening first, then toward
+    /// robustness, half the budget each (the plan's final shortcutting, which keeps the
+    /// rate found). Shortened first, a fragile solution came out less robust than as found
+    /// in most finishings, and the half left toward robustness started from the shorter,
+    /// more fragile path (BENCHMARKS.md, "Robust finishing").
+    pub only_toward_robustness: bool,
     /// The found path's success rate under `robust`, if the caller measured it already
     /// (with the same seed): not measured again.
     pub found_rate: Option<MeasuredRate>,
@@ -75,6 +82,15 @@ impl RobustRequirement {
             rate: report.success_rate,
             trials: report.trials.len(),
         }
+    }
+
+    /// Whether a shortcut path measured at `shortcut` replaces the path as found, measured
+    /// at `found`: if robust enough, or at least as robust as the path as found, over as many
+    /// trials. A check the deadline cut short does not replace a path measured in full (a
+    /// shortcut right before the time limit, rated 100 % over one trial, took the place of
+    /// a path measured robust over 20).
+    pub fn keeps(&self, shortcut: MeasuredRate, found: MeasuredRate) -> bool {
+        shortcut.rate >= found.rate.min(self.rate) && shortcut.trials >= found.trials
     }
 
     /// As many perturbed worlds as trials to shortcut toward robustness in, drawn apart
@@ -165,10 +181,17 @@ pub fn finish(
             progress: settings.progress,
             ..ShortcutSettings::from_seconds(settings.shortcut, settings.seed)
         };
-        // Robust planning shortens first (fewer pushes: less to go wrong), then shortcuts
-        // toward the most robust path, half the budget each.
+        // Robust planning's final shortcutting shortens first (fewer pushes: less to go
+        // wrong), then shortcuts toward the most robust path, half the budget each; a
+        // solution not robust enough yet spends it all toward robustness (which also keeps
+        // shorter paths that reach the goal in as many worlds).
         let stages = match settings.robust {
             None => vec![Criterion::Shorter],
+            Some(r) if settings.only_toward_robustness => {
+                vec![Criterion::MoreRobust(
+                    r.shortcut_worlds(scene, settings.seed),
+                )]
+            }
             Some(r) => vec![
                 Criterion::Shorter,
                 Criterion::MoreRobust(r.shortcut_worlds(scene, settings.seed)),
@@ -194,18 +217,17 @@ pub fn finish(
         finished.shortcut.accepted = outcome.accepted;
         finished.shortcut.stopped_at_deadline = outcome.stopped_at_deadline;
         if outcome.accepted > 0 {
-            // Kept if robust enough, or at least as robust as the path as found.
             let rates = settings.robust.map(|r| {
                 let rate =
                     |controls| r.success_rate(scene, controls, settings.seed, settings.deadline);
                 let found_rate = settings.found_rate.unwrap_or_else(|| rate(found));
-                (rate(&outcome.controls), found_rate.rate.min(r.rate))
+                (r, rate(&outcome.controls), found_rate)
             });
-            if rates.is_none_or(|(shortcut, bar)| shortcut.rate >= bar) {
+            if rates.is_none_or(|(r, shortcut, found)| r.keeps(shortcut, found)) {
                 finished.simulation =
                     simulate(&mut propagator, &scene.start, &outcome.controls, true);
                 finished.controls = outcome.controls;
-                finished.robustness = rates.map(|(shortcut, _)| shortcut);
+                finished.robustness = rates.map(|(_, shortcut, _)| shortcut);
             } else {
                 finished.shortcut.dropped_as_less_robust = true;
             }
@@ -221,4 +243,28 @@ pub fn finish(
         });
     }
     Ok(finished)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_shortcut_replaces_the_found_path_only_if_as_robust_over_as_many_trials() {
+        let required = RobustRequirement {
+            trials: 20,
+            rate: 0.95,
+        };
+        let rate = |rate, trials| MeasuredRate { rate, trials };
+        // Robust enough, though less than as found.
+        assert!(required.keeps(rate(0.95, 20), rate(1.0, 20)));
+        // Not robust enough, but more robust than as found.
+        assert!(required.keeps(rate(0.6, 20), rate(0.55, 20)));
+        assert!(!required.keeps(rate(0.5, 20), rate(0.55, 20)));
+        // Cut short by the deadline: one lucky trial does not replace 20 measured.
+        assert!(!required.keeps(rate(1.0, 1), rate(0.95, 20)));
+        assert!(!required.keeps(rate(1.0, 19), rate(0.5, 20)));
+        // Both cut short: the shortcut's check ran at least as far.
+        assert!(required.keeps(rate(1.0, 3), rate(1.0, 3)));
+    }
 }

@@ -709,6 +709,7 @@ impl ClosedLoop {
             shortcut: settings.replan_shortcut,
             seed: run.seed,
             robust: None,
+            only_toward_robustness: false,
             found_rate: None,
             deadline: None,
             progress: None,
