@@ -466,8 +466,9 @@ fn a_plan_is_robust_by_default_and_the_most_robust_found_when_time_runs_out() {
         .skip(1)
         .filter_map(|rest| rest.split(' ').next()?.parse().ok())
         .collect();
+    // The event lines round rates to whole percent (81.8 % of 11 trials reads 82 %).
     assert!(
-        set_aside.iter().all(|&rate| written >= rate),
+        set_aside.iter().all(|&rate| written.round() >= rate),
         "the plan is at least as robust as every solution set aside: {written} % vs {set_aside:?}\n{output}"
     );
     if written < 100.0 {
