@@ -154,6 +154,8 @@ pub mod ffi {
         /// Seconds from now at which shortcutting and robustness checks stop, budget left
         /// or not (infinite: never).
         pub time_left: f64,
+        /// `planner::FinishSettings::threads` (0 counts as one).
+        pub threads: usize,
     }
 
     /// `planner::FinishedPath`, flat; `robustness` -1 if not measured, else over

@@ -120,7 +120,7 @@ namespace pushplan::bridge
             const FinishedPath s =
                 detail::finish(*Finisher::make(model->problem()), found, true,
                                FinishSettings{settings.shortcut, seed, 0, 0.0, false, -1.0, 0,
-                                              std::numeric_limits<double>::infinity()});
+                                              std::numeric_limits<double>::infinity(), 1});
             props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
             props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);
             measured(s.before, "");

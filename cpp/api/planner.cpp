@@ -284,7 +284,7 @@ namespace pushplan
             path.states.assign(states.begin(), states.end());
             const bridge::FinishedPath finished = finish(
                 finisher, path, true,
-                bridge::FinishSettings{0.0, 0, 0, 0.0, false, -1.0, 0, std::numeric_limits<double>::infinity()});
+                bridge::FinishSettings{0.0, 0, 0, 0.0, false, -1.0, 0, std::numeric_limits<double>::infinity(), 1});
             Plan out;
             out.solved = true;
             nameParts(out, info);
@@ -561,7 +561,7 @@ namespace pushplan
                     return detail::finish(*finisher, found, true,
                                           bridge::FinishSettings{shortcut, seed, run.robust_trials, run.robust_rate,
                                                                  true, found_rate, found_trials,
-                                                                 time_limit - elapsed()});
+                                                                 time_limit - elapsed(), threads});
                 };
                 const bridge::FinishedPath as_found = finished(0.0, -1.0, 0);
                 const bridge::FinishedPath made_robust =
@@ -652,7 +652,7 @@ namespace pushplan
                 *finisher, found, solved,
                 bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate, false,
                                        solved && run.robust_trials > 0 ? plan.robustness : -1.0,
-                                       plan.robustness_trials, time_limit - elapsed()});
+                                       plan.robustness_trials, time_limit - elapsed(), threads});
             describe(plan, *finisher, info, path);
             return plan;
             });

@@ -71,6 +71,7 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
         found_rate: found.robustness,
         deadline: Some(request.deadline),
         progress: request.shortcut_progress,
+        threads: options.threads as usize,
     };
     let path = problem.finish(
         &found.controls,

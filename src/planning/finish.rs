@@ -37,6 +37,9 @@ pub struct FinishSettings {
     pub deadline: Option<Instant>,
     /// Told how far shortcutting is (a progress line).
     pub progress: Option<fn(&ShortcutProgress)>,
+    /// Threads the shortcutting toward robustness re-simulates its perturbed worlds on
+    /// (at least one; the finished path does not depend on it).
+    pub threads: usize,
 }
 
 /// Keep a path only if at least `rate` of `trials` perturbed re-simulations
@@ -179,6 +182,7 @@ pub fn finish(
         let budget = ShortcutSettings {
             deadline: settings.deadline,
             progress: settings.progress,
+            threads: settings.threads,
             ..ShortcutSettings::from_seconds(settings.shortcut, settings.seed)
         };
         // Robust planning's final shortcutting shortens first (fewer pushes: less to go

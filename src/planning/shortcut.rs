@@ -53,6 +53,10 @@ pub struct ShortcutSettings {
     /// Told how far shortcutting is before every attempt (a progress line); it cannot
     /// change the outcome.
     pub progress: Option<fn(&ShortcutProgress)>,
+    /// Threads the perturbed worlds of [`Criterion::MoreRobust`] are re-simulated on, at
+    /// least one. The outcome does not depend on it: the worlds are judged in order and
+    /// the work counted as if re-simulated one after another.
+    pub threads: usize,
 }
 
 impl ShortcutSettings {
@@ -63,6 +67,7 @@ impl ShortcutSettings {
             seed,
             deadline: None,
             progress: None,
+            threads: 1,
         }
     }
 }
@@ -174,7 +179,9 @@ pub fn shortcut_by(
     let mut work = path.steps() as u64;
     let mut worlds = match criterion {
         Criterion::Shorter => None,
-        Criterion::MoreRobust(worlds) => Some(WorldRuns::new(worlds, settings.deadline)),
+        Criterion::MoreRobust(worlds) => {
+            Some(WorldRuns::new(worlds, settings.deadline, settings.threads))
+        }
     };
     if let Some(worlds) = &mut worlds {
         let Some(spent) = worlds.run(&scene.goal, &current) else {
@@ -266,15 +273,18 @@ struct WorldRuns<'a> {
     reached: usize,
     /// When re-simulating stops (the shortcutting's deadline).
     deadline: Option<Instant>,
+    /// Worlds re-simulated at once, each on a thread of its own.
+    threads: usize,
 }
 
 impl<'a> WorldRuns<'a> {
-    fn new(worlds: &'a mut [PerturbedWorld], deadline: Option<Instant>) -> Self {
+    fn new(worlds: &'a mut [PerturbedWorld], deadline: Option<Instant>, threads: usize) -> Self {
         Self {
             worlds,
             runs: vec![],
             reached: 0,
             deadline,
+            threads: threads.max(1),
         }
     }
 
@@ -282,11 +292,15 @@ impl<'a> WorldRuns<'a> {
     /// propagation steps spent, or `None` if the deadline came first.
     fn run(&mut self, goal: &Goal, controls: &[PathControl]) -> Option<u64> {
         self.runs.clear();
-        for world in self.worlds.iter_mut() {
+        for round in self.worlds.chunks_mut(self.threads) {
             if passed(self.deadline) {
                 return None;
             }
-            self.runs.push(world.run(controls));
+            self.runs.extend(
+                at_once(round, |world, _| Some(world.run(controls)))
+                    .into_iter()
+                    .flatten(),
+            );
         }
         self.reached = self.runs.iter().filter(|r| reaches(goal, r)).count();
         Some(self.runs.iter().map(|r| r.steps() as u64).sum())
@@ -295,7 +309,9 @@ impl<'a> WorldRuns<'a> {
     /// Whether `candidate`, which differs from the current path from control `i` on,
     /// reaches the goal in at least `needed` worlds, and the propagation steps spent
     /// finding out. Only the differing part is re-simulated, and only until the answer
-    /// is known.
+    /// is known: the worlds are judged in order, `threads` re-simulated at once, and the
+    /// steps of those judged counted (those re-simulated past the answer are not), so
+    /// the answer and the count are those of one world after another.
     fn candidate_reaches(
         &mut self,
         goal: &Goal,
@@ -308,26 +324,62 @@ impl<'a> WorldRuns<'a> {
             return (false, 0);
         }
         let (mut reached, mut failed, mut work) = (0, 0, 0);
-        for (world, run) in self.worlds.iter_mut().zip(&self.runs) {
+        let runs = &self.runs;
+        for (k, round) in self.worlds.chunks_mut(self.threads).enumerate() {
             // Past the deadline the candidate is not judged (and not kept).
             if passed(self.deadline) {
                 return (false, work);
             }
+            let first = k * self.threads;
             // A world whose run stopped before control i fails the same way.
-            let reaches_i = run.stopped_by.as_ref().is_none_or(|(k, _)| *k >= i);
-            let tail = reaches_i.then(|| world.simulate(&run.states[i], &candidate[i..]));
-            work += tail.as_ref().map_or(0, |t| t.steps() as u64);
-            if tail.is_some_and(|t| reaches(goal, &t)) {
-                reached += 1;
-            } else {
-                failed += 1;
-            }
-            if reached >= needed || n - failed < needed {
-                break;
+            let tails = at_once(round, |world, j| {
+                let run = &runs[first + j];
+                run.stopped_by
+                    .as_ref()
+                    .is_none_or(|(k, _)| *k >= i)
+                    .then(|| world.simulate(&run.states[i], &candidate[i..]))
+            });
+            for tail in tails {
+                work += tail.as_ref().map_or(0, |t| t.steps() as u64);
+                if tail.is_some_and(|t| reaches(goal, &t)) {
+                    reached += 1;
+                } else {
+                    failed += 1;
+                }
+                if reached >= needed || n - failed < needed {
+                    return (reached >= needed, work);
+                }
             }
         }
         (reached >= needed, work)
     }
+}
+
+/// `f(world, index in round)` for every world of `round`, each on a thread of its own (the
+/// first on this one), in order.
+fn at_once<R: Send>(
+    round: &mut [PerturbedWorld],
+    f: impl Fn(&mut PerturbedWorld, usize) -> R + Sync,
+) -> Vec<R> {
+    if round.len() == 1 {
+        return vec![f(&mut round[0], 0)];
+    }
+    let f = &f;
+    std::thread::scope(|scope| {
+        let (first, rest) = round.split_first_mut().expect("a round has a world");
+        let others: Vec<_> = rest
+            .iter_mut()
+            .enumerate()
+            .map(|(j, world)| scope.spawn(move || f(world, j + 1)))
+            .collect();
+        let mut results = vec![f(first, 0)];
+        results.extend(
+            others
+                .into_iter()
+                .map(|h| h.join().expect("a world's re-simulation panicked")),
+        );
+        results
+    })
 }
 
 /// `path` up to its state `i`, then `tail`, a valid path simulated from that state: the

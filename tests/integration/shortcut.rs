@@ -201,17 +201,21 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_holds_up_else
         }
         reached
     };
-    let settings = ShortcutSettings::from_seconds(3.0, 1);
-    let run = |criterion: &mut Criterion| {
+    let on_threads = |threads| ShortcutSettings {
+        threads,
+        ..ShortcutSettings::from_seconds(3.0, 1)
+    };
+    let run_on = |threads, criterion: &mut Criterion| {
         let mut propagator = Propagator::new(&scene);
         shortcut_by(
             &mut propagator,
             &scene.start,
             &controls,
-            &settings,
+            &on_threads(threads),
             criterion,
         )
     };
+    let run = |criterion: &mut Criterion| run_on(1, criterion);
 
     // Shortcutting toward robustness keeps the plan valid and never loses a world it
     // reaches the goal in; the same seed gives the same path.
@@ -239,6 +243,13 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_holds_up_else
         requirement.shortcut_worlds(&scene, 1),
     ));
     assert_eq!(again, robust);
+    // The worlds re-simulated on three threads at once (rounds of three and a last of
+    // two): the same path, attempts and work, bit for bit.
+    let on_three = run_on(
+        3,
+        &mut Criterion::MoreRobust(requirement.shortcut_worlds(&scene, 1)),
+    );
+    assert_eq!(on_three, robust);
 
     // In worlds it was not fitted to (the requirement's own), the final robust finishing
     // (shortening, then toward robustness) reaches the goal in more of them than the path
@@ -258,6 +269,7 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_holds_up_else
             found_rate: None,
             deadline: None,
             progress: None,
+            threads: 1,
         };
         rate(
             &finish(&scene, &controls, &states, true, &settings)

@@ -713,6 +713,7 @@ impl ClosedLoop {
             found_rate: None,
             deadline: None,
             progress: None,
+            threads: 1,
         };
         Ok(problem
             .finish(&found.controls, &found.states, true, &finish)?
