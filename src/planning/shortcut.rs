@@ -296,11 +296,8 @@ impl<'a> WorldRuns<'a> {
             if passed(self.deadline) {
                 return None;
             }
-            self.runs.extend(
-                at_once(round, |world, _| Some(world.run(controls)))
-                    .into_iter()
-                    .flatten(),
-            );
+            self.runs
+                .extend(at_once(round, |world, _| world.run(controls)));
         }
         self.reached = self.runs.iter().filter(|r| reaches(goal, r)).count();
         Some(self.runs.iter().map(|r| r.steps() as u64).sum())
