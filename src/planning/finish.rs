@@ -189,18 +189,15 @@ pub fn finish(
         // wrong), then shortcuts toward the most robust path, half the budget each; a
         // solution not robust enough yet spends it all toward robustness (which also keeps
         // shorter paths that reach the goal in as many worlds).
-        let stages = match settings.robust {
-            None => vec![Criterion::Shorter],
-            Some(r) if settings.only_toward_robustness => {
-                vec![Criterion::MoreRobust(
-                    r.shortcut_worlds(scene, settings.seed),
-                )]
-            }
-            Some(r) => vec![
-                Criterion::Shorter,
-                Criterion::MoreRobust(r.shortcut_worlds(scene, settings.seed)),
-            ],
-        };
+        let mut stages = vec![];
+        if settings.robust.is_none() || !settings.only_toward_robustness {
+            stages.push(Criterion::Shorter);
+        }
+        if let Some(r) = settings.robust {
+            stages.push(Criterion::MoreRobust(
+                r.shortcut_worlds(scene, settings.seed),
+            ));
+        }
         let stage_budget = ShortcutSettings {
             budget_steps: budget.budget_steps / stages.len() as u64,
             ..budget

@@ -322,12 +322,12 @@ impl<'a> WorldRuns<'a> {
         }
         let (mut reached, mut failed, mut work) = (0, 0, 0);
         let runs = &self.runs;
-        for (k, round) in self.worlds.chunks_mut(self.threads).enumerate() {
+        let starts = (0..).step_by(self.threads);
+        for (first, round) in starts.zip(self.worlds.chunks_mut(self.threads)) {
             // Past the deadline the candidate is not judged (and not kept).
             if passed(self.deadline) {
                 return (false, work);
             }
-            let first = k * self.threads;
             // A world whose run stopped before control i fails the same way.
             let tails = at_once(round, |world, j| {
                 let run = &runs[first + j];
