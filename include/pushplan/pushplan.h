@@ -125,7 +125,7 @@ namespace pushplan
         std::optional<double> robust_rate;
         /// Shortcutting budget (seconds of work) spent on each solution that is not robust
         /// enough, toward the path that reaches the goal in the most perturbed scenes (drawn
-        /// apart from the check's), before it is dropped. Default 3.
+        /// apart from the check's), before it is dropped. Default 1.5.
         std::optional<double> robust_shortcut;
         /// Perturbed worlds (drawn as the check's) every tree state carries in robust
         /// planning: an extension is kept only if it is valid in each, and the goal is

@@ -47,7 +47,7 @@ pub struct SearchFlags {
     pub robust_rate: Option<f64>,
     /// Shortcutting budget (seconds of work) spent on each solution that is not robust
     /// enough, toward the path that reaches the goal in the most perturbed scenes, before
-    /// it is dropped [default: 3].
+    /// it is dropped [default: 1.5].
     #[arg(long, value_parser = real(&limits::ROBUST_SHORTCUT))]
     pub robust_shortcut: Option<f64>,
     /// With --robust: perturbed worlds every tree state carries; an extension is kept

@@ -250,8 +250,8 @@ pub struct RobustnessRecord {
     #[serde(default)]
     pub particles: u32,
     /// Shortcutting budget toward robustness for each solution not robust enough (s of
-    /// work, `plan --robust-shortcut`; absent in older files: the default, 3).
-    #[serde(default = "default_robust_shortcut")]
+    /// work, `plan --robust-shortcut`; absent in older files: 3, the default then).
+    #[serde(default = "robust_shortcut_of_older_files")]
     pub shortcut: f64,
     /// The re-simulations asked for, when the time limit cut the check short of them
     /// (`trials` below it; absent otherwise: `trials` were asked).
@@ -259,8 +259,9 @@ pub struct RobustnessRecord {
     pub asked: Option<usize>,
 }
 
-fn default_robust_shortcut() -> f64 {
-    DEFAULT_ROBUST_SHORTCUT
+/// The budget older plan files were made with (the field is newer than it).
+fn robust_shortcut_of_older_files() -> f64 {
+    3.0
 }
 
 impl RobustnessRecord {
