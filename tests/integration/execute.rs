@@ -862,8 +862,8 @@ fn glass_on_the_plans_way(
 /// Closed loop in `glass_on_the_plans_way`'s world, where the glass stands where the hand
 /// passes in the plan's third control or later. The first observation finds the rest of
 /// the plan invalid there; the rest is kept up to where it stops being valid and only an
-/// ending is searched from there (a repair), not a new plan from the start: with one
-/// re-plan allowed, that one is the repair.
+/// ending is searched from there (a repair), not a new plan from the start: every re-plan
+/// is a repair.
 #[test]
 fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_there() {
     use pushplan::planning::Problem;
@@ -878,7 +878,14 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
         playing.stopped_by
     );
 
-    let mut closed_loop = closed_loop(plan.settings.planner, 1);
+    // Two re-plans allowed: the repair searched ahead is taken up at the first observation
+    // after it has taken no longer than the controls played meanwhile (wall clock against
+    // the execution's pace), after the first control on a fast machine, later on a slow
+    // one; from there the world (rapier) has drifted some nanometres from the model's
+    // prediction the ending was searched from, and where the ending passes close by the
+    // glass that can flip a rule (the hand closing in 0.2 mm from it): the rest is then
+    // kept up to there and a second ending searched.
+    let mut closed_loop = closed_loop(plan.settings.planner, 2);
     // Legs of 0.3 m: the valid part ends within a leg of the goal (the box starts 0.17 m
     // out), so its repair is searched ahead.
     closed_loop.settings.leg = 0.3;
@@ -902,10 +909,9 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
         closed.invalid_rest_details[0].contains("'glass'"),
         "{closed:?}"
     );
-    assert_eq!(
-        (closed.replans, closed.repairs),
-        (1, 1),
-        "the one re-plan kept the valid part and searched an ending: {closed:?}"
+    assert!(
+        (1..=2).contains(&closed.replans) && closed.repairs == closed.replans,
+        "every re-plan kept the valid part and searched an ending: {closed:?}"
     );
     assert!(closed.controls_played >= 2, "{closed:?}");
     assert!(
@@ -920,7 +926,10 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     // Searched with the arm waiting, the same repair, and the latency counts its search.
     closed_loop.settings.repair_ahead = false;
     let waiting = closed_loop.execute(&scene, &controls, &world).unwrap();
-    assert_eq!((waiting.replans, waiting.repairs), (1, 1), "{waiting:?}");
+    assert!(
+        (1..=2).contains(&waiting.replans) && waiting.repairs == waiting.replans,
+        "{waiting:?}"
+    );
     let repair = &waiting.searches[0];
     assert!(
         !repair.ahead && repair.waited == repair.seconds,
@@ -932,7 +941,10 @@ fn closed_loop_keeps_the_rest_up_to_where_it_stops_being_valid_and_repairs_from_
     closed_loop.settings.repair_ahead = true;
     closed_loop.settings.leg = 0.001;
     let far = closed_loop.execute(&scene, &controls, &world).unwrap();
-    assert_eq!((far.replans, far.repairs), (1, 1), "{far:?}");
+    assert!(
+        (1..=2).contains(&far.replans) && far.repairs == far.replans,
+        "{far:?}"
+    );
     assert!(!far.searches[0].ahead, "{far:?}");
 }
 
