@@ -205,7 +205,7 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
             }),
             deadline: crate::planning::deadline(std::time::Instant::now(), s.time_left),
             progress: None,
-            threads: s.threads.max(1),
+            threads: s.threads,
         })
     }
 }

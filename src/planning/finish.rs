@@ -38,7 +38,7 @@ pub struct FinishSettings {
     /// Told how far shortcutting is (a progress line).
     pub progress: Option<fn(&ShortcutProgress)>,
     /// Threads the shortcutting toward robustness re-simulates its perturbed worlds on
-    /// (at least one; the finished path does not depend on it).
+    /// (0 counts as one; the finished path does not depend on it).
     pub threads: usize,
 }
 

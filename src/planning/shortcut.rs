@@ -53,8 +53,8 @@ pub struct ShortcutSettings {
     /// Told how far shortcutting is before every attempt (a progress line); it cannot
     /// change the outcome.
     pub progress: Option<fn(&ShortcutProgress)>,
-    /// Threads the perturbed worlds of [`Criterion::MoreRobust`] are re-simulated on, at
-    /// least one. The outcome does not depend on it: the worlds are judged in order and
+    /// Threads the perturbed worlds of [`Criterion::MoreRobust`] are re-simulated on (0
+    /// counts as one). The outcome does not depend on it: the worlds are judged in order and
     /// the work counted as if re-simulated one after another.
     pub threads: usize,
 }
