@@ -62,7 +62,7 @@ pub const PLAN_ROBUST_TRIALS: u32 = 20;
 /// Shortcutting toward robustness, per solution not robust enough, when none is asked for
 /// (s of work). Half of the 3 s it was: more solutions finished in a search's time, each
 /// less far, gave more robust plans within 30 s on the development scenes and seeds
-/// (BENCHMARKS.md, "Robust finishing: 1.5 s a solution").
+/// (BENCHMARKS.md, "Robust finishing").
 pub const DEFAULT_ROBUST_SHORTCUT: f64 = 1.5;
 
 /// The share of perturbed re-simulations a robust plan must reach the goal in, when none
