@@ -147,6 +147,9 @@ pub mod ffi {
         /// The whole budget toward robustness (a solution not robust enough yet), not
         /// shortening first: `planner::FinishSettings::only_toward_robustness`.
         pub only_toward_robustness: bool,
+        /// `planner::FinishSettings::unseen_trials`: worlds no solution was chosen in that
+        /// the finished path is measured in (0: none).
+        pub unseen_trials: usize,
         /// The found path's rate, already measured with the same seed over `found_trials`
         /// trials (negative: not measured).
         pub found_rate: f64,
@@ -159,7 +162,8 @@ pub mod ffi {
     }
 
     /// `planner::FinishedPath`, flat; `robustness` -1 if not measured, else over
-    /// `robustness_trials` perturbed re-simulations.
+    /// `robustness_trials` perturbed re-simulations; `unseen_rate` likewise, over
+    /// `unseen_trials`.
     pub struct FinishedPath {
         pub controls: Vec<f64>,
         pub steps: Vec<usize>,
@@ -173,6 +177,8 @@ pub mod ffi {
         pub shortcut_dropped_as_less_robust: bool,
         pub robustness: f64,
         pub robustness_trials: usize,
+        pub unseen_rate: f64,
+        pub unseen_trials: usize,
     }
 
     /// `planning::rest::RestFrom`, flat: the rest of a plan judged from an observed state.

@@ -119,7 +119,7 @@ namespace pushplan::bridge
             const auto found = model->view()->readPath(*pdef->getSolutionPath()->as<oc::PathControl>());
             const FinishedPath s =
                 detail::finish(*Finisher::make(model->problem()), found, true,
-                               FinishSettings{settings.shortcut, seed, 0, 0.0, false, -1.0, 0,
+                               FinishSettings{settings.shortcut, seed, 0, 0.0, false, 0, -1.0, 0,
                                               std::numeric_limits<double>::infinity(), 1});
             props["objects moved INTEGER"] = std::to_string(s.before.objects_moved);
             props["links in contact INTEGER"] = std::to_string(s.before.links_in_contact);

@@ -284,7 +284,7 @@ namespace pushplan
             path.states.assign(states.begin(), states.end());
             const bridge::FinishedPath finished = finish(
                 finisher, path, true,
-                bridge::FinishSettings{0.0, 0, 0, 0.0, false, -1.0, 0, std::numeric_limits<double>::infinity(), 1});
+                bridge::FinishSettings{0.0, 0, 0, 0.0, false, 0, -1.0, 0, std::numeric_limits<double>::infinity(), 1});
             Plan out;
             out.solved = true;
             nameParts(out, info);
@@ -441,10 +441,14 @@ namespace pushplan
             const auto elapsed = [&] {
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             };
+            // When searching stops: the time limit, less, once a solution is set aside in
+            // robust planning, what measuring the plan once more takes (the finishing
+            // measures it in worlds no solution was chosen in: `unseen_trials`).
+            double search_limit = time_limit;
             // Whether the time runs out within `within` seconds (the searches ask it ahead
             // of an iteration they cannot cut: Portfolio), and whether it has.
             const std::function<bool(double)> out_of_time_within = [&](double within) {
-                return elapsed() + within >= time_limit;
+                return elapsed() + within >= search_limit;
             };
             const std::function<bool()> out_of_time = [&] { return out_of_time_within(0.0); };
             // The models refuse to propagate past the limit: an extension of k long controls
@@ -560,10 +564,12 @@ namespace pushplan
                 const auto finished = [&](double shortcut, double found_rate, std::size_t found_trials) {
                     return detail::finish(*finisher, found, true,
                                           bridge::FinishSettings{shortcut, seed, run.robust_trials, run.robust_rate,
-                                                                 true, found_rate, found_trials,
-                                                                 time_limit - elapsed(), threads});
+                                                                 true, 0, found_rate, found_trials,
+                                                                 search_limit - elapsed(), threads});
                 };
+                const double check_started = elapsed();
                 const bridge::FinishedPath as_found = finished(0.0, -1.0, 0);
+                const double check_seconds = elapsed() - check_started;
                 const bridge::FinishedPath made_robust =
                     robust(as_found) || out_of_time()
                         ? as_found
@@ -581,7 +587,12 @@ namespace pushplan
                 }
                 if (!most_robust || surely(plan.robustness, plan.robustness_trials) >
                                         surely(most_robust->robustness, most_robust->trials))
+                {
                     most_robust = SetAside{*winner, std::move(as_made_robust), plan.robustness, plan.robustness_trials};
+                    // Time kept to measure it once more, as long as its check took with half
+                    // again to spare (its finished path is no longer).
+                    search_limit = time_limit - 1.5 * check_seconds;
+                }
                 {
                     char note[320];
                     std::snprintf(note, sizeof note,
@@ -651,6 +662,7 @@ namespace pushplan
             const bridge::FinishedPath path = detail::finish(
                 *finisher, found, solved,
                 bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate, false,
+                                       solved ? run.robust_trials : 0u,
                                        solved && run.robust_trials > 0 ? plan.robustness : -1.0,
                                        plan.robustness_trials, time_limit - elapsed(), threads});
             describe(plan, *finisher, info, path);
@@ -667,6 +679,11 @@ namespace pushplan
         {
             plan.robustness = path.robustness;
             plan.robustness_trials = path.robustness_trials;
+        }
+        if (path.unseen_rate >= 0.0)
+        {
+            plan.unseen_robustness = path.unseen_rate;
+            plan.unseen_trials = path.unseen_trials;
         }
         const rust::Slice<const double> controls(path.controls.data(), path.controls.size());
         const rust::Slice<const std::size_t> steps(path.steps.data(), path.steps.size());

@@ -278,6 +278,14 @@ namespace pushplan
         /// where the time limit cut the check short (the first of them: the same seed and this
         /// many trials measure it again). 0 when not checked.
         std::size_t robustness_trials = 0;
+        /// The plan's rate in as many perturbed worlds as the check has, drawn apart from
+        /// the check's (-1: not measured: not robust planning, or the time limit came
+        /// first). Every solution is judged in the check's worlds and the plan is the first
+        /// to pass there or the best set aside, so `robustness` is the luckiest of the run;
+        /// this one was not chosen on.
+        double unseen_robustness = -1.0;
+        /// The perturbed re-simulations `unseen_robustness` is over.
+        std::size_t unseen_trials = 0;
         /// Set by Planner::replan: the plan starts at the observed state, not the scene's start.
         std::optional<Replanned> replanned;
         /// Total duration of the controls (s).

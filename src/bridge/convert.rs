@@ -199,6 +199,7 @@ impl TryFrom<&bridge::FinishSettings> for FinishSettings {
                 rate: s.robust_rate,
             }),
             only_toward_robustness: s.only_toward_robustness,
+            unseen_trials: s.unseen_trials,
             found_rate: (s.found_rate >= 0.0).then_some(MeasuredRate {
                 rate: s.found_rate,
                 trials: s.found_trials,
@@ -241,6 +242,8 @@ impl From<FinishedPath> for bridge::FinishedPath {
             shortcut_dropped_as_less_robust: path.shortcut.dropped_as_less_robust,
             robustness: path.robustness.map_or(-1.0, |r| r.rate),
             robustness_trials: path.robustness.map_or(0, |r| r.trials),
+            unseen_rate: path.unseen.map_or(-1.0, |r| r.rate),
+            unseen_trials: path.unseen.map_or(0, |r| r.trials),
         }
     }
 }

@@ -308,6 +308,17 @@ pub fn plan_loaded(
                 )
             }
         );
+        // The check's rate is the chosen solution's in the worlds it was chosen in.
+        match &r.unseen {
+            Some(u) => println!(
+                "robust, in {} other perturbed worlds (not chosen in): {:.0} % reach the goal",
+                u.trials,
+                100.0 * u.success_rate
+            ),
+            None => println!(
+                "robust, in other perturbed worlds: not measured (the time limit came first)"
+            ),
+        }
     }
     let moved: Vec<&str> = file
         .objects

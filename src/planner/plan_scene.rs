@@ -4,7 +4,9 @@
 
 use crate::planner::{Found, ReachSettings, Reached, Search, SearchProgress};
 use crate::planning::path::PathControl;
-use crate::planning::plan_file::{PlanFile, PlanSettings, ReachRecord, RobustnessRecord};
+use crate::planning::plan_file::{
+    PlanFile, PlanSettings, ReachRecord, RobustnessRecord, UnseenRate,
+};
 use crate::planning::shortcut::ShortcutProgress;
 use crate::planning::{
     time_left, CommandDeadline, FinishSettings, FinishedPath, Problem, RobustRequirement,
@@ -68,6 +70,9 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
         // The found solution is robust enough (or the most robust in time): shortened
         // first, kept only as robust.
         only_toward_robustness: false,
+        // The rate the plan states is the check's, the luckiest of the run: measured
+        // again in worlds the choice did not see.
+        unseen_trials: options.robust_trials as usize,
         found_rate: found.robustness,
         deadline: Some(request.deadline),
         progress: request.shortcut_progress,
@@ -95,6 +100,10 @@ pub fn plan_scene(search: &dyn Search, request: &PlanRequest) -> Result<Planned,
         shortcut: options.robust_shortcut,
         asked: (measured.trials < options.robust_trials as usize)
             .then_some(options.robust_trials as usize),
+        unseen: path.unseen.map(|u| UnseenRate {
+            trials: u.trials,
+            success_rate: u.rate,
+        }),
     });
     Ok(Planned {
         file,

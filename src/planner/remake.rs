@@ -58,6 +58,14 @@ pub fn remake(search: &dyn Search, plan: &PlanFile, plan_path: &Path) -> Result<
                 r.trials
             )));
         }
+        if r.unseen.as_ref().is_none_or(|u| u.trials < r.trials) {
+            return Ok(Remade::Cannot(
+                "its rate in other perturbed worlds is cut short or absent (the time limit \
+                 came first, and where the clock stops depends on the machine; or the file is \
+                 older than the record)"
+                    .into(),
+            ));
+        }
         if r.success_rate < r.required_rate {
             return Ok(Remade::Cannot(format!(
                 "its paths reach the goal in {:.0} % of the perturbed worlds, below the {:.0} % asked: \

@@ -11,7 +11,7 @@ use crate::planning::robustness::Noise;
 pub use crate::planning::trajectory::TRAJECTORY_RATE;
 use crate::planning::trajectory::{executable, Trajectory};
 use crate::planning::{
-    PlannerKind, Problem, RunSettings, DEFAULT_ROBUST_RATE, DEFAULT_ROBUST_SHORTCUT,
+    unseen_seed, PlannerKind, Problem, RunSettings, DEFAULT_ROBUST_RATE, DEFAULT_ROBUST_SHORTCUT,
 };
 use crate::scene::Scene;
 use crate::state::State;
@@ -257,6 +257,24 @@ pub struct RobustnessRecord {
     /// (`trials` below it; absent otherwise: `trials` were asked).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub asked: Option<usize>,
+    /// The plan's rate in as many perturbed worlds as the check has, drawn apart from the
+    /// worlds every solution of the run was judged in (`planning::unseen_rate`): the
+    /// check's rate is that of the solution chosen for passing it, the luckiest of the
+    /// run; this one is not chosen on. Absent in older files, and when the time limit
+    /// came before it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unseen: Option<UnseenRate>,
+}
+
+/// A rate measured after the plan was chosen ([`RobustnessRecord::unseen`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnseenRate {
+    /// Perturbed re-simulations run (fewer than the check's when the time limit cut them
+    /// short).
+    pub trials: usize,
+    /// Fraction of them that reached the goal.
+    pub success_rate: f64,
 }
 
 /// The budget older plan files were made with (the field is newer than it).
@@ -316,9 +334,23 @@ impl RobustnessRecord {
         for (field, rate) in [
             ("required_rate", self.required_rate),
             ("success_rate", self.success_rate),
-        ] {
+        ]
+        .into_iter()
+        .chain(
+            self.unseen
+                .as_ref()
+                .map(|u| ("unseen.success_rate", u.success_rate)),
+        ) {
             if !(0.0..=1.0).contains(&rate) {
                 return Err(named(field, format!("must be in [0, 1], got {rate}")));
+            }
+        }
+        if let Some(u) = &self.unseen {
+            if !(1..=ROBUST_TRIALS.most as usize).contains(&u.trials) {
+                return Err(named(
+                    "unseen.trials",
+                    format!("must be in [1, {}], got {}", ROBUST_TRIALS.most, u.trials),
+                ));
             }
         }
         Ok(())
@@ -955,14 +987,15 @@ impl PlanFile {
         if record_matches {
             let mut rebuilt = self.rebuilt(scene)?;
             if let Some(record) = &mut rebuilt.robustness {
-                record.success_rate = problem
-                    .robustness(
-                        &self.path_controls(),
-                        &Noise::default(),
-                        record.trials,
-                        self.settings.seed,
-                    )
-                    .success_rate;
+                let rate = |trials, seed| {
+                    problem
+                        .robustness(&self.path_controls(), &Noise::default(), trials, seed)
+                        .success_rate
+                };
+                record.success_rate = rate(record.trials, self.settings.seed);
+                if let Some(unseen) = &mut record.unseen {
+                    unseen.success_rate = rate(unseen.trials, unseen_seed(self.settings.seed));
+                }
             }
             if let Some(field) = first_difference(self, &rebuilt) {
                 record_matches = false;

@@ -141,6 +141,8 @@ int main()
         expect(plan.solved && !o.robust_rate && plan.robustness >= 0.95,
                "a robust plan through the API reaches the goal in 95 % of its perturbed re-simulations");
         expect(plan.robustness_trials == 10, "with time to spare, its robustness is over every trial asked");
+        expect(plan.unseen_trials == 10 && plan.unseen_robustness >= 0.0 && plan.unseen_robustness <= 1.0,
+               "and its rate in as many worlds it was not chosen in is given beside it");
         // With a thousand trials and a tenth of a second, the check stops at the limit:
         // over fewer trials, and says how many.
         o.robust_trials = 1000;
@@ -149,6 +151,9 @@ int main()
         expect(hurried.robustness < 0 ? hurried.robustness_trials == 0
                                       : hurried.robustness_trials >= 1 && hurried.robustness_trials < 1000,
                "a robustness check the time limit cuts short is over the trials it ran");
+        expect(hurried.unseen_robustness < 0 ? hurried.unseen_trials == 0
+                                             : hurried.unseen_trials >= 1 && hurried.unseen_trials <= 1000,
+               "so is the rate in other worlds, or it is not given");
     }
 
     {

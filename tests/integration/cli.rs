@@ -416,6 +416,35 @@ fn a_plan_is_robust_by_default_and_the_most_robust_found_when_time_runs_out() {
         robust["robustness"]["success_rate"].as_f64().unwrap() >= 0.95,
         "{output}"
     );
+    // Beside the check's rate (the chosen solution's, in the worlds it was chosen in), the
+    // plan's rate in 20 worlds it was not chosen in: recorded, said, and measured again by
+    // `check`, which finds a changed figure.
+    let unseen = &robust["robustness"]["unseen"];
+    assert_eq!(unseen["trials"], 20, "{output}");
+    let unseen_rate = unseen["success_rate"].as_f64().unwrap();
+    assert!(
+        output.contains(&format!(
+            "robust, in 20 other perturbed worlds (not chosen in): {:.0} % reach the goal",
+            100.0 * unseen_rate
+        )),
+        "{output}"
+    );
+    let mut changed = robust.clone();
+    let other = if unseen_rate >= 0.5 {
+        unseen_rate - 0.05
+    } else {
+        unseen_rate + 0.05
+    };
+    changed["robustness"]["unseen"]["success_rate"] = other.into();
+    let changed_path = scratch.join("changed.json");
+    std::fs::write(&changed_path, changed.to_string()).unwrap();
+    let (code, checked, stderr) =
+        pushplan(&["check", changed_path.to_str().unwrap(), "--path-only"]);
+    assert_eq!(code, 1, "{checked}{stderr}");
+    assert!(
+        checked.contains("robustness.unseen.success_rate: differs from the re-simulation"),
+        "{checked}{stderr}"
+    );
     // The same record as a clock would have cut it, after 7 of the 20 worlds: `check`
     // cannot make such a plan again (where the clock stops depends on the machine) and
     // says so; the path itself still checks. (tests/time_limit makes a real cut, whose

@@ -208,7 +208,7 @@ fn the_cpp_api_keeps_its_contract() {
     // Planner kinds and names, OMPL's log level left as found, every failure as
     // pushplan::Error: tests/cpp/api_contract.cpp checks each and prints what it checked.
     let binary = compile("tests/cpp/api_contract.cpp", "api-contract");
-    run_checks(&binary, 80);
+    run_checks(&binary, 82);
 }
 
 /// Runs a C++ test program (tests/cpp/expect.h) and checks that it passed exactly

@@ -266,6 +266,7 @@ fn shortcutting_toward_robustness_keeps_every_world_it_reaches_and_holds_up_else
             seed,
             robust,
             only_toward_robustness,
+            unseen_trials: 0,
             found_rate: None,
             deadline: None,
             progress: None,

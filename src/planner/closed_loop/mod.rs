@@ -710,6 +710,7 @@ impl ClosedLoop {
             seed: run.seed,
             robust: None,
             only_toward_robustness: false,
+            unseen_trials: 0,
             found_rate: None,
             deadline: None,
             progress: None,
