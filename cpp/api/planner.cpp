@@ -662,7 +662,7 @@ namespace pushplan
             const bridge::FinishedPath path = detail::finish(
                 *finisher, found, solved,
                 bridge::FinishSettings{run.shortcut, seed, measured ? 0u : run.robust_trials, run.robust_rate, false,
-                                       solved ? run.robust_trials : 0u,
+                                       run.robust_trials,
                                        solved && run.robust_trials > 0 ? plan.robustness : -1.0,
                                        plan.robustness_trials, time_limit - elapsed(), threads});
             describe(plan, *finisher, info, path);

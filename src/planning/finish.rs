@@ -123,7 +123,7 @@ fn measured_rate(
 /// the luckiest of the run: plans stated at 95 % measured 82-98 % over 200 other worlds
 /// (BENCHMARKS.md, "Robust finishing"). Worlds the choice did not see give a rate without
 /// that bias.
-pub fn unseen_rate(
+fn unseen_rate(
     scene: &Scene,
     controls: &[PathControl],
     trials: usize,

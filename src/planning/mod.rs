@@ -37,8 +37,8 @@ pub mod transit;
 
 pub use deadline::{deadline, passed, time_left, CommandDeadline};
 pub use finish::{
-    finish, unseen_rate, unseen_seed, FinishSettings, FinishedPath, MeasuredRate,
-    RobustRequirement, ShortcutReport,
+    finish, unseen_seed, FinishSettings, FinishedPath, MeasuredRate, RobustRequirement,
+    ShortcutReport,
 };
 pub use kind::PlannerKind;
 pub use problem::Problem;

@@ -258,10 +258,10 @@ pub struct RobustnessRecord {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub asked: Option<usize>,
     /// The plan's rate in as many perturbed worlds as the check has, drawn apart from the
-    /// worlds every solution of the run was judged in (`planning::unseen_rate`): the
-    /// check's rate is that of the solution chosen for passing it, the luckiest of the
-    /// run; this one is not chosen on. Absent in older files, and when the time limit
-    /// came before it.
+    /// worlds every solution of the run was judged in (by `planning::finish`, from
+    /// `planning::unseen_seed`): the check's rate is that of the solution chosen for
+    /// passing it, the luckiest of the run; this one is not chosen on. Absent in older
+    /// files, and when the time limit came before it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unseen: Option<UnseenRate>,
 }
