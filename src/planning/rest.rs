@@ -19,6 +19,7 @@
 
 use super::path::{PathControl, SimulatedPath};
 use super::Problem;
+use crate::scene::Goal;
 use crate::state::State;
 
 /// The share of a re-plan's search time a repair's search gets: what a repair finds, it
@@ -73,10 +74,7 @@ impl Problem {
             None => RestFrom::EndsShort {
                 valid: simulated.states.len() - 1,
                 end: end.clone(),
-                why: format!(
-                    "the goal is missed by {:.1} mm",
-                    1e3 * self.scene().goal.task_distance(end).max(0.0)
-                ),
+                why: short_of(&self.scene().goal, end),
             },
             Some((k, reason)) => RestFrom::EndsShort {
                 valid: *k,
@@ -84,5 +82,67 @@ impl Problem {
                 why: format!("its control {k} stops: {reason}"),
             },
         }
+    }
+}
+
+/// Why a rest that is valid to its end is not kept: how far its end misses the goal. An
+/// object goal's end may lie inside the disc and still short of the goal region (the disc
+/// less its margin) or of what the judge asks: that is said with both distances, not as a
+/// miss of 0 mm.
+fn short_of(goal: &Goal, end: &State) -> String {
+    let task = goal.task_distance(end);
+    match goal {
+        Goal::ObjectInDisc { .. } if task <= 0.0 => format!(
+            "the goal object ends {:.1} mm inside the disc's edge, {:.1} mm from the goal \
+             region (the disc less its margin)",
+            -1e3 * task,
+            1e3 * goal.distance(end)
+        ),
+        _ => format!("the goal is missed by {:.1} mm", 1e3 * task),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planning::PlannerKind;
+    use crate::robot::EeAction;
+    use crate::Scene;
+
+    /// The planar hand of `tests/data/hand_round_a_stick.yaml` (a box 0.04 m deep, its
+    /// centre at x = 0.35 m) pushes the box (centre 0.7 m, 0.1 m wide) straight ahead,
+    /// 0.04 m a control, and touches it after seven: the box's centre ends at
+    /// 0.7 + 0.04 (pushes - 7) m. The goal disc: centre x = 0.85 m, radius 0.05 m, its
+    /// margin 0.03 m (60 % of the radius at most).
+    fn pushes(n: usize) -> Vec<PathControl> {
+        let ahead = PathControl {
+            action: EeAction::planar(0.2, 0.0, 0.0),
+            steps: 20,
+        };
+        vec![ahead; n]
+    }
+
+    fn why_short(n: usize) -> String {
+        let scene = Scene::load("tests/data/hand_round_a_stick.yaml").unwrap();
+        let problem = Problem::new(scene.clone(), PlannerKind::PushKpiece);
+        let (verdict, simulated) = problem.rest_from(&pushes(n), |s| scene.goal.is_satisfied(s));
+        assert!(simulated.valid(), "{:?}", simulated.stopped_by);
+        match verdict {
+            RestFrom::EndsShort { why, .. } => why,
+            RestFrom::Reaches => panic!("{n} pushes reach the goal"),
+        }
+    }
+
+    #[test]
+    fn a_rest_ending_inside_the_disc_short_of_its_margin_says_both_distances() {
+        // Ten controls: the box's centre at 0.82 m, 30 mm from the disc's centre: 20 mm
+        // inside its edge, 10 mm from the goal region (the 20 mm disc the margin leaves).
+        assert_eq!(
+            why_short(10),
+            "the goal object ends 20.0 mm inside the disc's edge, 10.0 mm from the goal \
+             region (the disc less its margin)"
+        );
+        // Nine: at 0.78 m, 70 mm from the centre, 20 mm outside the disc.
+        assert_eq!(why_short(9), "the goal is missed by 20.0 mm");
     }
 }
