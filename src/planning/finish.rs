@@ -31,7 +31,7 @@ pub struct FinishSettings {
     /// more fragile path (BENCHMARKS.md, "Robust finishing").
     pub only_toward_robustness: bool,
     /// Perturbed worlds no solution was chosen in that the finished path is measured in
-    /// ([`unseen_rate`]; robust planning's final finishing), 0: none.
+    /// (measured by `finish`; robust planning's final finishing), 0: none.
     pub unseen_trials: usize,
     /// The found path's success rate under `robust`, if the caller measured it already
     /// (with the same seed): not measured again.
@@ -135,7 +135,7 @@ fn unseen_rate(
 }
 
 /// The seed of the worlds a plan made with `seed` is measured in after its choice
-/// ([`unseen_rate`]): a stream of its own, apart from the check's (`seed`) and the
+/// (by `finish`): a stream of its own, apart from the check's (`seed`) and the
 /// shortcutting's ([`RobustRequirement::shortcut_worlds`]).
 pub fn unseen_seed(seed: u64) -> u64 {
     seed ^ 0x0005_EED0_F7E5_7ED5
