@@ -111,7 +111,8 @@ enum Command {
     },
     /// Play a plan's trajectory open loop in a 3D rigid-body engine (rapier or MuJoCo): the arm's
     /// links follow the trajectory, the objects slide, turn and tip freely. Reports how
-    /// often the goal is reached, each object's final error and the first divergence.
+    /// often the goal is reached, each object's final error and the first divergence. Exit
+    /// status: 0 when some trial reaches the goal, 1 when none does, 2 for bad input.
     Execute {
         /// Plan file (JSON, written by `plan`).
         plan: PathBuf,

@@ -337,6 +337,22 @@ fn robust_plans_survive_perturbed_re_simulation_and_execute_in_3d() {
     assert!(stderr.contains("--speed"), "{stderr}");
 }
 
+/// `execute`'s exit status says whether the goal was reached: a plan whose search had no
+/// time (no controls: the goal object stays 169 mm outside the disc) reaches it in no
+/// trial, and exits 1, as `plan` did for it.
+#[test]
+fn execute_exits_1_when_no_trial_reaches_the_goal() {
+    let scratch = common::Scratch::new("cli-execute_exits_1_when_no_trial_reaches_the_goal");
+    let out = scratch.join("unsolved.json");
+    let out_str = out.to_str().unwrap();
+    let scene = "scenes/herb_single_object.yaml";
+    let (code, stdout, _) = pushplan(&["plan", scene, "--time", "0.001", "--out", out_str]);
+    assert_eq!(code, 1, "{stdout}");
+    let (code, stdout, stderr) = pushplan(&["execute", out_str, "--trials", "1"]);
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(stdout.contains("0 reach the goal"), "{stdout}");
+}
+
 #[test]
 fn robust_planning_can_carry_perturbed_worlds_along_the_search() {
     let scratch = common::Scratch::new("cli-robust_planning_can_carry_perturbed_worlds");
