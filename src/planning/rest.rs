@@ -98,7 +98,7 @@ fn short_of(goal: &Goal, end: &State) -> String {
             -1e3 * task,
             1e3 * goal.distance(end)
         ),
-        _ => format!("the goal is missed by {:.1} mm", 1e3 * task),
+        _ => format!("the goal is missed by {:.1} mm", 1e3 * task.max(0.0)),
     }
 }
 
