@@ -4,6 +4,8 @@
 use crate::common;
 
 use common::{herb_scene, object, parked_goal, HAND_NEAR};
+use nalgebra::Vector3;
+use pushplan_model::contact::{arm_contacts, ArmBounds};
 use pushplan_model::validity::check_state;
 use pushplan_model::{EeAction, Invalid, Pose2, Propagator, Scene, State};
 use std::path::Path;
@@ -504,4 +506,78 @@ fn an_object_keeps_the_edge_clearance_from_the_table_s_edges_or_its_start_distan
         at(&from, 0.977 + 1e-4, -0.2),
         Err(Invalid::ObjectOffTable { .. })
     ));
+}
+
+/// The WAM at [`HAND_NEAR`] with a 4 cm upright cylinder set beside its wrist ball
+/// (`wam_link6`, radius 5 cm) so that the ball touches the cylinder's top rim with the
+/// contact's normal `angle` (rad) from vertical, on the side away from the hand (-x); `extra` as in
+/// [`herb_scene`]. Returns the scene (the cylinder parked), the state with the cylinder on
+/// the wrist, and the normal out of the cylinder, in the world frame, from the geometry
+/// alone: the ball's centre lies `r sin(angle)` beyond the rim
+/// horizontally and `r cos(angle)` above the top, so the rim point under it is the
+/// nearest point and the normal runs from it to the centre.
+fn wrist_ball_on_a_rim(angle: f64, extra: &str) -> (Scene, State, Vector3<f64>) {
+    let (r_ball, r_rim) = (0.05, 0.04);
+    let arm = herb_scene(HAND_NEAR, &parked_goal(), "").unwrap();
+    let wrist = arm
+        .robot
+        .chain
+        .links
+        .iter()
+        .position(|l| l.name == "wam_link6");
+    let p_WC = arm.robot.link_poses(&arm.start.q)[wrist.unwrap()]
+        .translation
+        .vector;
+    let n_W = Vector3::new(angle.sin(), 0.0, angle.cos()); // rim point to the ball's centre
+    let height = p_WC.z - r_ball * angle.cos() - arm.table.top;
+    let x = p_WC.x - r_ball * angle.sin() - r_rim;
+    let shape = format!("{{type: cylinder, radius: {r_rim}, height: {height}}}");
+    // Loaded with the cylinder out of the way (a start pressing on top is refused at load).
+    let objects = parked_goal() + &object("bowl", &shape, [0.8, -0.3, 0.0]);
+    let scene = herb_scene(HAND_NEAR, &objects, extra).unwrap();
+    let on_the_rim = with_object(&scene, 1, Pose2::new(x, p_WC.y, 0.0));
+    (scene, on_the_rim, n_W)
+}
+
+#[test]
+fn a_link_pressing_a_rim_down_is_invalid_pushing_it_sideways_is_not() {
+    // A contact more vertical than horizontal loads the object into the table more than it
+    // pushes it: not the planar push the model solves (in rapier, an upper arm pressing a
+    // bowl's rim 34 degrees from vertical tipped it). `vertical_normal_angle` defaults to
+    // 45 degrees.
+    for degrees in [10.0, 34.0, 44.0, 46.0, 60.0, 80.0] {
+        let angle = f64::to_radians(degrees);
+        let (scene, state, n_W) = wrist_ball_on_a_rim(angle, "");
+        let poses = scene.robot.link_poses(&state.q);
+        let mut bounds = ArmBounds::default();
+        ArmBounds::compute(&scene, &poses, &mut bounds);
+        let contacts = arm_contacts(&scene, &poses, &bounds, &state.objects, 1e-3);
+        // One contact, the ball on the rim, touching, with the normal of the geometry.
+        assert_eq!(contacts.len(), 1, "{degrees} degrees: {contacts:?}");
+        let c = &contacts[0];
+        assert_eq!(scene.robot.chain.links[c.link].name, "wam_link6");
+        assert!(
+            c.point.distance.abs() < 1e-6,
+            "{degrees}: {}",
+            c.point.distance
+        );
+        assert!(
+            (c.point.normal_a.into_inner() - n_W).norm() < 1e-4,
+            "{degrees}: {:?}",
+            c.point.normal_a
+        );
+        let verdict = check_state(&scene, &state);
+        if degrees < 45.0 {
+            assert!(
+                matches!(&verdict, Err(Invalid::PressesOnTop { link, object }) if link == "wam_link6" && object == "bowl"),
+                "{degrees} degrees: {verdict:?}"
+            );
+        } else {
+            assert_eq!(verdict, Ok(()), "{degrees} degrees");
+        }
+    }
+    // The rule, not something else, refuses it: at the old 20 degrees the 34-degree press
+    // passes for a push.
+    let (loose, state, _) = wrist_ball_on_a_rim(0.6, "physics: {vertical_normal_angle: 0.35}");
+    assert_eq!(check_state(&loose, &state), Ok(()));
 }
