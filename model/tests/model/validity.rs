@@ -516,6 +516,7 @@ fn an_object_keeps_the_edge_clearance_from_the_table_s_edges_or_its_start_distan
 /// alone: the ball's centre lies `r sin(angle)` beyond the rim
 /// horizontally and `r cos(angle)` above the top, so the rim point under it is the
 /// nearest point and the normal runs from it to the centre.
+#[allow(non_snake_case)] // frame-named: p_WC, the ball's centre in the world frame
 fn wrist_ball_on_a_rim(angle: f64, extra: &str) -> (Scene, State, Vector3<f64>) {
     let (r_ball, r_rim) = (0.05, 0.04);
     let arm = herb_scene(HAND_NEAR, &parked_goal(), "").unwrap();
@@ -540,6 +541,7 @@ fn wrist_ball_on_a_rim(angle: f64, extra: &str) -> (Scene, State, Vector3<f64>) 
 }
 
 #[test]
+#[allow(non_snake_case)] // n_W, the contact's normal in the world frame
 fn a_link_pressing_a_rim_down_is_invalid_pushing_it_sideways_is_not() {
     // A contact more vertical than horizontal loads the object into the table more than it
     // pushes it: not the planar push the model solves (in rapier, an upper arm pressing a
